@@ -1,0 +1,42 @@
+# study: every target sets up its own virtual environment in .venv on first use.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-stamp
+CONFIG ?= configs/default.toml
+
+.PHONY: help setup test sweep charts bench validate clean
+
+help:
+	@echo "make test      install (first time) and run the whole test suite"
+	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
+	@echo "make charts    redraw the charts of the default study"
+	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
+	@echo "make validate  compare with the printed numbers (docs/validation.md)"
+	@echo "make clean     remove outputs and the virtual environment"
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	touch $(STAMP)
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+sweep: $(STAMP)
+	$(BIN)/study sweep $(CONFIG)
+
+charts: $(STAMP)
+	$(BIN)/study charts outputs/$$($(BIN)/python -c "import study.config as c; print(c.load('$(CONFIG)').name)")/results.nc
+
+bench: $(STAMP)
+	$(BIN)/study bench
+
+validate: $(STAMP)
+	$(BIN)/study validate --out docs/validation.md
+
+clean:
+	find outputs -mindepth 1 ! -name README.md -exec rm -rf {} +
+	rm -rf $(VENV) .pytest_cache *.egg-info

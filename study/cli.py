@@ -1,0 +1,182 @@
+"""The ``study`` command: point, sweep, charts, bench, validate.
+
+Bad input ends with one clear message listing every problem and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from study import __version__
+from study.config import FIELDS_BY_NAME, ConfigError, load, parse_set
+from study.solvers import METHODS, OUTPUTS, solve_point
+from study.units import convert
+
+DEFAULT_CONFIG = "configs/default.toml"
+
+#: Units a drilling engineer reads, for the human-readable table: output name -> unit.
+DISPLAY_UNITS = {
+    "bending_stiffness": "lbf * in**2",
+    "steel_area": "in**2",
+    "pipe_mass": "lb/ft",
+    "internal_mud_mass": "lb/ft",
+    "added_mass": "lb/ft",
+    "mass_per_length": "lb/ft",
+    "drag_coefficient_per_length": "lb/ft**2",
+    "effective_tension": "lbf",
+    "clearance": "in",
+    "buckling_length": "ft",
+    "span_length": "ft",
+    "first_natural_frequency": "Hz",
+    "equivalent_mass": "lb",
+    "impact_velocity": "in/s",
+    "impulse": "lbf * s",
+    "axial_curvature": "1/ft",
+    "max_approach": "in",
+    "hertz_duration": "ms",
+    "contact_duration": "ms",
+    "hertz_peak_force": "lbf",
+    "peak_contact_force": "lbf",
+    "contact_half_length": "in",
+    "contact_half_width": "in",
+}
+_SI_FOR_PINT = {"N m2": "N * m**2", "m2": "m**2", "kg m-1": "kg/m", "kg m-2": "kg/m**2", "m s-1": "m/s",
+                "N s": "N * s", "m-1": "1/m"}
+
+
+def _finite_or_none(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _point_json(result, inputs) -> str:
+    payload = {"inputs": {k: _finite_or_none(v) for k, v in inputs.items() if v is not None}}
+    payload.update({k: _finite_or_none(v) for k, v in result.as_dict().items()})
+    return json.dumps(payload, indent=2)
+
+
+def _point_table(result, inputs) -> str:
+    lines = [f"method {result.method}: status {result.status}", f"  {result.message}", ""]
+    for name, value in result.values.items():
+        unit, long_name = OUTPUTS[name]
+        shown_unit = DISPLAY_UNITS.get(name, unit)
+        if isinstance(value, float) and math.isfinite(value):
+            shown = convert(value, _SI_FOR_PINT.get(unit, unit), shown_unit)
+            text = f"{shown:12.5g} {shown_unit}"
+        else:
+            text = f"{value!s:>12}"
+        lines.append(f"  {name:28s} {text:24s} {long_name}")
+    lines.append(f"\n  wall time {result.wall_time * 1e3:.3g} ms")
+    return "\n".join(lines)
+
+
+def cmd_point(args) -> int:
+    study = load(args.config, parse_set(args.set or []))
+    inputs = study.point()
+    if args.method:
+        inputs["method"] = args.method
+    result = solve_point(inputs)
+    print(_point_json(result, inputs) if args.json else _point_table(result, inputs))
+    return 0
+
+
+def cmd_sweep(args) -> int:
+    from study.workflow.sweep import run_sweep
+
+    study = load(args.config, parse_set(args.set or []))
+    path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
+                     progress=not args.quiet)
+    print(f"results: {path}")
+    if not args.no_charts:
+        from study.charts import draw_all
+
+        for figure in draw_all(path):
+            print(f"chart:   {figure}")
+    return 0
+
+
+def cmd_charts(args) -> int:
+    from study.charts import draw_all
+
+    for figure in draw_all(args.dataset, out_dir=args.out, fmt=args.format):
+        print(figure)
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from study.bench import run_bench
+
+    print(run_bench(args.out))
+    return 0
+
+
+def cmd_validate(args) -> int:
+    from study.validate import run_validate
+
+    report = run_validate()
+    if args.out:
+        with open(args.out, "w") as handle:
+            handle.write(report)
+        print(f"written {args.out}")
+    else:
+        print(report)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="study", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"study {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("point", help="evaluate one design point")
+    p.add_argument("config", nargs="?", default=DEFAULT_CONFIG)
+    p.add_argument("--set", action="append", metavar="SECTION.KEY=VALUE",
+                   help='override an input, e.g. --set load.rotary_speed="200 rpm" (repeatable)')
+    p.add_argument("--method", choices=sorted(METHODS))
+    p.add_argument("--json", action="store_true", help="print one JSON object, SI values")
+    p.set_defaults(func=cmd_point)
+
+    p = sub.add_parser("sweep", help="solve every point of the config's grid and write outputs/<name>/")
+    p.add_argument("config", nargs="?", default=DEFAULT_CONFIG)
+    p.add_argument("--set", action="append", metavar="SECTION.KEY=VALUE")
+    p.add_argument("--out", default=None, help="output folder (default outputs/<study name>)")
+    p.add_argument("--scheduler", default=None, help="address of a dask.distributed scheduler")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: cores)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--no-charts", action="store_true", help="skip the charts")
+    p.set_defaults(func=cmd_sweep)
+
+    p = sub.add_parser("charts", help="draw the design charts of a results dataset")
+    p.add_argument("dataset")
+    p.add_argument("--out", default=None, help="folder (default: charts/ beside the dataset)")
+    p.add_argument("--format", default="png", choices=["png", "pdf", "svg"])
+    p.set_defaults(func=cmd_charts)
+
+    p = sub.add_parser("bench", help="benchmark the methods side by side")
+    p.add_argument("--out", default=None, help="also write the report to this markdown file")
+    p.set_defaults(func=cmd_bench)
+
+    p = sub.add_parser("validate", help="compare with the printed numbers of the sources")
+    p.add_argument("--out", default=None, help="write the report to this markdown file")
+    p.set_defaults(func=cmd_validate)
+    return parser
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except ConfigError as exc:
+        print(f"study: error: {exc}", file=sys.stderr)
+        return 2
+    except ValueError as exc:  # e.g. an unknown method: a user's mistake, not a crash
+        print(f"study: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

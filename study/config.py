@@ -1,0 +1,434 @@
+"""Study configuration: TOML with units in, validated SI inputs and sweep axes out.
+
+A config has optional top-level ``name`` and ``title`` and the sections ``pipe``, ``hole``,
+``rock``, ``mud``, ``load``, ``impact``, ``solver`` and ``sweep``. A value is a number (SI)
+or a string with units as users write them ("4.5 in", "16.6 lb/ft", "10 ppg", "300 rpm").
+Any scalar input can become a sweep axis under ``[sweep.axes]``: a list of values, or a range
+``{start, stop, num}`` or ``{start, stop, step}``.
+
+Bad input raises :class:`ConfigError`, which lists every problem at once: the field's path,
+its value and the rule it breaks. Validators follow xarray-simlab's style: the message names
+the variable, its value and the bound.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from study.physics.section import ADDED_MASS_MODELS
+from study.units import UnitProblem, parse_quantity
+
+REQUIRED = object()
+
+
+@dataclass(frozen=True)
+class Field:
+    """One scalar input: where it lives in the config, what it is called inside, its unit and rule.
+
+    unit : SI unit string ("" for dimensionless); ``None`` for a choice or text field.
+    lower, upper : bounds in SI; ``lower_open``/``upper_open`` make them strict.
+    choices : allowed strings for a choice field.
+    integer : the value must be a whole number.
+    """
+
+    path: str
+    name: str
+    long_name: str
+    unit: str | None = ""
+    default: Any = REQUIRED
+    lower: float | None = None
+    upper: float | None = None
+    lower_open: bool = False
+    upper_open: bool = False
+    choices: tuple[str, ...] | None = None
+    integer: bool = False
+    angular: bool = False
+    display_unit: str | None = None  # the unit users think in, for tables and charts
+
+    @property
+    def sweepable(self) -> bool:
+        return self.unit is not None or self.choices is not None
+
+    def rule(self) -> str:
+        if self.choices is not None:
+            return "one of " + ", ".join(repr(c) for c in self.choices)
+        parts = []
+        if self.lower is not None:
+            parts.append(f"{'>' if self.lower_open else '>='} {self.lower:g}")
+        if self.upper is not None:
+            parts.append(f"{'<' if self.upper_open else '<='} {self.upper:g}")
+        kind = "a whole number" if self.integer else "a finite number"
+        unit = f" [{self.unit}]" if self.unit else ""
+        return kind + unit + (" " + " and ".join(parts) if parts else "")
+
+
+_POSITIVE = dict(lower=0.0, lower_open=True)
+_NON_NEGATIVE = dict(lower=0.0)
+_POISSON = dict(lower=-1.0, upper=0.5, lower_open=True, upper_open=True)
+
+#: Every input a config can set, in section order. ``name`` is the key inside the package and in
+#: the dataset; ``path`` is where it sits in the TOML file.
+FIELDS: tuple[Field, ...] = (
+    Field("pipe.outer_diameter", "outer_diameter", "pipe outer diameter", "m", display_unit="in", **_POSITIVE),
+    Field("pipe.inner_diameter", "inner_diameter", "pipe inner diameter", "m", display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.linear_mass", "pipe_linear_mass", "pipe mass per unit length (default: density x steel area)",
+          "kg/m", default=None, display_unit="lb/ft", **_POSITIVE),
+    Field("pipe.density", "pipe_density", "pipe material density", "kg/m^3", default=7850.0, **_POSITIVE),
+    Field("pipe.youngs_modulus", "pipe_youngs_modulus", "pipe Young's modulus", "Pa", default=206.84e9,
+          display_unit="psi", **_POSITIVE),
+    Field("pipe.poisson_ratio", "pipe_poisson_ratio", "pipe Poisson's ratio", "", default=0.30, **_POISSON),
+    Field("hole.diameter", "hole_diameter", "bore-hole diameter", "m", display_unit="in", **_POSITIVE),
+    Field("rock.youngs_modulus", "rock_youngs_modulus", "rock Young's modulus", "Pa", display_unit="psi",
+          **_POSITIVE),
+    Field("rock.poisson_ratio", "rock_poisson_ratio", "rock Poisson's ratio", "", **_POISSON),
+    Field("mud.density", "mud_density", "drilling mud density", "kg/m^3", display_unit="ppg", **_NON_NEGATIVE),
+    Field("mud.flow_velocity", "mud_flow_velocity", "mud flow velocity inside the pipe", "m/s", default=0.0,
+          display_unit="ft/s", **_NON_NEGATIVE),
+    Field("mud.drag_coefficient", "drag_coefficient", "drag coefficient of the annular flow", "", default=0.5,
+          **_NON_NEGATIVE),
+    Field("mud.added_mass_model", "added_mass_model", "added-mass model of the annular mud", None,
+          default="potential_flow", choices=tuple(ADDED_MASS_MODELS)),
+    Field("load.axial_tension", "axial_tension", "axial tension at the sample section (negative: compression)",
+          "N", display_unit="lbf"),
+    Field("load.rotary_speed", "rotary_speed", "rotary speed of the drill string", "rad/s", angular=True,
+          display_unit="rpm", **_POSITIVE),
+    Field("impact.restitution", "restitution", "coefficient of restitution", "", lower=0.0, upper=1.0),
+    Field("impact.pattern", "impact_pattern", "which walls the midspan strikes", None, default="alternating",
+          choices=("alternating", "one_wall")),
+    Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
+          choices=("prescribed", "self_consistent")),
+    Field("solver.method", "method", "solution method", None, default="core", choices=("core",)),
+    Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
+          "m", default=None, display_unit="ft", **_POSITIVE),
+    Field("solver.max_span", "max_span", "longest span searched", "m", default=304.8, display_unit="ft",
+          **_POSITIVE),
+)
+
+FIELDS_BY_PATH = {f.path: f for f in FIELDS}
+FIELDS_BY_NAME = {f.name: f for f in FIELDS}
+
+#: Sweep settings (not inputs of a design point).
+SWEEP_KEYS = {
+    "axes": "table of swept inputs",
+    "chunk_size": "design points per task (a whole number >= 1)",
+    "scheduler": "address of a dask.distributed scheduler ('' for local processes)",
+    "workers": "local worker processes (0: one per core)",
+}
+ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
+SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "solver", "sweep")
+SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0}
+
+
+class ConfigError(ValueError):
+    """Every problem found in a config; ``problems`` is the list, str() shows one per line."""
+
+    def __init__(self, problems: list[str], source: str = "config"):
+        self.problems = list(problems)
+        self.source = source
+        super().__init__(f"{source}: {len(problems)} problem(s)\n" + "\n".join(f"  - {p}" for p in problems))
+
+
+@dataclass
+class Study:
+    """A validated study: fixed inputs and sweep axes, all in SI."""
+
+    name: str
+    title: str
+    inputs: dict[str, Any]  # name -> SI float, or str for choices; None where unset (optional, or swept only)
+    axes: dict[str, np.ndarray] = field(default_factory=dict)  # name -> sorted SI values
+    sweep: dict[str, Any] = field(default_factory=lambda: dict(SWEEP_DEFAULTS))
+    text: str = ""  # the config text as read
+    path: str = ""
+
+    @property
+    def config_hash(self) -> str:
+        """SHA-256 of the config text, for provenance."""
+        return hashlib.sha256(self.text.encode()).hexdigest()
+
+    def point(self, **overrides) -> dict[str, Any]:
+        """Inputs of one design point: the fixed inputs with ``overrides`` (name -> SI value).
+
+        Raises :class:`ConfigError` when a required input is given only as a sweep axis and not
+        overridden here.
+        """
+        values = dict(self.inputs)
+        for key, value in overrides.items():
+            if key not in FIELDS_BY_NAME:
+                raise KeyError(key)
+            values[key] = value
+        missing = [
+            FIELDS_BY_NAME[k].path for k, v in values.items()
+            if v is None and FIELDS_BY_NAME[k].default is REQUIRED
+        ]
+        if missing:
+            raise ConfigError(
+                [f"{path}: given only as a sweep axis; give one value (e.g. --set {path}=...)" for path in missing],
+                self.path or "config",
+            )
+        return values
+
+    @property
+    def size(self) -> int:
+        return int(np.prod([len(v) for v in self.axes.values()])) if self.axes else 1
+
+
+def _suggest(key: str, known) -> str:
+    close = difflib.get_close_matches(key, list(known), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _check_value(spec: Field, raw, where: str, problems: list[str]):
+    """Convert one raw value for ``spec``; append a problem and return None when it is bad."""
+    if spec.choices is not None:
+        if not isinstance(raw, str) or raw not in spec.choices:
+            problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+            return None
+        return raw
+    try:
+        value = parse_quantity(raw, spec.unit, angular=spec.angular)
+    except UnitProblem as exc:
+        problems.append(f"{where} = {raw!r}: {exc}")
+        return None
+    if not math.isfinite(value):
+        problems.append(f"{where} = {raw!r}: must be finite; allowed: {spec.rule()}")
+        return None
+    if spec.integer and value != int(value):
+        problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+        return None
+    low_bad = spec.lower is not None and (value <= spec.lower if spec.lower_open else value < spec.lower)
+    high_bad = spec.upper is not None and (value >= spec.upper if spec.upper_open else value > spec.upper)
+    if low_bad or high_bad:
+        shown = f"{raw!r}" if isinstance(raw, str) else f"{raw!r}"
+        si = f" (= {value:g} {spec.unit})" if isinstance(raw, str) and spec.unit else ""
+        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}")
+        return None
+    return int(value) if spec.integer else value
+
+
+def _axis_values(spec: Field, raw, where: str, problems: list[str]):
+    """Expand one sweep axis: a list, or {start, stop, num} / {start, stop, step}."""
+    if isinstance(raw, list):
+        if not raw:
+            problems.append(f"{where} = []: an axis needs at least one value")
+            return None
+        values = [_check_value(spec, v, f"{where}[{i}]", problems) for i, v in enumerate(raw)]
+    elif isinstance(raw, dict):
+        if spec.choices is not None:
+            problems.append(f"{where}: a choice axis must be a list of {spec.rule()}")
+            return None
+        unknown = set(raw) - {"start", "stop", "num", "step"}
+        for key in sorted(unknown):
+            problems.append(f"{where}.{key}: unknown key; a range has start, stop and num or step")
+        if not {"start", "stop"} <= set(raw) or ("num" in raw) == ("step" in raw):
+            problems.append(f"{where} = {raw!r}: a range needs start, stop and exactly one of num or step")
+            return None
+        start = _check_value(spec, raw["start"], f"{where}.start", problems)
+        stop = _check_value(spec, raw["stop"], f"{where}.stop", problems)
+        if start is None or stop is None:
+            return None
+        if "num" in raw:
+            num = raw["num"]
+            if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+                problems.append(f"{where}.num = {num!r}: must be a whole number >= 1")
+                return None
+            values = list(np.linspace(start, stop, num))
+        else:
+            step = _check_value(Field(spec.path, spec.name, spec.long_name, spec.unit, angular=spec.angular),
+                                raw["step"], f"{where}.step", problems)
+            if step is None:
+                return None
+            if step <= 0 or stop < start:
+                problems.append(f"{where}.step = {raw['step']!r}: must be > 0 with stop >= start")
+                return None
+            count = (stop - start) / step
+            if count > 1e7:
+                problems.append(f"{where}: {count:.3g} steps; at most 1e7 points on one axis")
+                return None
+            num = int(math.floor(count + 1e-9)) + 1
+            values = list(start + step * np.arange(num))
+        values = [_check_value(spec, float(v), f"{where}", problems) for v in values]
+    else:
+        problems.append(f"{where} = {raw!r}: an axis is a list or a table {{start, stop, num|step}}")
+        return None
+    if any(v is None for v in values):
+        return None
+    if spec.choices is not None:
+        unique = list(dict.fromkeys(values))
+        return np.array(unique, dtype=object)
+    array = np.unique(np.asarray(values, dtype=float))  # sorted, duplicates dropped
+    return array
+
+
+def _flatten_axes(table: dict, prefix: str = "") -> dict[str, Any]:
+    """[sweep.axes] with dotted keys (load.rotary_speed = ...) arrives nested; flatten it."""
+    flat = {}
+    for key, value in table.items():
+        path = f"{prefix}.{key}" if prefix else key
+        if isinstance(value, dict) and not ({"start", "stop"} & set(value)) and path not in FIELDS_BY_PATH \
+                and path not in FIELDS_BY_NAME:
+            flat.update(_flatten_axes(value, path))
+        else:
+            flat[path] = value
+    return flat
+
+
+def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
+    """Rules between fields, checked over the whole range of any swept field."""
+
+    def span(name):
+        if name in axes:
+            return float(np.min(axes[name])), float(np.max(axes[name]))
+        value = inputs.get(name)
+        return (value, value) if isinstance(value, float) else (None, None)
+
+    od_lo, od_hi = span("outer_diameter")
+    id_lo, id_hi = span("inner_diameter")
+    hole_lo, hole_hi = span("hole_diameter")
+    if None not in (od_lo, id_hi) and id_hi >= od_lo:
+        problems.append(
+            f"pipe.inner_diameter = {id_hi:g} m: must be < pipe.outer_diameter = {od_lo:g} m"
+            " (a pipe wall needs thickness)"
+        )
+    if None not in (od_hi, hole_lo) and hole_lo <= od_hi:
+        problems.append(
+            f"hole.diameter = {hole_lo:g} m: must be > pipe.outer_diameter = {od_hi:g} m"
+            " (the pipe must fit in the hole with a clearance)"
+        )
+
+
+def load_text(text: str, source: str = "config", overrides: dict[str, Any] | None = None) -> Study:
+    """Parse and validate a TOML config text; ``overrides`` maps 'section.key' to raw values.
+
+    Raises :class:`ConfigError` listing every problem.
+    """
+    problems: list[str] = []
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError([f"not valid TOML: {exc}"], source) from None
+    for path, raw in (overrides or {}).items():
+        section, _, key = path.partition(".")
+        if not key or section not in SECTIONS:
+            problems.append(f"--set {path}: unknown field; fields are section.key with sections {', '.join(SECTIONS)}"
+                            + _suggest(path, FIELDS_BY_PATH))
+            continue
+        data.setdefault(section, {})
+        if not isinstance(data[section], dict):
+            continue
+        data[section][key] = raw
+
+    for key, value in data.items():
+        if key in SECTIONS:
+            if not isinstance(value, dict):
+                problems.append(f"{key} = {value!r}: must be a table [{key}]")
+        elif key in ROOT_KEYS:
+            if not isinstance(value, str) or not value.strip():
+                problems.append(f"{key} = {value!r}: must be a non-empty string ({ROOT_KEYS[key]})")
+        else:
+            problems.append(f"{key}: unknown key{_suggest(key, list(SECTIONS) + list(ROOT_KEYS))};"
+                            f" allowed at top level: {', '.join(list(ROOT_KEYS) + list(SECTIONS))}")
+
+    inputs: dict[str, Any] = {}
+    for section in SECTIONS[:-1]:
+        table = data.get(section, {})
+        if not isinstance(table, dict):
+            continue
+        known = {f.path.split(".", 1)[1] for f in FIELDS if f.path.startswith(section + ".")}
+        for key in table:
+            if key not in known:
+                problems.append(f"{section}.{key}: unknown key{_suggest(key, known)}; allowed in [{section}]: "
+                                + ", ".join(sorted(known)))
+
+    sweep_table = data.get("sweep", {}) if isinstance(data.get("sweep", {}), dict) else {}
+    for key in sweep_table:
+        if key not in SWEEP_KEYS:
+            problems.append(f"sweep.{key}: unknown key{_suggest(key, SWEEP_KEYS)}; allowed in [sweep]: "
+                            + ", ".join(SWEEP_KEYS))
+    raw_axes = sweep_table.get("axes", {})
+    if not isinstance(raw_axes, dict):
+        problems.append(f"sweep.axes = {raw_axes!r}: must be a table of field = list or range")
+        raw_axes = {}
+    axes: dict[str, np.ndarray] = {}
+    for key, raw in _flatten_axes(raw_axes).items():
+        spec = FIELDS_BY_PATH.get(key) or FIELDS_BY_NAME.get(key)
+        where = f"sweep.axes.{key}"
+        if spec is None:
+            problems.append(f"{where}: not an input{_suggest(key, list(FIELDS_BY_PATH) + list(FIELDS_BY_NAME))};"
+                            " an axis is named by its field, e.g. load.rotary_speed")
+            continue
+        if spec.name in axes:
+            problems.append(f"{where}: {spec.path} is swept twice")
+            continue
+        values = _axis_values(spec, raw, where, problems)
+        if values is not None:
+            axes[spec.name] = values
+
+    for spec in FIELDS:
+        section, key = spec.path.split(".", 1)
+        table = data.get(section, {})
+        table = table if isinstance(table, dict) else {}
+        if key in table:
+            inputs[spec.name] = _check_value(spec, table[key], spec.path, problems)
+        elif spec.name in axes:
+            inputs[spec.name] = None  # only swept: each point takes it from the axis
+        elif spec.default is REQUIRED:
+            problems.append(f"{spec.path}: missing; required ({spec.long_name}, {spec.rule()})")
+        else:
+            inputs[spec.name] = spec.default
+
+    sweep = dict(SWEEP_DEFAULTS)
+    for key in ("chunk_size", "workers"):
+        if key in sweep_table:
+            value = sweep_table[key]
+            if isinstance(value, bool) or not isinstance(value, int) or value < 0 or (key == "chunk_size" and value == 0):
+                problems.append(f"sweep.{key} = {value!r}: must be {SWEEP_KEYS[key]}")
+            else:
+                sweep[key] = value
+    if "scheduler" in sweep_table:
+        if not isinstance(sweep_table["scheduler"], str):
+            problems.append(f"sweep.scheduler = {sweep_table['scheduler']!r}: must be a string address or ''")
+        else:
+            sweep["scheduler"] = sweep_table["scheduler"]
+
+    _cross_checks(inputs, axes, problems)
+    if problems:
+        raise ConfigError(problems, source)
+    name = data.get("name") or Path(source).stem or "study"
+    title = data.get("title") or name
+    return Study(name=name, title=title, inputs=inputs, axes=axes, sweep=sweep, text=text, path=source)
+
+
+def load(path: str | Path, overrides: dict[str, Any] | None = None) -> Study:
+    """Read and validate a TOML config file. Raises :class:`ConfigError` (also for a missing file)."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise ConfigError([f"cannot read config: {exc.strerror}"], str(path)) from None
+    return load_text(text, str(path), overrides)
+
+
+def parse_set(assignments: list[str]) -> dict[str, Any]:
+    """Turn CLI ``--set section.key=VALUE`` strings into overrides; VALUE is TOML or a bare string."""
+    overrides: dict[str, Any] = {}
+    problems = []
+    for item in assignments:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            problems.append(f"--set {item!r}: expected section.key=VALUE")
+            continue
+        try:
+            overrides[key.strip()] = tomllib.loads(f"v = {value.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            overrides[key.strip()] = value.strip()
+    if problems:
+        raise ConfigError(problems, "command line")
+    return overrides

@@ -1,0 +1,325 @@
+"""Hertz contact and impact of the drill pipe on the bore-hole wall.
+
+Pure functions of numpy arrays (broadcasting; floats accepted), SI units, no I/O. Sources:
+the paper's appendix D (Timoshenko & Goodier form of Hertz contact, "reference 3"; eq. 7) and
+its section on impact (eq. 8–17, appendix C); Timoshenko & Goodier, *Theory of Elasticity*,
+§140 (T&G); Johnson, *Contact Mechanics*, ch. 3–4 (eq. 3.63–3.64 / 4.39).
+
+Notation: K1, K2 compliances [1/Pa]; A ≤ B half-sums of relative principal curvatures [1/m];
+θ [rad] with cos θ = (B − A)/(A + B) (θ = π/2: sphere, θ → 0: line contact); e the
+eccentricity of the contact ellipse, c² = 1 − e² = b²/a²; K(e), E(e) complete elliptic
+integrals of parameter e² (scipy convention).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.polynomial import polynomial as _poly
+from scipy.optimize import brentq
+from scipy.special import beta, binom, ellipe, ellipkm1
+
+
+class ContactCoefficients(NamedTuple):
+    m: np.ndarray  #: semi-major axis a = m X [-]
+    n: np.ndarray  #: semi-minor axis b = n X [-]
+
+
+class ContactEllipse(NamedTuple):
+    contact_half_length: np.ndarray  #: semi-axis along the pipe axis [m]
+    contact_half_width: np.ndarray  #: circumferential semi-axis [m]
+    A: np.ndarray  #: smaller curvature half-sum [1/m]
+    B: np.ndarray  #: larger curvature half-sum [1/m]
+    theta: np.ndarray  #: auxiliary angle θ [rad]
+
+
+class HertzImpact(NamedTuple):
+    max_approach: np.ndarray  #: α_max [m]
+    max_force: np.ndarray  #: F_max [N]
+    duration: np.ndarray  #: T_H [s]
+    impulse: np.ndarray  #: ∫F dt = 1.6 F_max α_max / v0 = 2 m_e v0 [N s]
+
+
+class Validity(NamedTuple):
+    ok: np.ndarray  #: True where Hertz theory is applicable [bool]
+    criterion: str  #: "ok" or the name of the first failed criterion
+    message: str  #: human-readable explanation with the numbers compared
+
+
+# --- elliptic contact: θ -> e -> (m, n) -------------------------------------------------------
+# Maclaurin series (in e²) of K = π/2 Σ a_k e^2k and E = π/2 Σ ε_k e^2k, and of the numerator
+# N = (2 − e²)E − 2(1 − e²)K = π/2 Σ ν_k e^2k (ν_0 = ν_1 = 0): used for small e², where the
+# closed form of cos θ = N/(e² E) loses its leading digits to cancellation.
+_k = np.arange(24)
+_A_K = (binom(2 * _k, _k) / 4.0**_k) ** 2
+_E_K = _A_K / (1 - 2 * _k)
+_N_K = 2 * _E_K - 2 * _A_K
+_N_K[1:] += 2 * _A_K[:-1] - _E_K[:-1]
+_SERIES_MAX = 0.02  # e² below which the series is used (0.02**24 ~ 1e-41)
+_P_MIN = -690.0  # log(1 − e²) lower bracket: 1 − e² ≈ 1e-300
+
+
+def _shape_functions(p):
+    """(cos θ, 1 − cos θ, K(e), E(e)) for p = log(1 − e²), each to full relative precision."""
+    c2, e2 = np.exp(p), -np.expm1(p)
+    kk, ee = ellipkm1(c2), ellipe(e2)  # ellipkm1(c²) = K(1 − c²): no loss as e → 1
+    if e2 < _SERIES_MAX:
+        cos_t = e2 * _poly.polyval(e2, _N_K[2:]) / _poly.polyval(e2, _E_K)
+        return cos_t, 1.0 - cos_t, kk, ee
+    # 1 − cos θ = 2 c² (K − E)/(e² E), exact rearrangement of Johnson 4.39, accurate as θ → 0
+    one_minus = 2.0 * c2 * (kk - ee) / (e2 * ee)
+    return ((1.0 + c2) * ee - 2.0 * c2 * kk) / (e2 * ee), one_minus, kk, ee
+
+
+def _log_c2(theta):
+    """Scalar inverse of θ ↦ p = log(1 − e²) by brentq on a log-scaled residual."""
+    if np.isnan(theta) or theta >= np.pi / 2:
+        return theta * 0.0  # nan stays nan
+    if theta <= 0.0:
+        return -np.inf
+    if theta <= np.pi / 4:  # match 1 − cos θ = 2 sin²(θ/2): resolves θ down to ~1e-149 rad
+        target, idx = np.log(2.0) + 2.0 * np.log(np.sin(theta / 2)), 1
+    else:  # match cos θ: resolves θ → π/2
+        target, idx = np.log(np.cos(theta)), 0
+    sign = 1.0 if idx == 1 else -1.0  # residual increasing in p
+
+    def resid(p):
+        return sign * (np.log(_shape_functions(p)[idx]) - target)
+
+    lo, hi = _P_MIN, -1e-300
+    if resid(lo) >= 0.0:  # θ beyond the bracket: clip to 1 − e² = 1e-300
+        return lo
+    return brentq(resid, lo, hi, xtol=1e-300, maxiter=500)
+
+
+def _coefficients_scalar(theta):
+    """(m, n, 2K(e)/(π m)) for scalar θ [rad]; the last factor scales the approach (=1 for a sphere)."""
+    p = _log_c2(float(theta))
+    if p == -np.inf:  # θ = 0: line contact, the ellipse is unbounded
+        return np.inf, 0.0, 0.0
+    if np.isnan(p):
+        return np.nan, np.nan, np.nan
+    _, _, kk, ee = _shape_functions(p) if p < 0.0 else (0.0, 1.0, np.pi / 2, np.pi / 2)
+    m = np.cbrt(2.0 * ee / np.pi) * np.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
+    return m, m * np.exp(p / 2.0), 2.0 * kk / (np.pi * m)  # n = m √(1 − e²)
+
+
+_coefficients_vec = np.vectorize(_coefficients_scalar, otypes=[float, float, float])
+
+
+def _coefficients(theta):
+    theta = np.asarray(theta, dtype=float)
+    if theta.ndim == 0:
+        return tuple(np.float64(v) for v in _coefficients_scalar(theta))
+    return _coefficients_vec(theta)
+
+
+def contact_coefficients(theta):
+    """T&G coefficients (m, n) of the contact ellipse, a = m X, b = n X [-] (paper app. D; T&G §140).
+
+    theta [rad] in [0, π/2]. Exact values from m³ = 2E(e)/(π(1 − e²)), n = m √(1 − e²), with e
+    solved from cos θ = [(2 − e²)E(e) − 2(1 − e²)K(e)]/(e² E(e)) (Johnson eq. 4.39). θ = π/2
+    gives m = n = 1; m → ∞, n → 0 as θ → 0 (θ = 0 returns m = inf, n = 0: line contact;
+    θ below ~1e-140 rad is clipped at 1 − e² = 1e-300). T&G's printed three-decimal table
+    (paper app. D) is off from these exact values by up to 0.002 at 35°, 55°, 65°, 70°, 75°.
+    """
+    m, n, _ = _coefficients(theta)
+    return ContactCoefficients(m, n)
+
+
+# --- compliance and geometry ------------------------------------------------------------------
+def compliance(youngs_modulus, poisson_ratio):
+    """Compliance K_i = (1 − ν_i²)/(π E_i) [1/Pa] (paper eq. 7). youngs_modulus [Pa], poisson_ratio [-]."""
+    nu = np.asarray(poisson_ratio, dtype=float)
+    return (1.0 - nu**2) / (np.pi * np.asarray(youngs_modulus, dtype=float))
+
+
+def curvature_sums(pipe_radius, hole_radius, axial_curvature=0.0):
+    """Half-sums (A, B), A ≤ B [1/m], of the relative curvatures of pipe and wall (T&G §140).
+
+    pipe_radius r_o [m], hole_radius R_hole > r_o [m], axial_curvature κ ≥ 0 of the bent pipe at
+    the contact [1/m]. Relative curvatures: circumferential k_c = 1/r_o − 1/R_hole (concave
+    wall), axial k_a = κ (straight wall). A + B = ½(k_c + k_a), B − A = ½|k_c − k_a|, i.e.
+    A = ½ min(k_c, k_a), B = ½ max(k_c, k_a) (computed so, without cancellation).
+    """
+    k_c = 1.0 / np.asarray(pipe_radius, dtype=float) - 1.0 / np.asarray(hole_radius, dtype=float)
+    k_a = np.asarray(axial_curvature, dtype=float)
+    return 0.5 * np.minimum(k_c, k_a), 0.5 * np.maximum(k_c, k_a)
+
+
+def contact_angle(A, B):
+    """θ [rad] with cos θ = (B − A)/(A + B) (paper app. D); A, B [1/m].
+
+    Evaluated as atan2(2√(AB), B − A), accurate at both ends (θ → 0 and θ → π/2).
+    """
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    return np.arctan2(2.0 * np.sqrt(A * B), B - A)
+
+
+def _x_length(force, A, B, compliance_sum):
+    """X = [3π F (K1 + K2)/(4(A + B))]^(1/3) [m] (T&G §140)."""
+    return np.cbrt(3.0 * np.pi * np.asarray(force, dtype=float) * compliance_sum / (4.0 * (A + B)))
+
+
+def contact_semi_axes(force, A, B, compliance_sum):
+    """Semi-major a = m X and semi-minor b = n X [m] of the contact ellipse (T&G §140).
+
+    force F [N], A ≤ B [1/m], compliance_sum K1 + K2 [1/Pa]; a lies along the direction of A.
+    """
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    m, n = contact_coefficients(contact_angle(A, B))
+    x = _x_length(force, A, B, compliance_sum)
+    return m * x, n * x
+
+
+def contact_ellipse(force, pipe_radius, hole_radius, axial_curvature, compliance_sum):
+    """Contact ellipse of the pipe on the wall, a = m X, b = n X (T&G §140; paper app. D).
+
+    force F [N], pipe_radius r_o [m], hole_radius R_hole [m], axial_curvature κ [1/m],
+    compliance_sum K1 + K2 [1/Pa]. The major axis lies along the direction of the smaller
+    curvature A: along the pipe when κ < k_c = 1/r_o − 1/R_hole (the usual case), round the
+    circumference when κ > k_c. ``contact_half_length`` [m] is always the semi-axis along the
+    pipe axis and ``contact_half_width`` [m] the circumferential one, whichever is the larger.
+    Also returns A, B [1/m] and θ [rad].
+    """
+    A, B = curvature_sums(pipe_radius, hole_radius, axial_curvature)
+    major, minor = contact_semi_axes(force, A, B, compliance_sum)
+    axial_is_major = np.asarray(axial_curvature) <= 1.0 / pipe_radius - 1.0 / hole_radius
+    return ContactEllipse(
+        np.where(axial_is_major, major, minor), np.where(axial_is_major, minor, major), A, B,
+        contact_angle(A, B))
+
+
+# --- approach-force law ----------------------------------------------------------------------
+def approach_coefficient(A, B, compliance_sum):
+    """K' [m N^(-2/3)] in δ = K' F^(2/3) (Johnson eq. 3.64/4.39; paper eq. 7).
+
+    δ = 3 F K(e)/(2π a E*) with a = m X and 1/E* = π(K1 + K2). A, B [1/m], compliance_sum
+    K1 + K2 [1/Pa]. Line contact (A = 0) gives the formal limit K' = 0.
+    """
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    _, _, k_factor = _coefficients(contact_angle(A, B))  # k_factor = 2K(e)/(π m)
+    # δ/F^(2/3) = 3 K(e)(K1+K2)/(2 m X1), X1 = X at F = 1 N
+    return 0.75 * np.pi * k_factor * compliance_sum / _x_length(1.0, A, B, compliance_sum)
+
+
+def approach(force, A, B, compliance_sum):
+    """Mutual approach δ = K' F^(2/3) [m] of distant points of the two bodies; force F [N]."""
+    return approach_coefficient(A, B, compliance_sum) * np.asarray(force, dtype=float) ** (2.0 / 3.0)
+
+
+def hertz_stiffness(A, B, compliance_sum):
+    """Hertz stiffness K = K'^(−3/2) [N m^(−3/2)] so that F = K δ^(3/2) (paper eq. 7–8).
+
+    A, B [1/m], compliance_sum K1 + K2 [1/Pa]; line contact (A = 0) gives inf.
+    """
+    with np.errstate(divide="ignore"):
+        return approach_coefficient(A, B, compliance_sum) ** -1.5
+
+
+# --- Hertz impact (paper eq. 8–12) -----------------------------------------------------------
+#: C_H = 2 ∫0^1 (1 − x^(5/2))^(−1/2) dx = 0.8 B(2/5, 1/2) (paper prints 2.94).
+HERTZ_DURATION_CONSTANT = 0.8 * beta(0.4, 0.5)
+
+
+def hertz_impact(equivalent_mass, velocity, stiffness):
+    """Elastic Hertz impact m_e α̈ = −K α^(3/2), α(0) = 0, α̇(0) = v0 (paper eq. 8–12).
+
+    equivalent_mass m_e [kg], velocity v0 [m/s], stiffness K [N m^(−3/2)]. Returns
+    α_max = (5 m_e v0²/(4K))^(2/5) [m], F_max = K α_max^(3/2) [N], T_H = C_H α_max/v0 [s],
+    impulse ∫F dt = 1.6 F_max α_max/v0 = 2 m_e v0 [N s].
+    """
+    m_e, v0 = np.asarray(equivalent_mass, dtype=float), np.asarray(velocity, dtype=float)
+    alpha = (1.25 * m_e * v0**2 / stiffness) ** 0.4
+    f_max = stiffness * alpha**1.5
+    return HertzImpact(alpha, f_max, HERTZ_DURATION_CONSTANT * alpha / v0, 1.6 * f_max * alpha / v0)
+
+
+# --- Lee's half-sine pulse (paper eq. 15–17, appendix C) --------------------------------------
+def impact_impulse(equivalent_mass, velocity, restitution):
+    """Impulse J = m_e (1 + e) V_p [N s] (paper eq. 16); mass [kg], velocity [m/s], e ∈ [0, 1] [-]."""
+    return np.asarray(equivalent_mass) * (1.0 + np.asarray(restitution)) * np.asarray(velocity)
+
+
+def lee_duration(equivalent_mass, velocity, stiffness):
+    """Duration T_L = π m_e v0/F_max [s] of Lee's pulse (paper eq. 17, appendix C).
+
+    Chosen so that peak/impulse of the half-sine, π/(2 T_L), equals that of the elastic Hertz
+    impact, F_max/(2 m_e v0). equivalent_mass [kg], velocity [m/s], stiffness [N m^(−3/2)].
+    """
+    f_max = hertz_impact(equivalent_mass, velocity, stiffness).max_force
+    return np.pi * np.asarray(equivalent_mass) * np.asarray(velocity) / f_max
+
+
+def lee_peak_force(impulse, duration):
+    """Peak F̂ = π J/(2 T_L) [N] of the half-sine of impulse J [N s] and duration T_L [s] (eq. 15)."""
+    return np.pi * np.asarray(impulse) / (2.0 * np.asarray(duration))
+
+
+def lee_pulse(t, duration, impulse):
+    """Lee's pulse f(t') = F̂ sin(π t'/T_L) on 0 ≤ t' ≤ T_L, zero elsewhere [N] (paper eq. 15).
+
+    t time since first contact [s], duration T_L [s], impulse J [N s].
+    """
+    t, duration = np.asarray(t, dtype=float), np.asarray(duration, dtype=float)
+    inside = (t >= 0.0) & (t <= duration)
+    return np.where(inside, lee_peak_force(impulse, duration) * np.sin(np.pi * t / duration), 0.0)
+
+
+#: T_L/T_H = (π/2)(1.6/C_H) (paper: 0.855), derived from the functions above.
+LEE_TO_HERTZ_DURATION_RATIO = float(lee_duration(1.0, 1.0, 1.0) / hertz_impact(1.0, 1.0, 1.0).duration)
+
+
+# --- validity ---------------------------------------------------------------------------------
+def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1):
+    """Is Hertz theory applicable to this contact? Returns Validity(ok, criterion, message).
+
+    half_length, half_width [m] (as from :func:`contact_ellipse`), A ≤ B [1/m], span_length [m]
+    or None, limit [-]. Hertz treats each body as a half-space loaded over a region small
+    beside the relative radii of curvature and the bodies. The semi-axis lying along the
+    direction of A (the major one) is compared with 1/(2A), the other with 1/(2B); in the usual
+    case κ < k_c that is the half-length with the axial radius. Criteria, in order:
+    ``line_contact`` (A ≤ 0 or non-finite/zero semi-axis), ``half_length_vs_axial_radius``,
+    ``half_width_vs_circumferential_radius``, ``half_length_vs_span`` (half_length > limit·span).
+    Note a·2A → 0 as κ → 0 (a grows only like A^(−1/3), up to a logarithm), so a nearly
+    straight pipe passes criterion (b) and is caught by the span check only. For arrays ``ok``
+    is elementwise; criterion/message give the first criterion (in the order above) failed by
+    any element, with the numbers of the first such element.
+    """
+    hl, hw, A, B = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (half_length, half_width, A, B)))
+    along_a = hl >= hw  # the half-length is the major axis, lying along the direction of A
+    span = np.broadcast_to(np.inf if span_length is None else np.asarray(span_length, dtype=float), hl.shape)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_ax = 1.0 / (2.0 * np.where(along_a, A, B))  # relative radius of curvature along the pipe
+        r_circ = 1.0 / (2.0 * np.where(along_a, B, A))  # ... round the circumference
+        line = (A <= 0) | ~np.isfinite(hl) | ~np.isfinite(hw) | ((hl > 0) != (hw > 0))
+        checks = [  # name, failed, (label, value), (label, reference), why
+            ("half_length_vs_axial_radius", hl > limit * r_ax, ("half-length", hl),
+             ("axial relative radius of curvature", r_ax),
+             "the contact is not small beside the axial relative radius of curvature, so the "
+             "surfaces are not locally paraboloids on elastic half-spaces"),
+            ("half_width_vs_circumferential_radius", hw > limit * r_circ, ("half-width", hw),
+             ("circumferential relative radius of curvature", r_circ),
+             "the contact wraps round the pipe, so the circumferential curvature is not small "
+             "over the contact and the half-space assumption fails"),
+            ("half_length_vs_span", hl > limit * span, ("half-length", hl), ("span", span),
+             "the contact is not short beside the pipe span, so the pipe is not a half-space "
+             "there (its bending, not local indentation, governs the approach)"),
+        ]
+    fails = line.copy()
+    for _, bad, *_ in checks:
+        fails |= bad
+    if line.any():
+        i = np.flatnonzero(line)[0]
+        return Validity(~fails, "line_contact", (
+            f"line_contact: A = {A.flat[i]:.4g} 1/m, half-length = {hl.flat[i]:.4g} m, half-width = "
+            f"{hw.flat[i]:.4g} m; the contact is a line, not a finite ellipse, so Hertz's "
+            "point-contact solution does not apply."))
+    for name, bad, (vl, v), (rl, r), why in checks:
+        if bad.any():
+            i = np.flatnonzero(bad)[0]
+            return Validity(~fails, name, (f"{name}: {vl} {v.flat[i]:.4g} m > {limit:g} x {rl} "
+                                           f"{r.flat[i]:.4g} m; {why}."))
+    return Validity(~fails, "ok", "ok: the contact is small beside the relative radii of curvature"
+                    + (" and the span." if span_length is not None else "."))

@@ -1,0 +1,41 @@
+"""Methods for one design point, behind one interface.
+
+``METHODS`` is the registry (as scipy.integrate's solver table): name -> (solve function, one-line
+description). Every solve function takes the SI inputs of one point and returns a
+:class:`~study.solvers.result.PointResult` whose status and message say what happened; none raises
+for a numerical or physical failure of the point.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from typing import Any, Mapping
+
+from study.solvers import core
+from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
+
+METHODS = {
+    "core": (core.solve, "physics core: section, mud, tension, and the Hertz/Lee impact at a given span"),
+}
+
+__all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve_point"]
+
+
+def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointResult:
+    """Solve one design point with ``method`` (default: ``inputs['method']``).
+
+    An unexpected exception inside a method is caught and returned as status ``failed`` with its
+    message, so that one bad point never sinks a sweep.
+    """
+    name = method or inputs.get("method") or "core"
+    if name not in METHODS:
+        raise ValueError(f"method = {name!r}; allowed: {', '.join(METHODS)}")
+    start = time.perf_counter()
+    try:
+        return METHODS[name][0](inputs)
+    except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        return PointResult(method=name, status="failed",
+                           message=f"{type(exc).__name__}: {exc} (at {last.filename.rsplit('/', 1)[-1]}:{last.lineno})",
+                           wall_time=time.perf_counter() - start)

@@ -1,0 +1,136 @@
+"""The physics core of one design point: everything that needs no periodic solution.
+
+Section and mud properties, effective tension and buckling, and — when the span is known —
+its natural frequency, the equivalent mass and the Hertz/Lee impact of the midspan on the wall
+with the velocity of the prescribed closure V_p = Ω c (``../shared/MODEL.md`` §2–4). The periodic
+methods build on :func:`scene`; the ``core`` method reports it as it is.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import hertz, section
+from study.solvers.result import PointResult
+
+# Modes reported for the natural frequencies of a given span.
+FREQUENCY_MODES = (1, 3, 5)
+
+
+def scene(inputs: Mapping[str, Any]) -> dict[str, float]:
+    """Span-independent properties of the design point (SI floats).
+
+    inputs: the SI inputs of one point, keyed as in :data:`study.config.FIELDS` names.
+    """
+    r_o = inputs["outer_diameter"] / 2.0
+    r_i = inputs["inner_diameter"] / 2.0
+    hole_r = inputs["hole_diameter"] / 2.0
+    area = float(section.steel_area(r_o, r_i))
+    pipe_mass = inputs.get("pipe_linear_mass") or inputs.get("pipe_density", 7850.0) * area
+    m_i = float(section.internal_mud_mass(inputs["mud_density"], r_i))
+    m_a = float(section.added_mass(inputs["mud_density"], r_o, hole_r, inputs.get("added_mass_model", "potential_flow")))
+    ei = float(section.bending_stiffness(inputs["pipe_youngs_modulus"], r_o, r_i))
+    tension = float(section.effective_tension(inputs["axial_tension"], m_i, inputs.get("mud_flow_velocity", 0.0)))
+    return {
+        "bending_stiffness": ei,
+        "steel_area": area,
+        "pipe_mass": float(pipe_mass),
+        "internal_mud_mass": m_i,
+        "added_mass": m_a,
+        "mass_per_length": float(section.mass_per_length(pipe_mass, m_i, m_a)),
+        "drag_coefficient_per_length": float(
+            section.drag_coefficient_per_length(inputs["mud_density"], r_o, hole_r, inputs.get("drag_coefficient", 0.5))
+        ),
+        "effective_tension": tension,
+        "clearance": float(section.mean_gap(r_o, hole_r)),
+        "buckling_length": float(section.buckling_length(ei, tension)),
+    }
+
+
+def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: float,
+           impact_velocity: float, axial_curvature: float) -> tuple[dict[str, float], hertz.Validity]:
+    """Hertz impact of the equivalent mass and Lee's pulse for a span and impact velocity.
+
+    span_length L [m], impact_velocity V_p [m/s], axial_curvature κ of the pipe at the contact
+    [1/m]. Returns the impact quantities (SI) and the Hertz validity verdict. The contact ellipse
+    is evaluated at the pulse's peak force (paper §IV C: the ellipse is sized by the maximum force).
+    """
+    r_o = inputs["outer_diameter"] / 2.0
+    hole_r = inputs["hole_diameter"] / 2.0
+    compliance = float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
+                       + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+    m_e = float(section.equivalent_mass(props["mass_per_length"], span_length))
+    a_sum, b_sum = hertz.curvature_sums(r_o, hole_r, axial_curvature)
+    stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, compliance))
+    elastic = hertz.hertz_impact(m_e, impact_velocity, stiffness)
+    duration = float(hertz.lee_duration(m_e, impact_velocity, stiffness))
+    impulse = float(hertz.impact_impulse(m_e, impact_velocity, inputs["restitution"]))
+    peak = float(hertz.lee_peak_force(impulse, duration))
+    ellipse = hertz.contact_ellipse(peak, r_o, hole_r, axial_curvature, compliance)
+    validity = hertz.contact_validity(ellipse.contact_half_length, ellipse.contact_half_width, ellipse.A, ellipse.B, span_length)
+    values = {
+        "equivalent_mass": m_e,
+        "impact_velocity": float(impact_velocity),
+        "impulse": impulse,
+        "axial_curvature": float(axial_curvature),
+        "max_approach": float(elastic.max_approach),
+        "hertz_duration": float(elastic.duration),
+        "hertz_peak_force": float(elastic.max_force),
+        "contact_duration": duration,
+        "peak_contact_force": peak,
+        "contact_half_length": float(ellipse.contact_half_length),
+        "contact_half_width": float(ellipse.contact_half_width),
+    }
+    return values, validity
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The ``core`` method: the physics core at a given span, or span-independent parts only.
+
+    With ``span_length`` given, the span's first natural frequency and, under the prescribed
+    closure, the impact with V_p = Ω c and the pipe curvature of the assumed mode
+    κ = c (π/L)² at midspan. Never raises for a physical condition: buckling, an invalid Hertz
+    contact and missing inputs are statuses.
+    """
+    start = time.perf_counter()
+    result = PointResult(method="core")
+    props = scene(inputs)
+    result.values.update(props)
+    span = inputs.get("span_length")
+    messages = []
+    if span is None:
+        result.status = "incomplete"
+        messages.append("no span given (solver.span_length) and the core method does not search for one: "
+                        "span-dependent outputs are omitted")
+    elif section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
+        result.values["span_length"] = float(span)
+        result.status = "buckled"
+        messages.append(
+            f"effective tension {props['effective_tension']:.4g} N is at or below the Euler load "
+            f"{float(section.euler_buckling_tension(span, props['bending_stiffness'])):.4g} N of the "
+            f"{span:.4g} m span (buckling length {props['buckling_length']:.4g} m)"
+        )
+    else:
+        result.values["span_length"] = float(span)
+        omega = section.natural_frequencies(span, props["bending_stiffness"], props["effective_tension"],
+                                            props["mass_per_length"], FREQUENCY_MODES)
+        result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
+        if inputs.get("closure", "prescribed") != "prescribed":
+            result.status = "incomplete"
+            messages.append(f"closure {inputs.get('closure')!r} needs the periodic solution's own impact "
+                            "velocity: impact outputs are omitted by the core method")
+        else:
+            clearance = props["clearance"]
+            velocity = inputs["rotary_speed"] * clearance
+            curvature = clearance * (np.pi / span) ** 2
+            values, validity = impact(inputs, props, span, velocity, curvature)
+            result.values.update(values)
+            if not validity.ok:
+                result.status = "hertz_invalid"
+                messages.append(validity.message)
+    result.message = "; ".join(messages) if messages else "physics core evaluated at the given span"
+    result.wall_time = time.perf_counter() - start
+    return result

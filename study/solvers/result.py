@@ -1,0 +1,76 @@
+"""The result of solving one design point, whatever the method.
+
+Like scipy.integrate's OdeResult, a result carries ``status`` and ``message`` instead of raising
+on a numerical failure of the design point: a sweep records the flag and goes on.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+#: Status flags: name -> integer code (the dataset's ``flag_values``) and what it means.
+STATUS = {
+    "ok": (0, "solved; every validity check passed"),
+    "buckled": (1, "effective tension at or below the Euler load of the span: the span buckles"),
+    "hertz_invalid": (2, "contact too large or too elongated for Hertz theory (see message)"),
+    "no_span": (3, "no span satisfies the constraints within the search range"),
+    "resonance": (4, "a harmonic of the rotation meets a natural frequency of the span"),
+    "terms_not_small": (5, "a term dropped from the equation of motion is not small"),
+    "not_converged": (6, "the method did not reach its tolerance"),
+    "failed": (7, "the method failed; see message"),
+    "incomplete": (8, "inputs needed for some outputs are missing (see message)"),
+}
+STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
+
+
+@dataclass
+class PointResult:
+    """Outputs of one design point, SI values keyed by the names of :data:`OUTPUTS`."""
+
+    method: str
+    status: str = "ok"
+    message: str = ""
+    values: dict[str, Any] = field(default_factory=dict)
+    error_estimate: float | None = None
+    wall_time: float = 0.0
+
+    @property
+    def status_code(self) -> int:
+        return STATUS_CODES[self.status]
+
+    def as_dict(self) -> dict[str, Any]:
+        out = dict(self.values)
+        out.update(status=self.status, message=self.message, method=self.method, wall_time=self.wall_time)
+        if self.error_estimate is not None:
+            out["error_estimate"] = self.error_estimate
+        return out
+
+
+#: Every scalar output a method may produce: name -> (SI unit, long name). The dataset and the
+#: JSON output take units and long names from here; a method fills the ones it can compute.
+OUTPUTS = {
+    "bending_stiffness": ("N m2", "bending stiffness EI of the pipe"),
+    "steel_area": ("m2", "cross-section area of the pipe wall"),
+    "pipe_mass": ("kg m-1", "pipe mass per unit length"),
+    "internal_mud_mass": ("kg m-1", "mass of mud inside unit length of pipe"),
+    "added_mass": ("kg m-1", "added (virtual) mass of the annular mud per unit length"),
+    "mass_per_length": ("kg m-1", "total vibrating mass per unit length M"),
+    "drag_coefficient_per_length": ("kg m-2", "quadratic mud drag coefficient D"),
+    "effective_tension": ("N", "effective tension T0 - m_i V_m^2"),
+    "clearance": ("m", "radial clearance between pipe and bore-hole wall"),
+    "buckling_length": ("m", "shortest simply supported span that buckles"),
+    "span_length": ("m", "length of the sample span between nodes"),
+    "first_natural_frequency": ("Hz", "first natural frequency of the span"),
+    "equivalent_mass": ("kg", "mass of the equivalent sphere 2ML/pi"),
+    "impact_velocity": ("m s-1", "lateral velocity of midspan just before impact"),
+    "impulse": ("N s", "impulse of one impact m_e (1 + e) V_p"),
+    "axial_curvature": ("m-1", "curvature of the bent pipe at the contact"),
+    "max_approach": ("m", "maximum Hertz approach of pipe and wall"),
+    "hertz_duration": ("s", "duration of the elastic Hertz impact T_H"),
+    "contact_duration": ("s", "duration of Lee's half-sine pulse T_L"),
+    "hertz_peak_force": ("N", "peak force of the elastic Hertz impact"),
+    "peak_contact_force": ("N", "peak contact force of the impact pulse"),
+    "contact_half_length": ("m", "contact-ellipse semi-axis along the pipe at peak force"),
+    "contact_half_width": ("m", "contact-ellipse semi-axis around the pipe at peak force"),
+}

@@ -1,0 +1,78 @@
+"""Units at the edges: one pint registry for configs coming in and labels going out.
+
+Inside the package every number is a plain SI float or array. This module turns what users
+write ("4.5 in", "16.6 lb/ft", "10 ppg", "300 rpm", "10000 lbf", "30e6 psi") into SI and
+back into the units a chart or table shows.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pint
+
+ureg = pint.UnitRegistry()
+# Oilfield spellings that pint does not know.
+ureg.define("pounds_per_gallon = pound / gallon = ppg")
+ureg.define("@alias revolution = rev")
+
+
+class UnitProblem(ValueError):
+    """A value that cannot be read in the units a field needs; the message says why."""
+
+
+def parse_quantity(value, si_unit: str, *, angular: bool = False) -> float:
+    """Return ``value`` in ``si_unit`` as a float.
+
+    value : a number (taken as already in SI) or a string with units ("4.5 in").
+    si_unit : the SI unit of the field, e.g. "m", "kg/m^3", "rad/s", "" for dimensionless.
+    angular : the field is an angular speed. Pint counts radians as dimensionless, so
+        "3 Hz" would silently become 3 rad/s; such values must name an angle (rpm, rev/s,
+        rad/s) and a bare "1/s" or "Hz" is refused as ambiguous.
+
+    Raises :class:`UnitProblem` with a message naming the value and what was expected.
+    """
+    if isinstance(value, bool):
+        raise UnitProblem(f"{value!r} is a boolean; expected a number or a string with units")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if not isinstance(value, str):
+        raise UnitProblem(f"{value!r} is a {type(value).__name__}; expected a number or a string with units")
+    try:
+        quantity = ureg.Quantity(value.strip())
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError, TypeError, ValueError) as exc:
+        raise UnitProblem(f"{value!r} cannot be read as a quantity ({exc})") from None
+    except Exception as exc:  # pint's tokenizer raises a variety of errors on garbage
+        raise UnitProblem(f"{value!r} cannot be read as a quantity ({type(exc).__name__})") from None
+    target = ureg.Unit(si_unit) if si_unit else ureg.dimensionless
+    if not isinstance(quantity, pint.Quantity):  # a bare number in a string, e.g. "0.5"
+        quantity = ureg.Quantity(float(quantity))
+    if si_unit and quantity.dimensionless and quantity.units == ureg.dimensionless and not angular:
+        raise UnitProblem(f"{value!r} has no units; expected units of {describe_unit(si_unit)}")
+    if angular and "radian" not in quantity.to_root_units().units._units:
+        raise UnitProblem(
+            f"{value!r} is ambiguous as a rotary speed; write it in rpm, rev/s or rad/s"
+        )
+    try:
+        result = float(quantity.to(target).magnitude)
+    except pint.errors.DimensionalityError:
+        raise UnitProblem(
+            f"{value!r} has dimension {quantity.dimensionality}; expected {describe_unit(si_unit)}"
+        ) from None
+    return result
+
+
+def describe_unit(si_unit: str) -> str:
+    """A human description of an SI unit with its dimension, e.g. 'm ([length])'."""
+    if not si_unit:
+        return "a dimensionless number"
+    return f"{si_unit} ({ureg.Unit(si_unit).dimensionality})"
+
+
+def convert(value, from_unit: str, to_unit: str):
+    """Convert a plain number or array between units (for display): convert(31.4, 'rad/s', 'rpm')."""
+    return ureg.Quantity(value, from_unit).to(to_unit).magnitude
+
+
+def is_finite_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)

@@ -1,0 +1,214 @@
+"""Config loading and validation (study.config): units in, SI out, every bad input named."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from study import config
+from study.config import ConfigError, load_text
+
+ROOT = Path(__file__).resolve().parents[1]
+
+MINIMAL = """
+[pipe]
+outer_diameter = "4.5 in"
+inner_diameter = "3.826 in"
+[hole]
+diameter = "8.5 in"
+[rock]
+youngs_modulus = "5e6 psi"
+poisson_ratio = 0.2
+[mud]
+density = "10 ppg"
+[load]
+axial_tension = "10000 lbf"
+rotary_speed = "300 rpm"
+[impact]
+restitution = 0.5
+"""
+
+
+def with_lines(*lines, base=MINIMAL):
+    """The minimal config with "[section] key = value" lines set: replaced if present, else added."""
+    text = base
+    for line in lines:
+        section, assignment = line.split(" ", 1)
+        key = assignment.split("=", 1)[0].strip()
+        header = f"{section}\n"
+        if header not in text:
+            text += f"\n{section}\n{assignment}\n"
+            continue
+        head, body = text.split(header, 1)
+        block, sep, rest = body.partition("\n[")
+        kept = [ln for ln in block.splitlines() if ln.split("=", 1)[0].strip() != key]
+        block = "\n".join([assignment, *kept]) + ("\n" if not sep else "")
+        text = head + header + block + sep + rest
+    return text
+
+
+# Unit definitions (exact by definition): inch 0.0254 m, lb 0.45359237 kg, lbf = lb x 9.80665 m/s^2,
+# US gallon 3.785411784e-3 m^3, psi = lbf/in^2, rpm = 2 pi/60 rad/s.
+LBF = 0.45359237 * 9.80665
+PSI = LBF / 0.0254**2
+
+
+@pytest.mark.parametrize(
+    "path, raw, expected",
+    [
+        ("pipe.outer_diameter", '"4.5 in"', 4.5 * 0.0254),
+        ("pipe.outer_diameter", "0.1143", 0.1143),
+        ("pipe.linear_mass", '"16.6 lb/ft"', 16.6 * 0.45359237 / 0.3048),
+        ("hole.diameter", '"8.5 in"', 8.5 * 0.0254),
+        ("pipe.youngs_modulus", '"30e6 psi"', 30e6 * PSI),
+        ("pipe.youngs_modulus", '"30000 ksi"', 30e6 * PSI),
+        ("mud.density", '"10 lb/gal"', 10 * 0.45359237 / 3.785411784e-3),
+        ("mud.density", '"10 ppg"', 10 * 0.45359237 / 3.785411784e-3),
+        ("mud.density", '"0.0433 lb/in^3"', 0.0433 * 0.45359237 / 0.0254**3),
+        ("mud.flow_velocity", '"88.6 in/s"', 88.6 * 0.0254),
+        ("load.axial_tension", '"10000 lbf"', 1e4 * LBF),
+        ("load.axial_tension", '"44.5 kN"', 44.5e3),
+        ("load.rotary_speed", '"300 rpm"', 300 * 2 * np.pi / 60),
+        ("load.rotary_speed", '"5 rev/s"', 5 * 2 * np.pi),
+        ("load.rotary_speed", "31.4", 31.4),
+        ("solver.max_span", '"1000 ft"', 304.8),
+    ],
+    ids=lambda v: v if isinstance(v, str) else None,
+)
+def test_units_users_write_are_converted_to_si(path, raw, expected):
+    section, key = path.split(".")
+    study = load_text(with_lines(f"[{section}] {key} = {raw}"))
+    assert study.inputs[config.FIELDS_BY_PATH[path].name] == pytest.approx(expected, rel=1e-12)
+
+
+def test_defaults_fill_optional_inputs():
+    study = load_text(MINIMAL)
+    assert study.inputs["pipe_poisson_ratio"] == 0.30
+    assert study.inputs["drag_coefficient"] == 0.5  # paper §IV D
+    assert study.inputs["added_mass_model"] == "potential_flow"
+    assert study.inputs["pipe_linear_mass"] is None
+    assert study.size == 1 and study.axes == {}
+
+
+BAD = [
+    # (extra line, fragment the error must contain) - one per rule of the foundation issue.
+    ('[pipe] outer_diameter = "4.5 lbf"', "pipe.outer_diameter = '4.5 lbf'"),  # wrong dimension
+    ('[pipe] outer_diameter = "4.5"', "has no units"),  # a bare number in a string
+    ('[pipe] colour = "red"', "pipe.colour: unknown key"),  # unknown key
+    ('[pipe] outer_diamter = "4.5 in"', "did you mean 'outer_diameter'"),  # misspelt key
+    ("[impact] restitution = 1.5", "impact.restitution = 1.5: must be a finite number >= 0 and <= 1"),
+    ("[impact] restitution = -0.1", "impact.restitution = -0.1"),
+    ('[mud] density = "-10 ppg"', "mud.density = '-10 ppg'"),  # negative
+    ("[mud] drag_coefficient = nan", "must be finite"),  # non-finite
+    ("[mud] drag_coefficient = inf", "must be finite"),
+    ('[pipe] inner_diameter = "5 in"', "pipe.inner_diameter"),  # inner >= outer
+    ('[hole] diameter = "4 in"', "hole.diameter"),  # hole <= pipe
+    ('[load] rotary_speed = "5 Hz"', "ambiguous as a rotary speed"),
+    ('[load] rotary_speed = "0 rpm"', "load.rotary_speed = '0 rpm'"),
+    ('[mud] added_mass_model = "magic"', "one of 'potential_flow', 'gap_flow'"),
+    ('[solver] method = "quantum"', "solver.method = 'quantum'"),
+    ("[pipe] poisson_ratio = 0.7", "pipe.poisson_ratio = 0.7"),
+    ('[pipe] youngs_modulus = "lots"', "cannot be read as a quantity"),
+    ("[pipe] youngs_modulus = true", "is a boolean"),
+    ('colour = "red"', "colour: unknown key"),
+    ('[sweep] axes = { "load.rpm" = [1, 2] }', "sweep.axes.load.rpm: not an input"),
+    ('[sweep] axes = { "impact.restitution" = [0.5, 1.2] }', "sweep.axes.impact.restitution[1] = 1.2"),
+    ('[sweep] axes = { "load.rotary_speed" = { start = "50 rpm", stop = "300 rpm" } }', "exactly one of num or step"),
+    ('[sweep] axes = { "load.rotary_speed" = { start = "50 rpm", stop = "300 rpm", num = 0 } }', "num = 0"),
+    ('[sweep] axes = { "load.rotary_speed" = [] }', "at least one value"),
+    ('[sweep] axes = { "pipe.inner_diameter" = ["3 in", "4.6 in"] }', "pipe.inner_diameter"),
+    ("[sweep] chunk_size = 0", "sweep.chunk_size = 0"),
+    ("[sweep] chunksize = 10", "did you mean 'chunk_size'"),
+]
+
+
+@pytest.mark.parametrize("line, fragment", BAD, ids=[b[0] for b in BAD])
+def test_each_rule_is_refused_with_field_value_and_rule(line, fragment):
+    if line.startswith("colour"):
+        text = line + "\n" + MINIMAL
+    else:
+        text = with_lines(line)
+    with pytest.raises(ConfigError) as info:
+        load_text(text)
+    assert fragment in str(info.value)
+
+
+def test_missing_required_field_is_named_with_its_rule():
+    with pytest.raises(ConfigError, match=r"rock.poisson_ratio: missing; required"):
+        load_text(MINIMAL.replace("poisson_ratio = 0.2\n", ""))
+
+
+def test_duplicate_key_is_a_toml_error_not_a_crash():
+    with pytest.raises(ConfigError, match="not valid TOML"):
+        load_text(MINIMAL + "\n[impact]\nrestitution = 0.3\n")
+
+
+def test_multiple_rules_reported_together():
+    text = MINIMAL.replace("restitution = 0.5", "restitution = 2").replace('"8.5 in"', '"1 in"')
+    text = text.replace("[pipe]\n", '[pipe]\ncolour = "red"\n')
+    with pytest.raises(ConfigError) as info:
+        load_text(text)
+    joined = "\n".join(info.value.problems)
+    assert "impact.restitution = 2" in joined
+    assert "pipe.colour" in joined
+    assert "hole.diameter" in joined
+    assert len(info.value.problems) == 3
+
+
+@pytest.mark.parametrize(
+    "axis, expected",
+    [
+        ('{ start = "50 rpm", stop = "300 rpm", step = "50 rpm" }', np.array([50, 100, 150, 200, 250, 300.0])),
+        ('{ start = "50 rpm", stop = "300 rpm", num = 3 }', np.array([50, 175, 300.0])),
+        ('["300 rpm", "100 rpm", "100 rpm"]', np.array([100, 300.0])),  # sorted, duplicates dropped
+    ],
+    ids=["step", "num", "list"],
+)
+def test_sweep_axes_expand_sorted_in_si(axis, expected):
+    study = load_text(with_lines(f"[sweep.axes] load.rotary_speed = {axis}"))
+    np.testing.assert_allclose(study.axes["rotary_speed"], expected * 2 * np.pi / 60, rtol=1e-12)
+    assert study.inputs["rotary_speed"] == pytest.approx(300 * 2 * np.pi / 60)  # the fixed value stays
+
+
+def test_axis_may_be_named_by_short_name_and_choice_axes_work():
+    study = load_text(with_lines('[sweep.axes] restitution = [0.8, 0.2]\nmud.added_mass_model = ["gap_flow", "potential_flow"]'))
+    np.testing.assert_array_equal(study.axes["restitution"], [0.2, 0.8])
+    assert list(study.axes["added_mass_model"]) == ["gap_flow", "potential_flow"]
+    assert study.size == 4
+
+
+def test_swept_only_required_input_must_be_set_for_a_point():
+    study = load_text(with_lines('[sweep.axes] load.rotary_speed = ["100 rpm", "200 rpm"]').replace(
+        'rotary_speed = "300 rpm"\n', ""))
+    with pytest.raises(ConfigError, match="load.rotary_speed: given only as a sweep axis"):
+        study.point()
+    assert study.point(rotary_speed=10.0)["rotary_speed"] == 10.0
+
+
+def test_overrides_from_the_command_line():
+    overrides = config.parse_set(['load.rotary_speed="200 rpm"', "impact.restitution=0.7", "solver.method=core"])
+    study = load_text(MINIMAL, overrides=overrides)
+    assert study.inputs["rotary_speed"] == pytest.approx(200 * 2 * np.pi / 60)
+    assert study.inputs["restitution"] == 0.7
+    with pytest.raises(ConfigError, match="expected section.key=VALUE"):
+        config.parse_set(["restitution"])
+    with pytest.raises(ConfigError, match="--set pipe: unknown field"):
+        load_text(MINIMAL, overrides={"pipe": 1})
+
+
+def test_default_config_is_the_papers_example():
+    study = config.load(ROOT / "configs" / "default.toml")
+    point = study.point()
+    # Paper §VI: 4 1/2-in pipe, E 30e6 psi, nu 0.30, rock 5e6 psi / 0.20, mud 0.0433 lb/in^3, T0 = 10 000 lb, 300 rpm.
+    assert point["outer_diameter"] == pytest.approx(4.5 * 0.0254)
+    assert point["pipe_youngs_modulus"] == pytest.approx(30e6 * PSI)
+    assert point["rock_youngs_modulus"] == pytest.approx(5e6 * PSI)
+    assert point["mud_density"] == pytest.approx(0.0433 * 0.45359237 / 0.0254**3)
+    assert point["axial_tension"] == pytest.approx(1e4 * LBF)
+    assert point["rotary_speed"] == pytest.approx(10 * np.pi)
+    assert study.size >= 1000  # the sweep workflow's default study size
+
+
+def test_missing_file_is_a_config_error():
+    with pytest.raises(ConfigError, match="cannot read config"):
+        config.load(ROOT / "configs" / "no-such-file.toml")
