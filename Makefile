@@ -32,7 +32,7 @@ charts: $(STAMP)
 	$(BIN)/study charts outputs/$$($(BIN)/python -c "import study.config as c; print(c.load('$(CONFIG)').name)")/results.nc
 
 bench: $(STAMP)
-	$(BIN)/study bench
+	$(BIN)/study bench --out docs/performance.md
 
 validate: $(STAMP)
 	$(BIN)/study validate --out docs/validation.md
