@@ -212,3 +212,38 @@ def test_default_config_is_the_papers_example():
 def test_missing_file_is_a_config_error():
     with pytest.raises(ConfigError, match="cannot read config"):
         config.load(ROOT / "configs" / "no-such-file.toml")
+
+
+# --- fuzzing: whatever a user writes, the answer is a Study or a ConfigError, never a crash ----------
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+_VALUES = st.one_of(
+    st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True), st.booleans(),
+    st.text(max_size=12), st.sampled_from(["4.5 in", "-3 ft", "10 ppg", "300 rpm", "1e400 psi", "lbf", "3 Hz",
+                                           "nan in", "0 in", "in", "2 m/s**2", "5 rev/s", "1/0"]),
+    st.lists(st.integers(-5, 5), max_size=3),
+)
+_PATHS = st.sampled_from([f.path for f in config.FIELDS] + ["pipe.colour", "sweep.chunk_size", "sweep.workers",
+                                                            "sweep.scheduler", "mud.densty"])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(_PATHS, _VALUES), min_size=1, max_size=4))
+def test_fuzzed_configs_load_or_are_refused_cleanly(edits):
+    overrides = {path: value for path, value in edits}
+    try:
+        study = load_text(MINIMAL, overrides=overrides)
+    except ConfigError as exc:
+        assert exc.problems and all(isinstance(p, str) and p for p in exc.problems)
+        return
+    assert isinstance(study.inputs, dict)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(max_size=200))
+def test_fuzzed_text_is_refused_cleanly(text):
+    try:
+        load_text(text)
+    except ConfigError as exc:
+        assert exc.problems
