@@ -1,0 +1,423 @@
+"""Simply supported beam-column under a periodic train of impact pulses at midspan.
+
+The building blocks of the periodic impact solution (MODEL.md §2–5, §9 "fast periodic"):
+
+    EI y'''' − T y'' + M ÿ = f(t) g(x),    y = y'' = 0 at x = 0, L          (MODEL.md §2, paper eq. 1)
+
+undamped, T the effective tension (may be ≤ 0 but above buckling). Modes φ_n = sin(k_n x),
+k_n = nπ/L, ω_n² = (EI k_n⁴ + T k_n²)/M, modal mass M L/2. The load is Lee's half-sine
+f(t) = F̂ sin(π t/T_L) on 0 ≤ t ≤ T_L of impulse J (paper eq. 15), repeated with period τ
+(``pattern``, MODEL.md §4), spread at midspan over the contact half-length b with a shape g(x)
+of unit integral (``shape``, paper eq. 18–24). With h(t) = f(t)/J the unit-impulse pulse train,
+
+    y(x, t) = Σ_n [J g_n/(M L/2)] q_n(t) sin(k_n x),   q̈_n + ω_n² q_n = h(t),
+
+where q_n is the exact periodic solution in closed form (:func:`modal_periodic_response`).
+The quasi-static split y = J h(t) G(x) + Σ_n [J g_n/(M L/2)] (q_n − h/ω_n²) sin(k_n x), G the
+static deflection under the unit spread load in closed form (:func:`static_deflection`), makes
+moment and shear converge in few modes (MODEL.md §9).
+
+Pure functions of numpy arrays, SI units, no I/O.
+"""
+
+from __future__ import annotations
+
+from math import factorial
+from typing import NamedTuple
+
+import numpy as np
+
+#: Spatial distributions of the impact load g(x), each of unit integral, centred at midspan.
+LOAD_SHAPES = {
+    "point": "Dirac δ(x − L/2); g_n = sin(nπ/2)",
+    "uniform": "1/(2b) on |x − L/2| ≤ b; g_n = sin(nπ/2) sin(k_n b)/(k_n b)",
+    "parabolic": "3/(4b) (1 − ((x − L/2)/b)²) on |x − L/2| ≤ b (semi-ellipsoidal Hertz pressure "
+    "integrated across the contact width, paper eq. 18–21); g_n = sin(nπ/2) 3(sin β − β cos β)/β³, β = k_n b",
+}
+
+#: Impact patterns over one period τ (MODEL.md §4).
+IMPACT_PATTERNS = {
+    "one_wall": "one pulse +f at t = 0 per period τ (mean force J/τ, all harmonics of 2π/τ)",
+    "alternating": "+f at t = 0 and −f at t = τ/2 (both walls; odd harmonics only, no mean)",
+}
+
+
+class ModalResponse(NamedTuple):
+    displacement: np.ndarray  #: q(t) [s] (response per unit impulse of the unit-mass oscillator)
+    velocity: np.ndarray  #: q̇(t) [-]
+
+
+def _check(name, value, allowed):
+    if value not in allowed:
+        raise ValueError(f"{name} = {value!r}; allowed: {', '.join(allowed)}")
+
+
+# --- modal load factors ------------------------------------------------------------------------
+def wavenumbers(span_length, modes):
+    """k_n = nπ/L [1/m]; span_length L [m] (broadcast against the last axis ``modes``)."""
+    return np.asarray(modes, dtype=float) * np.pi / np.asarray(span_length, dtype=float)[..., None]
+
+
+def _parabolic_factor(beta):
+    """3(sin β − β cos β)/β³ = 3 j₁(β)/β [-], with its Maclaurin series for |β| < 0.5."""
+    beta = np.asarray(beta, dtype=float)
+    small = np.abs(beta) < 0.5
+    bs = np.where(small, beta, 0.0) ** 2
+    series = sum((-1) ** (j + 1) * 6.0 * j / factorial(2 * j + 1) * bs ** (j - 1) for j in range(1, 10))
+    bl = np.where(small, 1.0, beta)
+    return np.where(small, series, 3.0 * (np.sin(bl) - bl * np.cos(bl)) / bl**3)
+
+
+def modal_load_factors(modes, span_length, half_length=0.0, shape="point"):
+    """Modal load factors g_n = ∫₀ᴸ g(x) sin(k_n x) dx [-] of the unit midspan load (paper eq. 18–24).
+
+    modes: mode numbers n; span_length L [m]; half_length b [m] (contact half-length, ignored
+    for ``"point"``); shape one of :data:`LOAD_SHAPES`. Closed forms, β = k_n b:
+
+    - point: g_n = sin(nπ/2);
+    - uniform: g_n = sin(nπ/2) sin β/β;
+    - parabolic: g_n = sin(nπ/2) · 3(sin β − β cos β)/β³, from ∫₋₁¹ (1 − s²) cos(βs) ds =
+      4(sin β − β cos β)/β³ (series for small β, where the closed form cancels).
+
+    Even modes give 0 (symmetric load). The last axis runs over ``modes``.
+    """
+    _check("shape", shape, LOAD_SHAPES)
+    n = np.asarray(modes, dtype=float)
+    parity = np.where(n % 2 == 1, np.where(n % 4 == 1, 1.0, -1.0), 0.0)  # sin(nπ/2), exact
+    if shape == "point":
+        return parity * np.ones_like(np.asarray(span_length, dtype=float))[..., None]
+    beta = wavenumbers(span_length, n) * np.asarray(half_length, dtype=float)[..., None]
+    if shape == "uniform":
+        return parity * np.sinc(beta / np.pi)
+    return parity * _parabolic_factor(beta)
+
+
+def load_shape(x, span_length, half_length, shape="uniform"):
+    """Line-load density g(x) [1/m] of unit integral (``"uniform"`` or ``"parabolic"``).
+
+    x [m], span_length L [m], half_length b [m]. The Dirac ``"point"`` shape has no density.
+    """
+    _check("shape", shape, ("uniform", "parabolic"))
+    xi = (np.asarray(x, dtype=float) - 0.5 * np.asarray(span_length)) / np.asarray(half_length)
+    inside = np.abs(xi) <= 1.0
+    if shape == "uniform":
+        return np.where(inside, 0.5 / np.asarray(half_length), 0.0)
+    return np.where(inside, 0.75 / np.asarray(half_length) * (1.0 - xi**2), 0.0)
+
+
+# --- the pulse and its periodic train -----------------------------------------------------------
+def unit_pulse(t, pulse_duration):
+    """Lee's half-sine of unit impulse, h(t) = (π/(2T_L)) sin(π t/T_L) on 0 ≤ t ≤ T_L [1/s] (eq. 15)."""
+    t, tl = np.asarray(t, dtype=float), np.asarray(pulse_duration, dtype=float)
+    inside = (t >= 0.0) & (t <= tl)
+    return np.where(inside, 0.5 * np.pi / tl * np.sin(np.pi * t / tl), 0.0)
+
+
+def pulse_spectrum(omega, pulse_duration):
+    """H(ω) = ∫ h(t) e^{−iωt} dt = e^{−iωT_L/2} cos(ωT_L/2)/(1 − u²), u = ωT_L/π [-] (complex).
+
+    omega [rad/s], pulse_duration T_L [s]. Evaluated as (π/2) sinc((1 − u)/2)/(1 + u) (np.sinc),
+    regular at u = 1 (value π/4); H(0) = 1 (unit impulse).
+    """
+    om, tl = np.asarray(omega, dtype=float), np.asarray(pulse_duration, dtype=float)
+    u = om * tl / np.pi
+    with np.errstate(divide="ignore", invalid="ignore"):
+        amp = 0.5 * np.pi * np.sinc(0.5 * (1.0 - u)) / (1.0 + u)
+    return np.exp(-0.5j * om * tl) * amp
+
+
+def _wrap(t, period, pattern):
+    """(local time in [0, P), sign, P): P = τ (one_wall) or τ/2 with sign (−1)^k (alternating)."""
+    t, tau = np.asarray(t, dtype=float), np.asarray(period, dtype=float)
+    half = pattern == "alternating"
+    p = 0.5 * tau if half else tau
+    k = np.floor(t / p)
+    sign = np.where(k % 2 == 0, 1.0, -1.0) if half else np.ones_like(k)
+    return t - k * p, sign, p
+
+
+def pulse_train(t, pulse_duration, period, pattern="one_wall"):
+    """Periodic unit-impulse pulse train h(t) [1/s]: :func:`unit_pulse` repeated per ``pattern``.
+
+    t [s] (any real), pulse_duration T_L [s], period τ [s]; pattern one of :data:`IMPACT_PATTERNS`.
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    tm, sign, _ = _wrap(t, period, pattern)
+    return sign * unit_pulse(tm, pulse_duration)
+
+
+def resonance_distance(omega_n, period, pattern="one_wall"):
+    """Distance to the nearest resonance, in harmonics of 2π/τ [-].
+
+    With ν = ω τ/(2π) (natural frequency in harmonics of the rotation): the undamped periodic
+    response is infinite where the train has a harmonic at ω, i.e. ν integer (one_wall) or ν odd
+    (alternating). Returns |ν − ν_res| for the nearest resonant ν_res: in [0, 1/2] for one_wall,
+    [0, 1] for alternating. The response amplitude grows like 1/(ω · distance).
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    nu = np.asarray(omega_n, dtype=float) * np.asarray(period, dtype=float) / (2.0 * np.pi)
+    if pattern == "one_wall":
+        return np.abs(nu - np.round(nu))
+    return np.abs(nu - (2.0 * np.round(0.5 * (nu - 1.0)) + 1.0))
+
+
+def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
+    """Exact steady periodic response of q̈ + ω² q = h(t) to the unit-impulse pulse train (closed form).
+
+    t [s] (any real; broadcast against omega_n, e.g. t[:, None] with omega_n[None, :]), omega_n ω
+    [rad/s], pulse_duration T_L [s], period τ [s], pattern one of :data:`IMPACT_PATTERNS`.
+    Returns ModalResponse(q [s], q̇ [-]); the modal coordinate of the beam is J g_n/(M L/2) · q.
+
+    Construction (no Fourier series in time). Let P = τ (one_wall) or τ/2 (alternating, where the
+    motion is anti-periodic over τ/2: q(t + τ/2) = −q(t)); t is wrapped into [0, P). On [0, P) the
+    response is the pulse from rest plus the free vibration left by all earlier pulses,
+
+        q(t) = q_p(t) + Im[e^{iωt} H(ω) (C − 1)]/ω,   q̇ = q̇_p(t) + Re[e^{iωt} H(ω) (C − 1)],
+
+    with H the pulse spectrum (:func:`pulse_spectrum`), and C − 1 = Σ_{m≥1} (±e^{iωP})^m the (Abel-
+    summed, i.e. vanishing-damping) echo of earlier pulses: C = 1/(1 − e^{iωP}) = ½ + (i/2) cot(ωP/2)
+    (one_wall) or 1/(1 + e^{iωP}) = ½ − (i/2) tan(ωP/2) (alternating). This is the same as solving the
+    2×2 periodicity condition (I ∓ Φ(P)) s₀ = ±Φ(P − T_L) s(T_L) for the state s₀ at the pulse start
+    (Φ the free-vibration transition matrix). The pulse from rest, a = π/T_L, S(z) = sin z/z:
+
+        0 ≤ t ≤ T_L: q_p = a/(2ω(ω+a)) [sin ωt − ωt cos((ω+a)t/2) S((ω−a)t/2)],
+                     q̇_p = a²/(2(ω+a)) t sin((ω+a)t/2) S((ω−a)t/2)       (regular at ω = a),
+        t > T_L:     q_p = Im(e^{iωt} H)/ω,  q̇_p = Re(e^{iωt} H)            (Duhamel).
+
+    Impulse limit (T_L → 0): q = cos(ω(t − τ/2))/(2ω sin(ωτ/2)) (one_wall), sin(ω(t − τ/4))/(2ω cos(ωτ/4))
+    (alternating) on 0 < t < P. NaN where :func:`resonance_distance` ≤ resonance_tol·max(1, ν), where
+    the pulse does not fit in P (T_L > P), or where ω is NaN (buckled mode).
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    tm, sign, p = _wrap(t, period, pattern)
+    om = np.asarray(omega_n, dtype=float)
+    tl = np.asarray(pulse_duration, dtype=float)
+    tm, sign, om, tl, p = np.broadcast_arrays(tm, sign, om, tl, p)
+    a = np.pi / tl
+    tau = 2.0 * p if pattern == "alternating" else p
+    nu = om * tau / (2.0 * np.pi)  # ω in harmonics of 2π/τ
+    bad = ((resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu))
+           | (tl > p) | ~np.isfinite(om))
+    oms = np.where(bad, 1.0, om)
+    half = 0.5 * oms * p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if pattern == "one_wall":
+            c_minus_one = -0.5 + 0.5j * np.cos(half) / np.sin(half)
+        else:
+            c_minus_one = -0.5 - 0.5j * np.sin(half) / np.cos(half)
+        hw = pulse_spectrum(oms, tl)
+        ph = np.exp(1j * oms * tm) * hw
+        free = ph * c_minus_one
+        during = tm <= tl
+        s = np.sinc((oms - a) * tm / (2.0 * np.pi))
+        q_in = a / (2.0 * oms * (oms + a)) * (np.sin(oms * tm) - oms * tm * np.cos(0.5 * (oms + a) * tm) * s)
+        v_in = a**2 / (2.0 * (oms + a)) * tm * np.sin(0.5 * (oms + a) * tm) * s
+        q = np.where(during, q_in, ph.imag / oms) + free.imag / oms
+        v = np.where(during, v_in, ph.real) + free.real
+    return ModalResponse(np.where(bad, np.nan, sign * q), np.where(bad, np.nan, sign * v))
+
+
+# --- static beam-column under the unit spread load (closed form) ---------------------------------
+_SERIES_TERMS = 36
+_INV_FACT = np.array([1.0 / factorial(i) for i in range(2 * _SERIES_TERMS + 8)])
+
+
+def _stumpff(k, w):
+    """c_k(w) = Σ_j w^j/(2j + k)! (Stumpff functions with argument −w) [-], k ≥ 0.
+
+    c_0 = cosh √w, c_1 = sinh √w/√w (cos, sin for w < 0), c_{k+2} = (c_k − 1/k!)/w. Series for
+    −30 ≤ w ≤ 60 (positive terms for w > 0; for w < 0 the beam is below buckling only while
+    |w| < π²/4), closed form and upward recursion outside, where it loses no digits.
+    """
+    w = np.asarray(w, dtype=float)
+    ser = (w >= -30.0) & (w <= 60.0)
+    ws = np.where(ser, w, 0.0)
+    acc = np.zeros_like(ws)
+    for j in range(_SERIES_TERMS - 1, -1, -1):  # Horner
+        acc = acc * ws + _INV_FACT[2 * j + k]
+    wc = np.where(ser, 100.0, w)
+    with np.errstate(over="ignore", invalid="ignore"):
+        r = np.sqrt(np.abs(wc))
+        pos = wc > 0
+        c = [np.where(pos, np.cosh(r), np.cos(r)), np.where(pos, np.sinh(r), np.sin(r)) / r]
+        for i in range(2, k + 1):
+            c.append((c[i - 2] - _INV_FACT[i - 2]) / wc)
+    return np.where(ser, acc, c[k])
+
+
+def _gen_hyp(k, x, s):
+    """F_k(x) = x^k c_k(s x²) [m^k], x ≥ 0: F_0 = cosh λx, F_1 = sinh(λx)/λ, F_{k+1}' = F_k, λ² = s.
+
+    Entire in s = T/EI (tension s > 0, compression s < 0, s = 0 gives x^k/k!), so one formula
+    covers the beam-column, the plain beam and the compressed column without cancellation.
+    """
+    return x**k * _stumpff(k, s * x * x)
+
+
+def _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape):
+    """(y, y', y'', y''') [m/N, 1/N, 1/(N m), 1/(N m²)] of the static beam-column under the unit load.
+
+    Solves EI y'''' − T y'' = g(x) on the half-span 0 ≤ x ≤ L/2 with y(0) = y''(0) = 0 and the
+    symmetry conditions y'(L/2) = 0, −EI y'''(L/2⁻) = ½ − ∫_a^{L/2} g (the half of a point load
+    sitting on the symmetry plane), a = L/2 − b; x > L/2 is mirrored. Solution
+    y = A x + B F_3(x) + P(x), P the causal response to the load on [a, x]:
+    P^{(j)}(x) = (1/EI) ∫_a^x g(x') F_{3−j}(x − x') dx', r = x − a, which for the shapes is
+    uniform: F_{4−j}(r)/(2b EI); parabolic (g = 3ρ(2b − ρ)/(4b³), ρ = x' − a):
+    3(b F_{5−j}(r) − F_{6−j}(r))/(2b³ EI) — from ∫₀^r ρ^m/m! F_k(r − ρ) dρ = F_{k+m+1}(r).
+    B = −[(½ − G_half)/EI + P'''(L/2)]/F_0(L/2), A = −B F_2(L/2) − P'(L/2).
+    """
+    _check("shape", shape, LOAD_SHAPES)
+    L = np.asarray(span_length, dtype=float)
+    ei = np.asarray(bending_stiffness, dtype=float)
+    x = np.asarray(x, dtype=float)
+    b = np.zeros_like(L) if shape == "point" else np.asarray(half_length, dtype=float) * np.ones_like(L)
+    x, L, ei, tn, b = np.broadcast_arrays(x, L, ei, np.asarray(tension, dtype=float), b)
+    s = tn / ei
+    half = 0.5 * L
+    mirror = x > half
+    xh = np.clip(np.where(mirror, L - x, x), 0.0, half)
+    a = half - b
+
+    def p_deriv(j, xx):  # P^{(j)}(xx) on the half span
+        r = np.clip(xx - a, 0.0, None)
+        if shape == "point":
+            return np.zeros_like(r)
+        if shape == "uniform":
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return _gen_hyp(4 - j, r, s) / (2.0 * b * ei)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return 3.0 * (b * _gen_hyp(5 - j, r, s) - _gen_hyp(6 - j, r, s)) / (2.0 * b**3 * ei)
+
+    g_half = 0.0 if shape == "point" else 0.5
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        big_b = -((0.5 - g_half) / ei + p_deriv(3, half)) / _gen_hyp(0, half, s)
+        big_a = -big_b * _gen_hyp(2, half, s) - p_deriv(1, half)
+        y = big_a * xh + big_b * _gen_hyp(3, xh, s) + p_deriv(0, xh)
+        y1 = big_a + big_b * _gen_hyp(2, xh, s) + p_deriv(1, xh)
+        y2 = big_b * _gen_hyp(1, xh, s) + p_deriv(2, xh)
+        y3 = big_b * _gen_hyp(0, xh, s) + p_deriv(3, xh)
+    sgn = np.where(mirror, -1.0, 1.0)
+    invalid = (b < 0) | (b >= half) | ~(s * half**2 > -0.25 * np.pi**2)  # buckled: F_0(L/2) ≤ 0
+    out = [y, sgn * y1, y2, sgn * y3]
+    return [np.where(invalid, np.nan, v) for v in out]
+
+
+def static_deflection(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
+    """Static deflection G(x) [m/N] of the simply supported beam-column under the unit midspan load.
+
+    EI G'''' − T G'' = g(x) (MODEL.md §2 with ÿ = 0), g of unit integral (:data:`LOAD_SHAPES`).
+    x [m] (0 ≤ x ≤ L), span_length L [m], bending_stiffness EI [N m²], tension T [N] (any sign
+    above buckling), half_length b [m] (0 ≤ b < L/2; ignored for ``"point"``). Closed form in the
+    generalised hyperbolic functions F_k(x) = x^k c_k(T x²/EI) (see ``_static_derivatives``),
+    one expression for T > 0 (sinh/cosh), T = 0 and T < 0 (sin/cos). For the point load it is
+    G = (x F_2(L/2) − F_3(x))/(2 EI F_0(L/2)), x ≤ L/2, i.e. (Timoshenko & Gere, Roark table 8.8)
+    T > 0: [x − sinh(λx)/(λ cosh(λL/2))]/(2T), λ² = T/EI;  T = 0: x(3L² − 4x²)/(48 EI);
+    T < 0: [x − sin(λx)/(λ cos(λL/2))]/(2T), λ² = −T/EI.
+    NaN where buckled (T ≤ −EI π²/L²) or b outside [0, L/2). Overflows for λL/2 ≳ 700 (string limit).
+    """
+    return _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape)[0]
+
+
+def static_moment(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
+    """Bending moment −EI G''(x) [m] (N m per N of load) of the static unit-load solution (MODEL.md §5).
+
+    Arguments as :func:`static_deflection`. Point load: sinh(λx)/(2λ cosh(λL/2)), x ≤ L/2 (T > 0),
+    x/2 (T = 0). Sagging positive.
+    """
+    ei = np.asarray(bending_stiffness, dtype=float)
+    return -ei * _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape)[2]
+
+
+def static_shear(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point",
+                 include_tension=False):
+    """Shear force of the static unit-load solution [-] (N per N of load) (MODEL.md §5).
+
+    Returns the section shear V = −EI G''' (= dM_b/dx, the force normal to the deflected axis that
+    sets the wall shear stress); with ``include_tension`` the transverse force −EI G''' + T G'
+    (fixed direction), which equals ½ − ∫_a^x g on the left half. Arguments as :func:`static_deflection`.
+    """
+    ei = np.asarray(bending_stiffness, dtype=float)
+    _, y1, _, y3 = _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape)
+    return -ei * y3 + (np.asarray(tension, dtype=float) * y1 if include_tension else 0.0)
+
+
+# --- the periodic field: modal sums with the quasi-static correction ----------------------------
+def _field(x, t, order, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+           pattern, half_length, shape, n_modes, quasi_static, include_tension=False):
+    """Σ_n a_n(t) D^order[sin k_n x] assembled as a matrix product; shape t.shape + x.shape."""
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
+    L, ei, tn, m = (float(v) for v in (span_length, bending_stiffness, tension, mass))
+    n = np.arange(1, int(n_modes) + 1, 2, dtype=float)  # even modes carry no symmetric load
+    k = n * np.pi / L
+    with np.errstate(invalid="ignore"):
+        omega = np.sqrt(np.where(ei * k**4 + tn * k**2 > 0, (ei * k**4 + tn * k**2) / m, np.nan))
+    g = modal_load_factors(n, L, half_length, shape)
+    q = modal_periodic_response(t.reshape(-1, 1), omega, pulse_duration, period, pattern).displacement
+    h = pulse_train(t.reshape(-1, 1), pulse_duration, period, pattern)
+    if quasi_static:
+        q = q - h / omega**2
+    amp = float(impulse) * g / (0.5 * m * L) * q  # (nt, nmodes) modal coordinates [m]
+    kx = np.outer(k, x.ravel())
+    if order == 0:
+        shapes = np.sin(kx)
+    elif order == 2:  # −EI y''
+        shapes = ei * k[:, None] ** 2 * np.sin(kx)
+    else:  # −EI y''' (+ T y')
+        shapes = (ei * k[:, None] ** 3 + (tn * k[:, None] if include_tension else 0.0)) * np.cos(kx)
+    out = amp @ shapes
+    if quasi_static:
+        if order == 0:
+            stat = static_deflection(x.ravel(), L, ei, tn, half_length, shape)
+        elif order == 2:
+            stat = static_moment(x.ravel(), L, ei, tn, half_length, shape)
+        else:
+            stat = static_shear(x.ravel(), L, ei, tn, half_length, shape, include_tension)
+        out = out + float(impulse) * h * stat[None, :]
+    return out.reshape(t.shape + x.shape)
+
+
+_FIELD_DOC = """
+
+    x [m] (0 ≤ x ≤ L), t [s] (any real); result has shape t.shape + x.shape. Scalars: span_length
+    L [m], bending_stiffness EI [N m²], tension T [N], mass M [kg/m], impulse J [N s], pulse_duration
+    T_L [s], period τ [s]; pattern (:data:`IMPACT_PATTERNS`), half_length b [m] and shape
+    (:data:`LOAD_SHAPES`) of the load; n_modes: highest mode number N kept (odd n ≤ N: the load is
+    symmetric). Modal sum y = Σ [J g_n/(M L/2)] q_n(t) sin(k_n x) with q_n from
+    :func:`modal_periodic_response` (MODEL.md §4, §9). With ``quasi_static`` (default) the sum is
+    split (MODEL.md §9): y = J h(t) G(x) + Σ [J g_n/(M L/2)] (q_n − h(t)/ω_n²) sin(k_n x), G the
+    closed-form static solution (:func:`static_deflection`); the remainder's terms fall like
+    ω_n⁻³ faster, so moment and shear converge in few modes. NaN at resonance or buckling."""
+
+
+def deflection(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+               pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True):
+    return _field(x, t, 0, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                  pattern, half_length, shape, n_modes, quasi_static)
+
+
+deflection.__doc__ = "Periodic deflection y(x, t) [m] of the span under the impact train." + _FIELD_DOC
+
+
+def bending_moment(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                   pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True):
+    return _field(x, t, 2, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                  pattern, half_length, shape, n_modes, quasi_static)
+
+
+bending_moment.__doc__ = ("Bending moment M_b = −EI y''(x, t) [N m] (MODEL.md §5, paper eq. 37), sagging "
+                          "positive." + _FIELD_DOC)
+
+
+def shear_force(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True,
+                include_tension=False):
+    return _field(x, t, 3, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                  pattern, half_length, shape, n_modes, quasi_static, include_tension)
+
+
+shear_force.__doc__ = ("Shear force [N] (MODEL.md §5, paper eq. 38): by default the section shear "
+                       "V = −EI y''' = ∂M_b/∂x (normal to the deflected axis, sets the wall shear stress); with "
+                       "``include_tension`` the transverse force −EI y''' + T y'. At x = L/2 under a point "
+                       "load the series gives the mean of the two sides (0) while the closed form gives "
+                       "the left limit." + _FIELD_DOC)

@@ -1,0 +1,294 @@
+"""Tests of study.physics.beam: modal load factors, the closed-form periodic modal response, the
+static beam-column deflection and the (quasi-statically corrected) modal sums.
+
+Every expected value names its source: "closed form" (derived in the test, independently of the
+module's formula), "Timoshenko" (Vibration Problems in Engineering: impulse and periodic response
+of the undamped oscillator, modes of the simply supported beam), "Roark" / "Timoshenko & Gere"
+(static beam-columns), "quadrature" (scipy.integrate.quad), "ODE" (scipy solve_ivp), or
+"convergence to reference".
+"""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+from study.physics import beam as bm
+
+SHAPES = ["point", "uniform", "parabolic"]
+PATTERNS = ["one_wall", "alternating"]
+
+
+# --- modal load factors -----------------------------------------------------------------------
+@pytest.mark.parametrize("shape", ["uniform", "parabolic"])
+@pytest.mark.parametrize("b", [1e-4, 0.05, 0.7, 3.0], ids=lambda b: f"b={b}")
+def test_modal_load_factors_match_quadrature(shape, b):
+    # source: quadrature of ∫ g(x) sin(nπx/L) dx
+    span, modes = 10.0, np.arange(1, 40)
+    g = bm.modal_load_factors(modes, span, b, shape)
+    for n, gn in zip(modes, g):
+        ref = quad(lambda x: bm.load_shape(x, span, b, shape) * np.sin(n * np.pi * x / span),
+                   span / 2 - b, span / 2 + b, epsabs=0, epsrel=1e-13, limit=200)[0]
+        assert gn == pytest.approx(ref, rel=1e-10, abs=1e-13)
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+def test_modal_load_factors_point_limit_and_parity(shape):
+    # source: closed form — as b → 0 every shape tends to the Dirac, g_n = sin(nπ/2)
+    modes = np.arange(1, 12)
+    g = bm.modal_load_factors(modes, 10.0, 1e-9, shape)
+    np.testing.assert_allclose(g, np.sin(modes * np.pi / 2), atol=1e-14)
+    assert np.all(g[1::2] == 0.0)
+
+
+def test_load_shape_unit_integral():
+    # source: quadrature — the shapes have unit total
+    for shape in ("uniform", "parabolic"):
+        assert quad(lambda x: bm.load_shape(x, 10.0, 0.3, shape), 4.7, 5.3)[0] == pytest.approx(1.0, rel=1e-12)
+
+
+# --- the pulse ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("omega", [0.0, 100.0, np.pi / 2e-3, 5000.0, 3e4], ids=lambda w: f"w={w:g}")
+def test_pulse_spectrum_matches_quadrature(omega):
+    # source: quadrature of ∫ h(t) e^{−iωt} dt
+    tl = 2e-3
+    re = quad(lambda t: bm.unit_pulse(t, tl) * np.cos(omega * t), 0, tl, epsabs=1e-15, epsrel=1e-13)[0]
+    im = -quad(lambda t: bm.unit_pulse(t, tl) * np.sin(omega * t), 0, tl, epsabs=1e-15, epsrel=1e-13)[0]
+    h = bm.pulse_spectrum(omega, tl)
+    assert h.real == pytest.approx(re, abs=1e-13) and h.imag == pytest.approx(im, abs=1e-13)
+
+
+# --- periodic modal response ------------------------------------------------------------------
+def fourier_reference(t, omega, tl, tau, pattern, harmonics):
+    """Brute-force time Fourier series of the periodic response (Timoshenko: steady forced response
+    harmonic by harmonic), c_m = H(mΩ)/τ (× 2 for odd m and 0 for even m if alternating)."""
+    big = 2 * np.pi / tau
+    m = np.arange(1, harmonics + 1)
+    c = bm.pulse_spectrum(m * big, tl) / tau
+    if pattern == "alternating":
+        c = np.where(m % 2 == 1, 2 * c, 0)
+        mean = 0.0
+    else:
+        mean = 1.0 / (tau * omega**2)
+    e = np.exp(1j * np.outer(t, m * big))
+    q = mean + 2 * (e * (c / (omega**2 - (m * big) ** 2))).real.sum(axis=1)
+    v = 2 * (e * (1j * m * big * c / (omega**2 - (m * big) ** 2))).real.sum(axis=1)
+    return q, v
+
+
+CASES = [  # (omega [rad/s], T_L [s], tau [s]) — off resonance, ω T_L below, near and above π
+    (7.3, 1e-3, 0.21),
+    (130.0, 5e-3, 0.21),
+    (np.pi / 4.7e-3, 4.7e-3, 0.21),  # ω = π/T_L: the removable singularity of the pulse response
+    (2100.0, 5e-3, 0.21),
+]
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+@pytest.mark.parametrize("omega,tl,tau", CASES, ids=[f"w={c[0]:.4g}" for c in CASES])
+def test_periodic_response_matches_fourier_series(pattern, omega, tl, tau):
+    # source: convergence to reference (time Fourier series, 200 000 harmonics)
+    t = np.linspace(-0.1, 0.5, 61) + 1e-4
+    q, v = bm.modal_periodic_response(t, omega, tl, tau, pattern)
+    qf, vf = fourier_reference(t, omega, tl, tau, pattern, 200_000)
+    scale = np.max(np.abs(qf))
+    assert np.max(np.abs(q - qf)) < 1e-8 * scale
+    assert np.max(np.abs(v - vf)) < 1e-4 * np.max(np.abs(vf))  # velocity series converges slowly
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+@pytest.mark.parametrize("omega,tl,tau", CASES, ids=[f"w={c[0]:.4g}" for c in CASES])
+def test_periodic_response_is_periodic_solution_of_the_ode(pattern, omega, tl, tau):
+    # source: ODE — integrate q̈ + ω² q = h(t) over one period from the computed state at t = 0;
+    # the trajectory must follow the closed form and return to the start (periodicity)
+    q0, v0 = bm.modal_periodic_response(0.0, omega, tl, tau, pattern)
+    rhs = lambda t, s: [s[1], bm.pulse_train(t, tl, tau, pattern) - omega**2 * s[0]]  # noqa: E731
+    t_eval = np.linspace(0, tau, 401)
+    sol = solve_ivp(rhs, (0, tau), [q0, v0], t_eval=t_eval, rtol=1e-11, atol=1e-14, max_step=tl / 20,
+                    method="DOP853")
+    q, v = bm.modal_periodic_response(t_eval, omega, tl, tau, pattern)
+    scale = np.max(np.abs(q))
+    np.testing.assert_allclose(sol.y[0], q, atol=1e-7 * scale)
+    np.testing.assert_allclose(sol.y[1], v, atol=1e-7 * np.max(np.abs(v)))
+    assert abs(sol.y[0, -1] - q0) < 1e-7 * scale
+
+
+@pytest.mark.parametrize("omega", [3.0, 47.0, 400.0])
+def test_periodic_response_impulse_limit(omega):
+    # source: Timoshenko (periodic impulses on an undamped oscillator): one_wall
+    # q = cos(ω(t − τ/2))/(2ω sin(ωτ/2)); alternating q = sin(ω(t − τ/4))/(2ω cos(ωτ/4)), 0 < t < P
+    tau, tl = 0.2, 1e-9
+    t = np.linspace(0.001, 0.099, 50)
+    q1 = bm.modal_periodic_response(t + 0.1, omega, tl, tau, "one_wall").displacement
+    ref1 = np.cos(omega * (t + 0.1 - tau / 2)) / (2 * omega * np.sin(omega * tau / 2))
+    np.testing.assert_allclose(q1, ref1, rtol=0, atol=1e-6 * np.abs(ref1).max())  # O(ω T_L) shift
+    q2 = bm.modal_periodic_response(t, omega, tl, tau, "alternating").displacement
+    ref2 = np.sin(omega * (t - tau / 4)) / (2 * omega * np.cos(omega * tau / 4))
+    np.testing.assert_allclose(q2, ref2, rtol=0, atol=1e-6 * np.abs(ref2).max())
+    # antiperiodicity over τ/2
+    q3 = bm.modal_periodic_response(t + tau / 2, omega, tl, tau, "alternating").displacement
+    np.testing.assert_allclose(q3, -q2, rtol=1e-12)
+
+
+def test_resonance_is_nan_and_distance():
+    # source: closed form — resonance at ωτ = 2πk (one_wall), ωτ/2 = π(2k+1) (alternating)
+    tau = 0.2
+    big = 2 * np.pi / tau
+    om = np.array([1.0, 2.0, 3.0, 2.5, 1.25]) * big
+    d1 = bm.resonance_distance(om, tau, "one_wall")
+    d2 = bm.resonance_distance(om, tau, "alternating")
+    np.testing.assert_allclose(d1, [0, 0, 0, 0.5, 0.25], atol=1e-12)
+    np.testing.assert_allclose(d2, [0, 1, 0, 0.5, 0.25], atol=1e-12)
+    with np.errstate(all="raise"):
+        q = bm.modal_periodic_response(0.01, om, 1e-3, tau, "one_wall").displacement
+        q2 = bm.modal_periodic_response(0.01, om, 1e-3, tau, "alternating").displacement
+    assert np.isnan(q[:3]).all() and np.isfinite(q[3:]).all()
+    assert np.isnan(q2[[0, 2]]).all() and np.isfinite(q2[[1, 3, 4]]).all()
+    # the pulse must fit in the (half) period; a buckled mode (NaN ω) gives NaN
+    assert np.isnan(bm.modal_periodic_response(0.0, 7.0, 0.15, tau, "alternating").displacement)
+    assert np.isnan(bm.modal_periodic_response(0.0, np.nan, 1e-3, tau).displacement)
+
+
+# --- static beam-column -------------------------------------------------------------------------
+L_S, EI_S = 30.0, 1.0e6  # [m], [N m²]
+TENSIONS = [0.0, 1e-9, 5e4, 2e6, -5e3, -0.9 * EI_S * (np.pi / L_S) ** 2]
+T_IDS = ["T=0", "T=tiny", "T=5e4", "T=2e6", "T=-5e3", "T=0.9Tcr"]
+
+
+def modal_static(x, tension, b, shape, n_max=200_001):
+    """Static deflection as the mode sum Σ g_n sin(k_n x)/((L/2)(EI k_n⁴ + T k_n²)) (Timoshenko:
+    series solution of the simply supported beam-column), tail ~ n⁻³."""
+    n = np.arange(1, n_max + 1, 2)
+    k = n * np.pi / L_S
+    g = bm.modal_load_factors(n, L_S, b, shape)
+    return (np.sin(np.outer(x, k)) * (g / (0.5 * L_S * (EI_S * k**4 + tension * k**2)))).sum(axis=1)
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+@pytest.mark.parametrize("tension", TENSIONS, ids=T_IDS)
+def test_static_deflection_matches_mode_sum(shape, tension):
+    # source: convergence to reference (the modal series of the static problem, 10⁵ odd modes)
+    x = np.array([0.0, 2.0, 9.0, 14.7, 15.0, 21.0, 30.0])
+    g = bm.static_deflection(x, L_S, EI_S, tension, 0.4, shape)
+    ref = modal_static(x, tension, 0.4, shape)
+    np.testing.assert_allclose(g, ref, rtol=1e-9, atol=1e-12 * np.abs(ref).max())
+
+
+def test_static_point_load_closed_forms():
+    # source: Timoshenko & Gere / Roark (beam-column, centre load): T = 0: PL³/(48EI);
+    # T > 0: [x − sinh λx/(λ cosh λL/2)]/(2T); T < 0: [x − sin λx/(λ cos λL/2)]/(2T)
+    assert bm.static_deflection(L_S / 2, L_S, EI_S, 0.0) == pytest.approx(L_S**3 / (48 * EI_S), rel=1e-14)
+    x = np.linspace(0, L_S / 2, 7)
+    lam = np.sqrt(5e4 / EI_S)
+    np.testing.assert_allclose(bm.static_deflection(x, L_S, EI_S, 5e4),
+                               (x - np.sinh(lam * x) / (lam * np.cosh(lam * L_S / 2))) / (2 * 5e4), rtol=1e-12)
+    lam = np.sqrt(5e3 / EI_S)
+    np.testing.assert_allclose(bm.static_deflection(x, L_S, EI_S, -5e3),
+                               (x - np.sin(lam * x) / (lam * np.cos(lam * L_S / 2))) / (2 * -5e3), rtol=1e-12)
+    # moment of the plain beam: x/2; of the beam-column: sinh(λx)/(2λ cosh(λL/2))
+    np.testing.assert_allclose(bm.static_moment(x, L_S, EI_S, 0.0), x / 2, rtol=1e-14)
+    lam = np.sqrt(5e4 / EI_S)
+    np.testing.assert_allclose(bm.static_moment(x, L_S, EI_S, 5e4),
+                               np.sinh(lam * x) / (2 * lam * np.cosh(lam * L_S / 2)), rtol=1e-12)
+
+
+@pytest.mark.parametrize("shape,ref", [("point", L_S / 4), ("uniform", L_S / 4 - 0.4 / 4),
+                                       ("parabolic", L_S / 4 - 3 * 0.4 / 16)])
+def test_static_midspan_moment_plain_beam(shape, ref):
+    # source: closed form (statics): M(L/2) = ½·L/2 − ½·(centroid of the half load from midspan):
+    # 0, b/2 (uniform), 3b/8 (parabolic)
+    assert bm.static_moment(L_S / 2, L_S, EI_S, 0.0, 0.4, shape) == pytest.approx(ref, rel=1e-13)
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+@pytest.mark.parametrize("tension", TENSIONS, ids=T_IDS)
+def test_static_moment_and_shear_equilibrium(shape, tension):
+    # source: closed form (Timoshenko & Gere: beam-column moment M = M0 − T y, M0 the plain-beam
+    # moment; transverse force −EI y''' + T y' = ½ − ∫_a^x g on the left half)
+    x = np.array([1.0, 7.0, 14.7, 14.9])
+    m = bm.static_moment(x, L_S, EI_S, tension, 0.4, shape)
+    m0 = bm.static_moment(x, L_S, EI_S, 0.0, 0.4, shape)
+    y = bm.static_deflection(x, L_S, EI_S, tension, 0.4, shape)
+    np.testing.assert_allclose(m, m0 - tension * y, rtol=1e-10, atol=1e-12)
+    v = bm.static_shear(x, L_S, EI_S, tension, 0.4, shape, include_tension=True)
+    if shape == "point":
+        expect = np.full_like(x, 0.5)
+    else:
+        expect = np.array([0.5 - quad(lambda s: bm.load_shape(s, L_S, 0.4, shape), 14.6, xx)[0] if xx > 14.6
+                           else 0.5 for xx in x])
+    np.testing.assert_allclose(v, expect, atol=1e-10)
+    # the section shear is dM/dx (central difference)
+    h = 1e-4
+    dm = (bm.static_moment(x + h, L_S, EI_S, tension, 0.4, shape)
+          - bm.static_moment(x - h, L_S, EI_S, tension, 0.4, shape)) / (2 * h)
+    np.testing.assert_allclose(bm.static_shear(x, L_S, EI_S, tension, 0.4, shape), dm, atol=1e-7)
+
+
+def test_static_string_limit():
+    # source: closed form — as EI → 0 the beam-column becomes a string, G = x/(2T) for x ≤ L/2;
+    # the bending boundary layer costs a relative 1/u at midspan, u = λL/2
+    tension, u = 5e4, 300.0
+    ei = tension * (L_S / 2 / u) ** 2
+    x = np.array([3.0, 9.0, 15.0])
+    g = bm.static_deflection(x, L_S, ei, tension)
+    np.testing.assert_allclose(g, x / (2 * tension), rtol=1.01 / u)
+    assert g[-1] == pytest.approx((L_S / 2 - L_S / 2 / u) / (2 * tension), rel=1e-12)
+
+
+def test_static_buckled_is_nan():
+    # source: closed form — Euler load T_cr = −EI π²/L²
+    with np.errstate(all="raise"):
+        g = bm.static_deflection(np.array([5.0, 15.0]), L_S, EI_S, -1.01 * EI_S * (np.pi / L_S) ** 2)
+    assert np.isnan(g).all()
+
+
+# --- modal sums with and without the quasi-static correction ---------------------------------
+def field_args(span, tl, pattern, shape="point"):
+    return dict(span_length=span, bending_stiffness=1e6, tension=5e4, mass=40.0, impulse=100.0,
+                pulse_duration=tl, period=0.2, pattern=pattern, half_length=0.02, shape=shape)
+
+
+@pytest.mark.parametrize("span,tl", [(6.0, 1e-2), (8.0, 6e-3)], ids=["L=6", "L=8"])
+def test_corrected_moment_beats_plain(span, tl):
+    # source: convergence to reference (corrected sum with 20 001 modes) — MODEL.md §9 claim:
+    # corrected sum with 21 modes beats the plain sum with 2001 modes for the midspan moment
+    # during the pulse (holds when ω_21 T_L ≫ 1; see the report for spans where it does not)
+    args = field_args(span, tl, "alternating")
+    t, x = np.linspace(0.1, 0.9, 5) * tl, np.array([span / 2])
+    ref = bm.bending_moment(x, t, n_modes=20001, **args)
+    err_qs = np.abs(bm.bending_moment(x, t, n_modes=21, **args) - ref).max()
+    err_plain = np.abs(bm.bending_moment(x, t, n_modes=2001, quasi_static=False, **args) - ref).max()
+    assert err_qs < err_plain < 1e-2 * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+@pytest.mark.parametrize("shape", SHAPES)
+def test_corrected_and_plain_sums_agree(pattern, shape):
+    # source: convergence to reference — both sums converge to the same field; plain moment
+    # error falls like 1/N at midspan (point load), corrected converges like N^-3 or faster
+    span, tl = 10.0, 5e-3
+    args = field_args(span, tl, pattern, shape)
+    t = np.concatenate([np.linspace(0.1, 0.9, 4) * tl, [0.03, 0.13]])
+    x = np.array([span / 2, span / 3, span / 7])
+    y_qs = bm.deflection(x, t, n_modes=4001, **args)
+    y_pl = bm.deflection(x, t, n_modes=4001, quasi_static=False, **args)
+    np.testing.assert_allclose(y_pl, y_qs, atol=1e-7 * np.abs(y_qs).max())
+    m_qs = bm.bending_moment(x, t, n_modes=4001, **args)
+    m_pl = bm.bending_moment(x, t, n_modes=200001, quasi_static=False, **args)
+    np.testing.assert_allclose(m_pl, m_qs, atol=2e-4 * np.abs(m_qs).max())
+    xs = x[1:]  # shear off midspan (the series gives the mean of the two sides there)
+    v_qs = bm.shear_force(xs, t, n_modes=4001, **args)
+    v_pl = bm.shear_force(xs, t, n_modes=200001, quasi_static=False, **args)
+    np.testing.assert_allclose(v_pl, v_qs, atol=1e-4 * np.abs(v_qs).max())
+    # corrected sums: 321 modes already at the 4001-mode value
+    np.testing.assert_allclose(bm.bending_moment(x, t, n_modes=321, **args), m_qs, atol=1e-5 * np.abs(m_qs).max())
+
+
+def test_field_static_limit_and_shapes():
+    # source: closed form — the deflection is linear in J; at resonance the field is NaN;
+    # output shape t.shape + x.shape
+    args = field_args(10.0, 5e-3, "alternating")
+    y = bm.deflection(np.zeros((2, 3)), np.zeros(4), n_modes=11, **args)
+    assert y.shape == (4, 2, 3)
+    args2 = dict(args, impulse=200.0)
+    np.testing.assert_allclose(bm.deflection([3.0], [1e-3], n_modes=51, **args2),
+                               2 * bm.deflection([3.0], [1e-3], n_modes=51, **args), rtol=1e-13)
