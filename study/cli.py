@@ -11,7 +11,7 @@ import math
 import sys
 
 from study import __version__
-from study.config import FIELDS_BY_NAME, ConfigError, load, parse_set
+from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert
 

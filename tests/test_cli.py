@@ -49,3 +49,18 @@ def test_bad_config_exits_2_without_traceback(tmp_path):
 def test_missing_config_exits_2(capsys):
     assert main(["point", "/no/such/config.toml"]) == 2
     assert "cannot read config" in capsys.readouterr().err
+
+
+def test_sweep_writes_results_and_charts_then_charts_redraws(tmp_path, capsys):
+    config = tmp_path / "tiny.toml"
+    text = (ROOT / "configs" / "default.toml").read_text().split("[sweep]")[0]
+    config.write_text(text + '[sweep.axes]\nload.rotary_speed = ["100 rpm", "200 rpm", "300 rpm"]\n'
+                      'load.axial_tension = ["10000 lbf", "20000 lbf"]\n')
+    out = tmp_path / "out"
+    assert main(["sweep", str(config), "--out", str(out), "--scheduler", "synchronous", "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    assert f"results: {out / 'results.nc'}" in printed
+    charts = sorted(p.name for p in (out / "charts").iterdir())
+    assert "validity_map.png" in charts and "span_length.png" in charts
+    assert main(["charts", str(out / "results.nc"), "--out", str(tmp_path / "pdf"), "--format", "pdf"]) == 0
+    assert any(p.suffix == ".pdf" for p in (tmp_path / "pdf").iterdir())

@@ -8,8 +8,6 @@ integer flag with ``flag_values``/``flag_meanings``, and provenance in the globa
 from __future__ import annotations
 
 import datetime as _dt
-import os
-import tempfile
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
@@ -17,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from study import __version__
+from study.atomic import atomic_path
 from study.config import FIELDS_BY_NAME, Study
 from study.solvers import OUTPUTS, STATUS
 from study.workflow.grid import Grid
@@ -94,23 +93,12 @@ def build_dataset(study: Study, grid: Grid, columns: Mapping[str, np.ndarray], h
 
 def write_atomic(dataset: xr.Dataset, path: Path) -> Path:
     """Write ``dataset`` to ``path`` via a temporary file in the same folder and a rename."""
-    path.parent.mkdir(parents=True, exist_ok=True)
     encoding = {name: {"_FillValue": None} for name in dataset.coords}
     for name, var in dataset.data_vars.items():
         if var.dtype.kind == "f":
             encoding[name] = {"zlib": True, "complevel": 4}
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".nc")
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         dataset.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; the result is an ordinary file
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
     return path
 
 

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import logging
 import os
-import tempfile
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 
+from study.atomic import atomic_path
 from study.solvers import OUTPUTS, STATUS_CODES, solve_point
 from study.workflow.grid import Grid, auto_chunk_size, chunk_key
 
@@ -48,15 +48,8 @@ def solve_chunk(grid: Grid, indices: range) -> dict[str, np.ndarray]:
 
 
 def _save_atomic(path: Path, columns: Mapping[str, np.ndarray]) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".npz")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            np.savez(handle, **columns)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    with atomic_path(path) as tmp:
+        np.savez(tmp, **columns)
 
 
 def load_chunk(path: Path) -> dict[str, np.ndarray]:

@@ -88,7 +88,7 @@ def test_logarithmic_decrement_eq_9_27(zeta):
 
 def _coulomb_ivp(x0, d, t_end):
     """Piecewise integration of x'' + wn^2 x = -wn^2 d sign(x'), restarting at each v = 0."""
-    ts, xs = [], []
+    ts = []
     t0, y = 0.0, np.array([x0, 0.0])
     while t0 < t_end:
         if abs(y[0]) <= d:

@@ -1,6 +1,5 @@
 """Sweeps end to end (study.workflow.execute, .dataset, .sweep): dataset, resume, distributed."""
 
-import shutil
 from pathlib import Path
 
 import numpy as np
