@@ -51,8 +51,8 @@ def test_load_shape_unit_integral():
 def test_pulse_spectrum_matches_quadrature(omega):
     # source: quadrature of ∫ h(t) e^{−iωt} dt
     tl = 2e-3
-    re = quad(lambda t: bm.unit_pulse(t, tl) * np.cos(omega * t), 0, tl, epsabs=1e-15, epsrel=1e-13)[0]
-    im = -quad(lambda t: bm.unit_pulse(t, tl) * np.sin(omega * t), 0, tl, epsabs=1e-15, epsrel=1e-13)[0]
+    re = quad(lambda t: bm.unit_pulse(t, tl) * np.cos(omega * t), 0, tl, epsabs=1e-14, epsrel=1e-12, limit=200)[0]
+    im = -quad(lambda t: bm.unit_pulse(t, tl) * np.sin(omega * t), 0, tl, epsabs=1e-14, epsrel=1e-12, limit=200)[0]
     h = bm.pulse_spectrum(omega, tl)
     assert h.real == pytest.approx(re, abs=1e-13) and h.imag == pytest.approx(im, abs=1e-13)
 
