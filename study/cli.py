@@ -13,39 +13,9 @@ import sys
 from study import __version__
 from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
-from study.units import convert
+from study.units import convert, display_unit, pint_unit
 
 DEFAULT_CONFIG = "configs/default.toml"
-
-#: Units a drilling engineer reads, for the human-readable table: output name -> unit.
-DISPLAY_UNITS = {
-    "bending_stiffness": "lbf * in**2",
-    "steel_area": "in**2",
-    "pipe_mass": "lb/ft",
-    "internal_mud_mass": "lb/ft",
-    "added_mass": "lb/ft",
-    "mass_per_length": "lb/ft",
-    "drag_coefficient_per_length": "lb/ft**2",
-    "effective_tension": "lbf",
-    "clearance": "in",
-    "buckling_length": "ft",
-    "span_length": "ft",
-    "first_natural_frequency": "Hz",
-    "equivalent_mass": "lb",
-    "impact_velocity": "in/s",
-    "impulse": "lbf * s",
-    "axial_curvature": "1/ft",
-    "max_approach": "in",
-    "hertz_duration": "ms",
-    "contact_duration": "ms",
-    "hertz_peak_force": "lbf",
-    "peak_contact_force": "lbf",
-    "contact_half_length": "in",
-    "contact_half_width": "in",
-}
-_SI_FOR_PINT = {"N m2": "N * m**2", "m2": "m**2", "kg m-1": "kg/m", "kg m-2": "kg/m**2", "m s-1": "m/s",
-                "N s": "N * s", "m-1": "1/m"}
-
 
 def _finite_or_none(value):
     if isinstance(value, float) and not math.isfinite(value):
@@ -63,10 +33,10 @@ def _point_table(result, inputs) -> str:
     lines = [f"method {result.method}: status {result.status}", f"  {result.message}", ""]
     for name, value in result.values.items():
         unit, long_name = OUTPUTS[name]
-        shown_unit = DISPLAY_UNITS.get(name, unit)
+        shown_unit, label = display_unit(name, unit)
         if isinstance(value, float) and math.isfinite(value):
-            shown = convert(value, _SI_FOR_PINT.get(unit, unit), shown_unit)
-            text = f"{shown:12.5g} {shown_unit}"
+            shown = convert(value, pint_unit(unit), shown_unit)
+            text = f"{shown:12.5g} {label}"
         else:
             text = f"{value!s:>12}"
         lines.append(f"  {name:28s} {text:24s} {long_name}")

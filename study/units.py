@@ -8,6 +8,7 @@ back into the units a chart or table shows.
 from __future__ import annotations
 
 import math
+import re
 
 import pint
 
@@ -76,3 +77,57 @@ def convert(value, from_unit: str, to_unit: str):
 
 def is_finite_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+#: Display unit of an output by its SI (UDUNITS) unit: (pint unit, label).
+OUTPUT_UNITS = {
+    "Pa": ("psi", "psi"),
+    "N": ("lbf", "lbf"),
+    "s": ("ms", "ms"),
+    "Hz": ("Hz", "Hz"),
+    "m s-1": ("in/s", "in/s"),
+    "m": ("in", "in"),
+    "kg m-1": ("lb/ft", "lb/ft"),
+    "kg": ("lb", "lb"),
+    "N s": ("lbf*s", "lbf·s"),
+    "m-1": ("1/ft", "1/ft"),
+    "m2": ("in**2", "in²"),
+    "N m2": ("lbf*in**2", "lbf·in²"),
+    "kg m-2": ("lb/ft**2", "lb/ft²"),
+    "kg m-3": ("ppg", "ppg"),
+}
+#: Outputs whose display unit differs from the default of their dimension.
+OUTPUT_UNITS_BY_NAME = {
+    "span_length": ("ft", "ft"),
+    "buckling_length": ("ft", "ft"),
+    "wall_time": ("s", "s"),
+}
+
+UDUNITS_TOKEN = re.compile(r"([A-Za-z_]+)(-?\d+)?")
+
+
+def pint_unit(udunits: str | None) -> str:
+    """A CF/UDUNITS unit string in pint's syntax: 'kg m-3' -> 'kg * m ** -3'; '1' or '' -> ''."""
+    if not udunits or udunits.strip() == "1":
+        return ""
+    parts = []
+    for token in udunits.split():
+        match = UDUNITS_TOKEN.fullmatch(token)
+        if match is None:
+            return udunits  # not UDUNITS-style; let pint read it as it is
+        name, power = match.groups()
+        parts.append(f"{name} ** {power}" if power else name)
+    return " * ".join(parts)
+
+
+def display_unit(name: str, udunits: str) -> tuple[str, str]:
+    """The unit an output is shown in: (pint unit, label), by its name first, else by its SI unit.
+
+    name: the output's name (e.g. "span_length"); udunits: its SI unit in CF/UDUNITS form ("m").
+    An output with no listed display unit is shown in SI.
+    """
+    if name in OUTPUT_UNITS_BY_NAME:
+        return OUTPUT_UNITS_BY_NAME[name]
+    if udunits in OUTPUT_UNITS:
+        return OUTPUT_UNITS[udunits]
+    return pint_unit(udunits), udunits

@@ -13,8 +13,8 @@ import numpy as np
 from study import __version__
 from study.config import load
 from study.physics import hertz, restitution
-from study.solvers import solve_point
-from study.units import convert
+from study.solvers import OUTPUTS, solve_point
+from study.units import convert, pint_unit
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "default.toml"
 
@@ -94,7 +94,7 @@ def paper_example_section() -> list[str]:
     v = result.values
 
     def show(name, unit):
-        return f"{convert(v[name], _SI[name], unit):.4g} {unit}"
+        return f"{convert(v[name], pint_unit(OUTPUTS[name][0]), unit):.4g} {unit}"
 
     rows = [
         ("bending stiffness EI", show("bending_stiffness", "lbf*in**2")),
@@ -127,12 +127,6 @@ def paper_example_section() -> list[str]:
         f"{convert(2 * v['contact_half_length'], 'm', 'ft'):.3g} ft long. Whether the paper's stresses of order 10⁴ psi follow from this closure is "
         "the question of the periodic-solution issue.", "",
     ]
-
-
-_SI = {"bending_stiffness": "N*m**2", "pipe_mass": "kg/m", "internal_mud_mass": "kg/m", "added_mass": "kg/m",
-       "mass_per_length": "kg/m", "effective_tension": "N", "first_natural_frequency": "Hz",
-       "equivalent_mass": "kg", "impact_velocity": "m/s", "hertz_duration": "s", "contact_duration": "s",
-       "peak_contact_force": "N", "contact_half_length": "m", "contact_half_width": "m"}
 
 
 def run_validate() -> str:

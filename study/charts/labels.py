@@ -10,7 +10,6 @@ any physics.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from typing import Callable
 
@@ -18,7 +17,7 @@ import numpy as np
 import xarray as xr
 from matplotlib import ticker
 
-from study.units import ureg
+from study.units import UDUNITS_TOKEN, display_unit, pint_unit, ureg
 
 #: Short names for labels (the ``long_name`` attributes are sentences, too long for an axis).
 SHORT_NAMES = {
@@ -44,46 +43,7 @@ SHORT_NAMES = {
     "impact_velocity": "impact velocity",
 }
 
-#: Display unit of an output by its SI (UDUNITS) unit: (pint unit, label).
-OUTPUT_UNITS = {
-    "Pa": ("psi", "psi"),
-    "N": ("lbf", "lbf"),
-    "s": ("ms", "ms"),
-    "Hz": ("Hz", "Hz"),
-    "m s-1": ("in/s", "in/s"),
-    "m": ("in", "in"),
-    "kg m-1": ("lb/ft", "lb/ft"),
-    "kg": ("lb", "lb"),
-    "N s": ("lbf*s", "lbf·s"),
-    "m-1": ("1/ft", "1/ft"),
-    "m2": ("in**2", "in²"),
-    "N m2": ("lbf*in**2", "lbf·in²"),
-    "kg m-2": ("lb/ft**2", "lb/ft²"),
-    "kg m-3": ("ppg", "ppg"),
-}
-#: Outputs whose display unit differs from the default of their dimension.
-OUTPUT_UNITS_BY_NAME = {
-    "span_length": ("ft", "ft"),
-    "buckling_length": ("ft", "ft"),
-    "wall_time": ("s", "s"),
-}
-
 _SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
-_TOKEN = re.compile(r"([A-Za-z_]+)(-?\d+)?")
-
-
-def pint_unit(udunits: str | None) -> str:
-    """A CF/UDUNITS unit string in pint's syntax: 'kg m-3' -> 'kg * m ** -3'; '1' or '' -> ''."""
-    if not udunits or udunits.strip() == "1":
-        return ""
-    parts = []
-    for token in udunits.split():
-        match = _TOKEN.fullmatch(token)
-        if match is None:
-            return udunits  # not UDUNITS-style; let pint read it as it is
-        name, power = match.groups()
-        parts.append(f"{name} ** {power}" if power else name)
-    return " * ".join(parts)
 
 
 def pretty_unit(udunits: str | None) -> str:
@@ -92,7 +52,7 @@ def pretty_unit(udunits: str | None) -> str:
         return "-"
     numerator, denominator = [], []
     for token in udunits.split():
-        match = _TOKEN.fullmatch(token)
+        match = UDUNITS_TOKEN.fullmatch(token)
         if match is None:
             return udunits
         name, power = match.groups()
@@ -201,12 +161,10 @@ def quantity(data: xr.DataArray, unit: str | None = None) -> Quantity:
         target, label = unit, unit
     elif display:
         target, label = display, display
-    elif name in OUTPUT_UNITS_BY_NAME:
-        target, label = OUTPUT_UNITS_BY_NAME[name]
-    elif si in OUTPUT_UNITS:
-        target, label = OUTPUT_UNITS[si]
     else:
-        target, label = source, pretty_unit(si)
+        target, label = display_unit(name, si)
+        if target == source:
+            label = pretty_unit(si)
     try:
         convert = _converter(source, pint_unit(target))
     except Exception:  # an unknown unit: show SI rather than fail the chart
