@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from study.physics.beam import LOAD_SHAPES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers import METHODS
 from study.units import UnitProblem, parse_quantity
@@ -111,6 +112,12 @@ FIELDS: tuple[Field, ...] = (
           "m", default=None, display_unit="ft", **_POSITIVE),
     Field("solver.max_span", "max_span", "longest span searched", "m", default=304.8, display_unit="ft",
           **_POSITIVE),
+    Field("solver.min_span", "min_span", "shortest span searched", "m", default=3.0, display_unit="ft",
+          **_POSITIVE),
+    Field("solver.modes", "modes", "highest mode number kept by the periodic methods", "", default=41,
+          integer=True, lower=1.0),
+    Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default="parabolic",
+          choices=tuple(LOAD_SHAPES)),
 )
 
 FIELDS_BY_PATH = {f.path: f for f in FIELDS}

@@ -12,11 +12,13 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import core
+from study.solvers import core, fast
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
     "core": (core.solve, "physics core: section, mud, tension, and the Hertz/Lee impact at a given span"),
+    "fast": (fast.solve, "periodic impact solution: span search, closed-form modal response with a "
+             "quasi-static correction, stresses"),
 }
 
 __all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve_point"]

@@ -32,6 +32,7 @@ class PointResult:
     status: str = "ok"
     message: str = ""
     values: dict[str, Any] = field(default_factory=dict)
+    extras: dict[str, Any] = field(default_factory=dict)  # non-scalar outputs (JSON only)
     error_estimate: float | None = None
     wall_time: float = 0.0
 
@@ -41,6 +42,7 @@ class PointResult:
 
     def as_dict(self) -> dict[str, Any]:
         out = dict(self.values)
+        out.update(self.extras)
         out.update(status=self.status, message=self.message, method=self.method, wall_time=self.wall_time)
         if self.error_estimate is not None:
             out["error_estimate"] = self.error_estimate
@@ -73,4 +75,16 @@ OUTPUTS = {
     "peak_contact_force": ("N", "peak contact force of the impact pulse"),
     "contact_half_length": ("m", "contact-ellipse semi-axis along the pipe at peak force"),
     "contact_half_width": ("m", "contact-ellipse semi-axis around the pipe at peak force"),
+    "root_count": ("1", "roots of condition 2 (midspan at the wall at contact) in the search range"),
+    "pole_count": ("1", "resonant spans (poles of the periodic response) in the search range"),
+    "candidate_count": ("1", "spans that satisfy every constraint"),
+    "max_deflection": ("m", "largest lateral deflection over the span and the period"),
+    "max_bending_stress": ("Pa", "largest bending stress M r_o / I"),
+    "max_normal_stress": ("Pa", "largest combined normal stress |T0/A| + |bending stress|"),
+    "max_normal_stress_x": ("m", "position along the span of the largest normal stress"),
+    "max_normal_stress_t": ("s", "time after contact of the largest normal stress"),
+    "max_shear_stress": ("Pa", "largest shear stress 2V/A of the thin tube"),
+    "max_shear_stress_x": ("m", "position along the span of the largest shear stress"),
+    "max_shear_stress_t": ("s", "time after contact of the largest shear stress"),
+    "alternating_bending_stress": ("Pa", "half the range of the bending stress over the period, worst section"),
 }

@@ -1,0 +1,396 @@
+"""The periodic impact solution of one design point: closure, span search and constraint checks.
+
+Shared by the periodic methods (``fast`` and ``series``; ``../shared/MODEL.md`` §3–6). The sample span
+(simply supported, length L) is struck at midspan by the Hertz/Lee pulse of the equivalent mass once
+per period at the wall y = +c (pattern ``one_wall``) or alternately at +c and −c every half period
+(``alternating``). The response is linear in the impulse J, so everything is built from the response
+to a unit impulse directed along +y; the real load pushes the pipe off the wall (−y at +c).
+
+Unknowns and closures (MODEL.md §4). Condition 2, y(L/2, 0) = c, is one equation; the unknowns are L
+and the impact velocity V_p:
+
+- ``prescribed``: V_p = Ω c (the paper's assumed motion), J = m_e (1 + e) V_p; condition 2 is an
+  equation for L: F(L) = −J y₁(L)/c − 1 = 0, where y₁ is midspan displacement at t = 0 per unit
+  impulse along +y.
+- ``self_consistent``: V_p is the solution's own midspan velocity just before contact. Condition 2
+  fixes J = −c/y₁, so V_p = c v₁/y₁, and J = m_e (1 + e) V_p becomes F(L) = m_e (1 + e) V_p/J − 1 = 0.
+
+Either way the pulse duration T_L depends (weakly) on V_p, m_e and the Hertz stiffness, which depends
+on the curvature of the pipe at the contact, taken from the solution itself: κ = −y''(L/2, 0). They are
+iterated to a fixed point at every span evaluated exactly.
+
+Span search. F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train
+(MODEL.md §4): a sign change across a pole is not a root. The poles are located analytically
+(:func:`resonant_spans`), F is sampled inside every interval between consecutive poles, and only sign
+changes between samples inside one interval are bracketed and solved. Roots are then refined with the
+exact model and kept as candidates when condition 1 holds: |y| < c everywhere and always except at
+the contact during the pulse, and the midspan arrives at the wall moving towards it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import beam, hertz, section
+from study.solvers.core import scene as section_scene
+
+
+@dataclass(frozen=True)
+class Options:
+    """Resolution and search settings of the periodic methods."""
+
+    modes: int = 41  #: highest (odd) mode number kept
+    min_span: float = 3.0  #: shortest span searched [m]
+    max_span: float = 304.8  #: longest span searched [m] (1000 ft)
+    load_shape: str = "parabolic"  #: spatial shape of the contact load (beam.LOAD_SHAPES)
+    samples: int = 4  #: samples of F inside each interval between poles
+    time_points: int = 480  #: points over one (half) period outside the pulse, for condition 1
+    pulse_points: int = 64  #: points across the pulse
+    space_points: int = 48  #: points over half the span
+    tolerance: float = 1e-6  #: relative slack of condition 1, |y| <= c (1 + tolerance)
+    fixed_point_tol: float = 1e-9  #: relative change of T_L that ends the T_L-κ iteration
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Span-independent data of the design point (SI)."""
+
+    props: Mapping[str, float]
+    outer_radius: float
+    hole_radius: float
+    compliance_sum: float
+    rotary_speed: float
+    restitution: float
+    pattern: str
+    closure: str
+
+    @property
+    def clearance(self) -> float:
+        return self.props["clearance"]
+
+    @property
+    def period(self) -> float:
+        """Period of the motion τ = 2π/Ω [s] (one revolution)."""
+        return 2.0 * np.pi / self.rotary_speed
+
+
+def make_scene(inputs: Mapping[str, Any]) -> Scene:
+    props = section_scene(inputs)
+    compliance = float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
+                       + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+    return Scene(props=props, outer_radius=inputs["outer_diameter"] / 2.0, hole_radius=inputs["hole_diameter"] / 2.0,
+                 compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
+                 restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
+                 closure=inputs.get("closure", "prescribed"))
+
+
+def odd_modes(n_modes: int) -> np.ndarray:
+    """Mode numbers 1, 3, 5, … ≤ n_modes (a symmetric load excites no even mode)."""
+    return np.arange(1, int(n_modes) + 1, 2, dtype=float)
+
+
+def natural_frequencies(scene: Scene, span_length, modes) -> np.ndarray:
+    """ω_n [rad/s] for spans ``span_length`` [m] (last axis: ``modes``); NaN where a mode buckles."""
+    p = scene.props
+    return section.natural_frequencies(span_length, p["bending_stiffness"], p["effective_tension"],
+                                       p["mass_per_length"], modes)
+
+
+def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
+    """Harmonic numbers of the rotation present in the pulse train: all (one_wall) or odd (alternating)."""
+    step = 2 if scene.pattern == "alternating" else 1
+    return np.arange(1, highest + 1, step, dtype=float)
+
+
+def resonant_spans(scene: Scene, modes, min_span: float, max_span: float) -> np.ndarray:
+    """Sorted spans [m] in [min_span, max_span] where some ω_n(L) equals a harmonic m Ω of the train.
+
+    From ω² M = EI k⁴ + T k² with k = nπ/L: k² = [−T + √(T² + 4 EI M (mΩ)²)]/(2 EI), L = nπ/k
+    (MODEL.md §4). These are the poles of the undamped periodic response.
+    """
+    p = scene.props
+    ei, tension, mass = p["bending_stiffness"], p["effective_tension"], p["mass_per_length"]
+    modes = np.asarray(modes, dtype=float)
+    omega_max = float(np.nanmax(natural_frequencies(scene, min_span, modes[-1:])))
+    highest = int(np.ceil(omega_max / scene.rotary_speed)) + 1
+    forcing = resonant_harmonics(scene, highest) * scene.rotary_speed
+    k_sq = (-tension + np.sqrt(tension**2 + 4.0 * ei * mass * forcing**2)) / (2.0 * ei)
+    spans = (modes[:, None] * np.pi / np.sqrt(k_sq[None, :])).ravel()
+    spans = spans[(spans >= min_span) & (spans <= max_span)]
+    return np.unique(spans)
+
+
+def unit_state(scene: Scene, span_length, pulse_duration, half_length, options: Options, time=0.0):
+    """Midspan displacement y₁ [m/(N s)], velocity v₁ [m/(N s²)] and curvature y₁'' [1/(m N s)] at
+    ``time`` [s] (default t = 0, the start of contact) per unit impulse along +y.
+
+    span_length, pulse_duration, half_length broadcast together (shape S); ``time`` of shape T gives
+    results of shape S + T.
+    """
+    modes = odd_modes(options.modes)
+    span = np.asarray(span_length, dtype=float)
+    time = np.asarray(time, dtype=float)
+    expand = (...,) + (None,) * time.ndim + (slice(None),)  # S + T + modes
+    omega = natural_frequencies(scene, span, modes)[expand]
+    g = beam.modal_load_factors(modes, span, half_length, options.load_shape)[expand]
+    duration = np.asarray(pulse_duration, dtype=float)[(...,) + (None,) * time.ndim][..., None]
+    response = beam.modal_periodic_response(time[..., None], omega, duration, scene.period, scene.pattern)
+    parity = np.where(modes % 4 == 1, 1.0, -1.0)
+    weight = 2.0 * g / (scene.props["mass_per_length"] * span[expand[:-1]][..., None]) * parity
+    k_sq = (modes * np.pi / span[expand[:-1]][..., None]) ** 2
+    return ((weight * response.displacement).sum(-1), (weight * response.velocity).sum(-1),
+            -(weight * k_sq * response.displacement).sum(-1))
+
+
+@dataclass
+class Impact:
+    """The impact of one span at the fixed point of T_L and the contact curvature."""
+
+    span_length: float
+    residual: float  #: F(L) of the closure
+    impulse: float = np.nan
+    impact_velocity: float = np.nan
+    equivalent_mass: float = np.nan
+    contact_duration: float = np.nan
+    hertz_duration: float = np.nan
+    hertz_peak_force: float = np.nan
+    peak_contact_force: float = np.nan
+    contact_half_length: float = 0.0
+    contact_half_width: float = 0.0
+    axial_curvature: float = np.nan
+    max_approach: float = np.nan
+    iterations: int = 0
+    problems: list[str] = field(default_factory=list)
+
+
+def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 30) -> Impact:
+    """Solve the T_L–κ fixed point at one span and return the impact with the closure residual."""
+    c, e = scene.clearance, scene.restitution
+    mass = scene.props["mass_per_length"]
+    m_e = float(section.equivalent_mass(mass, span_length))
+    # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
+    curvature = c * (np.pi / span_length) ** 2
+    velocity = scene.rotary_speed * c
+    duration, half_length = np.nan, 0.0
+    out = Impact(span_length=span_length, residual=np.nan, equivalent_mass=m_e)
+    for iteration in range(1, max_iterations + 1):
+        a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, max(curvature, 1e-300))
+        stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
+        new_duration = float(hertz.lee_duration(m_e, max(velocity, 1e-300), stiffness))
+        if new_duration >= (0.5 if scene.pattern == "alternating" else 1.0) * scene.period:
+            out.problems.append(f"pulse longer than the time between impacts (T_L = {new_duration:.3g} s)")
+            return out
+        impulse = m_e * (1.0 + e) * velocity if scene.closure == "prescribed" else np.nan
+        y1, v1, curv1 = (float(v) for v in unit_state(scene, span_length, new_duration, half_length, options))
+        if not np.isfinite(y1):
+            out.problems.append("the span is at a resonance or buckled")
+            return out
+        if scene.closure == "self_consistent":
+            impulse = -c / y1
+            velocity = c * v1 / y1
+            residual = m_e * (1.0 + e) * velocity / impulse - 1.0
+        else:
+            residual = -impulse * y1 / c - 1.0
+        curvature = impulse * curv1
+        if not (curvature > 0 and velocity > 0 and impulse > 0):
+            out.problems.append(
+                "the pipe is not convex towards the wall at the contact" if curvature <= 0 else
+                "the midspan does not approach the wall before contact" if velocity <= 0 else
+                "condition 2 needs a negative impulse")
+            out.residual, out.impulse, out.impact_velocity, out.axial_curvature = residual, impulse, velocity, curvature
+            return out
+        if iteration > 2 and np.isfinite(duration):  # under-relax: the T_L-curvature map can overshoot
+            new_duration = 0.5 * (new_duration + duration)
+        peak = float(hertz.lee_peak_force(impulse, new_duration))
+        converged = np.isfinite(duration) and abs(new_duration - duration) <= options.fixed_point_tol * new_duration
+        duration = new_duration
+        ellipse = hertz.contact_ellipse(peak, scene.outer_radius, scene.hole_radius, curvature, scene.compliance_sum)
+        half_length = min(float(ellipse.contact_half_length), 0.45 * span_length)
+        half_width = float(ellipse.contact_half_width)
+        if converged:
+            break
+    elastic = hertz.hertz_impact(m_e, max(velocity, 1e-300), stiffness)
+    out.residual = residual
+    out.impulse, out.impact_velocity, out.contact_duration = impulse, velocity, duration
+    out.hertz_duration, out.hertz_peak_force = float(elastic.duration), float(elastic.max_force)
+    out.max_approach = float(elastic.max_approach)
+    out.peak_contact_force, out.axial_curvature = peak, curvature
+    out.contact_half_length, out.contact_half_width = half_length, half_width
+    out.iterations = iteration
+    if not converged and max_iterations > 1:
+        out.problems.append(f"T_L–curvature iteration not converged in {max_iterations} steps")
+    return out
+
+
+def screen_residual(scene: Scene, options: Options):
+    """A cheap, smooth stand-in for F(L), vectorised over spans, for the search.
+
+    T_L(L) and the contact half-length b(L) come from one fixed-point step at a dozen spans,
+    interpolated in log L; the roots found with it are refined with the exact model afterwards.
+    Returns a function of an array of spans, or None when no span gives a valid pulse.
+    """
+    grid = np.geomspace(options.min_span, options.max_span, 12)
+    impacts = [impact_at(scene, float(L), options, max_iterations=1) for L in grid]
+    durations = np.array([i.contact_duration for i in impacts])
+    halves = np.array([i.contact_half_length for i in impacts])
+    ok = np.isfinite(durations) & (durations > 0)
+    if not np.any(ok):
+        return None
+    logs = np.log(grid[ok])
+    e = scene.restitution
+    mass = scene.props["mass_per_length"]
+
+    def pulse(spans):
+        """(T_L, b) interpolated at ``spans``."""
+        return (np.exp(np.interp(np.log(spans), logs, np.log(durations[ok]))),
+                np.interp(np.log(spans), logs, halves[ok]))
+
+    def residual(spans):
+        spans = np.asarray(spans, dtype=float)
+        duration, half = pulse(spans)
+        y1, v1, _ = unit_state(scene, spans, duration, half, options)
+        m_e = section.equivalent_mass(mass, spans)
+        if scene.closure == "self_consistent":
+            return -m_e * (1.0 + e) * v1 - 1.0  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
+        return -m_e * (1.0 + e) * scene.rotary_speed * y1 - 1.0  # -J y1/c - 1 with J = m_e (1+e) Omega c
+
+    residual.pulse = pulse
+    return residual
+
+
+@dataclass
+class SpanSearch:
+    """All roots of condition 2 in the search range, ascending, with their brackets."""
+
+    roots: np.ndarray
+    brackets: np.ndarray  #: (n, 2) spans around each root, inside one interval between poles
+    pole_count: int
+    residual: Any = None  #: the screening residual (with ``.pulse``), for the screening checks
+
+
+def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60) -> np.ndarray:
+    """Vectorised bisection of sign-changing brackets (every bracket at once)."""
+    f_lo = func(lo)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        f_mid = func(mid)
+        left = np.sign(f_mid) == np.sign(f_lo)
+        lo, f_lo = np.where(left, mid, lo), np.where(left, f_mid, f_lo)
+        hi = np.where(left, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def find_roots(scene: Scene, options: Options) -> SpanSearch:
+    """Roots of the closure residual F(L) in [min_span, max_span], bracketed between poles."""
+    modes = odd_modes(options.modes)
+    poles = resonant_spans(scene, modes, options.min_span, options.max_span)
+    residual = screen_residual(scene, options)
+    if residual is None:
+        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
+    edges = np.concatenate([[options.min_span], poles, [options.max_span]])
+    lo, hi = edges[:-1], edges[1:]
+    keep = hi > lo * (1 + 1e-12)
+    lo, hi = lo[keep], hi[keep]
+    # Samples strictly inside each interval, denser towards the poles where F changes fastest.
+    fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
+    spans = lo[:, None] + (hi - lo)[:, None] * fractions[None, :]
+    values = residual(spans.ravel()).reshape(spans.shape)
+    i, j = np.nonzero(np.sign(values[:, :-1]) * np.sign(values[:, 1:]) < 0)
+    brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
+    roots = _bisect(residual, brackets[:, 0].copy(), brackets[:, 1].copy()) if len(i) else np.array([])
+    return SpanSearch(roots=roots, brackets=brackets, pole_count=int(poles.size), residual=residual)
+
+
+def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.ndarray:
+    """Cheap necessary conditions for every root at once (with the screening T_L and b): the midspan
+    approaches the wall before contact and stays inside the hole over the period. True = survives."""
+    if search.roots.size == 0:
+        return np.zeros(0, dtype=bool)
+    spans = search.roots
+    duration, half = search.residual.pulse(spans)
+    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    t = np.linspace(0.0, 1.0, 50)[1:-1]  # coarse: sampling can miss a violation, never invent one
+    times = duration[:, None] + (span_t - duration[:, None]) * t[None, :]  # after the pulse, per root
+    c, e, mass = scene.clearance, scene.restitution, scene.props["mass_per_length"]
+    y0, v0, _ = unit_state(scene, spans, duration, half, options)
+    m_e = section.equivalent_mass(mass, spans)
+    impulse = -c / y0 if scene.closure == "self_consistent" else m_e * (1.0 + e) * scene.rotary_speed * c
+    modes = odd_modes(options.modes)
+    omega = natural_frequencies(scene, spans, modes)  # (R, M)
+    g = beam.modal_load_factors(modes, spans, half, options.load_shape)
+    weight = 2.0 * g / (mass * spans[:, None]) * np.where(modes % 4 == 1, 1.0, -1.0)
+    q = beam.modal_periodic_response(times[:, :, None], omega[:, None, :], duration[:, None, None],
+                                     scene.period, scene.pattern).displacement  # (R, nt, M)
+    ys = np.einsum("rtm,rm->rt", q, weight)
+    approach = -impulse * v0 > 0
+    inside = np.max(np.abs(np.asarray(impulse)[..., None] * ys), axis=1) <= c * 1.02
+    return approach & inside & (impulse > 0)
+
+
+def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: int = 8) -> Impact:
+    """The root of the exact residual (T_L–κ fixed point at every span) near the screening root
+    ``approx``, by secant steps kept inside ``bracket`` (an interval free of poles)."""
+    lo, hi = float(min(bracket)), float(max(bracket))
+    x0, x1 = approx, approx * (1.0 + 1e-6)
+    i0 = impact_at(scene, x0, options)
+    if i0.problems or not np.isfinite(i0.residual):
+        return i0
+    i1 = impact_at(scene, x1, options)
+    for _ in range(steps):
+        if i1.problems or not np.isfinite(i1.residual) or abs(i1.residual) < 1e-10:
+            return i1
+        slope = (i1.residual - i0.residual) / (x1 - x0)
+        if slope == 0:
+            break
+        x2 = x1 - i1.residual / slope
+        if not lo <= x2 <= hi:
+            i1.problems.append("the exact root left the bracket of the screening root")
+            return i1
+        x0, i0, x1 = x1, i1, x2
+        i1 = impact_at(scene, x1, options)
+    if abs(i1.residual) > 1e-8:
+        i1.problems.append(f"condition 2 residual {i1.residual:.2g} after refinement")
+    return i1
+
+
+def time_grid(scene: Scene, duration: float, options: Options) -> np.ndarray:
+    """Times over one period (half a period for alternating: the other half is its mirror image), dense
+    across the pulse [0, T_L] and uniform after it, ending just before the next impact."""
+    span = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    pulse = np.linspace(0.0, duration, options.pulse_points)
+    rest = np.linspace(duration, span, options.time_points + 1)[1:-1]
+    tail = span - np.geomspace(duration * 1e-3, duration, 8)  # the approach to the next impact
+    return np.unique(np.concatenate([pulse, rest, tail]))
+
+
+def space_grid(span_length: float, half_length: float, options: Options) -> np.ndarray:
+    """Points over the half span [0, L/2] (the motion is symmetric), dense across the contact."""
+    mid = 0.5 * span_length
+    coarse = np.linspace(0.0, mid, options.space_points)
+    contact = mid - np.linspace(0.0, max(half_length, 1e-3 * span_length) * 1.5, 16)
+    return np.unique(np.concatenate([coarse, contact[contact >= 0]]))
+
+
+def constraint_violation(scene: Scene, impact: Impact, options: Options) -> str | None:
+    """None when condition 1 holds for this span; otherwise a message saying where it fails."""
+    if impact.impact_velocity <= 0:
+        return f"the midspan moves away from the wall when contact starts (V_p = {impact.impact_velocity:.3g} m/s)"
+    x = space_grid(impact.span_length, impact.contact_half_length, options)
+    t = time_grid(scene, impact.contact_duration, options)
+    p = scene.props
+    y = beam.deflection(x, t, impact.span_length, p["bending_stiffness"], p["effective_tension"],
+                        p["mass_per_length"], -impact.impulse, impact.contact_duration, scene.period,
+                        scene.pattern, impact.contact_half_length, options.load_shape, options.modes)
+    in_contact = (np.abs(x - 0.5 * impact.span_length) <= max(impact.contact_half_length, 1e-9))[None, :] \
+        & (t <= impact.contact_duration)[:, None]
+    excess = np.where(in_contact, 0.0, np.abs(y)) - scene.clearance * (1.0 + options.tolerance)
+    if not np.all(np.isfinite(y)):
+        return "the deflection is not finite (resonance)"
+    if np.max(excess) > 0:
+        i, j = np.unravel_index(np.argmax(excess), excess.shape)
+        return (f"|y| reaches {abs(y[i, j]) / scene.clearance:.4g} c at x = {x[j]:.4g} m, "
+                f"t = {t[i]:.4g} s (condition 1)")
+    return None

@@ -1,0 +1,73 @@
+"""The periodic solution's closure, pole location and span search (study.solvers.periodic)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from study import config
+from study.solvers import periodic
+
+ROOT = Path(__file__).resolve().parents[2]
+RPM = np.pi / 30
+
+
+@pytest.fixture(scope="module")
+def paper_inputs():
+    return config.load(ROOT / "configs" / "default.toml").point()
+
+
+def scene_of(inputs, pattern, closure, rpm=300.0):
+    return periodic.make_scene({**inputs, "impact_pattern": pattern, "closure": closure, "rotary_speed": rpm * RPM})
+
+
+@pytest.mark.parametrize("pattern", ["alternating", "one_wall"])
+def test_poles_are_where_a_natural_frequency_meets_a_harmonic(paper_inputs, pattern):
+    # MODEL.md §4: the undamped periodic response has a pole where omega_n tau/2pi is a harmonic of the
+    # train - any integer (one_wall) or an odd integer (alternating).
+    scene = scene_of(paper_inputs, pattern, "prescribed")
+    modes = periodic.odd_modes(9)
+    poles = periodic.resonant_spans(scene, modes, 10.0, 300.0)
+    assert poles.size > 10 and np.all(np.diff(poles) > 0)
+    nu = periodic.natural_frequencies(scene, poles, modes) * scene.period / (2 * np.pi)  # (poles, modes)
+    nearest = np.round(nu)
+    hit = np.abs(nu - nearest) < 1e-9 * nu
+    if pattern == "alternating":
+        hit &= nearest % 2 == 1
+    assert np.all(hit.any(axis=1))
+
+
+def test_roots_lie_between_poles_and_zero_the_screening_residual(paper_inputs):
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    options = periodic.Options(modes=11, min_span=20.0, max_span=120.0)
+    search = periodic.find_roots(scene, options)
+    assert search.roots.size > 0
+    poles = periodic.resonant_spans(scene, periodic.odd_modes(11), 20.0, 120.0)
+    for root, (a, b) in zip(search.roots, search.brackets):
+        assert a <= root <= b
+        assert not np.any((poles > a) & (poles < b))  # a bracket never straddles a pole
+    residual = search.residual(search.roots)
+    assert np.max(np.abs(residual)) < 1e-6
+
+
+def test_refined_root_satisfies_condition_2_exactly(paper_inputs):
+    # Condition 2 (MODEL.md §4): y(L/2, 0) = c with the exact T_L and contact curvature of the solution.
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    options = periodic.Options(modes=15, min_span=9.0)
+    search = periodic.find_roots(scene, options)
+    refined = [periodic.refine_root(scene, options, float(r), b) for r, b in zip(search.roots, search.brackets)]
+    good = [i for i in refined if not i.problems]
+    assert len(good) >= 5
+    for impact in good:
+        y1, _, curv1 = periodic.unit_state(scene, impact.span_length, impact.contact_duration,
+                                           impact.contact_half_length, options)
+        assert -impact.impulse * y1 == pytest.approx(scene.clearance, rel=1e-7)
+        # The contact curvature is the solution's own: kappa = -y''(L/2, 0).
+        assert impact.axial_curvature == pytest.approx(impact.impulse * curv1, rel=1e-6)
+
+
+def test_prescribed_closure_uses_omega_c(paper_inputs):
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    impact = periodic.impact_at(scene, 100.0, periodic.Options(modes=11))
+    assert impact.impact_velocity == pytest.approx(scene.rotary_speed * scene.clearance)
+    assert impact.impulse == pytest.approx(impact.equivalent_mass * (1 + scene.restitution) * impact.impact_velocity)
