@@ -68,6 +68,8 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     on_chunk : called with the number of chunks done after each one is stored (tests use it).
     """
     store.mkdir(parents=True, exist_ok=True)
+    for stale in store.glob(".tmp-*"):  # a write cut short by a kill: never a result, remove it
+        stale.unlink(missing_ok=True)
     workers = workers or os.cpu_count() or 1
     chunk_size = chunk_size or auto_chunk_size(grid.size, workers)
     chunks = list(grid.chunks(chunk_size))

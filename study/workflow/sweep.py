@@ -27,6 +27,8 @@ def run_sweep(study: Study, out_dir: str | Path | None = None, *, scheduler: str
     and solver version) are not recomputed.
     """
     out = Path(out_dir) if out_dir else Path("outputs") / study.name
+    for stale in out.glob(".tmp-*"):  # a dataset write cut short by a kill
+        stale.unlink(missing_ok=True)
     grid = study_grid(study)
     store = out / PARTIAL
     paths = run_grid(
