@@ -18,7 +18,7 @@ import numpy as np
 
 from study.atomic import atomic_path
 from study.solvers import OUTPUTS, STATUS_CODES, solve_point
-from study.workflow.grid import Grid, auto_chunk_size, chunk_key
+from study.workflow.grid import Grid, auto_chunk_size, chunk_key, grid_id
 
 
 def solve_chunk(grid: Grid, indices: range) -> dict[str, np.ndarray]:
@@ -29,8 +29,8 @@ def solve_chunk(grid: Grid, indices: range) -> dict[str, np.ndarray]:
     columns["wall_time"] = np.zeros(n)
     status = np.zeros(n, dtype=np.int8)
     messages, methods = [], []
-    for row, index in enumerate(indices):
-        result = solve_point(grid.point(index))
+    for row, inputs in enumerate(grid.points(indices)):
+        result = solve_point(inputs)
         for name, value in result.values.items():
             if name in columns:
                 columns[name][row] = value
@@ -73,7 +73,8 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     workers = workers or os.cpu_count() or 1
     chunk_size = chunk_size or auto_chunk_size(grid.size, workers)
     chunks = list(grid.chunks(chunk_size))
-    paths = [store / f"{chunk_key(grid, chunk)}.npz" for chunk in chunks]
+    grid_hash = grid_id(grid)
+    paths = [store / f"{chunk_key(grid, chunk, grid_hash)}.npz" for chunk in chunks]
     todo = [(chunk, path) for chunk, path in zip(chunks, paths) if not path.exists()]
 
     from tqdm import tqdm

@@ -38,12 +38,18 @@ class Grid:
 
     def point(self, flat_index: int) -> dict[str, Any]:
         """SI inputs of the point at ``flat_index`` (C order)."""
-        inputs = dict(self.base)
-        if self.axes:
-            for name, i in zip(self.axes, np.unravel_index(flat_index, self.shape)):
-                value = self.axes[name][i]
-                inputs[name] = value.item() if isinstance(value, np.generic) else value
-        return inputs
+        return next(self.points(range(flat_index, flat_index + 1)))
+
+    def points(self, indices: range) -> Iterator[dict[str, Any]]:
+        """SI inputs of the points ``indices`` (C order), unravelled once for the whole range."""
+        names = list(self.axes)
+        columns = [self.axes[name][i].tolist() for name, i in
+                   zip(names, np.unravel_index(np.arange(indices.start, indices.stop), self.shape))] if names else []
+        for row in range(len(indices)):
+            inputs = dict(self.base)
+            for name, column in zip(names, columns):
+                inputs[name] = column[row]
+            yield inputs
 
     def chunks(self, chunk_size: int) -> Iterator[range]:
         """Consecutive ranges of flat indices, each at most ``chunk_size`` long."""
@@ -69,9 +75,15 @@ def point_id(inputs: Mapping[str, Any]) -> str:
     return hashlib.sha256(f"{__version__}|{text}".encode()).hexdigest()
 
 
-def chunk_key(grid: Grid, indices: range) -> str:
-    """Key of a chunk: hash of its points' ids, so changed inputs or code never reuse a result."""
-    digest = hashlib.sha256()
-    for index in indices:
-        digest.update(point_id(grid.point(index)).encode())
-    return digest.hexdigest()[:32]
+def grid_id(grid: Grid) -> str:
+    """Hash of the normalised fixed inputs, the axes' values and the solver version."""
+    axes = {name: [_normalise(v) for v in np.asarray(values).tolist()] for name, values in grid.axes.items()}
+    return point_id({**grid.base, "__axes__": json.dumps(axes, sort_keys=True), "__order__": list(grid.axes)})
+
+
+def chunk_key(grid: Grid, indices: range, grid_hash: str | None = None) -> str:
+    """Key of a chunk: its index range within the hashed grid. The grid fixes every point's inputs (C
+    order over the axes), so the key changes with any input, axis value or solver version and never
+    reuses a stale result - the same guarantee as hashing each point, without hashing each point."""
+    base = grid_hash or grid_id(grid)
+    return hashlib.sha256(f"{base}|{indices.start}|{indices.stop}".encode()).hexdigest()[:32]

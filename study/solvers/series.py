@@ -1,0 +1,400 @@
+"""The ``series`` periodic method: the paper's double Fourier series (MODEL.md §4, §9 "series").
+
+The design point is solved exactly as by the ``fast`` method — the pole-bracketed span search, the
+midspan screen, the exact refinement and the constraint check of :mod:`study.solvers.periodic`
+(:func:`design_point`) — but the fields at the chosen span (deflection, bending moment, shear) come
+from the paper's double series :func:`study.physics.beam.series_field`, n_modes (odd n ≤ N) ×
+harmonics (m ≤ M) terms, with NO quasi-static correction. It is the reproduction of the paper and
+the slow baseline against which the fast method is measured (:func:`convergence_table`).
+
+Truncation. N is ``inputs["modes"]`` (as for fast). M is ``inputs["harmonics"]`` (default
+:data:`DEFAULT_HARMONICS`) or, with ``inputs["series_tolerance"]`` set, found by doubling M from that
+start until the maximum normal stress changes by less than the tolerance, at most
+``inputs["series_max_harmonics"]`` (default :data:`MAX_HARMONICS`; status ``not_converged`` when the cap
+is reached first).
+
+Error estimate. The relative change of the maximum normal stress between the last two truncations
+(M/2 and M). This is what the paper could have done to judge its own truncation; it is NOT a bound:
+on the test case of ``tests/solvers/test_series.py`` the change from M = 1600 to 3200 at N = 101 is
+below 1e-6 while the error against the converged series is 1.75e-4 — a near-resonant mode above N
+(n = 219, 0.001 harmonics from resonance) is invisible to a comparison in M, and a near-resonant
+harmonic above M is invisible until M reaches it. ``fast.truncation_bound`` is the method that bounds.
+
+Both periodic methods compute stresses from fields the same way (:func:`stresses_from_fields`, the
+contract of ``fast.stresses``), and both can report the paper's §VI term-ratio table
+(:func:`term_ratio_table`, stored in ``extras["term_ratios"]``; status ``terms_not_small`` when the
+verdict of :func:`study.solvers.checks.dropped_terms_small` fails on an otherwise valid point).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any
+
+import numpy as np
+
+from study.physics import beam, section
+from study.solvers import checks, periodic
+from study.solvers.result import PointResult
+
+#: Highest harmonic number M of the series when neither ``harmonics`` nor a tolerance is given.
+DEFAULT_HARMONICS = 400
+#: Cap on M when doubling to meet ``series_tolerance``.
+MAX_HARMONICS = 25_600
+#: Kinds of field the stresses need (keys of :func:`fields`).
+STRESS_KINDS = ("deflection", "moment", "shear")
+
+
+# --- settings ----------------------------------------------------------------------------------
+def options_from(inputs: Mapping[str, Any]) -> periodic.Options:
+    """Solver settings from the point's inputs (the same keys and defaults as ``fast.options_from``)."""
+    defaults = periodic.Options()
+    return periodic.Options(
+        modes=int(inputs.get("modes") or defaults.modes),
+        min_span=float(inputs.get("min_span") or defaults.min_span),
+        max_span=float(inputs.get("max_span") or defaults.max_span),
+        load_shape=inputs.get("load_shape") or defaults.load_shape,
+    )
+
+
+@dataclass(frozen=True)
+class Truncation:
+    """Time truncation of the series: fixed M, or doubling from M until ``tolerance`` (≤ ``cap``)."""
+
+    harmonics: int = DEFAULT_HARMONICS
+    tolerance: float | None = None
+    cap: int = MAX_HARMONICS
+
+
+def truncation_from(inputs: Mapping[str, Any]) -> Truncation:
+    """``harmonics``, ``series_tolerance``, ``series_max_harmonics`` of the inputs (None → default)."""
+    tol = inputs.get("series_tolerance")
+    return Truncation(harmonics=int(inputs.get("harmonics") or DEFAULT_HARMONICS),
+                      tolerance=None if tol is None else float(tol),
+                      cap=int(inputs.get("series_max_harmonics") or MAX_HARMONICS))
+
+
+# --- fields and stresses -----------------------------------------------------------------------
+def _beam_args(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options) -> dict[str, Any]:
+    """Keyword arguments of the beam field functions for this span and impact (the real load pushes
+    the pipe off the wall: impulse −J, as in ``fast.stresses``)."""
+    p = scene.props
+    return {"span_length": impact.span_length, "bending_stiffness": p["bending_stiffness"],
+            "tension": p["effective_tension"], "mass": p["mass_per_length"], "impulse": -impact.impulse,
+            "pulse_duration": impact.contact_duration, "period": scene.period, "pattern": scene.pattern,
+            "half_length": impact.contact_half_length, "shape": options.load_shape, "n_modes": options.modes}
+
+
+def stress_grid(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options):
+    """(x, t): the solver's grids over the half span and the (half) period (as ``fast.stresses``)."""
+    return (periodic.space_grid(impact.span_length, impact.contact_half_length, options),
+            periodic.time_grid(scene, impact.contact_duration, options))
+
+
+def fields(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options, harmonics: int | None = None,
+           kinds: Iterable[str] = STRESS_KINDS, x=None, t=None) -> dict[str, np.ndarray]:
+    """Fields of the periodic solution at this span and impact, shape t.shape + x.shape.
+
+    harmonics None: the fast method's fields (closed form in time, quasi-static correction;
+    ``beam.deflection``/``bending_moment``/``shear_force``, kinds deflection, moment, shear only).
+    harmonics M: the paper's double series ``beam.series_field`` with options.modes × M terms, any
+    kind of :data:`study.physics.beam.SERIES_KINDS`. x, t default to :func:`stress_grid`.
+    """
+    if x is None or t is None:
+        gx, gt = stress_grid(scene, impact, options)
+        x = gx if x is None else x
+        t = gt if t is None else t
+    args = _beam_args(scene, impact, options)
+    if harmonics is None:
+        closed = {"deflection": beam.deflection, "moment": beam.bending_moment, "shear": beam.shear_force}
+        unknown = [k for k in kinds if k not in closed]
+        if unknown:
+            raise ValueError(f"the fast fields are {', '.join(closed)}; not {', '.join(unknown)}")
+        return {k: closed[k](x, t, **args) for k in kinds}
+    return {k: beam.series_field(x, t, k, harmonics=int(harmonics), **args) for k in kinds}
+
+
+def stresses_from_fields(scene: periodic.Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
+                         shear) -> dict[str, float]:
+    """Deflection and stress maxima over the span and the period from the fields (MODEL.md §5, paper
+    eq. 37–38) — the contract and keys of ``fast.stresses``, whatever method made the fields.
+
+    x [m] (half span), t [s] (the half period for the alternating pattern: the other half mirrors it),
+    deflection y [m], moment M_b = −EI y'' [N m], shear V = −EI y''' [N], each of shape t × x.
+    Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b| (the larger of
+    T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the range of σ_b
+    over the period at the worst section (σ(t + τ/2) = −σ(t) for the alternating pattern).
+    """
+    p = scene.props
+    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
+    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    inertia = float(section.second_moment_of_area(r_o, r_i))
+    area = p["steel_area"]
+    y = np.asarray(deflection, dtype=float)
+    sigma = np.asarray(moment, dtype=float) * r_o / inertia
+    shear = np.asarray(shear, dtype=float)
+    full = np.concatenate([sigma, -sigma]) if scene.pattern == "alternating" else sigma
+    half_range = 0.5 * (full.max(axis=0) - full.min(axis=0))
+    axial = abs(inputs["axial_tension"]) / area
+    i_b = np.unravel_index(np.nanargmax(np.abs(sigma)), sigma.shape)
+    i_s = np.unravel_index(np.nanargmax(np.abs(shear)), shear.shape)
+    i_y = np.unravel_index(np.nanargmax(np.abs(y)), y.shape)
+    return {
+        "max_deflection": float(np.abs(y[i_y])),
+        "max_bending_stress": float(np.abs(sigma[i_b])),
+        "max_normal_stress": float(axial + np.abs(sigma[i_b])),
+        "max_normal_stress_x": float(x[i_b[1]]),
+        "max_normal_stress_t": float(t[i_b[0]]),
+        "max_shear_stress": float(2.0 * np.abs(shear[i_s]) / area),
+        "max_shear_stress_x": float(x[i_s[1]]),
+        "max_shear_stress_t": float(t[i_s[0]]),
+        "alternating_bending_stress": float(np.nanmax(half_range)),
+    }
+
+
+def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+             options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
+    """Stress maxima (keys of ``fast.stresses``) from the fast fields (harmonics None — identical to
+    ``fast.stresses``) or from the double series with options.modes × harmonics terms."""
+    x, t = stress_grid(scene, impact, options)
+    f = fields(scene, impact, options, harmonics, STRESS_KINDS, x, t)
+    return stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+
+
+@dataclass
+class SeriesStresses:
+    """Series stresses at the final truncation and the history of the doubling."""
+
+    values: dict[str, float]
+    harmonics: int
+    change: float  #: relative change of max normal stress between the last two truncations
+    converged: bool
+    history: list[tuple[int, float]] = field(default_factory=list)  #: (M, max normal stress)
+
+
+def converged_stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+                       options: periodic.Options, truncation: Truncation) -> SeriesStresses:
+    """Series stresses with the time truncation of ``truncation``.
+
+    Fixed M: evaluated at M//2 and M, ``change`` = |σ(M) − σ(M/2)|/σ(M) for the max normal stress σ.
+    With a tolerance: M doubles from truncation.harmonics until change < tolerance or M would exceed
+    the cap. ``converged`` is change < tolerance (fixed M: always True). Not a bound (module doc).
+    """
+    m = max(2, int(truncation.harmonics))
+    history: list[tuple[int, float]] = []
+    values = stresses(scene, impact, inputs, options, m // 2)
+    history.append((m // 2, values["max_normal_stress"]))
+    while True:
+        values = stresses(scene, impact, inputs, options, m)
+        history.append((m, values["max_normal_stress"]))
+        change = abs(history[-1][1] - history[-2][1]) / abs(history[-1][1])
+        if truncation.tolerance is None:
+            return SeriesStresses(values, m, float(change), True, history)
+        if change < truncation.tolerance:
+            return SeriesStresses(values, m, float(change), True, history)
+        if 2 * m > truncation.cap:
+            return SeriesStresses(values, m, float(change), False, history)
+        m *= 2
+
+
+# --- the paper's §VI term ratios -----------------------------------------------------------------
+def term_grid(scene: periodic.Scene, impact: periodic.Impact, points_per_pulse: int = 8, max_times: int = 2048,
+              space_points: int = 49):
+    """(x, t) for the term ratios: UNIFORM grids over the half span [0, L/2] and the (half) period,
+    so that the averages (B) are the paper's time and location averages (the solver's grid is dense
+    across the pulse and would weight it). Δt ≤ T_L/points_per_pulse, at most max_times points."""
+    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    nt = int(min(max_times, max(200, np.ceil(span_t / impact.contact_duration * points_per_pulse))))
+    return (np.linspace(0.0, 0.5 * impact.span_length, space_points),
+            np.linspace(0.0, span_t, nt, endpoint=False))
+
+
+def term_ratio_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+                     options: periodic.Options, harmonics: int = DEFAULT_HARMONICS) -> dict[str, Any]:
+    """The paper's §VI table for this span and impact (MODEL.md §6) and its verdict.
+
+    Terms of EI y'''' − T0 y'' + m_i V_m² y'' + M ÿ + D|ẏ|ẏ = p (``checks.TERMS``: bending, tension,
+    mud_flow, inertia, drag) from the double series (options.modes × harmonics terms, the same
+    solution for either periodic method: the fast fields have no closed form for y'''' and ÿ) on
+    :func:`term_grid`, the contact |x − L/2| ≤ b during 0 ≤ t ≤ T_L masked out. Ratios relative to
+    the drag term (= 1), ``checks.term_ratios``; verdict ``checks.dropped_terms_small`` on the drag.
+    Returns {"ratios": table, "ok": bool, "message": str, "modes": N, "harmonics": M}.
+    """
+    x, t = term_grid(scene, impact)
+    f = fields(scene, impact, options, harmonics, checks.FIELDS, x, t)
+    p = scene.props
+    props = {"bending_stiffness": p["bending_stiffness"], "axial_tension": float(inputs["axial_tension"]),
+             "internal_mud_mass": p["internal_mud_mass"],
+             "mud_flow_velocity": float(inputs.get("mud_flow_velocity") or 0.0),
+             "mass_per_length": p["mass_per_length"],
+             "drag_coefficient_per_length": p["drag_coefficient_per_length"]}
+    magnitudes = checks.term_magnitudes(f, props)
+    contact = ((np.abs(x - 0.5 * impact.span_length) <= impact.contact_half_length)[None, :]
+               & (t <= impact.contact_duration)[:, None])
+    ratios = checks.term_ratios(magnitudes, reference="drag", exclude=contact)
+    ok, message = checks.dropped_terms_small(ratios)
+    return {"ratios": ratios, "ok": bool(ok), "message": message, "modes": int(options.modes),
+            "harmonics": int(harmonics)}
+
+
+# --- work-precision data -------------------------------------------------------------------------
+def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+                      resolutions: Iterable[tuple[str, Any]], reference: tuple[int, int] = (961, 25_600),
+                      options: periodic.Options | None = None) -> list[dict[str, Any]]:
+    """Work-precision rows of each method and resolution at a fixed span and impact (MODEL.md §9).
+
+    resolutions: ("fast", N) or ("series", (N, M)) pairs. reference: (N, M) of the converged double
+    series every row is compared with (default: converged to ~1e-8 in max normal stress on the test
+    case). options: grids and load shape (default ``periodic.Options()``); only ``modes`` varies.
+    Each row: method, modes, harmonics (None for fast), terms (number of (n, m) terms, N_odd for
+    fast), wall_time [s] of one stress evaluation (fields + maxima), and the relative errors against
+    the reference: error (max normal stress), deflection_error (max |Δy| over the grid / max |y|),
+    max_deflection_error, shear_error (max shear stress). Rows in the order given.
+    """
+    options = options or periodic.Options()
+
+    def evaluate(n, m):
+        opts = periodic.Options(**{**options.__dict__, "modes": int(n)})
+        x, t = stress_grid(scene, impact, opts)
+        start = time.perf_counter()
+        f = fields(scene, impact, opts, m, STRESS_KINDS, x, t)
+        values = stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+        return values, f["deflection"], time.perf_counter() - start
+
+    ref, y_ref, _ = evaluate(*reference)
+    rows = []
+    for method, res in resolutions:
+        if method == "fast":
+            n, m = int(res), None
+        elif method == "series":
+            n, m = (int(v) for v in res)
+        else:
+            raise ValueError(f"method = {method!r}; allowed: fast, series")
+        values, y, wall = evaluate(n, m)
+        n_odd = (n + 1) // 2
+        m_kept = None if m is None else beam._harmonic_numbers(m, scene.pattern).size
+        rows.append({
+            "method": method, "modes": n, "harmonics": m, "terms": n_odd if m is None else n_odd * m_kept,
+            "wall_time": wall,
+            "error": abs(values["max_normal_stress"] / ref["max_normal_stress"] - 1.0),
+            "deflection_error": float(np.nanmax(np.abs(y - y_ref)) / np.nanmax(np.abs(y_ref))),
+            "max_deflection_error": abs(values["max_deflection"] / ref["max_deflection"] - 1.0),
+            "shear_error": abs(values["max_shear_stress"] / ref["max_shear_stress"] - 1.0),
+        })
+    return rows
+
+
+# --- the design-point pipeline -------------------------------------------------------------------
+@dataclass
+class SpanChoice:
+    """Outcome of the span search of one design point (the pipeline of ``fast.solve``)."""
+
+    search: periodic.SpanSearch
+    survivors: np.ndarray
+    candidates: list  #: refined impacts satisfying every constraint, ascending span
+    reasons: dict  #: short reason → roots rejected for it
+    summary: str
+    options: periodic.Options  #: the options used (max_span capped below buckling)
+
+
+def find_span(scene: periodic.Scene, options: periodic.Options) -> SpanChoice:
+    """Span search, midspan screen, exact refinement and condition 1 (all from :mod:`periodic`).
+
+    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`).
+    """
+    search = periodic.find_roots(scene, options)
+    screened = periodic.midspan_screen(scene, options, search)
+    survivors = search.roots[screened]
+    candidates, reasons = [], {}
+    for root, bracket in zip(survivors, search.brackets[screened]):
+        impact = periodic.refine_root(scene, options, float(root), bracket)
+        problem = "; ".join(impact.problems) or periodic.constraint_violation(scene, impact, options)
+        if problem is None:
+            candidates.append(impact)
+        else:
+            reasons.setdefault(problem.split(" at ")[0].split(" (")[0], []).append(root)
+    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count} poles in "
+               f"[{options.min_span:.4g}, {options.max_span:.4g}] m; {survivors.size} pass the midspan screen")
+    return SpanChoice(search, survivors, candidates, reasons, summary, options)
+
+
+Finish = Callable[[periodic.Scene, periodic.Impact, Mapping[str, Any], periodic.Options, PointResult], None]
+
+
+def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
+                 options: periodic.Options | None = None) -> PointResult:
+    """The design-point pipeline shared by the periodic methods (as ``fast.solve``): buckling check,
+    :func:`find_span`, the smallest valid span's impact in ``result.values``; then ``finish(scene,
+    chosen, inputs, options, result)`` adds the method's fields, stresses and error estimate."""
+    start = time.perf_counter()
+    result = PointResult(method=method)
+    options = options or options_from(inputs)
+    scene = periodic.make_scene(inputs)
+    result.values.update(scene.props)
+    max_span = min(options.max_span, scene.props["buckling_length"] * (1 - 1e-9))
+    if max_span <= options.min_span:
+        result.status = "buckled"
+        result.message = (f"effective tension {scene.props['effective_tension']:.4g} N buckles every span "
+                          f"longer than {scene.props['buckling_length']:.4g} m, below the shortest searched")
+        result.wall_time = time.perf_counter() - start
+        return result
+    options = periodic.Options(**{**options.__dict__, "max_span": max_span})
+    choice = find_span(scene, options)
+    result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
+                         candidate_count=float(len(choice.candidates)))
+    result.extras.update(closure=scene.closure, impact_pattern=scene.pattern,
+                         candidate_spans=[c.span_length for c in choice.candidates])
+    if not choice.candidates:
+        result.status = "no_span"
+        detail = "; ".join(f"{len(v)} x {k}" for k, v in
+                           sorted(choice.reasons.items(), key=lambda kv: -len(kv[1]))[:3])
+        result.message = f"{choice.summary}; none satisfies condition 1" + (f" ({detail})" if detail else "")
+        result.wall_time = time.perf_counter() - start
+        return result
+    chosen = choice.candidates[0]
+    result.values.update(
+        span_length=chosen.span_length, equivalent_mass=chosen.equivalent_mass,
+        impact_velocity=chosen.impact_velocity, impulse=chosen.impulse, axial_curvature=chosen.axial_curvature,
+        max_approach=chosen.max_approach, hertz_duration=chosen.hertz_duration,
+        hertz_peak_force=chosen.hertz_peak_force, contact_duration=chosen.contact_duration,
+        peak_contact_force=chosen.peak_contact_force, contact_half_length=chosen.contact_half_length,
+        contact_half_width=chosen.contact_half_width,
+    )
+    omega = periodic.natural_frequencies(scene, chosen.span_length, [1.0])
+    result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
+    result.message = f"{choice.summary}; {len(choice.candidates)} satisfy the constraints; the smallest is reported"
+    finish(scene, chosen, inputs, options, result)
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def add_term_ratios(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+                    options: periodic.Options, result: PointResult, harmonics: int = DEFAULT_HARMONICS) -> None:
+    """Store :func:`term_ratio_table` in ``result.extras["term_ratios"]``; an otherwise "ok" point whose
+    dropped drag is not small becomes "terms_not_small" (either periodic method may call this)."""
+    table = term_ratio_table(scene, impact, inputs, options, harmonics)
+    result.extras["term_ratios"] = table
+    if not table["ok"] and result.status == "ok":
+        result.status = "terms_not_small"
+        result.message += f"; {table['message']}"
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """Find the span (as ``fast``) and evaluate it with the paper's double Fourier series."""
+    truncation = truncation_from(inputs)
+
+    def finish(scene, chosen, inputs, options, result):
+        s = converged_stresses(scene, chosen, inputs, options, truncation)
+        result.values.update(s.values)
+        result.error_estimate = s.change
+        result.extras.update(series_modes=int(options.modes), series_harmonics=int(s.harmonics),
+                             series_history=[list(h) for h in s.history])
+        if not s.converged:
+            result.status = "not_converged"
+            result.message += (f"; max normal stress still changes by {s.change:.2g} at {s.harmonics} harmonics "
+                               f"(tolerance {truncation.tolerance:.2g}, cap {truncation.cap})")
+        add_term_ratios(scene, chosen, inputs, options, result, s.harmonics)
+
+    return design_point(inputs, "series", finish)
