@@ -18,8 +18,15 @@ from study.units import convert, display_unit, pint_unit
 DEFAULT_CONFIG = "configs/default.toml"
 
 def _finite_or_none(value):
+    """JSON has no inf, NaN or complex: non-finite floats become null, complex numbers [re, im]."""
     if isinstance(value, float) and not math.isfinite(value):
         return None
+    if isinstance(value, complex):
+        return [_finite_or_none(value.real), _finite_or_none(value.imag)]
+    if isinstance(value, (list, tuple)):
+        return [_finite_or_none(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _finite_or_none(v) for k, v in value.items()}
     return value
 
 

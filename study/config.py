@@ -118,6 +118,21 @@ FIELDS: tuple[Field, ...] = (
           integer=True, lower=1.0),
     Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default="parabolic",
           choices=tuple(LOAD_SHAPES)),
+    Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "", default=400,
+          integer=True, lower=1.0),
+    Field("solver.series_tolerance", "series_tolerance", "relative change of the series method's maximum "
+          "normal stress at which it stops doubling the harmonics (unset: fixed harmonics)", "", default=None,
+          lower=0.0, lower_open=True),
+    Field("solver.series_max_harmonics", "series_max_harmonics", "cap on the series method's harmonics", "",
+          default=25_600, integer=True, lower=1.0),
+    Field("solver.drive_amplitude", "drive_amplitude", "harmonic force on the first mode (sdof; default: the "
+          "mean impact force of the prescribed closure)", "N", default=None, display_unit="lbf", **_NON_NEGATIVE),
+    Field("solver.side_force", "side_force", "constant side force towards one wall (sdof)", "N", default=0.0,
+          display_unit="lbf"),
+    Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None, default="modal",
+          choices=("modal", "momentum")),
+    Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
+          default="mud", choices=("mud", "none")),
 )
 
 FIELDS_BY_PATH = {f.path: f for f in FIELDS}

@@ -12,13 +12,17 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import core, fast
+from study.solvers import core, fast, sdof, series
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
     "core": (core.solve, "physics core: section, mud, tension, and the Hertz/Lee impact at a given span"),
     "fast": (fast.solve, "periodic impact solution: span search, closed-form modal response with a "
              "quasi-static correction, stresses"),
+    "series": (series.solve, "the paper's double Fourier series (modes x harmonics) with the same span search "
+               "as fast: the reproduction, and the slow reference"),
+    "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "
+             "exact period-1 orbit and Floquet stability at a given span"),
 }
 
 __all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve_point"]

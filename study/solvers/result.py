@@ -20,6 +20,12 @@ STATUS = {
     "not_converged": (6, "the method did not reach its tolerance"),
     "failed": (7, "the method failed; see message"),
     "incomplete": (8, "inputs needed for some outputs are missing (see message)"),
+    "no_impact": (9, "the pipe does not reach the wall in steady state"),
+    "unstable": (10, "the periodic impacting motion exists but is unstable"),
+    "period_doubling": (11, "the periodic impacting motion has lost stability by period doubling"),
+    "chattering": (12, "impacts accumulate (chatter) instead of a periodic motion"),
+    "sticking": (13, "the pipe comes to rest against the wall"),
+    "not_periodic": (14, "no periodic motion found"),
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
@@ -64,7 +70,7 @@ OUTPUTS = {
     "buckling_length": ("m", "shortest simply supported span that buckles"),
     "span_length": ("m", "length of the sample span between nodes"),
     "first_natural_frequency": ("Hz", "first natural frequency of the span"),
-    "equivalent_mass": ("kg", "mass of the equivalent sphere 2ML/pi"),
+    "equivalent_mass": ("kg", "equivalent mass of the midspan (2ML/pi; the sdof method: its modal mass)"),
     "impact_velocity": ("m s-1", "lateral velocity of midspan just before impact"),
     "impulse": ("N s", "impulse of one impact m_e (1 + e) V_p"),
     "axial_curvature": ("m-1", "curvature of the bent pipe at the contact"),
@@ -87,4 +93,10 @@ OUTPUTS = {
     "max_shear_stress_x": ("m", "position along the span of the largest shear stress"),
     "max_shear_stress_t": ("s", "time after contact of the largest shear stress"),
     "alternating_bending_stress": ("Pa", "half the range of the bending stress over the period, worst section"),
+    "sdof_stiffness": ("N m-1", "stiffness m omega_1^2 of the one-degree-of-freedom model"),
+    "sdof_damping": ("N s m-1", "linearised mud damping of the first mode"),
+    "drive_amplitude": ("N", "amplitude of the harmonic generalised force on the first mode at the rotary speed"),
+    "free_amplitude": ("m", "steady amplitude of the drive without walls"),
+    "impacts_per_revolution": ("1", "wall impacts per revolution"),
+    "max_floquet_multiplier": ("1", "largest modulus of the Floquet multipliers of the impacting orbit"),
 }

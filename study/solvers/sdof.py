@@ -60,12 +60,12 @@ from study.solvers.result import PointResult
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
 VERDICT_STATUS = {
     "stable": "ok",
-    "no_impact": "ok",
-    "period_doubling": "not_converged",
-    "unstable": "not_converged",
-    "chattering": "not_converged",
-    "sticking": "not_converged",
-    "not_periodic": "not_converged",
+    "no_impact": "no_impact",
+    "period_doubling": "period_doubling",
+    "unstable": "unstable",
+    "chattering": "chattering",
+    "sticking": "sticking",
+    "not_periodic": "not_periodic",
 }
 
 MASS_CHOICES = ("modal", "momentum")
@@ -372,7 +372,6 @@ def _without_orbit(p: oscillator.ImpactParams, par, revolutions: int = 60) -> tu
     times = np.array([i[0] for i in imp])
     late = times >= times[-1] - 10 * T
     per_rev = late.sum() / 10.0
-    phases = (times[late] / T) % 1.0
     for n in range(1, 9):  # the last impacts repeat those n revolutions earlier: period n
         k = int(np.sum(times > times[-1] - n * T + 1e-9 * T))
         if k == 0 or 2 * k > len(imp):

@@ -15,8 +15,8 @@ is reached first).
 
 Error estimate. The relative change of the maximum normal stress between the last two truncations
 (M/2 and M). This is what the paper could have done to judge its own truncation; it is NOT a bound:
-on the test case of ``tests/solvers/test_series.py`` the change from M = 1600 to 3200 at N = 101 is
-below 1e-6 while the error against the converged series is 1.75e-4 — a near-resonant mode above N
+on the test case of ``tests/solvers/test_series.py`` the change from M = 1600 to 3200 at N = 99 is
+below 1e-6 while the error against the converged series is 2.2e-4 — a near-resonant mode above N
 (n = 219, 0.001 harmonics from resonance) is invisible to a comparison in M, and a near-resonant
 harmonic above M is invisible until M reaches it. ``fast.truncation_bound`` is the method that bounds.
 
@@ -29,13 +29,13 @@ verdict of :func:`study.solvers.checks.dropped_terms_small` fails on an otherwis
 from __future__ import annotations
 
 import time
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 import numpy as np
 
-from study.physics import beam, section
+from study.physics import beam
 from study.solvers import checks, periodic
 from study.solvers.result import PointResult
 
@@ -45,18 +45,6 @@ DEFAULT_HARMONICS = 400
 MAX_HARMONICS = 25_600
 #: Kinds of field the stresses need (keys of :func:`fields`).
 STRESS_KINDS = ("deflection", "moment", "shear")
-
-
-# --- settings ----------------------------------------------------------------------------------
-def options_from(inputs: Mapping[str, Any]) -> periodic.Options:
-    """Solver settings from the point's inputs (the same keys and defaults as ``fast.options_from``)."""
-    defaults = periodic.Options()
-    return periodic.Options(
-        modes=int(inputs.get("modes") or defaults.modes),
-        min_span=float(inputs.get("min_span") or defaults.min_span),
-        max_span=float(inputs.get("max_span") or defaults.max_span),
-        load_shape=inputs.get("load_shape") or defaults.load_shape,
-    )
 
 
 @dataclass(frozen=True)
@@ -116,51 +104,13 @@ def fields(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Opt
     return {k: beam.series_field(x, t, k, harmonics=int(harmonics), **args) for k in kinds}
 
 
-def stresses_from_fields(scene: periodic.Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
-                         shear) -> dict[str, float]:
-    """Deflection and stress maxima over the span and the period from the fields (MODEL.md §5, paper
-    eq. 37–38) — the contract and keys of ``fast.stresses``, whatever method made the fields.
-
-    x [m] (half span), t [s] (the half period for the alternating pattern: the other half mirrors it),
-    deflection y [m], moment M_b = −EI y'' [N m], shear V = −EI y''' [N], each of shape t × x.
-    Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b| (the larger of
-    T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the range of σ_b
-    over the period at the worst section (σ(t + τ/2) = −σ(t) for the alternating pattern).
-    """
-    p = scene.props
-    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
-    inertia = float(section.second_moment_of_area(r_o, r_i))
-    area = p["steel_area"]
-    y = np.asarray(deflection, dtype=float)
-    sigma = np.asarray(moment, dtype=float) * r_o / inertia
-    shear = np.asarray(shear, dtype=float)
-    full = np.concatenate([sigma, -sigma]) if scene.pattern == "alternating" else sigma
-    half_range = 0.5 * (full.max(axis=0) - full.min(axis=0))
-    axial = abs(inputs["axial_tension"]) / area
-    i_b = np.unravel_index(np.nanargmax(np.abs(sigma)), sigma.shape)
-    i_s = np.unravel_index(np.nanargmax(np.abs(shear)), shear.shape)
-    i_y = np.unravel_index(np.nanargmax(np.abs(y)), y.shape)
-    return {
-        "max_deflection": float(np.abs(y[i_y])),
-        "max_bending_stress": float(np.abs(sigma[i_b])),
-        "max_normal_stress": float(axial + np.abs(sigma[i_b])),
-        "max_normal_stress_x": float(x[i_b[1]]),
-        "max_normal_stress_t": float(t[i_b[0]]),
-        "max_shear_stress": float(2.0 * np.abs(shear[i_s]) / area),
-        "max_shear_stress_x": float(x[i_s[1]]),
-        "max_shear_stress_t": float(t[i_s[0]]),
-        "alternating_bending_stress": float(np.nanmax(half_range)),
-    }
-
-
 def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
     """Stress maxima (keys of ``fast.stresses``) from the fast fields (harmonics None — identical to
     ``fast.stresses``) or from the double series with options.modes × harmonics terms."""
     x, t = stress_grid(scene, impact, options)
     f = fields(scene, impact, options, harmonics, STRESS_KINDS, x, t)
-    return stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
 
 
 @dataclass
@@ -260,7 +210,7 @@ def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Ma
         x, t = stress_grid(scene, impact, opts)
         start = time.perf_counter()
         f = fields(scene, impact, opts, m, STRESS_KINDS, x, t)
-        values = stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+        values = periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
         return values, f["deflection"], time.perf_counter() - start
 
     ref, y_ref, _ = evaluate(*reference)
@@ -284,90 +234,6 @@ def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Ma
             "shear_error": abs(values["max_shear_stress"] / ref["max_shear_stress"] - 1.0),
         })
     return rows
-
-
-# --- the design-point pipeline -------------------------------------------------------------------
-@dataclass
-class SpanChoice:
-    """Outcome of the span search of one design point (the pipeline of ``fast.solve``)."""
-
-    search: periodic.SpanSearch
-    survivors: np.ndarray
-    candidates: list  #: refined impacts satisfying every constraint, ascending span
-    reasons: dict  #: short reason → roots rejected for it
-    summary: str
-    options: periodic.Options  #: the options used (max_span capped below buckling)
-
-
-def find_span(scene: periodic.Scene, options: periodic.Options) -> SpanChoice:
-    """Span search, midspan screen, exact refinement and condition 1 (all from :mod:`periodic`).
-
-    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`).
-    """
-    search = periodic.find_roots(scene, options)
-    screened = periodic.midspan_screen(scene, options, search)
-    survivors = search.roots[screened]
-    candidates, reasons = [], {}
-    for root, bracket in zip(survivors, search.brackets[screened]):
-        impact = periodic.refine_root(scene, options, float(root), bracket)
-        problem = "; ".join(impact.problems) or periodic.constraint_violation(scene, impact, options)
-        if problem is None:
-            candidates.append(impact)
-        else:
-            reasons.setdefault(problem.split(" at ")[0].split(" (")[0], []).append(root)
-    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count} poles in "
-               f"[{options.min_span:.4g}, {options.max_span:.4g}] m; {survivors.size} pass the midspan screen")
-    return SpanChoice(search, survivors, candidates, reasons, summary, options)
-
-
-Finish = Callable[[periodic.Scene, periodic.Impact, Mapping[str, Any], periodic.Options, PointResult], None]
-
-
-def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
-                 options: periodic.Options | None = None) -> PointResult:
-    """The design-point pipeline shared by the periodic methods (as ``fast.solve``): buckling check,
-    :func:`find_span`, the smallest valid span's impact in ``result.values``; then ``finish(scene,
-    chosen, inputs, options, result)`` adds the method's fields, stresses and error estimate."""
-    start = time.perf_counter()
-    result = PointResult(method=method)
-    options = options or options_from(inputs)
-    scene = periodic.make_scene(inputs)
-    result.values.update(scene.props)
-    max_span = min(options.max_span, scene.props["buckling_length"] * (1 - 1e-9))
-    if max_span <= options.min_span:
-        result.status = "buckled"
-        result.message = (f"effective tension {scene.props['effective_tension']:.4g} N buckles every span "
-                          f"longer than {scene.props['buckling_length']:.4g} m, below the shortest searched")
-        result.wall_time = time.perf_counter() - start
-        return result
-    options = periodic.Options(**{**options.__dict__, "max_span": max_span})
-    choice = find_span(scene, options)
-    result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
-                         candidate_count=float(len(choice.candidates)))
-    result.extras.update(closure=scene.closure, impact_pattern=scene.pattern,
-                         candidate_spans=[c.span_length for c in choice.candidates])
-    if not choice.candidates:
-        result.status = "no_span"
-        detail = "; ".join(f"{len(v)} x {k}" for k, v in
-                           sorted(choice.reasons.items(), key=lambda kv: -len(kv[1]))[:3])
-        result.message = f"{choice.summary}; none satisfies condition 1" + (f" ({detail})" if detail else "")
-        result.wall_time = time.perf_counter() - start
-        return result
-    chosen = choice.candidates[0]
-    result.values.update(
-        span_length=chosen.span_length, equivalent_mass=chosen.equivalent_mass,
-        impact_velocity=chosen.impact_velocity, impulse=chosen.impulse, axial_curvature=chosen.axial_curvature,
-        max_approach=chosen.max_approach, hertz_duration=chosen.hertz_duration,
-        hertz_peak_force=chosen.hertz_peak_force, contact_duration=chosen.contact_duration,
-        peak_contact_force=chosen.peak_contact_force, contact_half_length=chosen.contact_half_length,
-        contact_half_width=chosen.contact_half_width,
-    )
-    omega = periodic.natural_frequencies(scene, chosen.span_length, [1.0])
-    result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
-    result.message = f"{choice.summary}; {len(choice.candidates)} satisfy the constraints; the smallest is reported"
-    finish(scene, chosen, inputs, options, result)
-    result.wall_time = time.perf_counter() - start
-    return result
 
 
 def add_term_ratios(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
@@ -397,4 +263,4 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                                f"(tolerance {truncation.tolerance:.2g}, cap {truncation.cap})")
         add_term_ratios(scene, chosen, inputs, options, result, s.harmonics)
 
-    return design_point(inputs, "series", finish)
+    return periodic.design_point(inputs, "series", finish)

@@ -91,13 +91,13 @@ def test_one_wall_orbit_satisfies_the_one_wall_impact_map(point):
 
 def test_tiny_drive_reports_no_impact(point):
     r = sdof.solve({**point, "drive_amplitude": 1.0})
-    assert r.status == "ok" and r.extras["stability"] == "no_impact"
+    assert r.status == "no_impact" and r.extras["stability"] == "no_impact"
     assert r.values["impacts_per_revolution"] == 0 and r.values["impact_velocity"] == 0
     assert r.values["free_amplitude"] < 1e-3 * r.values["clearance"]
 
 
 def test_strong_drive_is_unstable_and_no_span_is_incomplete(point):
     r = sdof.solve({**point, "drive_amplitude": 2e5})
-    assert r.status == "not_converged" and r.extras["stability"] == "unstable"
+    assert r.status == "unstable" and r.extras["stability"] == "unstable"
     assert "symmetry-breaking" in r.message
     assert sdof.solve({**point, "span_length": None}).status == "incomplete"
