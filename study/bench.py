@@ -19,7 +19,7 @@ import numpy as np
 from study import __version__
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, solve_point
+from study.solvers import METHODS, periodic, series, solve_point
 from study.workflow.execute import load_chunk, run_grid
 from study.workflow.grid import Grid
 
@@ -49,6 +49,30 @@ def bench_hertz_coefficients(count: int = 2000) -> list[tuple[str, float]]:
     scalar = _median_time(lambda: [hertz.contact_coefficients(t) for t in theta], 3) / count
     vector = _median_time(lambda: hertz.contact_coefficients(theta), 3) / count
     return [("scalar calls", scalar), ("one array call", vector)]
+
+
+def work_precision(point) -> tuple[list[dict], str]:
+    """Fast and series stresses against a converged double series at one fixed span (MODEL.md §9).
+
+    The paper's example has no valid span (docs/validation.md), so the comparison is made at a root of
+    the span condition that satisfies its own T_L-curvature fixed point: 100 rpm, both walls, prescribed
+    closure, the first such root longer than 30 m. Returns the rows of
+    :func:`study.solvers.series.convergence_table` and a description of the case.
+    """
+    inputs = {**point, "rotary_speed": 100 * np.pi / 30, "impact_pattern": "alternating", "closure": "prescribed"}
+    scene = periodic.make_scene(inputs)
+    options = periodic.Options(modes=15, min_span=9.0)
+    search = periodic.find_roots(scene, options)
+    for root, bracket in zip(search.roots, search.brackets):
+        impact = periodic.refine_root(scene, options, float(root), bracket)
+        if not impact.problems and impact.span_length > 30.0:
+            break
+    resolutions = [("fast", n) for n in (15, 31, 61, 121, 241)] + \
+        [("series", (n, m)) for n, m in ((31, 400), (61, 1600), (121, 3200), (241, 6400))]
+    rows = series.convergence_table(scene, impact, inputs, resolutions)
+    case = (f"span {impact.span_length:.2f} m, T_L = {impact.contact_duration * 1e3:.3g} ms, 100 rpm, "
+            "alternating walls, prescribed closure; reference: double series with 961 modes x 25 600 harmonics")
+    return rows, case
 
 
 def _grid_of_size(study, points: int) -> Grid:
@@ -112,6 +136,28 @@ def run_bench(out: str | None = None) -> str:
     ]
     lines += _table("Time per design point, by method (paper example)", bench_methods(point), "ms", 1e3)
     lines += _table("Exact Hertz coefficients m, n: time per angle", bench_hertz_coefficients(), "µs", 1e6)
+    rows, case = work_precision(point)
+    lines += ["### Work and precision of the periodic methods at a fixed span", "", f"Case: {case}.", "",
+              "| method | modes | harmonics | time per evaluation [ms] | error, max normal stress | "
+              "error, max shear stress |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['method']} | {r['modes']} | {r['harmonics'] or '-'} | {r['wall_time'] * 1e3:.3g} | "
+                     f"{r['error']:.2e} | {r['shear_error']:.2e} |")
+    cheapest = {}
+    for r in rows:
+        if r["error"] <= 1e-4 and (r["method"] not in cheapest or r["wall_time"] < cheapest[r["method"]]["wall_time"]):
+            cheapest[r["method"]] = r
+    if len(cheapest) == 2:
+        ratio = cheapest["series"]["wall_time"] / cheapest["fast"]["wall_time"]
+        lines += ["", f"At 1e-4 in max normal stress: fast {cheapest['fast']['wall_time'] * 1e3:.3g} ms, series "
+                  f"{cheapest['series']['wall_time'] * 1e3:.3g} ms: fast is {ratio:.2g}x faster."]
+    if out:
+        from study.charts.precision import work_precision_chart
+
+        chart = Path(out).with_name("work_precision.png")
+        work_precision_chart(rows, case).savefig(chart, dpi=150)
+        lines += ["", f"Chart: `{chart.name}` beside this file."]
+    lines.append("")
     sweep_rows, notes = bench_sweep(study)
     lines += _table("Sweep of the default study's axes resampled to about 10^4 points: in process vs "
                     "local dask workers", sweep_rows, "s", 1.0)
