@@ -47,6 +47,11 @@ def solve_chunk(grid: Grid, indices: range) -> dict[str, np.ndarray]:
     return columns
 
 
+def warm_up() -> None:
+    """Import the solver stack in a worker process (a second or so of scipy/xarray imports)."""
+    import study.solvers  # noqa: F401
+
+
 def _save_atomic(path: Path, columns: Mapping[str, np.ndarray]) -> None:
     with atomic_path(path) as tmp:
         np.savez(tmp, **columns)
@@ -103,6 +108,7 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
                                    dashboard_address=None, silence_logs=logging.ERROR)
             client = Client(cluster)
         try:
+            client.run(warm_up)  # import the solvers on every worker before the clock of the first chunk
             shared = client.scatter(grid, broadcast=True)
             futures = {client.submit(solve_chunk, shared, chunk, pure=False): (chunk, path) for chunk, path in todo}
             for future in as_completed(futures):
