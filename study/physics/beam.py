@@ -58,12 +58,15 @@ def wavenumbers(span_length, modes):
     return np.asarray(modes, dtype=float) * np.pi / np.asarray(span_length, dtype=float)[..., None]
 
 
+#: Maclaurin coefficients of 3(sin β − β cos β)/β³ in powers of β², highest power first (np.polyval).
+_PARABOLIC_SERIES = np.array([(-1) ** (j + 1) * 6.0 * j / factorial(2 * j + 1) for j in range(9, 0, -1)])
+
+
 def _parabolic_factor(beta):
     """3(sin β − β cos β)/β³ = 3 j₁(β)/β [-], with its Maclaurin series for |β| < 0.5."""
     beta = np.asarray(beta, dtype=float)
     small = np.abs(beta) < 0.5
-    bs = np.where(small, beta, 0.0) ** 2
-    series = sum((-1) ** (j + 1) * 6.0 * j / factorial(2 * j + 1) * bs ** (j - 1) for j in range(1, 10))
+    series = np.polyval(_PARABOLIC_SERIES, np.where(small, beta, 0.0) ** 2)
     bl = np.where(small, 1.0, beta)
     return np.where(small, series, 3.0 * (np.sin(bl) - bl * np.cos(bl)) / bl**3)
 
@@ -215,6 +218,32 @@ def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wal
         q = np.where(during, q_in, ph.imag / oms) + free.imag / oms
         v = np.where(during, v_in, ph.real) + free.real
     return ModalResponse(np.where(bad, np.nan, sign * q), np.where(bad, np.nan, sign * v))
+
+
+def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
+    """State (q(0), q̇(0)) of the steady periodic response at the start of a pulse, closed form.
+
+    The same values as :func:`modal_periodic_response` at t = 0 (where the pulse-from-rest part is
+    zero and only the echo of the earlier pulses remains, q = Im[H(ω)(C − 1)]/ω, q̇ = Re[H(ω)(C − 1)]),
+    without the in-pulse terms: the span search evaluates it for 10⁵ spans × modes at once.
+    Arguments and units as :func:`modal_periodic_response`; NaN where it is NaN.
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    om = np.asarray(omega_n, dtype=float)
+    tl = np.asarray(pulse_duration, dtype=float)
+    tau = np.asarray(period, dtype=float)
+    p = 0.5 * tau if pattern == "alternating" else tau
+    nu = om * tau / (2.0 * np.pi)
+    bad = (resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu)) | (tl > p) | ~np.isfinite(om)
+    oms = np.where(bad, 1.0, om)
+    half = 0.5 * oms * p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if pattern == "one_wall":
+            c_minus_one = -0.5 + 0.5j * np.cos(half) / np.sin(half)
+        else:
+            c_minus_one = -0.5 - 0.5j * np.sin(half) / np.cos(half)
+        free = pulse_spectrum(oms, tl) * c_minus_one
+    return ModalResponse(np.where(bad, np.nan, free.imag / oms), np.where(bad, np.nan, free.real))
 
 
 # --- static beam-column under the unit spread load (closed form) ---------------------------------

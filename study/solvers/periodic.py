@@ -139,7 +139,10 @@ def unit_state(scene: Scene, span_length, pulse_duration, half_length, options: 
     omega = natural_frequencies(scene, span, modes)[expand]
     g = beam.modal_load_factors(modes, span, half_length, options.load_shape)[expand]
     duration = np.asarray(pulse_duration, dtype=float)[(...,) + (None,) * time.ndim][..., None]
-    response = beam.modal_periodic_response(time[..., None], omega, duration, scene.period, scene.pattern)
+    if time.ndim == 0 and float(time) == 0.0:  # the span search's case: the state when a pulse starts
+        response = beam.modal_state_at_pulse_start(omega, duration, scene.period, scene.pattern)
+    else:
+        response = beam.modal_periodic_response(time[..., None], omega, duration, scene.period, scene.pattern)
     parity = np.where(modes % 4 == 1, 1.0, -1.0)
     weight = 2.0 * g / (scene.props["mass_per_length"] * span[expand[:-1]][..., None]) * parity
     k_sq = (modes * np.pi / span[expand[:-1]][..., None]) ** 2
@@ -273,16 +276,34 @@ class SpanSearch:
     residual: Any = None  #: the screening residual (with ``.pulse``), for the screening checks
 
 
-def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60) -> np.ndarray:
-    """Vectorised bisection of sign-changing brackets (every bracket at once)."""
-    f_lo = func(lo)
+def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 100, rtol: float = 1e-13) -> np.ndarray:
+    """Roots of sign-changing brackets, all at once: regula falsi with the Illinois modification
+    (superlinear), falling back to halving for any bracket that has not shrunk by half."""
+    f_lo, f_hi = func(lo), func(hi)
+    side = np.zeros(lo.shape, dtype=int)  # which end was kept last time (Illinois weight)
     for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
+        width = hi - lo
+        if np.all(width <= rtol * np.abs(hi)):
+            break
+        mid = np.where(np.isfinite(f_lo) & np.isfinite(f_hi) & (f_hi != f_lo),
+                       hi - f_hi * (hi - lo) / (f_hi - f_lo), 0.5 * (lo + hi))
+        mid = np.where((mid > lo) & (mid < hi), mid, 0.5 * (lo + hi))
         f_mid = func(mid)
-        left = np.sign(f_mid) == np.sign(f_lo)
+        left = np.sign(f_mid) == np.sign(f_lo)  # the root is in [mid, hi]
+        f_hi = np.where(~left & (side == -1), f_hi, np.where(left & (side == 1), 0.5 * f_hi, f_hi))
+        f_lo = np.where(~left & (side == -1), 0.5 * f_lo, f_lo)
         lo, f_lo = np.where(left, mid, lo), np.where(left, f_mid, f_lo)
-        hi = np.where(left, hi, mid)
-    return 0.5 * (lo + hi)
+        hi, f_hi = np.where(left, hi, mid), np.where(left, f_hi, f_mid)
+        side = np.where(left, 1, -1)
+        slow = (hi - lo) > 0.5 * width  # regula falsi stalled on this bracket: halve it next time
+        if np.any(slow):
+            half = 0.5 * (lo + hi)
+            f_half = func(np.where(slow, half, lo))
+            keep_left = slow & (np.sign(f_half) == np.sign(f_lo))
+            keep_right = slow & ~keep_left
+            lo, f_lo = np.where(keep_left, half, lo), np.where(keep_left, f_half, f_lo)
+            hi, f_hi = np.where(keep_right, half, hi), np.where(keep_right, f_half, f_hi)
+    return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
 
 
 def find_roots(scene: Scene, options: Options) -> SpanSearch:

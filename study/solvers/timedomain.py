@@ -41,14 +41,18 @@ Integrators (``time_integrator``):
   Δt_max = 2/ω_max, ω_max² the largest eigenvalue of diag(ω_n²) + (K_lin/m) Σ_p φ_p φ_pᵀ with
   K_lin = 1.5 K α^{1/2} the Hertz stiffness linearised at the expected penetration α (elastic Hertz
   impact of the modal mass at the larger of Ωc and the initial speed); for one mode this is
-  2/max(ω_1, √(K_lin/m)) roughly. A blow-up (non-finite state, a contact that returns more speed
-  than it received, or |y| > 100 c) stops the run: status ``failed``.
-- ``"implicit"``: scipy ``solve_ivp`` (``time_ode_method``, default Radau) with terminal events at
+  2/max(ω_1, √(K_lin/m)) roughly. A blow-up stops the run (status ``failed``): a non-finite state, |y| > 100 c, or an
+  energy budget broken at a contact end — only the drive feeds energy in, so the mechanical energy
+  may not exceed its initial value plus the drive's work (trapezoid sum of F0 cos Ωt Δq_1) by more
+  than 5 %. (A per-contact test "rebound ≤ approach" is wrong with several modes: the other modes
+  can pass energy to the contact point.)
+- ``"implicit"``: scipy ``solve_ivp`` (``time_ode_method``, default LSODA: stiff/non-stiff switching,
+  5–8x faster than Radau here for the same impact speeds) with terminal events at
   every contact onset (which sets χ) and end.
 
 Periodicity: the modal state at the end of each revolution is compared with the states 1 … 8
 revolutions earlier, scaled by c and Ωc; a period of n revolutions needs the two latest
-boundaries to match within ``time_tolerance`` (default 1e-5).
+boundaries to match within ``time_tolerance`` (default 1e-4).
 """
 
 from __future__ import annotations
@@ -271,12 +275,49 @@ class _Contacts:
 # --- integrators -----------------------------------------------------------------------------------
 
 
-def _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, v_ref):
-    """n_steps velocity-Verlet steps; returns (q, v, a, fc, failure message or None)."""
+def _free_step_matrix(model, dt):
+    """The velocity-Verlet step without contact as an affine map of z = (q, v, a) (linear damping only).
+
+    z' = A z + b cos(Ω t'): the same arithmetic as the general step (predicted velocity v + Δt a in
+    the damping), fused into one matrix so that the flight between contacts costs one product.
+    """
+    N = len(model.modes)
+    I = np.eye(N)
+    W = np.diag(model.omega**2)
+    Cm = model.damping_matrix / model.mass if model.damping_matrix is not None else np.zeros((N, N))
+    h, h2 = 0.5 * dt, 0.5 * dt * dt
+    Aq = np.hstack((I, dt * I, h2 * I))
+    Aa = np.hstack((-W, -W * dt - Cm, -W * h2 - Cm * dt))
+    Av = np.hstack((np.zeros((N, N)), I, h * I)) + h * Aa
+    g = np.zeros(N)
+    g[0] = model.drive / model.mass
+    return np.vstack((Aq, Av, Aa)), np.concatenate((np.zeros(N), h * g, g))
+
+
+def _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, budget, fused=None):
+    """n_steps velocity-Verlet steps; returns (q, v, a, fc, failure message or None).
+
+    budget = [E0, W]: initial energy and the drive's work so far (updated in place).
+    """
     c = model.clearance
     phi = model.phi
+    N = len(model.modes)
+    Om = model.rotary_speed
+    z = np.concatenate((q, v, a))
+    F0 = model.drive
+    cos_old = np.cos(Om * t0)
     for i in range(1, n_steps + 1):
         t = t0 + i * dt
+        cos_new = np.cos(Om * t)
+        if fused is not None and not contacts.active.any():
+            zn = fused[0] @ z + fused[1] * cos_new
+            y = phi @ zn[:N]
+            if np.max(np.abs(y)) <= c:
+                budget[1] += F0 * 0.5 * (cos_old + cos_new) * (zn[0] - z[0])
+                z = zn
+                cos_old = cos_new
+                continue
+        q, v, a = z[:N], z[N:2 * N], z[2 * N:]
         y_old, yd_old, ydd_old = phi @ q, phi @ v, phi @ a
         q = q + dt * v + 0.5 * dt * dt * a
         y = phi @ q
@@ -287,25 +328,32 @@ def _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, v_ref):
                 s = d_old / (d_old - d[p]) if d_old < 0 else 0.0  # crossing fraction of the step
                 v0 = np.sign(y[p]) * (yd_old[p] + s * dt * ydd_old[p])
                 contacts.start(p, t - (1 - s) * dt, max(float(v0), 0.0))
+        budget[1] += F0 * 0.5 * (cos_old + cos_new) * (q[0] - z[0])
+        cos_old = cos_new
         v_pred = v + dt * a
         a_new, fc = model.acceleration(t, q, v_pred, contacts.chi)
         v = v + 0.5 * dt * (a + a_new)
         a = a_new
+        z = np.concatenate((q, v, a))
         if contacts.active.any():
             contacts.peak(fc)
             for p in np.flatnonzero(contacts.active & (d <= 0)):
-                yd = phi[p] @ v
-                rebound = -np.sign(y_old[p]) * yd
-                contacts.end(p, t, float(rebound))
-                rec = contacts.done[-1]
-                if not np.isfinite(rebound) or rebound > 1.05 * rec["approach"] + 1e-9 * v_ref:
-                    return q, v, a, fc, (f"a contact at t = {t:.6g} s returned {rebound:.4g} m/s for "
-                                         f"{rec['approach']:.4g} m/s approach (energy gain)")
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+                d_old = abs(y_old[p]) - c
+                s = d_old / (d_old - d[p]) if d_old > 0 else 0.0  # crossing fraction of the step
+                sg = np.sign(y_old[p])
+                rebound = -sg * (yd_old[p] + s * (phi[p] @ v - yd_old[p]))
+                contacts.end(p, t - (1 - s) * dt, float(rebound))
+                # only the drive feeds energy in: E <= E0 + W_drive (damping and the contact take it out)
+                E = model.energy(q, v)
+                E0, W = budget
+                if not np.isfinite(E) or E - (E0 + W) > 0.05 * (E0 + abs(W)) + 1e-12:
+                    return q, v, a, fc, (f"energy {E:.4g} J after the contact ending at t = {t:.6g} s exceeds "
+                                         f"the initial energy plus the drive's work, {E0 + W:.4g} J")
+        if not np.all(np.isfinite(z)):
             return q, v, a, fc, f"non-finite state at t = {t:.6g} s"
         if np.max(np.abs(y)) > 100 * c:
             return q, v, a, fc, f"deflection {np.max(np.abs(y)) / c:.3g} c at t = {t:.6g} s"
-    return q, v, a, fc, None
+    return z[:N], z[N:2 * N], z[2 * N:], fc, None
 
 
 def _implicit_revolution(model, t0, t1, q, v, contacts, opts):
@@ -376,7 +424,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     if integrator not in INTEGRATORS:
         raise ValueError(f"time_integrator = {integrator!r}; allowed: {', '.join(INTEGRATORS)}")
     revolutions = int(inputs.get("time_revolutions", 60))
-    tol = float(inputs.get("time_tolerance", 1e-5))
+    tol = float(inputs.get("time_tolerance", 1e-4))
     check = bool(inputs.get("time_check_periodic", True))
     tau = model.period
     q, v = initial_state(model, inputs)
@@ -395,8 +443,10 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
         dt = tau / n_steps
         out.update(time_step=dt, steps_per_revolution=n_steps)
         a, fc = model.acceleration(0.0, q, v, contacts.chi)
+        fused = _free_step_matrix(model, dt) if model.drag_shapes is None else None
+        budget = [model.energy(q, v), 0.0]
     else:
-        opts = dict(method=inputs.get("time_ode_method", "Radau"), rtol=float(inputs.get("time_rtol", 1e-8)),
+        opts = dict(method=inputs.get("time_ode_method", "LSODA"), rtol=float(inputs.get("time_rtol", 1e-8)),
                     atol=float(inputs.get("time_atol", 1e-10)) * np.concatenate(
                         (np.full(len(model.modes), model.clearance), np.full(len(model.modes), v_scale))))
         out.update(time_step=None)
@@ -407,7 +457,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     for k in range(1, revolutions + 1):
         t0 = (k - 1) * tau
         if integrator == "explicit":
-            q, v, a, fc, failure = _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, v_scale)
+            q, v, a, fc, failure = _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, budget, fused)
         else:
             q, v, failure = _implicit_revolution(model, t0, k * tau, q, v, contacts, opts)
         if failure:
@@ -430,10 +480,14 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
 def _period(states, scale, tol):
     """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier."""
     S = np.asarray(states) / scale
+    diff = {}
     for n in range(1, MAX_PERIOD + 1):
         if len(S) < n + 2:
             return None
-        if (np.max(np.abs(S[-1] - S[-1 - n])) < tol and np.max(np.abs(S[-2] - S[-2 - n])) < tol):
+        diff[n] = max(np.max(np.abs(S[-1] - S[-1 - n])), np.max(np.abs(S[-2] - S[-2 - n])))
+        # a longer period only if no divisor is nearly periodic too: a transient decaying with a
+        # negative Floquet multiplier closes its 2-revolution gap first
+        if diff[n] < tol and all(diff[d] > 10 * diff[n] for d in range(1, n) if n % d == 0):
             return n
     return None
 
@@ -492,7 +546,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "ok"
         vals["period_revolutions"] = float(n)
         messages.append(f"periodic: the modal state repeats every {n} revolution(s) (tolerance "
-                        f"{inputs.get('time_tolerance', 1e-5)}) after {run['revolutions_simulated']} revolutions")
+                        f"{inputs.get('time_tolerance', 1e-4)}) after {run['revolutions_simulated']} revolutions")
     else:
         result.status = "not_periodic"
         messages.append(f"not periodic within {run['revolutions_simulated']} revolutions"

@@ -457,3 +457,14 @@ def test_series_velocity_converges_to_closed_form_modal_sum(pattern, monkeypatch
     monkeypatch.setattr(bm, "_SERIES_CHUNK", 1000)
     np.testing.assert_allclose(bm.series_field(x, t, "velocity", n_modes=21, harmonics=800, **args), full,
                                rtol=1e-12, atol=1e-12 * np.abs(full).max())
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+def test_state_at_pulse_start_equals_the_full_response_at_t0(pattern):
+    # source: the closed form itself - modal_state_at_pulse_start is modal_periodic_response at t = 0
+    # without the in-pulse terms (zero there); resonant frequencies are NaN in both.
+    omega = np.array([0.3, 7.3, 31.0, 400.0, 5000.0, 2 * np.pi / 0.2 * 3])
+    full = bm.modal_periodic_response(0.0, omega, 1e-3, 0.2, pattern)
+    start = bm.modal_state_at_pulse_start(omega, 1e-3, 0.2, pattern)
+    np.testing.assert_allclose(start.displacement, full.displacement, rtol=1e-12, equal_nan=True)
+    np.testing.assert_allclose(start.velocity, full.velocity, rtol=1e-12, atol=1e-15, equal_nan=True)
