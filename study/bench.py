@@ -9,6 +9,7 @@ from __future__ import annotations
 import logging
 import os
 import platform
+import resource
 import statistics
 import tempfile
 import time
@@ -164,6 +165,8 @@ def run_bench(out: str | None = None) -> str:
                     "local dask workers", sweep_rows, "s", 1.0)
     speedup = sweep_rows[1][1] / sweep_rows[2][1]
     lines += [f"Two workers vs one: {speedup:.2f}x.", ""] + [f"- {note}" for note in notes] + [""]
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # KiB on Linux
+    lines += [f"Peak memory of the benchmark process (every method above run in it): {peak:.0f} MiB.", ""]
     report = "\n".join(lines).rstrip() + "\n"
     if out:
         Path(out).write_text(report)

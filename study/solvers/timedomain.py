@@ -580,8 +580,9 @@ def penalty_reference(inputs: Mapping[str, Any], revolutions: float | None = Non
     Contact force −sign(y)(k_p δ + c_p δ̇)₊ for δ > 0 with k_p the Hertz stiffness linearised at
     the expected penetration and c_p = 2ζ√(k_p m), ζ = −ln e/√(π² + ln² e) (the restitution of a
     linear spring–dashpot contact); no events, default tolerances, whole run at once.
-    Returns wall_time [s], impact speeds (from the midspan velocity sign changes at the wall is not
-    tracked: the approach speeds at δ = 0 crossings from the dense steps), final state, nfev.
+    Returns wall_time [s], status, message, nfev, steps, final_state, impact_speeds (|midspan
+    velocity| at the first step point past each wall crossing: crude, as a user would take it),
+    penalty_stiffness [N/m], penalty_damping [N s/m].
     """
     from scipy.integrate import solve_ivp
 
