@@ -20,7 +20,7 @@ import numpy as np
 from study import __version__
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, periodic, series, solve_point
+from study.solvers import METHODS, periodic, series, solve_point, timedomain
 from study.workflow.execute import load_chunk, run_grid, warm_up
 from study.workflow.grid import Grid
 
@@ -159,6 +159,18 @@ def run_bench(out: str | None = None) -> str:
         chart = Path(out).with_name("work_precision.png")
         work_precision_chart(rows, case).savefig(chart, dpi=150)
         lines += ["", f"Chart: `{chart.name}` beside this file."]
+    lines.append("")
+    case = {**point, "span_length": 10.0, "time_modes": 1}
+    timing = timedomain.benchmark(case, revolutions=10)
+    lines += ["### Time domain against a penalty spring in scipy's RK45", "",
+              "Case: the paper's example at a 10 m span, first mode only, 10 revolutions, no early stop "
+              "(`study.solvers.timedomain.benchmark`).", "",
+              "| integrator | time [s] | ratio to penalty RK45 | impacts | last impact velocity [m/s] |",
+              "|---|---|---|---|---|"]
+    reference = timing["penalty_rk45"]["wall_time"]
+    for name, row in timing.items():
+        lines.append(f"| {name} | {row['wall_time']:.3g} | {reference / row['wall_time']:.2g}x | {row['impacts']} | "
+                     f"{row['impact_velocity']:.4g} |")
     lines.append("")
     sweep_rows, notes = bench_sweep(study)
     lines += _table("Sweep of the default study's axes resampled to about 10^4 points: in process vs "

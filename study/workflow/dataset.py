@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import datetime as _dt
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterator, Sequence
 
 import numpy as np
 import xarray as xr
@@ -42,41 +42,67 @@ def _input_attrs(name: str) -> dict[str, str]:
     return attrs
 
 
-def build_dataset(study: Study, grid: Grid, columns: Mapping[str, np.ndarray], history: Sequence[str] = ()) -> xr.Dataset:
-    """Assemble the dataset from the stacked chunk columns (each of length ``grid.size``)."""
+class ChunkColumns:
+    """The chunk files of a sweep read one column at a time: ``columns[name]`` is that output for every
+    stored point (in chunk order), loaded from each file's member alone. Memory holds one column."""
+
+    def __init__(self, paths: Sequence[Path]):
+        self.paths = list(paths)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        parts = []
+        for path in self.paths:
+            with np.load(path, allow_pickle=False) as data:
+                parts.append(data[name])
+        return np.concatenate(parts)
+
+
+def _data_variables(grid: Grid, columns, order: np.ndarray) -> Iterator[tuple[str, xr.Variable]]:
+    """Every output as a labelled variable, one at a time (an output no method computed is absent,
+    never a column of fill values)."""
     dims, shape = grid.dims, grid.shape
-    order = np.argsort(columns["index"])
-    if not np.array_equal(columns["index"][order], np.arange(grid.size)):
-        raise ValueError("chunk results do not cover the grid exactly once")
 
     def grid_array(name):
         return np.asarray(columns[name])[order].reshape(shape)
 
-    coords: dict[str, Any] = {}
-    for name, values in grid.axes.items():
-        values = np.asarray(values)
-        coords[name] = xr.Variable(name, values if values.dtype != object else values.astype(str), _input_attrs(name))
-    data_vars = {}
     for name, (unit, long_name) in {**OUTPUTS, **EXTRA_OUTPUTS}.items():
         values = grid_array(name)
         if name in OUTPUTS and np.all(np.isnan(values)):
-            continue  # no method computed it: absent, never a column of fill values
-        data_vars[name] = xr.Variable(dims, values, {"units": unit, "long_name": long_name})
+            continue
+        yield name, xr.Variable(dims, values, {"units": unit, "long_name": long_name})
     codes = [code for code, _ in STATUS.values()]
-    data_vars["status"] = xr.Variable(dims, grid_array("status").astype(np.int8), {
+    yield "status", xr.Variable(dims, grid_array("status").astype(np.int8), {
         "long_name": "status of the design point",
         "flag_values": np.array(codes, dtype=np.int8),
         "flag_meanings": " ".join(STATUS),
         "comment": "; ".join(f"{k}: {v}" for k, (_, v) in STATUS.items()),
     })
-    data_vars["message"] = xr.Variable(dims, grid_array("message").astype(str), {"long_name": "solver message"})
-    data_vars["method"] = xr.Variable(dims, grid_array("method").astype(str), {"long_name": "solution method"})
+    yield "message", xr.Variable(dims, grid_array("message").astype(str), {"long_name": "solver message"})
+    yield "method", xr.Variable(dims, grid_array("method").astype(str), {"long_name": "solution method"})
 
+
+def write_dataset(study: Study, grid: Grid, columns, path: Path, history: Sequence[str] = ()) -> Path:
+    """Write the labelled dataset of a sweep to ``path``, atomically and one variable at a time.
+
+    columns: ``columns[name]`` gives that output for every point of the grid in any order, with the
+    flat grid index in ``columns["index"]`` (a :class:`ChunkColumns` reads them from the chunk files).
+    The coordinates and attributes are written first; each output is then read, reshaped and appended,
+    so memory holds one variable however many outputs the sweep has.
+    """
+    order = np.argsort(columns["index"])
+    if not np.array_equal(np.asarray(columns["index"])[order], np.arange(grid.size)):
+        raise ValueError("chunk results do not cover the grid exactly once")
+    outputs = set(OUTPUTS) | set(EXTRA_OUTPUTS) | {"status", "message", "method"}
+    coords: dict[str, Any] = {}
+    for name, values in grid.axes.items():
+        values = np.asarray(values)
+        coords[name] = xr.Variable(name, values if values.dtype != object else values.astype(str), _input_attrs(name))
+    scalars = []
     for name, value in grid.base.items():  # fixed inputs; an output of the same name carries its own
-        if name in grid.axes or value is None or name in data_vars:
+        if name in grid.axes or value is None or name in outputs:
             continue
         coords[name] = xr.Variable((), value, _input_attrs(name))
-
+        scalars.append(name)
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
     attrs = {
         "Conventions": CONVENTIONS,
@@ -88,17 +114,14 @@ def build_dataset(study: Study, grid: Grid, columns: Mapping[str, np.ndarray], h
         "config_hash": study.config_hash,
         "config": study.text,
     }
-    return xr.Dataset(data_vars, coords, attrs)
-
-
-def write_atomic(dataset: xr.Dataset, path: Path) -> Path:
-    """Write ``dataset`` to ``path`` via a temporary file in the same folder and a rename."""
-    encoding = {name: {"_FillValue": None} for name in dataset.coords}
-    for name, var in dataset.data_vars.items():
-        if var.dtype.kind == "f":
-            encoding[name] = {"zlib": True, "complevel": 4}
+    header = xr.Dataset(coords=coords, attrs=attrs)
     with atomic_path(path) as tmp:
-        dataset.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        header.to_netcdf(tmp, engine="netcdf4", encoding={name: {"_FillValue": None} for name in coords})
+        for name, variable in _data_variables(grid, columns, order):
+            if scalars:  # CF: the fixed inputs are this variable's scalar coordinates
+                variable.encoding["coordinates"] = " ".join(scalars)
+            encoding = {"zlib": True, "complevel": 4} if variable.dtype.kind == "f" else {}
+            xr.Dataset({name: variable}).to_netcdf(tmp, mode="a", engine="netcdf4", encoding={name: encoding})
     return path
 
 

@@ -5,11 +5,10 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
-import numpy as np
 
 from study.config import Study
-from study.workflow.dataset import build_dataset, previous_history, write_atomic
-from study.workflow.execute import load_chunk, run_grid
+from study.workflow.dataset import ChunkColumns, previous_history, write_dataset
+from study.workflow.execute import run_grid
 from study.workflow.grid import Grid
 
 PARTIAL = ".partial"  # chunk store inside the study folder, removed once the dataset is written
@@ -37,10 +36,7 @@ def run_sweep(study: Study, out_dir: str | Path | None = None, *, scheduler: str
         workers=study.sweep["workers"] if workers is None else workers,
         chunk_size=study.sweep["chunk_size"], progress=progress, on_chunk=on_chunk,
     )
-    parts = [load_chunk(p) for p in paths]
-    columns = {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
     result = out / "results.nc"
-    dataset = build_dataset(study, grid, columns, previous_history(result))
-    write_atomic(dataset, result)
+    write_dataset(study, grid, ChunkColumns(paths), result, previous_history(result))
     shutil.rmtree(store, ignore_errors=True)
     return result
