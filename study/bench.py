@@ -63,11 +63,7 @@ def work_precision(point) -> tuple[list[dict], str]:
     inputs = {**point, "rotary_speed": 100 * np.pi / 30, "impact_pattern": "alternating", "closure": "prescribed"}
     scene = periodic.make_scene(inputs)
     options = periodic.Options(modes=15, min_span=9.0)
-    search = periodic.find_roots(scene, options)
-    for root, bracket in zip(search.roots, search.brackets):
-        impact = periodic.refine_root(scene, options, float(root), bracket)
-        if not impact.problems and impact.span_length > 30.0:
-            break
+    impact = periodic.first_consistent_root(scene, options, longer_than=30.0)
     resolutions = [("fast", n) for n in (15, 31, 61, 121, 241)] + \
         [("series", (n, m)) for n, m in ((31, 400), (61, 1600), (121, 3200), (241, 6400))]
     rows = series.convergence_table(scene, impact, inputs, resolutions)

@@ -164,6 +164,21 @@ def resonance_distance(omega_n, period, pattern="one_wall"):
     return np.abs(nu - (2.0 * np.round(0.5 * (nu - 1.0)) + 1.0))
 
 
+def _echo(om, tl, tau, pattern, resonance_tol):
+    """(bad, ω with bad entries set to 1, C − 1): the vanishing-damping echo of the earlier pulses,
+    C − 1 = ½ (−1 + i cot(ωP/2)) (one_wall, P = τ) or ½ (−1 − i tan(ωP/2)) (alternating, P = τ/2), and the
+    mask of resonant ω, pulses longer than P, and NaN ω (see :func:`modal_periodic_response`)."""
+    p = 0.5 * tau if pattern == "alternating" else tau
+    nu = om * tau / (2.0 * np.pi)  # ω in harmonics of 2π/τ
+    bad = (resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu)) | (tl > p) | ~np.isfinite(om)
+    oms = np.where(bad, 1.0, om)
+    half = 0.5 * oms * p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if pattern == "one_wall":
+            return bad, oms, -0.5 + 0.5j * np.cos(half) / np.sin(half)
+        return bad, oms, -0.5 - 0.5j * np.sin(half) / np.cos(half)
+
+
 def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
     """Exact steady periodic response of q̈ + ω² q = h(t) to the unit-impulse pulse train (closed form).
 
@@ -198,16 +213,8 @@ def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wal
     tm, sign, om, tl, p = np.broadcast_arrays(tm, sign, om, tl, p)
     a = np.pi / tl
     tau = 2.0 * p if pattern == "alternating" else p
-    nu = om * tau / (2.0 * np.pi)  # ω in harmonics of 2π/τ
-    bad = ((resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu))
-           | (tl > p) | ~np.isfinite(om))
-    oms = np.where(bad, 1.0, om)
-    half = 0.5 * oms * p
+    bad, oms, c_minus_one = _echo(om, tl, tau, pattern, resonance_tol)
     with np.errstate(divide="ignore", invalid="ignore"):
-        if pattern == "one_wall":
-            c_minus_one = -0.5 + 0.5j * np.cos(half) / np.sin(half)
-        else:
-            c_minus_one = -0.5 - 0.5j * np.sin(half) / np.cos(half)
         hw = pulse_spectrum(oms, tl)
         ph = np.exp(1j * oms * tm) * hw
         free = ph * c_minus_one
@@ -229,19 +236,10 @@ def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wal
     Arguments and units as :func:`modal_periodic_response`; NaN where it is NaN.
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
-    om = np.asarray(omega_n, dtype=float)
     tl = np.asarray(pulse_duration, dtype=float)
-    tau = np.asarray(period, dtype=float)
-    p = 0.5 * tau if pattern == "alternating" else tau
-    nu = om * tau / (2.0 * np.pi)
-    bad = (resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu)) | (tl > p) | ~np.isfinite(om)
-    oms = np.where(bad, 1.0, om)
-    half = 0.5 * oms * p
+    bad, oms, c_minus_one = _echo(np.asarray(omega_n, dtype=float), tl, np.asarray(period, dtype=float),
+                                  pattern, resonance_tol)
     with np.errstate(divide="ignore", invalid="ignore"):
-        if pattern == "one_wall":
-            c_minus_one = -0.5 + 0.5j * np.cos(half) / np.sin(half)
-        else:
-            c_minus_one = -0.5 - 0.5j * np.sin(half) / np.cos(half)
         free = pulse_spectrum(oms, tl) * c_minus_one
     return ModalResponse(np.where(bad, np.nan, free.imag / oms), np.where(bad, np.nan, free.real))
 

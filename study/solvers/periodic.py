@@ -379,6 +379,20 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
     return i1
 
 
+def first_consistent_root(scene: Scene, options: Options, longer_than: float = 0.0) -> Impact | None:
+    """The shortest refined root of condition 2 above ``longer_than`` [m] whose T_L–curvature fixed
+    point holds (condition 1 not checked): a fixed span and impact for comparing methods at, where a
+    design point has no valid span. None when there is none."""
+    search = find_roots(scene, options)
+    for root, bracket in zip(search.roots, search.brackets):
+        if root <= longer_than:
+            continue
+        impact = refine_root(scene, options, float(root), bracket)
+        if not impact.problems and impact.span_length > longer_than:
+            return impact
+    return None
+
+
 def time_grid(scene: Scene, duration: float, options: Options) -> np.ndarray:
     """Times over one period (half a period for alternating: the other half is its mirror image), dense
     across the pulse [0, T_L] and uniform after it, ending just before the next impact."""

@@ -50,12 +50,9 @@ def fixed_span(paper_inputs):
     inputs = {**paper_inputs, "rotary_speed": 100 * RPM, "impact_pattern": "alternating", "closure": "prescribed"}
     scene = periodic.make_scene(inputs)
     options = periodic.Options(modes=15, min_span=9.0)
-    search = periodic.find_roots(scene, options)
-    for root, bracket in zip(search.roots, search.brackets):
-        impact = periodic.refine_root(scene, options, float(root), bracket)
-        if not impact.problems and impact.span_length > 30:
-            return inputs, scene, impact
-    pytest.fail("no refined root without problems above 30 m")
+    impact = periodic.first_consistent_root(scene, options, longer_than=30.0)
+    assert impact is not None, "no refined root without problems above 30 m"
+    return inputs, scene, impact
 
 
 @pytest.fixture(scope="module")
