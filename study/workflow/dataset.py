@@ -118,6 +118,9 @@ def write_dataset(study: Study, grid: Grid, columns, path: Path, history: Sequen
     with atomic_path(path) as tmp:
         header.to_netcdf(tmp, engine="netcdf4", encoding={name: {"_FillValue": None} for name in coords})
         for name, variable in _data_variables(grid, columns, order):
+            if name in grid.axes:  # an output named like a swept input (method, span_length) keeps both
+                name = f"{name}_result"
+                variable.attrs["long_name"] += " (as solved; the coordinate of the same name is the input)"
             if scalars:  # CF: the fixed inputs are this variable's scalar coordinates
                 variable.encoding["coordinates"] = " ".join(scalars)
             encoding = {"zlib": True, "complevel": 4} if variable.dtype.kind == "f" else {}

@@ -118,3 +118,17 @@ def test_local_cluster_of_worker_processes_gives_the_same_result(tmp_path, refer
     with xr.open_dataset(path) as ds:
         for name in ("peak_contact_force", "status", "contact_duration"):
             np.testing.assert_array_equal(ds[name].values, reference[name].values)
+
+
+def test_methods_can_be_swept_side_by_side(tmp_path):
+    # solver.method is a choice input, so it can be an axis: each method's results over the same grid,
+    # and the output naming the method that solved each point is kept beside the coordinate.
+    text = TEXT.split("[sweep]")[0] + ('[sweep.axes]\nsolver.method = ["core", "sdof"]\n'
+                                      'load.rotary_speed = ["100 rpm", "300 rpm"]\n')
+    path = run_sweep(load_text(text, "methods.toml"), tmp_path / "m", scheduler="synchronous", progress=False)
+    with xr.open_dataset(path) as ds:
+        assert list(ds.method.values) == ["core", "sdof"]
+        assert (ds.method_result.values == ds.method.values[:, None]).all()
+        assert np.all(np.isfinite(ds.impact_velocity.values))
+        # The two models of the same impact: V_p = Omega c (core) and the sdof orbit's own velocity.
+        assert not np.allclose(ds.impact_velocity.sel(method="core"), ds.impact_velocity.sel(method="sdof"))
