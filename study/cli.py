@@ -55,7 +55,7 @@ def cmd_point(args) -> int:
     study = load(args.config, parse_set(args.set or []))
     inputs = study.point()
     if args.method:
-        inputs["method"] = args.method
+        inputs["solver_method"] = args.method
     result = solve_point(inputs)
     print(_point_json(result, inputs) if args.json else _point_table(result, inputs))
     return 0

@@ -107,7 +107,7 @@ FIELDS: tuple[Field, ...] = (
           choices=("alternating", "one_wall")),
     Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
           choices=("prescribed", "self_consistent")),
-    Field("solver.method", "method", "solution method", None, default="core", choices=tuple(METHODS)),
+    Field("solver.method", "solver_method", "solution method", None, default="core", choices=tuple(METHODS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
           "m", default=None, display_unit="ft", **_POSITIVE),
     Field("solver.max_span", "max_span", "longest span searched", "m", default=304.8, display_unit="ft",

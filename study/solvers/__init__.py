@@ -31,12 +31,12 @@ __all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve
 
 
 def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointResult:
-    """Solve one design point with ``method`` (default: ``inputs['method']``).
+    """Solve one design point with ``method`` (default: ``inputs['solver_method']``, config solver.method).
 
     An unexpected exception inside a method is caught and returned as status ``failed`` with its
     message, so that one bad point never sinks a sweep.
     """
-    name = method or inputs.get("method") or "core"
+    name = method or inputs.get("solver_method") or "core"
     if name not in METHODS:
         raise ValueError(f"method = {name!r}; allowed: {', '.join(METHODS)}")
     start = time.perf_counter()

@@ -121,14 +121,23 @@ def test_local_cluster_of_worker_processes_gives_the_same_result(tmp_path, refer
 
 
 def test_methods_can_be_swept_side_by_side(tmp_path):
-    # solver.method is a choice input, so it can be an axis: each method's results over the same grid,
-    # and the output naming the method that solved each point is kept beside the coordinate.
+    # solver.method is a choice input, so it can be an axis (solver_method): each method's results over
+    # the same grid; the output "method" names the method that solved each point.
     text = TEXT.split("[sweep]")[0] + ('[sweep.axes]\nsolver.method = ["core", "sdof"]\n'
                                       'load.rotary_speed = ["100 rpm", "300 rpm"]\n')
     path = run_sweep(load_text(text, "methods.toml"), tmp_path / "m", scheduler="synchronous", progress=False)
     with xr.open_dataset(path) as ds:
-        assert list(ds.method.values) == ["core", "sdof"]
-        assert (ds.method_result.values == ds.method.values[:, None]).all()
+        assert list(ds.solver_method.values) == ["core", "sdof"]
+        assert (ds.method.values == ds.solver_method.values[:, None]).all()
         assert np.all(np.isfinite(ds.impact_velocity.values))
         # The two models of the same impact: V_p = Omega c (core) and the sdof orbit's own velocity.
-        assert not np.allclose(ds.impact_velocity.sel(method="core"), ds.impact_velocity.sel(method="sdof"))
+        assert not np.allclose(ds.impact_velocity.sel(solver_method="core"), ds.impact_velocity.sel(solver_method="sdof"))
+
+
+def test_an_output_named_like_a_swept_input_is_kept_beside_it(tmp_path):
+    # Sweeping the given span: the core method reports the span it used as an output too.
+    text = TEXT.split("[sweep]")[0] + '[sweep.axes]\nsolver.span_length = ["100 ft", "200 ft"]\n'
+    path = run_sweep(load_text(text, "spans.toml"), tmp_path / "s", scheduler="synchronous", progress=False)
+    with xr.open_dataset(path) as ds:
+        np.testing.assert_allclose(ds.span_length_result.values, ds.span_length.values)
+        assert "as solved" in ds.span_length_result.attrs["long_name"]
