@@ -247,3 +247,12 @@ def test_fuzzed_text_is_refused_cleanly(text):
         load_text(text)
     except ConfigError as exc:
         assert exc.problems
+
+
+def test_screen_config_is_the_default_grid_with_the_sdof_method():
+    default = config.load(ROOT / "configs" / "default.toml")
+    screen = config.load(ROOT / "configs" / "screen.toml")
+    assert screen.inputs["solver_method"] == "sdof" and screen.name == "screen"
+    assert {k: v for k, v in screen.inputs.items() if k != "solver_method"} == \
+        {k: v for k, v in default.inputs.items() if k != "solver_method"}
+    assert all(np.array_equal(screen.axes[k], default.axes[k]) for k in default.axes)

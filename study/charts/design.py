@@ -314,16 +314,22 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                 r, c = b * rows_per + p // columns, p % columns
                 ax = axes[r, c]
                 visible[r, c] = True
+                panel_has_data = False
                 for k, name in enumerate(block):
                     values = yq[name].convert(_select(arrays[name], plan, fi, p).values)
                     if plan.series is None:
                         values = values[:, None]
                     drawn |= np.isfinite(values).any(axis=0)
+                    panel_has_data |= bool(np.isfinite(values).any())
                     for s in range(values.shape[1]):
                         ax.plot(xpos, values[:, s], color=colours[s], ls=styles[k % len(styles)], lw=1.6,
                                 marker="o", ms=3 if xpos.size <= 40 else 0)
                 ax.set_xscale(scales[0])
                 ax.set_yscale(scales[1])
+                if not panel_has_data:  # keep the panel's axis on the swept range and say why it is empty
+                    ax.set_xlim(xpos[0], xpos[-1]) if xpos.size > 1 else None
+                    ax.text(0.5, 0.5, "no result at these inputs\n(see the validity map)", transform=ax.transAxes,
+                            ha="center", va="center", fontsize=9, color="0.4")
                 if decorate is not None:
                     decorate(ax, plan, fi, p, colours)
                 if xlim is not None:

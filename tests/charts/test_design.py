@@ -477,3 +477,12 @@ def test_figures_are_not_registered_with_pyplot(full_charts):
     for chart in full_charts:
         assert chart.figure.canvas.manager is None
         assert chart.figure.dpi == 150
+
+
+def test_a_panel_with_no_result_keeps_the_swept_range_and_says_why():
+    ds = make_dataset(FULL_AXES)
+    ds["peak_contact_force"] = ds.peak_contact_force.where(ds.restitution > 0.3)  # no impact at e = 0.2
+    chart = contact_force_and_duration_vs_rpm(ds)[0]
+    empty = [ax for ax in chart.figure.axes if any("no result at these inputs" in t.get_text() for t in ax.texts)]
+    assert len(empty) == 1 and "0.2" in empty[0].get_title()
+    assert empty[0].get_xlim() == pytest.approx((60.0, 300.0))  # rpm, not matplotlib's default range
