@@ -118,6 +118,8 @@ FIELDS: tuple[Field, ...] = (
           integer=True, lower=1.0),
     Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default="parabolic",
           choices=tuple(LOAD_SHAPES)),
+    Field("solver.tolerance", "tolerance", "relative accuracy asked of the max normal stress (method auto)", "",
+          default=1e-3, lower=0.0, lower_open=True),
     Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "", default=400,
           integer=True, lower=1.0),
     Field("solver.series_tolerance", "series_tolerance", "relative change of the series method's maximum "

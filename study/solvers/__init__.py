@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import core, fast, sdof, series, timedomain
+from study.solvers import auto, core, fast, sdof, series, timedomain
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
@@ -21,6 +21,8 @@ METHODS = {
              "quasi-static correction, stresses"),
     "series": (series.solve, "the paper's double Fourier series (modes x harmonics) with the same span search "
                "as fast: the reproduction, and the slow reference"),
+    "auto": (auto.solve, "the cheapest periodic method (fast, then series) whose error estimate meets "
+             "solver.tolerance"),
     "time-domain": (timedomain.solve, "modal span integrated through Hertz contact with both walls (explicit "
                     "Verlet or implicit LSODA) until periodic: the check on the periodic assumption"),
     "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "

@@ -52,7 +52,7 @@ def test_stresses_are_consistent(fixed_span):
 
 @pytest.mark.parametrize("modes", [7, 15, 31, 61])
 def test_stress_error_estimate_bounds_the_true_error(fixed_span, modes):
-    # The fast method's error estimate (the left-out modes' bound, fast.truncation_bound) must not
+    # The fast method's error estimate (the left-out modes' bound, periodic.truncation_bound) must not
     # understate the error against a converged reference (241 modes) at the same span and impact.
     # Here mode 33 sits near a resonance: N = 15 and 31 are 35 % off, and a comparison of N with N/2
     # modes would have reported 0.3 %.
@@ -62,7 +62,7 @@ def test_stress_error_estimate_bounds_the_true_error(fixed_span, modes):
         return fast.stresses(scene, impact, inputs, periodic.Options(modes=n))["max_normal_stress"]
 
     options = periodic.Options(modes=modes)
-    estimate = fast.truncation_bound(scene, impact, inputs, options) / normal(modes)
+    estimate = periodic.truncation_bound(scene, impact, inputs, options) / normal(modes)
     true_error = abs(normal(modes) - normal(241)) / normal(241)
     assert true_error <= estimate
     if modes == 61:

@@ -17,7 +17,7 @@ Below N = 261 both methods stall: modes 219 and 255 sit 0.001 and 0.003 harmonic
 issue's target "fast within 1e-5 in max normal stress and 1e-3 in shear with at most 100 modes" is
 NOT met on this case (fast at 99 modes: 2.2e-4 normal); the measured numbers are asserted as they
 are (test_fast_at_99_modes_measured_and_flagged), the target is not loosened, and
-``fast.truncation_bound`` flags the shortfall itself (bound ≥ true error).
+``periodic.truncation_bound`` flags the shortfall itself (bound ≥ true error).
 """
 
 from itertools import pairwise
@@ -117,7 +117,7 @@ def test_fast_at_99_modes_measured_and_flagged(fixed_span, table):
     assert row["max_deflection_error"] < 1e-6
     assert 1e-4 < row["error"] < 5e-4 and 1e-6 < row["deflection_error"] < 1e-5
     options = periodic.Options(modes=99)
-    bound = fast.truncation_bound(scene, impact, inputs, options) / fast.stresses(scene, impact, inputs,
+    bound = periodic.truncation_bound(scene, impact, inputs, options) / fast.stresses(scene, impact, inputs,
                                                                                    options)["max_normal_stress"]
     assert bound >= row["error"]
 
@@ -182,5 +182,8 @@ def test_solve_valid_point_same_span_as_fast(paper_inputs):
     assert f.status == "ok" and r.status in ("ok", "terms_not_small")
     assert r.values["span_length"] == f.values["span_length"]
     assert r.values["max_normal_stress"] == pytest.approx(f.values["max_normal_stress"], rel=1e-4)
-    assert r.extras["series_harmonics"] == series.DEFAULT_HARMONICS and 0 <= r.error_estimate < 1e-2
+    assert r.extras["series_harmonics"] == series.DEFAULT_HARMONICS
+    # The series' estimate includes the bound on the modes left out (the same 15 modes as fast), so it
+    # never claims more accuracy than fast's bound at the same modes.
+    assert r.error_estimate >= f.error_estimate * (1 - 1e-4)  # bounds divided by stresses equal to 1e-4
     assert r.extras["term_ratios"]["ratios"]["drag"]["mean"] == 1.0
