@@ -5,16 +5,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from study import config
 from study.solvers import fast, periodic, solve_point
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30
-
-
-@pytest.fixture(scope="module")
-def paper_inputs():
-    return config.load(ROOT / "configs" / "default.toml").point()
 
 
 def test_valid_span_found_at_low_resolution_is_not_robust_to_more_modes(paper_inputs):
@@ -27,17 +21,6 @@ def test_valid_span_found_at_low_resolution_is_not_robust_to_more_modes(paper_in
     high = solve_point({**inputs, "modes": 21}, "fast")
     assert low.status == "ok" and low.values["span_length"] == pytest.approx(34.27 * 0.3048, rel=1e-3)
     assert high.status == "no_span"
-
-
-@pytest.fixture(scope="module")
-def fixed_span(paper_inputs):
-    """A refined root of condition 2 that satisfies its own fixed point (100 rpm, alternating, prescribed)."""
-    inputs = {**paper_inputs, "rotary_speed": 100 * RPM, "impact_pattern": "alternating", "closure": "prescribed"}
-    scene = periodic.make_scene(inputs)
-    options = periodic.Options(modes=15, min_span=9.0)
-    impact = periodic.first_consistent_root(scene, options, longer_than=30.0)
-    assert impact is not None, "no refined root without problems above 30 m"
-    return inputs, scene, impact
 
 
 def test_stresses_are_consistent(fixed_span):

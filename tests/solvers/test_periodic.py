@@ -5,16 +5,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from study import config
 from study.solvers import periodic
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30
-
-
-@pytest.fixture(scope="module")
-def paper_inputs():
-    return config.load(ROOT / "configs" / "default.toml").point()
 
 
 def scene_of(inputs, pattern, closure, rpm=300.0):

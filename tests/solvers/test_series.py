@@ -26,7 +26,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from study import config
 from study.solvers import checks, fast, periodic, series
 from study.solvers.result import PointResult
 
@@ -36,23 +35,6 @@ TARGETS = {"deflection_error": 1e-6, "max_deflection_error": 1e-6, "error": 1e-5
 REFERENCE = (481, 25_600)  # converged: vs (1921, 51200) 5e-9 normal, 2e-8 deflection, 6e-7 shear
 RESOLUTIONS = ([("fast", n) for n in (15, 41, 99, 261, 481)]
                + [("series", nm) for nm in ((41, 400), (99, 800), (99, 1600), (241, 6400), (301, 9600))])
-
-
-@pytest.fixture(scope="module")
-def paper_inputs():
-    return config.load(ROOT / "configs" / "default.toml").point()
-
-
-@pytest.fixture(scope="module")
-def fixed_span(paper_inputs):
-    """A refined root of condition 2 that satisfies its own fixed point (100 rpm, alternating, prescribed);
-    built as tests/solvers/test_fast.py::fixed_span (no valid span exists for the paper's inputs)."""
-    inputs = {**paper_inputs, "rotary_speed": 100 * RPM, "impact_pattern": "alternating", "closure": "prescribed"}
-    scene = periodic.make_scene(inputs)
-    options = periodic.Options(modes=15, min_span=9.0)
-    impact = periodic.first_consistent_root(scene, options, longer_than=30.0)
-    assert impact is not None, "no refined root without problems above 30 m"
-    return inputs, scene, impact
 
 
 @pytest.fixture(scope="module")
