@@ -47,6 +47,14 @@ def _point_table(result, inputs) -> str:
         else:
             text = f"{value!s:>12}"
         lines.append(f"  {name:28s} {text:24s} {long_name}")
+    if result.error_estimate is not None:
+        lines.append(f"  {'error_estimate':28s} {result.error_estimate:12.3g} {'':11s} relative, max normal stress")
+    for name, value in result.extras.items():  # the non-scalar outputs, briefly (--json has them whole)
+        if name == "candidate_spans":
+            value = ", ".join(f"{convert(v, 'm', 'ft'):.1f} ft" for v in value) or "none"
+        elif isinstance(value, (dict, list)):
+            continue
+        lines.append(f"  {name:28s} {value}")
     lines.append(f"\n  wall time {result.wall_time * 1e3:.3g} ms")
     return "\n".join(lines)
 
