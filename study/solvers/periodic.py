@@ -171,59 +171,70 @@ class Impact:
     problems: list[str] = field(default_factory=list)
 
 
-def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 30) -> Impact:
-    """Solve the T_L–κ fixed point at one span and return the impact with the closure residual."""
+def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 60) -> Impact:
+    """Solve the T_L–κ fixed point at one span and return the impact with the closure residual.
+
+    The pulse duration T_L sets the solution, whose contact curvature κ = −y''(L/2, 0), impact velocity
+    and impulse set T_L again (Hertz stiffness at κ, Lee's rule). Iterated on T_L with adaptive
+    relaxation: the step is halved whenever it overshoots, so an oscillating map still converges;
+    converged when the map moves T_L by less than ``options.fixed_point_tol`` (relative).
+    """
     c, e = scene.clearance, scene.restitution
-    mass = scene.props["mass_per_length"]
-    m_e = float(section.equivalent_mass(mass, span_length))
-    # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
-    curvature = c * (np.pi / span_length) ** 2
-    velocity = scene.rotary_speed * c
-    duration, half_length = np.nan, 0.0
+    m_e = float(section.equivalent_mass(scene.props["mass_per_length"], span_length))
     out = Impact(span_length=span_length, residual=np.nan, equivalent_mass=m_e)
-    for iteration in range(1, max_iterations + 1):
-        a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, max(curvature, 1e-300))
+    longest = (0.5 if scene.pattern == "alternating" else 1.0) * scene.period
+
+    def duration_for(curvature, velocity):
+        a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, curvature)
         stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
-        new_duration = float(hertz.lee_duration(m_e, max(velocity, 1e-300), stiffness))
-        if new_duration >= (0.5 if scene.pattern == "alternating" else 1.0) * scene.period:
-            out.problems.append(f"pulse longer than the time between impacts (T_L = {new_duration:.3g} s)")
+        return float(hertz.lee_duration(m_e, velocity, stiffness)), stiffness
+
+    # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
+    velocity = scene.rotary_speed * c
+    duration, stiffness = duration_for(c * (np.pi / span_length) ** 2, velocity)
+    half_length, relaxation, last_step, converged = 0.0, 1.0, 0.0, False
+    for iteration in range(1, max_iterations + 1):
+        if not duration < longest:
+            out.problems.append(f"pulse longer than the time between impacts (T_L = {duration:.3g} s)")
             return out
-        impulse = m_e * (1.0 + e) * velocity if scene.closure == "prescribed" else np.nan
-        y1, v1, curv1 = (float(v) for v in unit_state(scene, span_length, new_duration, half_length, options))
+        y1, v1, curv1 = (float(v) for v in unit_state(scene, span_length, duration, half_length, options))
         if not np.isfinite(y1):
             out.problems.append("the span is at a resonance or buckled")
             return out
         if scene.closure == "self_consistent":
-            impulse = -c / y1
-            velocity = c * v1 / y1
+            impulse, velocity = -c / y1, c * v1 / y1
             residual = m_e * (1.0 + e) * velocity / impulse - 1.0
         else:
+            impulse = m_e * (1.0 + e) * velocity
             residual = -impulse * y1 / c - 1.0
         curvature = impulse * curv1
+        out.residual, out.impulse, out.impact_velocity, out.axial_curvature = residual, impulse, velocity, curvature
         if not (curvature > 0 and velocity > 0 and impulse > 0):
             out.problems.append(
                 "the pipe is not convex towards the wall at the contact" if curvature <= 0 else
                 "the midspan does not approach the wall before contact" if velocity <= 0 else
                 "condition 2 needs a negative impulse")
-            out.residual, out.impulse, out.impact_velocity, out.axial_curvature = residual, impulse, velocity, curvature
             return out
-        if iteration > 2 and np.isfinite(duration):  # under-relax: the T_L-curvature map can overshoot
-            new_duration = 0.5 * (new_duration + duration)
-        peak = float(hertz.lee_peak_force(impulse, new_duration))
-        converged = np.isfinite(duration) and abs(new_duration - duration) <= options.fixed_point_tol * new_duration
-        duration = new_duration
+        peak = float(hertz.lee_peak_force(impulse, duration))
         ellipse = hertz.contact_ellipse(peak, scene.outer_radius, scene.hole_radius, curvature, scene.compliance_sum)
         half_length = min(float(ellipse.contact_half_length), 0.45 * span_length)
-        half_width = float(ellipse.contact_half_width)
-        if converged:
+        mapped, stiffness = duration_for(curvature, velocity)
+        step = mapped - duration
+        if abs(step) <= options.fixed_point_tol * mapped:
+            converged = True
             break
-    elastic = hertz.hertz_impact(m_e, max(velocity, 1e-300), stiffness)
-    out.residual = residual
-    out.impulse, out.impact_velocity, out.contact_duration = impulse, velocity, duration
+        if iteration == max_iterations:  # report the T_L the solution was computed with
+            break
+        if last_step * step < 0:
+            relaxation *= 0.5
+        last_step = step
+        duration = duration + relaxation * step
+    elastic = hertz.hertz_impact(m_e, velocity, stiffness)
+    out.contact_duration = duration
     out.hertz_duration, out.hertz_peak_force = float(elastic.duration), float(elastic.max_force)
     out.max_approach = float(elastic.max_approach)
-    out.peak_contact_force, out.axial_curvature = peak, curvature
-    out.contact_half_length, out.contact_half_width = half_length, half_width
+    out.peak_contact_force = peak
+    out.contact_half_length, out.contact_half_width = half_length, float(ellipse.contact_half_width)
     out.iterations = iteration
     if not converged and max_iterations > 1:
         out.problems.append(f"T_L–curvature iteration not converged in {max_iterations} steps")
@@ -271,7 +282,7 @@ class SpanSearch:
     """All roots of condition 2 in the search range, ascending, with their brackets."""
 
     roots: np.ndarray
-    brackets: np.ndarray  #: (n, 2) spans around each root, inside one interval between poles
+    brackets: np.ndarray  #: (n, 2) the interval between the two poles around each root (pole-free)
     pole_count: int
     residual: Any = None  #: the screening residual (with ``.pulse``), for the screening checks
 
@@ -323,8 +334,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     values = residual(spans.ravel()).reshape(spans.shape)
     i, j = np.nonzero(np.sign(values[:, :-1]) * np.sign(values[:, 1:]) < 0)
     brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
+    intervals = np.stack([lo[i], hi[i]], axis=1)  # the pole-free interval around each root
     roots = _bisect(residual, brackets[:, 0].copy(), brackets[:, 1].copy()) if len(i) else np.array([])
-    return SpanSearch(roots=roots, brackets=brackets, pole_count=int(poles.size), residual=residual)
+    return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual)
 
 
 def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.ndarray:
@@ -370,7 +382,7 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
             break
         x2 = x1 - i1.residual / slope
         if not lo <= x2 <= hi:
-            i1.problems.append("the exact root left the bracket of the screening root")
+            i1.problems.append("the exact root left the pole-free interval of the screening root")
             return i1
         x0, i0, x1 = x1, i1, x2
         i1 = impact_at(scene, x1, options)
