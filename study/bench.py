@@ -82,35 +82,38 @@ def _grid_of_size(study, points: int) -> Grid:
     return Grid(grid.base, {**grid.axes, first: np.linspace(values[0], values[-1], count)})
 
 
-def bench_sweep(study, points: int = 10_000) -> tuple[list[tuple[str, float]], list[str]]:
-    """The same grid in this process and on 1 and 2 local dask worker processes.
+def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tuple[str, float]], list[str]]:
+    """The same grid in this process and on 1 and 2 local dask worker processes, median of ``repeat``.
 
-    Cluster start-up is timed apart from the sweep. Returns the rows (label, seconds) and notes
-    with the measured scheduling overhead: 1 − (Σ per-point solve time)/(workers × wall time).
+    Cluster start-up is timed apart from the sweep (each cluster is started once and swept ``repeat``
+    times into fresh folders). Returns the rows (label, median seconds) and notes with the measured
+    scheduling overhead of the median run: 1 − (Σ per-point solve time)/(workers × wall time).
     """
     from dask.distributed import Client, LocalCluster
 
     grid = _grid_of_size(study, points)
-    rows, notes = [], []
-    with tempfile.TemporaryDirectory() as tmp:
-        start = time.perf_counter()
-        run_grid(grid, Path(tmp), scheduler="synchronous", progress=False)
-        rows.append((f"in process ({grid.size} points)", time.perf_counter() - start))
+
+    def timed(scheduler, workers):
+        with tempfile.TemporaryDirectory() as tmp:
+            start = time.perf_counter()
+            paths = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
+            wall = time.perf_counter() - start
+            return wall, sum(float(load_chunk(p)["wall_time"].sum()) for p in paths)
+
+    runs = sorted(timed("synchronous", 1) for _ in range(repeat))
+    rows, notes = [(f"in process ({grid.size} points)", runs[len(runs) // 2][0])], []
     for workers in (1, 2):
         start = time.perf_counter()
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
                           silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
             client.run(warm_up)  # worker start-up: processes and their imports
             startup = time.perf_counter() - start
-            with tempfile.TemporaryDirectory() as tmp:
-                start = time.perf_counter()
-                paths = run_grid(grid, Path(tmp), scheduler=cluster.scheduler_address, workers=workers,
-                                 progress=False)
-                wall = time.perf_counter() - start
-                solve = sum(float(load_chunk(p)["wall_time"].sum()) for p in paths)
+            runs = sorted(timed(cluster.scheduler_address, workers) for _ in range(repeat))
+        wall, solve = runs[len(runs) // 2]
         rows.append((f"{workers} worker{'s' if workers > 1 else ''} ({grid.size} points)", wall))
         notes.append(f"{workers} worker(s): cluster start-up with imports {startup:.2g} s (not in the table); "
-                     f"points solved in {solve:.3g} s of worker time; scheduling and storage overhead "
+                     f"runs {', '.join(f'{w:.3g}' for w, _ in runs)} s; in the median run points were solved in "
+                     f"{solve:.3g} s of worker time, scheduling and storage overhead "
                      f"{1 - solve / (workers * wall):.0%} of {workers} x {wall:.3g} s")
     return rows, notes
 
@@ -185,7 +188,7 @@ def run_bench(out: str | None = None) -> str:
               f"{len(reference['impacts'])} | {last:.4g} |", ""]
     sweep_rows, notes = bench_sweep(study)
     lines += _table("Sweep of the default study's axes resampled to about 10^4 points: in process vs "
-                    "local dask workers", sweep_rows, "s", 1.0)
+                    "local dask workers (median of 3 runs each)", sweep_rows, "s", 1.0)
     speedup = sweep_rows[1][1] / sweep_rows[2][1]
     lines += [f"Two workers vs one: {speedup:.2f}x.", ""] + [f"- {note}" for note in notes] + [""]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # KiB on Linux
