@@ -7,7 +7,7 @@ on a numerical failure of the design point: a sweep records the flag and goes on
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Mapping
 
 #: Status flags: name -> integer code (the dataset's ``flag_values``) and what it means.
 STATUS = {
@@ -53,6 +53,18 @@ class PointResult:
         if self.error_estimate is not None:
             out["error_estimate"] = self.error_estimate
         return out
+
+
+def choice_input(inputs: Mapping[str, Any], name: str, default: str, allowed) -> str:
+    """A method's choice option: ``inputs[name]`` (``default`` when absent), checked against ``allowed``.
+
+    The config validates these already; this guards calls made from code. Raises ValueError naming the
+    option, its value and the choices.
+    """
+    value = inputs.get(name, default)
+    if value not in allowed:
+        raise ValueError(f"{name} = {value!r}; allowed: {', '.join(allowed)}")
+    return value
 
 
 #: Every scalar output a method may produce: name -> (SI unit, long name). The dataset and the

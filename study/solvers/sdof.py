@@ -55,7 +55,7 @@ import numpy as np
 
 from study.physics import hertz, oscillator, section
 from study.solvers.periodic import make_scene, natural_frequencies
-from study.solvers.result import PointResult
+from study.solvers.result import PointResult, choice_input
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
 VERDICT_STATUS = {
@@ -83,12 +83,8 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> dict[str, Any]:
     scene = make_scene(inputs)
     span = float(inputs["span_length"])
     props = scene.props
-    mass_model = inputs.get("sdof_mass", "modal")
-    damping_model = inputs.get("sdof_damping", "mud")
-    if mass_model not in MASS_CHOICES:
-        raise ValueError(f"sdof_mass = {mass_model!r}; allowed: {', '.join(MASS_CHOICES)}")
-    if damping_model not in DAMPING_CHOICES:
-        raise ValueError(f"sdof_damping = {damping_model!r}; allowed: {', '.join(DAMPING_CHOICES)}")
+    mass_model = choice_input(inputs, "sdof_mass", "modal", MASS_CHOICES)
+    damping_model = choice_input(inputs, "sdof_damping", "mud", DAMPING_CHOICES)
     M = props["mass_per_length"]
     m = M * span / 2.0 if mass_model == "modal" else float(section.equivalent_mass(M, span))
     omega1 = float(natural_frequencies(scene, span, [1])[0])

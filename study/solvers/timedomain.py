@@ -67,7 +67,7 @@ import numpy as np
 from study.physics import hertz, oscillator, section
 from study.solvers import sdof
 from study.solvers.periodic import make_scene
-from study.solvers.result import PointResult
+from study.solvers.result import PointResult, choice_input
 
 METHOD = "time-domain"
 INTEGRATORS = ("explicit", "implicit")
@@ -187,12 +187,8 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
     points = np.atleast_1d(np.asarray(inputs.get("contact_points") or (0.5,), float))
     if np.any((points <= 0) | (points >= 1)):
         raise ValueError("contact_points are fractions of the span in (0, 1)")
-    damping_model = inputs.get("time_damping", "linearised")
-    contact_damping = inputs.get("contact_damping", "calibrated")
-    if damping_model not in DAMPING_CHOICES:
-        raise ValueError(f"time_damping = {damping_model!r}; allowed: {', '.join(DAMPING_CHOICES)}")
-    if contact_damping not in CONTACT_DAMPING_CHOICES:
-        raise ValueError(f"contact_damping = {contact_damping!r}; allowed: {', '.join(CONTACT_DAMPING_CHOICES)}")
+    damping_model = choice_input(inputs, "time_damping", "linearised", DAMPING_CHOICES)
+    contact_damping = choice_input(inputs, "contact_damping", "calibrated", CONTACT_DAMPING_CHOICES)
     model = ModalModel(span=L, mass=par["m"], modes=modes, omega=omega, clearance=par["clearance"],
                        stiffness=par["hertz_stiffness"], curvature=par["axial_curvature"], points=points,
                        phi=np.sin(np.pi * np.outer(points, modes)), rotary_speed=par["rotary_speed"],
@@ -219,9 +215,7 @@ def initial_state(model: ModalModel, inputs: Mapping[str, Any]):
     if inputs.get("initial_state") is not None:
         q0, v0 = (np.asarray(a, float).reshape(N) for a in inputs["initial_state"])
         return q0.copy(), v0.copy()
-    kind = inputs.get("time_initial", "prescribed")
-    if kind not in INITIAL_CHOICES:
-        raise ValueError(f"time_initial = {kind!r}; allowed: {', '.join(INITIAL_CHOICES)}")
+    kind = choice_input(inputs, "time_initial", "prescribed", INITIAL_CHOICES)
     q0, v0 = np.zeros(N), np.zeros(N)
     if kind == "prescribed":
         v0[0] = model.rotary_speed * model.clearance
@@ -420,9 +414,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     hysteresis), boundary states, times, energies at the boundaries, step data, model.
     """
     model = model or build_model(inputs)
-    integrator = inputs.get("time_integrator", "explicit")
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"time_integrator = {integrator!r}; allowed: {', '.join(INTEGRATORS)}")
+    integrator = choice_input(inputs, "time_integrator", "explicit", INTEGRATORS)
     revolutions = int(inputs.get("time_revolutions", 60))
     tol = float(inputs.get("time_tolerance", 1e-4))
     check = bool(inputs.get("time_check_periodic", True))
