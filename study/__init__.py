@@ -8,4 +8,4 @@ Layers (imports point down the list only):
 - ``study.charts`` and ``study.cli``  presentation.
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"

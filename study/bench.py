@@ -44,11 +44,56 @@ def bench_methods(point, repeat: int = 200, budget: float = 10.0) -> list[tuple[
     return [(name, _median_time(lambda n=name: solve_point(point, n), repeat, budget)) for name in METHODS]
 
 
+def bench_span_search(study, count: int = 24, full_count: int = 6) -> tuple[list[str], dict]:
+    """The fast method (span search included) on ``count`` points spread evenly over the study's grid.
+
+    Returns table lines with the median, 90th percentile and largest time per point, and the same
+    statistics for the search over every pole (``resonance_width`` = 0) on the first ``full_count`` of
+    those points beside the default search on the same points, as a ratio.
+    """
+    grid = Grid(dict(study.inputs), dict(study.axes))
+    picks = np.linspace(0, grid.size - 1, count).round().astype(int)
+    points = [{**grid.point(int(i)), "solver_method": "fast", "span_length": None} for i in picks]
+    solve_point(points[0])  # compiled kernels loaded before timing
+    timed = []
+    for point in points:
+        start = time.perf_counter()
+        result = solve_point(point)
+        timed.append((time.perf_counter() - start, result))
+    seconds = np.array([t for t, _ in timed])
+    statuses = {}
+    for _, r in timed:
+        statuses[r.status] = statuses.get(r.status, 0) + 1
+    full = []
+    for point in points[:full_count]:
+        start = time.perf_counter()
+        solve_point({**point, "resonance_width": 0.0})
+        full.append(time.perf_counter() - start)
+    part = seconds[:full_count]
+    lines = [
+        "### The fast method over the default study's grid (span search included)", "",
+        f"{count} points spread evenly over the {grid.size}-point grid of `configs/default.toml` (rpm "
+        "50-300, every tension, restitution and mud density), `solver.method = fast`, 41 modes, spans "
+        f"3 m to 1000 ft; outcomes: {', '.join(f'{n} {k}' for k, n in sorted(statuses.items()))}.", "",
+        "| search | points | median [ms] | 90th percentile [ms] | largest [ms] | speed-up of the median |",
+        "|---|---|---|---|---|---|",
+        f"| every pole searched | {full_count} | {np.median(full) * 1e3:.4g} | "
+        f"{np.quantile(full, 0.9) * 1e3:.4g} | {max(full) * 1e3:.4g} | 1x |",
+        f"| default: resonances narrower than 1e-6 L skipped, same points | {full_count} | "
+        f"{np.median(part) * 1e3:.4g} | {np.quantile(part, 0.9) * 1e3:.4g} | {part.max() * 1e3:.4g} | "
+        f"{np.median(full) / np.median(part):.3g}x |",
+        f"| default, all points | {count} | {np.median(seconds) * 1e3:.4g} | "
+        f"{np.quantile(seconds, 0.9) * 1e3:.4g} | {seconds.max() * 1e3:.4g} | - |", "",
+    ]
+    return lines, {"median": float(np.median(seconds))}
+
+
 def bench_hertz_coefficients(count: int = 2000) -> list[tuple[str, float]]:
     """Exact m, n: per-call scalar inversion vs one vectorised call over the same angles [s per angle]."""
     theta = np.radians(np.linspace(1.0, 89.0, count))
-    scalar = _median_time(lambda: [hertz.contact_coefficients(t) for t in theta], 3) / count
-    vector = _median_time(lambda: hertz.contact_coefficients(theta), 3) / count
+    forget = hertz._coefficients_scalar.cache_clear  # each run inverts every angle afresh
+    scalar = _median_time(lambda: (forget(), [hertz.contact_coefficients(t) for t in theta]), 3) / count
+    vector = _median_time(lambda: (forget(), hertz.contact_coefficients(theta)), 3) / count
     return [("scalar calls", scalar), ("one array call", vector)]
 
 
@@ -136,6 +181,7 @@ def run_bench(out: str | None = None) -> str:
         "ratios are speed-ups relative to the first row of each table.", "",
     ]
     lines += _table("Time per design point, by method (paper example)", bench_methods(point), "ms", 1e3)
+    lines += bench_span_search(study)[0]
     lines += _table("Exact Hertz coefficients m, n: time per angle", bench_hertz_coefficients(), "µs", 1e6)
     rows, case = work_precision(point)
     lines += ["### Work and precision of the periodic methods at a fixed span", "", f"Case: {case}.", "",

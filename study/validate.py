@@ -138,7 +138,8 @@ def periodic_solution_section(modes: int = 21) -> list[str]:
             result = solve_point({**point, "impact_pattern": pattern, "closure": closure, "modes": modes}, "fast")
             v = result.values
             spans = ", ".join(f"{convert(L, 'm', 'ft'):.1f}" for L in result.extras.get("candidate_spans", [])) or "none"
-            rows.append(_row(pattern, closure, int(v["root_count"]), int(v["pole_count"]), spans,
+            rows.append(_row(pattern, closure, int(v["root_count"]), int(v["pole_count"]),
+                             int(v["pole_count"] - v["narrow_count"]), spans,
                              f"`{result.status}`: {result.message.split('; ', 1)[-1]}"))
             if "max_normal_stress" in v:
                 stress_rows.append(_row(f"{pattern}, {closure}", f"{convert(v['span_length'], 'm', 'ft'):.2f}",
@@ -157,22 +158,27 @@ def periodic_solution_section(modes: int = 21) -> list[str]:
         "both walls alternately) and the closure of the impact velocity (prescribed V_p = Ω c, or the "
         "solution's own pre-impact velocity). Paper: 345 ft with all terms, 337 ft without the mud-flow "
         "and drag terms.", "",
-        _row("pattern", "closure", "roots of condition 2", "poles", "valid spans [ft]", "verdict"),
-        _row(*["---"] * 6), *rows, "",
+        _row("pattern", "closure", "roots of condition 2", "poles", "poles searched (wider than 1e-6 L)",
+             "valid spans [ft]", "verdict"),
+        _row(*["---"] * 7), *rows, "",
         "No reading yields a valid span near the paper's 345 ft (MODEL.md's prototype found none "
         "either). Roots of condition 2 (the midspan at the wall when the pulse starts) are plentiful "
-        "- they sit between the dense resonance poles - but at nearly all of them the solution's own "
+        "- nearly one next to every resonance pole - but at nearly all of them the solution's own "
         "shape contradicts the impact: the pipe is not convex towards the wall at the contact, the "
         "midspan is moving away from the wall when contact starts, or the pipe crosses the hole "
-        "elsewhere (condition 1). The one reading that does give a valid span - one wall per "
-        "revolution, impact velocity from the solution itself - gives 22.14 ft, the same at every "
-        "truncation we tried from 11 to 41 modes (tests/solvers/test_fast.py checks 15 and 21); its "
-        "stresses are in the table below. Valid spans "
-        "elsewhere can depend on the truncation: in the undamped model, modes near resonance ring with "
-        "large amplitude, and at 61 modes the refined root of that span falls across a neighbouring "
-        "pole. The paper's span is therefore not reproduced; the damped periodic solution (MODEL.md "
-        "§7) and the time-domain check (MODEL.md §8-9) are the next steps to tell whether a periodic "
-        "impacting motion with a span of that length exists.", "",
+        "elsewhere (condition 1). One wall per revolution with the impact velocity from the solution "
+        "itself gives two valid spans close together, 22.02 ft and 22.14 ft, the same pair at 11, 21, "
+        "41 and 61 modes (15 modes adds a third, 15.1 ft; tests/solvers/test_fast.py checks 11 and 21); "
+        "the stresses at the smaller converge with the modes (max normal stress 9.05e4 psi from 21 to "
+        "61 modes). Both walls with the self-consistent closure also gives valid spans, but they change "
+        "with the truncation (22.1 and 37.5 ft at 21 modes, none at 41, 28.4 ft at 61): in the undamped "
+        "model modes near resonance ring with large amplitude, so those spans are not a converged "
+        "answer. The search skips resonances narrower than 1e-6 of the span (`solver.resonance_width`): "
+        "the root such a resonance pins lies within about that distance of its pole, and any damping of "
+        "that order removes it (tests/solvers/test_periodic.py checks that nothing else is skipped). "
+        "The paper's span is therefore not reproduced; the damped periodic solution (MODEL.md §7) and "
+        "the time-domain check (MODEL.md §8-9) are the next steps to tell whether a periodic impacting "
+        "motion with a span of that length exists.", "",
         *stress_table,
     ]
 

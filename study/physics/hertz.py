@@ -13,6 +13,7 @@ integrals of parameter e² (scipy convention).
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import NamedTuple
 
 import numpy as np
@@ -93,8 +94,11 @@ def _log_c2(theta):
     return brentq(resid, lo, hi, xtol=1e-300, maxiter=500)
 
 
+@lru_cache(maxsize=4096)
 def _coefficients_scalar(theta):
-    """(m, n, 2K(e)/(π m)) for scalar θ [rad]; the last factor scales the approach (=1 for a sphere)."""
+    """(m, n, 2K(e)/(π m)) for scalar θ [rad]; the last factor scales the approach (=1 for a sphere).
+
+    Memoised: the periodic solver asks for the same contact angle for the stiffness and the ellipse."""
     p = _log_c2(float(theta))
     if p == -np.inf:  # θ = 0: line contact, the ellipse is unbounded
         return np.inf, 0.0, 0.0
@@ -111,7 +115,7 @@ _coefficients_vec = np.vectorize(_coefficients_scalar, otypes=[float, float, flo
 def _coefficients(theta):
     theta = np.asarray(theta, dtype=float)
     if theta.ndim == 0:
-        return tuple(np.float64(v) for v in _coefficients_scalar(theta))
+        return tuple(np.float64(v) for v in _coefficients_scalar(float(theta)))
     return _coefficients_vec(theta)
 
 

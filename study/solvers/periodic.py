@@ -48,7 +48,8 @@ class Options:
     min_span: float = 3.0  #: shortest span searched [m]
     max_span: float = 304.8  #: longest span searched [m] (1000 ft)
     load_shape: str = "parabolic"  #: spatial shape of the contact load (beam.LOAD_SHAPES)
-    samples: int = 4  #: samples of F inside each interval between poles
+    samples: int = 4  #: samples of F inside each interval between (wide) poles
+    resonance_width: float = 1e-6  #: resonances narrower than this (relative span) are not searched
     time_points: int = 480  #: points over one (half) period outside the pulse, for condition 1
     pulse_points: int = 64  #: points across the pulse
     space_points: int = 48  #: points over half the span
@@ -107,8 +108,9 @@ def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
     return np.arange(1, highest + 1, step, dtype=float)
 
 
-def resonant_spans(scene: Scene, modes, min_span: float, max_span: float) -> np.ndarray:
-    """Sorted spans [m] in [min_span, max_span] where some ω_n(L) equals a harmonic m Ω of the train.
+def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:
+    """Spans [m] in [min_span, max_span] where some ω_n(L) equals a harmonic m Ω of the train, sorted,
+    and the mode number n resonating at each.
 
     From ω² M = EI k⁴ + T k² with k = nπ/L: k² = [−T + √(T² + 4 EI M (mΩ)²)]/(2 EI), L = nπ/k
     (MODEL.md §4). These are the poles of the undamped periodic response.
@@ -120,34 +122,32 @@ def resonant_spans(scene: Scene, modes, min_span: float, max_span: float) -> np.
     highest = int(np.ceil(omega_max / scene.rotary_speed)) + 1
     forcing = resonant_harmonics(scene, highest) * scene.rotary_speed
     k_sq = (-tension + np.sqrt(tension**2 + 4.0 * ei * mass * forcing**2)) / (2.0 * ei)
-    spans = (modes[:, None] * np.pi / np.sqrt(k_sq[None, :])).ravel()
-    spans = spans[(spans >= min_span) & (spans <= max_span)]
-    return np.unique(spans)
+    spans = (modes[:, None] * np.pi / np.sqrt(k_sq[None, :]))
+    mode = np.broadcast_to(modes[:, None], spans.shape)
+    inside = (spans >= min_span) & (spans <= max_span)
+    spans, mode = spans[inside], mode[inside]
+    order = np.argsort(spans, kind="stable")
+    return spans[order], mode[order]
 
 
-def unit_state(scene: Scene, span_length, pulse_duration, half_length, options: Options, time=0.0):
-    """Midspan displacement y₁ [m/(N s)], velocity v₁ [m/(N s²)] and curvature y₁'' [1/(m N s)] at
-    ``time`` [s] (default t = 0, the start of contact) per unit impulse along +y.
+def resonant_spans(scene: Scene, modes, min_span: float, max_span: float) -> np.ndarray:
+    """The distinct spans of :func:`resonances` [m], ascending."""
+    return np.unique(resonances(scene, modes, min_span, max_span)[0])
 
-    span_length, pulse_duration, half_length broadcast together (shape S); ``time`` of shape T gives
-    results of shape S + T.
+
+def unit_state(scene: Scene, span_length, pulse_duration, half_length, options: Options, modes=None):
+    """Midspan displacement y₁ [m/(N s)], velocity v₁ [m/(N s²)] and curvature y₁'' [1/(m N s)] at the
+    start of contact (t = 0) per unit impulse along +y (:func:`beam.midspan_state_at_pulse_start`).
+
+    span_length, pulse_duration, half_length broadcast together (shape S); results of shape S.
+    ``modes``: the mode numbers summed (default: the odd modes up to ``options.modes``); an array of
+    shape S + (k,) sums its own k modes for every span.
     """
-    modes = odd_modes(options.modes)
-    span = np.asarray(span_length, dtype=float)
-    time = np.asarray(time, dtype=float)
-    expand = (...,) + (None,) * time.ndim + (slice(None),)  # S + T + modes
-    omega = natural_frequencies(scene, span, modes)[expand]
-    g = beam.modal_load_factors(modes, span, half_length, options.load_shape)[expand]
-    duration = np.asarray(pulse_duration, dtype=float)[(...,) + (None,) * time.ndim][..., None]
-    if time.ndim == 0 and float(time) == 0.0:  # the span search's case: the state when a pulse starts
-        response = beam.modal_state_at_pulse_start(omega, duration, scene.period, scene.pattern)
-    else:
-        response = beam.modal_periodic_response(time[..., None], omega, duration, scene.period, scene.pattern)
-    parity = np.where(modes % 4 == 1, 1.0, -1.0)
-    weight = 2.0 * g / (scene.props["mass_per_length"] * span[expand[:-1]][..., None]) * parity
-    k_sq = (modes * np.pi / span[expand[:-1]][..., None]) ** 2
-    return ((weight * response.displacement).sum(-1), (weight * response.velocity).sum(-1),
-            -(weight * k_sq * response.displacement).sum(-1))
+    p = scene.props
+    modes = odd_modes(options.modes) if modes is None else modes
+    return beam.midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes,
+                                             p["bending_stiffness"], p["effective_tension"],
+                                             p["mass_per_length"], scene.period, scene.pattern, options.load_shape)
 
 
 @dataclass
@@ -171,13 +171,16 @@ class Impact:
     problems: list[str] = field(default_factory=list)
 
 
-def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 60) -> Impact:
+def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 60,
+              duration: float | None = None) -> Impact:
     """Solve the T_L–κ fixed point at one span and return the impact with the closure residual.
 
     The pulse duration T_L sets the solution, whose contact curvature κ = −y''(L/2, 0), impact velocity
-    and impulse set T_L again (Hertz stiffness at κ, Lee's rule). Iterated on T_L with adaptive
-    relaxation: the step is halved whenever it overshoots, so an oscillating map still converges;
-    converged when the map moves T_L by less than ``options.fixed_point_tol`` (relative).
+    and impulse set T_L again (Hertz stiffness at κ, Lee's rule). Solved as T_L = map(T_L) by secant
+    steps on map(T_L) − T_L, with a relaxed fixed-point step (halved whenever it overshoots) wherever a
+    secant step is not usable; converged when the map moves T_L by less than
+    ``options.fixed_point_tol`` (relative). ``duration``: the starting T_L [s] (default: that of the
+    assumed mode y = c sin(πx/L) hitting at V_p = Ω c).
     """
     c, e = scene.clearance, scene.restitution
     m_e = float(section.equivalent_mass(scene.props["mass_per_length"], span_length))
@@ -191,8 +194,10 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
 
     # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
     velocity = scene.rotary_speed * c
-    duration, stiffness = duration_for(c * (np.pi / span_length) ** 2, velocity)
+    start, stiffness = duration_for(c * (np.pi / span_length) ** 2, velocity)
+    duration = start if duration is None or not 0 < duration < longest else float(duration)
     half_length, relaxation, last_step, converged = 0.0, 1.0, 0.0, False
+    previous = None  # (T_L, map(T_L) - T_L) of the last iterate, for the secant
     for iteration in range(1, max_iterations + 1):
         if not duration < longest:
             out.problems.append(f"pulse longer than the time between impacts (T_L = {duration:.3g} s)")
@@ -228,7 +233,11 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
         if last_step * step < 0:
             relaxation *= 0.5
         last_step = step
-        duration = duration + relaxation * step
+        secant = np.nan
+        if previous is not None and step != previous[1]:
+            secant = duration - step * (duration - previous[0]) / (step - previous[1])
+        previous = (duration, step)
+        duration = secant if 0 < secant < longest else duration + relaxation * step
     elastic = hertz.hertz_impact(m_e, velocity, stiffness)
     out.contact_duration = duration
     out.hertz_duration, out.hertz_peak_force = float(elastic.duration), float(elastic.max_force)
@@ -264,17 +273,37 @@ def screen_residual(scene: Scene, options: Options):
         return (np.exp(np.interp(np.log(spans), logs, np.log(durations[ok]))),
                 np.interp(np.log(spans), logs, halves[ok]))
 
-    def residual(spans):
+    def residual(spans, modes=None):
+        """F(L) at ``spans``; with ``modes`` (see :func:`unit_state`) F + 1 from those modes alone."""
         spans = np.asarray(spans, dtype=float)
         duration, half = pulse(spans)
-        y1, v1, _ = unit_state(scene, spans, duration, half, options)
+        y1, v1, _ = unit_state(scene, spans, duration, half, options, modes=modes)
         m_e = section.equivalent_mass(mass, spans)
+        offset = 1.0 if modes is None else 0.0
         if scene.closure == "self_consistent":
-            return -m_e * (1.0 + e) * v1 - 1.0  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
-        return -m_e * (1.0 + e) * scene.rotary_speed * y1 - 1.0  # -J y1/c - 1 with J = m_e (1+e) Omega c
+            return -m_e * (1.0 + e) * v1 - offset  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
+        return -m_e * (1.0 + e) * scene.rotary_speed * y1 - offset  # -J y1/c - 1 with J = m_e (1+e) Omega c
 
     residual.pulse = pulse
     return residual
+
+
+def resonance_widths(residual, spans, modes, offset: float = 1e-7) -> np.ndarray:
+    """Relative width of each resonance [-]: |R|/L_p, R the residue in L of the resonant mode's term of
+    the closure residual F at its pole L_p (``spans``, mode numbers ``modes``).
+
+    Near the pole F = R/(L − L_p) + B(L): the resonant mode alone moves F by more than 1 (it alone
+    carries the midspan to the wall) only within |L − L_p| < |R|, and the root it pins sits within
+    |R/B| of the pole. Light damping of ratio ζ bounds the resonant term by about |R|/(ζ L_p), so a
+    resonance with |R|/L_p ≪ ζ has no root once the pipe is damped at all (MODEL.md §7): such a root is
+    an artefact of the undamped model. Estimated from the mode's own term t at L_p (1 ± offset):
+    R ≈ [t(+) − t(−)] offset L_p/2, in which the term's regular part cancels to first order.
+    """
+    spans = np.asarray(spans, dtype=float)
+    own = np.asarray(modes, dtype=float)[:, None]
+    above = residual(spans * (1.0 + offset), modes=own)
+    below = residual(spans * (1.0 - offset), modes=own)
+    return np.abs(above - below) * 0.5 * offset
 
 
 @dataclass
@@ -282,101 +311,147 @@ class SpanSearch:
     """All roots of condition 2 in the search range, ascending, with their brackets."""
 
     roots: np.ndarray
-    brackets: np.ndarray  #: (n, 2) the interval between the two poles around each root (pole-free)
+    brackets: np.ndarray  #: (n, 2) the interval between the two poles around each root (free of wide poles)
     pole_count: int
     residual: Any = None  #: the screening residual (with ``.pulse``), for the screening checks
+    narrow_count: int = 0  #: poles not searched, their resonance narrower than ``Options.resonance_width``
 
 
-def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 100, rtol: float = 1e-13) -> np.ndarray:
+def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12) -> np.ndarray:
     """Roots of sign-changing brackets, all at once: regula falsi with the Illinois modification
-    (superlinear), falling back to halving for any bracket that has not shrunk by half."""
-    f_lo, f_hi = func(lo), func(hi)
+    (superlinear; the end kept twice in a row has its value halved, so both ends close in). A bracket
+    is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the unfinished
+    brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their brackets.
+    Returns the end with the smaller |f|."""
+    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
+    every = np.arange(lo.size)
+    f_lo, f_hi = func(lo, every), func(hi, every)
     side = np.zeros(lo.shape, dtype=int)  # which end was kept last time (Illinois weight)
+    done = (hi - lo <= rtol * np.abs(hi)) | (f_lo == 0) | (f_hi == 0)
     for _ in range(iterations):
-        width = hi - lo
-        if np.all(width <= rtol * np.abs(hi)):
+        active = np.nonzero(~done)[0]
+        if active.size == 0:
             break
-        mid = np.where(np.isfinite(f_lo) & np.isfinite(f_hi) & (f_hi != f_lo),
-                       hi - f_hi * (hi - lo) / (f_hi - f_lo), 0.5 * (lo + hi))
-        mid = np.where((mid > lo) & (mid < hi), mid, 0.5 * (lo + hi))
-        f_mid = func(mid)
-        left = np.sign(f_mid) == np.sign(f_lo)  # the root is in [mid, hi]
-        f_hi = np.where(~left & (side == -1), f_hi, np.where(left & (side == 1), 0.5 * f_hi, f_hi))
-        f_lo = np.where(~left & (side == -1), 0.5 * f_lo, f_lo)
-        lo, f_lo = np.where(left, mid, lo), np.where(left, f_mid, f_lo)
-        hi, f_hi = np.where(left, hi, mid), np.where(left, f_hi, f_mid)
-        side = np.where(left, 1, -1)
-        slow = (hi - lo) > 0.5 * width  # regula falsi stalled on this bracket: halve it next time
-        if np.any(slow):
-            half = 0.5 * (lo + hi)
-            f_half = func(np.where(slow, half, lo))
-            keep_left = slow & (np.sign(f_half) == np.sign(f_lo))
-            keep_right = slow & ~keep_left
-            lo, f_lo = np.where(keep_left, half, lo), np.where(keep_left, f_half, f_lo)
-            hi, f_hi = np.where(keep_right, half, hi), np.where(keep_right, f_half, f_hi)
+        a, b, fa, fb, sd = lo[active], hi[active], f_lo[active], f_hi[active], side[active]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mid = np.where(np.isfinite(fa) & np.isfinite(fb) & (fb != fa), b - fb * (b - a) / (fb - fa), 0.5 * (a + b))
+        mid = np.where((mid > a) & (mid < b), mid, 0.5 * (a + b))
+        fm = func(mid, active)
+        left = np.sign(fm) == np.sign(fa)  # the root is in [mid, b]: mid replaces a
+        fb = np.where(left & (sd == 1), 0.5 * fb, fb)
+        fa = np.where(~left & (sd == -1), 0.5 * fa, fa)
+        a, fa = np.where(left, mid, a), np.where(left, fm, fa)
+        b, fb = np.where(left, b, mid), np.where(left, fb, fm)
+        lo[active], hi[active], f_lo[active], f_hi[active] = a, b, fa, fb
+        side[active] = np.where(left, 1, -1)
+        done[active] = (b - a <= rtol * np.abs(b)) | (fm == 0)
     return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
 
 
 def find_roots(scene: Scene, options: Options) -> SpanSearch:
-    """Roots of the closure residual F(L) in [min_span, max_span], bracketed between poles."""
+    """Roots of the closure residual F(L) in [min_span, max_span], bracketed between poles.
+
+    Poles whose resonance is narrower than ``options.resonance_width`` (:func:`resonance_widths`) are
+    not searched: the root each pins lies within that relative distance of the pole and vanishes with
+    any damping of that order. Between the remaining poles F is sampled and sign changes bisected.
+    """
     modes = odd_modes(options.modes)
-    poles = resonant_spans(scene, modes, options.min_span, options.max_span)
+    poles, pole_modes = resonances(scene, modes, options.min_span, options.max_span)
     residual = screen_residual(scene, options)
     if residual is None:
         return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
-    edges = np.concatenate([[options.min_span], poles, [options.max_span]])
+    widths = resonance_widths(residual, poles, pole_modes) if poles.size else np.zeros(0)
+    wide = widths >= options.resonance_width
+    edges = np.concatenate([[options.min_span], poles[wide], [options.max_span]])
+    reach = np.concatenate([[0.0], widths[wide], [0.0]])  # relative width of each edge's resonance
     lo, hi = edges[:-1], edges[1:]
     keep = hi > lo * (1 + 1e-12)
-    lo, hi = lo[keep], hi[keep]
-    # Samples strictly inside each interval, denser towards the poles where F changes fastest.
+    lo, hi, reach_lo, reach_hi = lo[keep], hi[keep], reach[:-1][keep], reach[1:][keep]
+    # Samples strictly inside each interval, denser towards the poles where F changes fastest, plus one
+    # just inside each pole, within a thousandth of its resonance width: there the pole's own term
+    # dominates F, so a root pinned between the pole and the first interior sample is bracketed too.
     fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
-    spans = lo[:, None] + (hi - lo)[:, None] * fractions[None, :]
+    gap = (hi - lo) / lo
+    near_lo = lo * (1.0 + np.minimum(np.maximum(1e-3 * reach_lo, 1e-12), 0.1 * gap * fractions[0]))
+    near_hi = hi * (1.0 - np.minimum(np.maximum(1e-3 * reach_hi, 1e-12), 0.1 * gap * fractions[0]))
+    spans = np.column_stack([near_lo, lo[:, None] + (hi - lo)[:, None] * fractions[None, :], near_hi])
     values = residual(spans.ravel()).reshape(spans.shape)
     i, j = np.nonzero(np.sign(values[:, :-1]) * np.sign(values[:, 1:]) < 0)
     brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
-    intervals = np.stack([lo[i], hi[i]], axis=1)  # the pole-free interval around each root
-    roots = _bisect(residual, brackets[:, 0].copy(), brackets[:, 1].copy()) if len(i) else np.array([])
-    return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual)
+    intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
+    # F times the distance to both poles of the interval: the same roots, no singularity at the ends
+    # (regula falsi converges in a few steps instead of crawling along the pole's hyperbola).
+    def smoothed(x, rows):
+        return residual(x) * (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
+
+    roots = _bisect(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10) if len(i) else np.array([])
+    if roots.size:  # a sign change across a narrow resonance converges onto its pole, where |F| grows
+        ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
+        real = np.abs(residual(roots)) < 1e-3 * ends
+        roots, intervals = roots[real], intervals[real]
+    return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
+                      narrow_count=int(np.count_nonzero(~wide)))
 
 
 def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.ndarray:
     """Cheap necessary conditions for every root at once (with the screening T_L and b): the midspan
-    approaches the wall before contact and stays inside the hole over the period. True = survives."""
+    approaches the wall before contact, the pipe is convex towards the wall there (the checks
+    :func:`impact_at` makes at its first iterate) and the midspan stays inside the hole over the
+    period. True = survives."""
     if search.roots.size == 0:
         return np.zeros(0, dtype=bool)
     spans = search.roots
     duration, half = search.residual.pulse(spans)
-    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
-    t = np.linspace(0.0, 1.0, 50)[1:-1]  # coarse: sampling can miss a violation, never invent one
-    times = duration[:, None] + (span_t - duration[:, None]) * t[None, :]  # after the pulse, per root
     c, e, mass = scene.clearance, scene.restitution, scene.props["mass_per_length"]
-    y0, v0, _ = unit_state(scene, spans, duration, half, options)
+    y0, v0, curv0 = unit_state(scene, spans, duration, half, options)
     m_e = section.equivalent_mass(mass, spans)
     impulse = -c / y0 if scene.closure == "self_consistent" else m_e * (1.0 + e) * scene.rotary_speed * c
+    # as impact_at rejects at its first iterate: approach, convex towards the wall, a positive impulse
+    keep = (-impulse * v0 > 0) & (impulse * curv0 > 0) & (impulse > 0)
+    rows = np.nonzero(keep)[0]
+    if rows.size == 0:
+        return keep
+    spans, duration, half, impulse = spans[rows], duration[rows], half[rows], np.broadcast_to(impulse, keep.shape)[rows]
+    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
     modes = odd_modes(options.modes)
     omega = natural_frequencies(scene, spans, modes)  # (R, M)
     g = beam.modal_load_factors(modes, spans, half, options.load_shape)
     weight = 2.0 * g / (mass * spans[:, None]) * np.where(modes % 4 == 1, 1.0, -1.0)
-    q = beam.modal_periodic_response(times[:, :, None], omega[:, None, :], duration[:, None, None],
-                                     scene.period, scene.pattern).displacement  # (R, nt, M)
-    ys = np.einsum("rtm,rm->rt", q, weight)
-    approach = -impulse * v0 > 0
-    inside = np.max(np.abs(np.asarray(impulse)[..., None] * ys), axis=1) <= c * 1.02
-    return approach & inside & (impulse > 0)
+    # coarse (sampling can miss a violation, never invent one), in rounds that drop a root at its first
+    # violation: 48 times after the pulse, interleaved so the early rounds span the whole period
+    fractions = np.linspace(0.0, 1.0, 50)[1:-1].reshape(-1, 4).T
+    inside = np.ones(rows.size, dtype=bool)
+    for t in fractions:
+        r = np.nonzero(inside)[0]
+        if r.size == 0:
+            break
+        times = duration[r, None] + (span_t - duration[r, None]) * t[None, :]  # after the pulse, per root
+        q = beam.modal_periodic_response(times[:, :, None], omega[r, None, :], duration[r, None, None],
+                                         scene.period, scene.pattern).displacement  # (R, nt, M)
+        ys = np.einsum("rtm,rm->rt", q, weight[r])
+        inside[r] = np.max(np.abs(impulse[r, None] * ys), axis=1) <= c * 1.02
+    keep[rows] = inside
+    return keep
 
 
-def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: int = 8) -> Impact:
+def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: int = 8,
+                duration: float | None = None) -> Impact:
     """The root of the exact residual (T_L–κ fixed point at every span) near the screening root
-    ``approx``, by secant steps kept inside ``bracket`` (an interval free of poles)."""
+    ``approx``, by secant steps kept inside ``bracket`` (an interval free of wide poles). Each T_L–κ
+    iteration starts from the last span's T_L (the first from ``duration`` [s] when given)."""
     lo, hi = float(min(bracket)), float(max(bracket))
-    x0, x1 = approx, approx * (1.0 + 1e-6)
-    i0 = impact_at(scene, x0, options)
+    # the first secant step: small against the distance to the nearer pole (a root pinned next to a pole)
+    x0 = approx
+    x1 = approx + min(1e-6 * approx, 1e-3 * (hi - approx), 1e-3 * (approx - lo)) * (1.0 if hi - approx > approx - lo else -1.0)
+    i0 = impact_at(scene, x0, options, duration=duration)
     if i0.problems or not np.isfinite(i0.residual):
         return i0
-    i1 = impact_at(scene, x1, options)
+    i1 = impact_at(scene, x1, options, duration=i0.contact_duration)
     for _ in range(steps):
         if i1.problems or not np.isfinite(i1.residual) or abs(i1.residual) < 1e-10:
             return i1
+        if x1 == x0:
+            break
         slope = (i1.residual - i0.residual) / (x1 - x0)
         if slope == 0:
             break
@@ -385,7 +460,7 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
             i1.problems.append("the exact root left the pole-free interval of the screening root")
             return i1
         x0, i0, x1 = x1, i1, x2
-        i1 = impact_at(scene, x1, options)
+        i1 = impact_at(scene, x1, options, duration=i0.contact_duration)
     if abs(i1.residual) > 1e-8:
         i1.problems.append(f"condition 2 residual {i1.residual:.2g} after refinement")
     return i1
@@ -456,8 +531,17 @@ def constraint_violation(scene: Scene, impact: Impact, options: Options) -> str 
     """None when condition 1 holds for this span; otherwise a message saying where it fails."""
     if impact.impact_velocity <= 0:
         return f"the midspan moves away from the wall when contact starts (V_p = {impact.impact_velocity:.3g} m/s)"
-    x = space_grid(impact.span_length, impact.contact_half_length, options)
     t = time_grid(scene, impact.contact_duration, options)
+    # the midspan alone first (one point instead of the whole span): most violations show there
+    for x in (np.array([0.5 * impact.span_length]), space_grid(impact.span_length, impact.contact_half_length, options)):
+        problem = _excess(scene, impact, options, x, t)
+        if problem:
+            return problem
+    return None
+
+
+def _excess(scene: Scene, impact: Impact, options: Options, x, t) -> str | None:
+    """Where |y| exceeds the clearance on the grid x × t outside the contact (None: nowhere)."""
     p = scene.props
     y = beam.deflection(x, t, impact.span_length, p["bending_stiffness"], p["effective_tension"],
                         p["mass_per_length"], -impact.impulse, impact.contact_duration, scene.period,
@@ -483,6 +567,8 @@ def options_from(inputs: Mapping[str, Any]) -> Options:
         min_span=float(inputs.get("min_span") or defaults.min_span),
         max_span=float(inputs.get("max_span") or defaults.max_span),
         load_shape=inputs.get("load_shape") or defaults.load_shape,
+        resonance_width=float(defaults.resonance_width if inputs.get("resonance_width") is None
+                              else inputs["resonance_width"]),
     )
 
 
@@ -545,15 +631,17 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     screened = midspan_screen(scene, options, search)
     survivors = search.roots[screened]
     candidates, reasons = [], {}
-    for root, bracket in zip(survivors, search.brackets[screened]):
-        impact = refine_root(scene, options, float(root), bracket)
+    durations = search.residual.pulse(survivors)[0] if survivors.size else []
+    for root, bracket, duration in zip(survivors, search.brackets[screened], durations):
+        impact = refine_root(scene, options, float(root), bracket, duration=float(duration))
         problem = "; ".join(impact.problems) or constraint_violation(scene, impact, options)
         if problem is None:
             candidates.append(impact)
         else:
             reasons.setdefault(problem.split(" at ")[0].split(" (")[0], []).append(root)
-    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count} poles in "
-               f"[{options.min_span:.4g}, {options.max_span:.4g}] m; {survivors.size} pass the midspan screen")
+    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count - search.narrow_count} poles "
+               f"in [{options.min_span:.4g}, {options.max_span:.4g}] m ({search.narrow_count} resonances narrower "
+               f"than {options.resonance_width:.2g} L not searched); {survivors.size} pass the midspan screen")
     return SpanChoice(search, survivors, candidates, reasons, summary, options)
 
 
@@ -580,7 +668,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
     options = Options(**{**options.__dict__, "max_span": max_span})
     choice = find_span(scene, options)
     result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
-                         candidate_count=float(len(choice.candidates)))
+                         narrow_count=float(choice.search.narrow_count), candidate_count=float(len(choice.candidates)))
     result.extras.update(closure=scene.closure, impact_pattern=scene.pattern,
                          candidate_spans=[c.span_length for c in choice.candidates])
     if not choice.candidates:

@@ -95,6 +95,7 @@ OUTPUTS = {
     "contact_half_width": ("m", "contact-ellipse semi-axis around the pipe at peak force"),
     "root_count": ("1", "roots of condition 2 (midspan at the wall at contact) in the search range"),
     "pole_count": ("1", "resonant spans (poles of the periodic response) in the search range"),
+    "narrow_count": ("1", "resonances narrower than solver.resonance_width, not searched"),
     "candidate_count": ("1", "spans that satisfy every constraint"),
     "max_deflection": ("m", "largest lateral deflection over the span and the period"),
     "max_bending_stress": ("Pa", "largest bending stress M r_o / I"),

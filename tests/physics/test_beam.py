@@ -468,3 +468,44 @@ def test_state_at_pulse_start_equals_the_full_response_at_t0(pattern):
     start = bm.modal_state_at_pulse_start(omega, 1e-3, 0.2, pattern)
     np.testing.assert_allclose(start.displacement, full.displacement, rtol=1e-12, equal_nan=True)
     np.testing.assert_allclose(start.velocity, full.velocity, rtol=1e-12, atol=1e-15, equal_nan=True)
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+@pytest.mark.parametrize("shape", SHAPES)
+def test_midspan_state_sum_equals_the_modal_sum(pattern, shape):
+    # source: the closed form itself - the compiled midspan sum is sum_n w_n (q_n(0), q'_n(0), -k_n^2 q_n(0))
+    # with w_n = 2 g_n sin(n pi/2)/(M L), g_n from modal_load_factors and q_n from the full periodic response
+    # at t = 0; spans from 3 to 300 m cross thousands of resonances, contact half-lengths reach beta > 0.5.
+    rng = np.random.default_rng(7)
+    span, tl, half = rng.uniform(3, 300, 4000), rng.uniform(1e-4, 3e-3, 4000), rng.uniform(0, 0.3, 4000)
+    modes = np.arange(1, 42, 2.0)
+    ei, tension, mass, tau = 1.1e6, 4e4, 43.0, 0.2
+    y, v, curv = bm.midspan_state_at_pulse_start(span, tl, half, modes, ei, tension, mass, tau, pattern, shape)
+    k = modes * np.pi / span[:, None]
+    omega = np.sqrt((ei * k**4 + tension * k**2) / mass)
+    state = bm.modal_periodic_response(0.0, omega, tl[:, None], tau, pattern)
+    w = 2 * bm.modal_load_factors(modes, span, half, shape) / (mass * span[:, None]) * np.where(modes % 4 == 1, 1, -1)
+    for got, want in [(y, (w * state.displacement).sum(1)), (v, (w * state.velocity).sum(1)),
+                      (curv, -(w * k**2 * state.displacement).sum(1))]:
+        # near a resonance both lose the same few digits: compare against the largest value
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(want).max())
+    # per-span modes: one mode each, as the resonance widths use it
+    one = bm.midspan_state_at_pulse_start(span[:5], tl[:5], half[:5], modes[3:8, None], ei, tension, mass, tau,
+                                          pattern, shape)[0]
+    np.testing.assert_allclose(one, (w * state.displacement)[np.arange(5), np.arange(3, 8)], rtol=1e-9)
+
+
+def test_midspan_state_is_nan_at_resonance_buckling_and_overlong_pulse():
+    # source: modal_periodic_response's NaN rules - exact resonance, a buckled mode, T_L > the (half) period
+    ei, mass, tau = 1.0e6, 40.0, 0.2
+    span_res = np.pi * (ei / mass) ** 0.25 / np.sqrt(2 * np.pi / tau * 3)  # mode 1 at the 3rd harmonic, T = 0
+    args = ([1.0, 3.0, 5.0], ei, 0.0, mass, tau, "one_wall", "point")
+    assert np.isnan(bm.midspan_state_at_pulse_start(span_res, 1e-3, 0.0, *args)[0])
+    assert np.isfinite(bm.midspan_state_at_pulse_start(span_res * 1.001, 1e-3, 0.0, *args)[0])
+    buckled = bm.midspan_state_at_pulse_start(30.0, 1e-3, 0.0, [1.0, 3.0], ei, -2 * ei * (np.pi / 30) ** 2,
+                                              mass, tau, "one_wall", "point")
+    assert np.isnan(buckled[0])
+    assert np.isnan(bm.midspan_state_at_pulse_start(30.0, 0.25, 0.0, *args)[1])  # T_L = 0.25 s > tau
+    assert np.isfinite(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, *args)[1])
+    assert np.isnan(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, [1.0], ei, 0.0, mass, tau, "alternating",
+                                                    "point")[1])  # T_L = 0.15 s > tau/2

@@ -148,10 +148,10 @@ def test_term_verdict_sets_status_only_on_an_ok_point(fixed_span, monkeypatch):
 
 
 def test_solve_paper_example_finds_no_span_like_fast(paper_inputs):
-    # source: fast.solve on the same inputs (same search): no_span, 1023 roots between 27080 poles
-    r = series.solve(paper_inputs)
-    assert r.method == "series" and r.status == "no_span"
-    assert r.values["root_count"] == 1023 and r.values["pole_count"] == 27080
+    # source: fast.solve on the same inputs (the same search): no_span, the same roots between 27080 poles
+    r, f = series.solve(paper_inputs), fast.solve(paper_inputs)
+    assert r.method == "series" and r.status == "no_span" and f.status == "no_span"
+    assert r.values["root_count"] == f.values["root_count"] > 0 and r.values["pole_count"] == 27080
     assert "none satisfies condition 1" in r.message
 
 
