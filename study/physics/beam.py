@@ -362,9 +362,86 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
     return tuple(out[i].reshape(span.shape) for i in range(3))
 
 
+@numba.njit(cache=True, nogil=True)
+def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
+    out = np.empty((t.size, omega.size))
+    p = tau if one_wall else 0.5 * tau
+    a = math.pi / tl
+    # per mode: A = cos φ/(1 − u²), φ = ωT_L/2, κ (C − 1 = ½(−1 + iκ)), and the resonance mask
+    amp = np.empty(omega.size)
+    phi = np.empty(omega.size)
+    kappa = np.empty(omega.size)
+    bad = np.empty(omega.size, dtype=np.bool_)
+    for j in range(omega.size):
+        om = omega[j]
+        x = om * (0.5 if one_wall else 0.25) * tau
+        if one_wall:
+            nu = x / math.pi
+            dist = abs(nu - round(nu))
+        else:
+            nu = 2.0 * x / math.pi
+            dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
+        bad[j] = not math.isfinite(om) or tl > p or dist <= tol * max(1.0, nu)
+        if bad[j]:
+            continue
+        kappa[j] = math.cos(x) / math.sin(x) if one_wall else -math.tan(x)
+        phi[j] = 0.5 * om * tl
+        u = om * tl / math.pi
+        d = 0.5 * (1.0 - u)
+        amp[j] = 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
+    for i in range(t.size):
+        k = math.floor(t[i] / p)
+        tm = t[i] - k * p
+        sign = 1.0 if one_wall or k % 2 == 0 else -1.0
+        for j in range(omega.size):
+            if bad[j]:
+                out[i, j] = math.nan
+                continue
+            om = omega[j]
+            psi = om * tm - phi[j]
+            s, c = math.sin(psi), math.cos(psi)
+            if tm <= tl:  # pulse from rest + echo of the earlier pulses
+                z = 0.5 * (om - a) * tm
+                sinc = 1.0 if z == 0.0 else math.sin(z) / z
+                q = a / (2.0 * om * (om + a)) * (math.sin(om * tm) - om * tm * math.cos(0.5 * (om + a) * tm) * sinc)
+                q += 0.5 * amp[j] / om * (kappa[j] * c - s)
+            else:  # free vibration after the pulse, its echo included
+                q = 0.5 * amp[j] / om * (s + kappa[j] * c)
+            out[i, j] = sign * q
+    return out
+
+
+def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
+    """q(t) of :func:`modal_periodic_response` on the grid t × ω (compiled loop, real arithmetic).
+
+    t [s] of shape (T,), omega_n ω [rad/s] of shape (M,), scalar pulse_duration T_L [s] and period τ
+    [s]; returns shape (T, M). With ψ = ωt_P − φ (t_P the time since the last pulse, φ = ωT_L/2),
+    A = cos φ/(1 − u²) and κ as in :func:`modal_state_at_pulse_start`: after the pulse
+    q = A (sin ψ + κ cos ψ)/(2ω); during it q = q_p + A (κ cos ψ − sin ψ)/(2ω) with q_p the pulse from
+    rest. The per-mode factors are computed once, not per time. NaN where that function is NaN.
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    return _periodic_displacement_kernel(np.ascontiguousarray(np.asarray(t, dtype=float).ravel()),
+                                         np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel()),
+                                         float(pulse_duration), float(period), pattern == "one_wall",
+                                         float(resonance_tol))
+
+
 # --- static beam-column under the unit spread load (closed form) ---------------------------------
 _SERIES_TERMS = 36
 _INV_FACT = np.array([1.0 / factorial(i) for i in range(2 * _SERIES_TERMS + 8)])
+
+
+@numba.njit(cache=True, nogil=True)
+def _stumpff_series(ws, k, inv_fact):
+    """Σ_{j < _SERIES_TERMS} w^j/(2j + k)! by Horner's rule, for each w of the flat array ``ws``."""
+    out = np.empty(ws.size)
+    for i in range(ws.size):
+        acc = 0.0
+        for j in range(_SERIES_TERMS - 1, -1, -1):
+            acc = acc * ws[i] + inv_fact[2 * j + k]
+        out[i] = acc
+    return out
 
 
 def _stumpff(k, w):
@@ -376,10 +453,7 @@ def _stumpff(k, w):
     """
     w = np.asarray(w, dtype=float)
     ser = (w >= -30.0) & (w <= 60.0)
-    ws = np.where(ser, w, 0.0)
-    acc = np.zeros_like(ws)
-    for j in range(_SERIES_TERMS - 1, -1, -1):  # Horner
-        acc = acc * ws + _INV_FACT[2 * j + k]
+    acc = _stumpff_series(np.ascontiguousarray(np.where(ser, w, 0.0).ravel()), k, _INV_FACT).reshape(w.shape)
     wc = np.where(ser, 100.0, w)
     with np.errstate(over="ignore", invalid="ignore"):
         r = np.sqrt(np.abs(wc))
@@ -487,10 +561,26 @@ def static_shear(x, span_length, bending_stiffness, tension, half_length=0.0, sh
 
 
 # --- the periodic field: modal sums with the quasi-static correction ----------------------------
-def _field(x, t, order, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-           pattern, half_length, shape, n_modes, quasi_static, include_tension=False):
-    """Σ_n a_n(t) D^order[sin k_n x] assembled as a matrix product; shape t.shape + x.shape."""
+#: Fields :func:`periodic_fields` evaluates: kind → description [unit].
+FIELD_KINDS = {
+    "deflection": "y [m]",
+    "moment": "bending moment −EI y'' [N m] (sagging positive)",
+    "shear": "section shear −EI y\u2034 [N] (with ``include_tension``: the transverse force −EI y\u2034 + T y')",
+}
+
+
+def periodic_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                    pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True,
+                    include_tension=False) -> dict:
+    """Several fields of the periodic solution at once (:data:`FIELD_KINDS`), sharing the modal
+    amplitudes: {kind: array of shape t.shape + x.shape}. Arguments as :func:`deflection`.
+
+    Each field is Σ_n a_n(t) D^order[sin k_n x] assembled as a matrix product (times × modes) @
+    (modes × x), plus J h(t) times the closed-form static field with ``quasi_static``.
+    """
     _check("pattern", pattern, IMPACT_PATTERNS)
+    for kind in kinds:
+        _check("kind", kind, FIELD_KINDS)
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
     L, ei, tn, m = (float(v) for v in (span_length, bending_stiffness, tension, mass))
     n = np.arange(1, int(n_modes) + 1, 2, dtype=float)  # even modes carry no symmetric load
@@ -498,28 +588,29 @@ def _field(x, t, order, span_length, bending_stiffness, tension, mass, impulse, 
     with np.errstate(invalid="ignore"):
         omega = np.sqrt(np.where(ei * k**4 + tn * k**2 > 0, (ei * k**4 + tn * k**2) / m, np.nan))
     g = modal_load_factors(n, L, half_length, shape)
-    q = modal_periodic_response(t.reshape(-1, 1), omega, pulse_duration, period, pattern).displacement
+    q = periodic_displacement(t.ravel(), omega, pulse_duration, period, pattern)
     h = pulse_train(t.reshape(-1, 1), pulse_duration, period, pattern)
     if quasi_static:
         q = q - h / omega**2
     amp = float(impulse) * g / (0.5 * m * L) * q  # (nt, nmodes) modal coordinates [m]
     kx = np.outer(k, x.ravel())
-    if order == 0:
-        shapes = np.sin(kx)
-    elif order == 2:  # −EI y''
-        shapes = ei * k[:, None] ** 2 * np.sin(kx)
-    else:  # −EI y''' (+ T y')
-        shapes = (ei * k[:, None] ** 3 + (tn * k[:, None] if include_tension else 0.0)) * np.cos(kx)
-    out = amp @ shapes
-    if quasi_static:
-        if order == 0:
-            stat = static_deflection(x.ravel(), L, ei, tn, half_length, shape)
-        elif order == 2:
-            stat = static_moment(x.ravel(), L, ei, tn, half_length, shape)
-        else:
-            stat = static_shear(x.ravel(), L, ei, tn, half_length, shape, include_tension)
-        out = out + float(impulse) * h * stat[None, :]
-    return out.reshape(t.shape + x.shape)
+    kc = k[:, None]
+    if quasi_static:  # the static solution and its derivatives, once for every kind (as static_*)
+        g0, g1, g2, g3 = _static_derivatives(x.ravel(), L, ei, tn, half_length, shape)
+        static = {"deflection": g0, "moment": -ei * g2, "shear": -ei * g3 + (tn * g1 if include_tension else 0.0)}
+    out = {}
+    for kind in kinds:
+        if kind == "deflection":
+            shapes = np.sin(kx)
+        elif kind == "moment":  # −EI y''
+            shapes = ei * kc**2 * np.sin(kx)
+        else:  # −EI y''' (+ T y')
+            shapes = (ei * kc**3 + (tn * kc if include_tension else 0.0)) * np.cos(kx)
+        field = amp @ shapes
+        if quasi_static:
+            field = field + float(impulse) * h * static[kind][None, :]
+        out[kind] = field.reshape(t.shape + x.shape)
+    return out
 
 
 _FIELD_DOC = """
@@ -537,8 +628,8 @@ _FIELD_DOC = """
 
 def deflection(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
                pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True):
-    return _field(x, t, 0, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                  pattern, half_length, shape, n_modes, quasi_static)
+    return periodic_fields(x, t, ["deflection"], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
+                           period, pattern, half_length, shape, n_modes, quasi_static)["deflection"]
 
 
 deflection.__doc__ = "Periodic deflection y(x, t) [m] of the span under the impact train." + _FIELD_DOC
@@ -546,8 +637,8 @@ deflection.__doc__ = "Periodic deflection y(x, t) [m] of the span under the impa
 
 def bending_moment(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
                    pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True):
-    return _field(x, t, 2, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                  pattern, half_length, shape, n_modes, quasi_static)
+    return periodic_fields(x, t, ["moment"], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
+                           period, pattern, half_length, shape, n_modes, quasi_static)["moment"]
 
 
 bending_moment.__doc__ = ("Bending moment M_b = −EI y''(x, t) [N m] (MODEL.md §5, paper eq. 37), sagging "
@@ -557,8 +648,8 @@ bending_moment.__doc__ = ("Bending moment M_b = −EI y''(x, t) [N m] (MODEL.md 
 def shear_force(x, t, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
                 pattern="one_wall", half_length=0.0, shape="point", n_modes=101, quasi_static=True,
                 include_tension=False):
-    return _field(x, t, 3, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                  pattern, half_length, shape, n_modes, quasi_static, include_tension)
+    return periodic_fields(x, t, ["shear"], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
+                           period, pattern, half_length, shape, n_modes, quasi_static, include_tension)["shear"]
 
 
 shear_force.__doc__ = ("Shear force [N] (MODEL.md §5, paper eq. 38): by default the section shear "
@@ -674,13 +765,14 @@ SERIES_KINDS = {
 _SERIES_ORDERS = {0: "deflection", 2: "moment", 3: "shear", 4: "bending_load"}
 
 
-def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                 pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
-                 resonance_tol=1e-15):
+def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                  pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
+                  resonance_tol=1e-15):
     """The paper's double Fourier series of the periodic field (paper eq. 25, 36; MODEL.md §4, §9 "series").
 
-    kind: one of :data:`SERIES_KINDS` — "deflection" y [m], "velocity" ẏ [m/s], "acceleration" ÿ
-    [m/s²], "d2" y'' [1/m], "d4" y'''' [1/m³], "moment" −EI y'' [N m], "shear" −EI y''' [N],
+    kinds: names of :data:`SERIES_KINDS` (or the integer orders 0, 2, 3, 4); returns {kind: field}, the
+    time factors e^{imΩt} computed once for all kinds. Each kind: "deflection" y [m], "velocity" ẏ
+    [m/s], "acceleration" ÿ [m/s²], "d2" y'' [1/m], "d4" y'''' [1/m³], "moment" −EI y'' [N m], "shear" −EI y''' [N],
     "bending_load" EI y'''' [N/m]; or the integer ``order`` 0, 2, 3, 4 for deflection, moment,
     shear, bending_load. x [m] (0 ≤ x ≤ L), t [s] (any real); the result has shape t.shape + x.shape.
     Scalars and load as :func:`deflection`; n_modes: highest mode number N (odd n ≤ N); harmonics:
@@ -700,9 +792,9 @@ def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impu
     midspan under a point load and shear does not converge there (the paper's "doubtful accuracy").
     NaN at resonance or buckling of any kept mode (as :func:`deflection`).
     """
-    if not isinstance(kind, str):
-        kind = _SERIES_ORDERS.get(kind, kind)
-    _check("kind", kind, SERIES_KINDS)
+    kinds = [_SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind for kind in kinds]
+    for kind in kinds:
+        _check("kind", kind, SERIES_KINDS)
     _check("pattern", pattern, IMPACT_PATTERNS)
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
     L, ei, tn, mm, tl, tau = (float(v) for v in (span_length, bending_stiffness, tension, mass, pulse_duration, period))
@@ -714,41 +806,51 @@ def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impu
     amp = float(impulse) * modal_load_factors(n, L, half_length, shape) / (0.5 * mm * L)
     amp = np.where(bad, np.nan, amp)
     oms = np.where(bad, 1.0, omega)
-    # spatial shapes (modes × x)
     kx = np.outer(k, x.ravel())
     kc = k[:, None]
-    if kind in ("deflection", "velocity", "acceleration"):
-        s = np.sin(kx)
-    elif kind == "d2":
-        s = -kc**2 * np.sin(kx)
-    elif kind == "d4":
-        s = kc**4 * np.sin(kx)
-    elif kind == "moment":
-        s = ei * kc**2 * np.sin(kx)
-    elif kind == "shear":
-        s = ei * kc**3 * np.cos(kx)
-    else:  # bending_load
-        s = ei * kc**4 * np.sin(kx)
-    # harmonic coefficients (harmonics × modes)
     m = _harmonic_numbers(harmonics, pattern)
     wm = m * (2.0 * np.pi / tau)
-    c = _train_coefficients(m, tl, tau, pattern)
-    if kind == "velocity":
-        c = c * 1j * wm
-    elif kind == "acceleration":
-        c = c * -(wm**2)
-    ws = np.empty((m.size, x.size), dtype=complex)  # W S (harmonics × x), W in chunks of harmonics
+    c0 = _train_coefficients(m, tl, tau, pattern)
     hstep = max(1, _SERIES_CHUNK // max(1, n.size))
-    for i in range(0, m.size, hstep):
-        h = slice(i, i + hstep)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w = c[h, None] * amp[None, :] / (oms[None, :] ** 2 - wm[h, None] ** 2)
-        ws[h] = w.real @ s + 1j * (w.imag @ s)
+    ws = {}  # per kind: W S (harmonics × x), W in chunks of harmonics
+    for kind in kinds:
+        # spatial shapes (modes × x)
+        if kind in ("deflection", "velocity", "acceleration"):
+            s = np.sin(kx)
+        elif kind == "d2":
+            s = -kc**2 * np.sin(kx)
+        elif kind == "d4":
+            s = kc**4 * np.sin(kx)
+        elif kind == "moment":
+            s = ei * kc**2 * np.sin(kx)
+        elif kind == "shear":
+            s = ei * kc**3 * np.cos(kx)
+        else:  # bending_load
+            s = ei * kc**4 * np.sin(kx)
+        # harmonic coefficients (harmonics × modes)
+        c = c0 * 1j * wm if kind == "velocity" else c0 * -(wm**2) if kind == "acceleration" else c0
+        ws[kind] = np.empty((m.size, x.size), dtype=complex)
+        for i in range(0, m.size, hstep):
+            h = slice(i, i + hstep)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w = c[h, None] * amp[None, :] / (oms[None, :] ** 2 - wm[h, None] ** 2)
+            ws[kind][h] = w.real @ s + 1j * (w.imag @ s)
     tf = t.ravel()
     tm = tf - np.floor(tf / tau) * tau
-    out = np.empty((tf.size, x.size))
+    out = {kind: np.empty((tf.size, x.size)) for kind in kinds}
     step = max(1, _SERIES_CHUNK // max(1, m.size))
     for i in range(0, tf.size, step):
-        e = np.exp(1j * np.outer(tm[i:i + step], wm))
-        out[i:i + step] = (e @ ws).real
-    return out.reshape(t.shape + x.shape)
+        e = np.exp(1j * np.outer(tm[i:i + step], wm))  # e^{imΩt}, once for every kind
+        for kind in kinds:
+            out[kind][i:i + step] = (e @ ws[kind]).real
+    return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
+
+
+def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
+                 pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
+                 resonance_tol=1e-15):
+    """One field of :func:`series_fields` (``kind`` a name of :data:`SERIES_KINDS` or the integer order
+    0, 2, 3, 4); arguments and units as there."""
+    kind = _SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind
+    return series_fields(x, t, [kind], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
+                         period, pattern, half_length, shape, n_modes, harmonics, resonance_tol)[kind]

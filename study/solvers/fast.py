@@ -27,8 +27,8 @@ def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str
     args = (impact.span_length, p["bending_stiffness"], p["effective_tension"], p["mass_per_length"],
             -impact.impulse, impact.contact_duration, scene.period, scene.pattern,
             impact.contact_half_length, options.load_shape, options.modes)
-    return periodic.stresses_from_fields(scene, inputs, x, t, beam.deflection(x, t, *args),
-                                         beam.bending_moment(x, t, *args), beam.shear_force(x, t, *args))
+    f = beam.periodic_fields(x, t, ["deflection", "moment", "shear"], *args)
+    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
 
 
 def finish(scene: periodic.Scene, chosen: periodic.Impact, inputs: Mapping[str, Any],

@@ -509,3 +509,19 @@ def test_midspan_state_is_nan_at_resonance_buckling_and_overlong_pulse():
     assert np.isfinite(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, *args)[1])
     assert np.isnan(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, [1.0], ei, 0.0, mass, tau, "alternating",
                                                     "point")[1])  # T_L = 0.15 s > tau/2
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+@pytest.mark.parametrize("tl", [1e-3, 0.03])
+def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
+    # source: the closed form itself (modal_periodic_response, tested against the ODE and the Fourier
+    # series above) - the compiled grid version rearranges it into per-mode factors times sin/cos of the
+    # phase; times over several periods, before and after t = 0, frequencies across seven decades.
+    t = np.linspace(-0.3, 0.5, 1601)
+    omega = np.geomspace(0.5, 5e4, 250)
+    got = bm.periodic_displacement(t, omega, tl, 0.2, pattern)
+    want = bm.modal_periodic_response(t[:, None], omega, tl, 0.2, pattern).displacement
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * np.abs(want).max())
+    resonant = np.array([2 * np.pi / 0.2 * 3, 40.0])  # the third harmonic: resonant for both patterns
+    assert np.isnan(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 0]).all()
+    assert np.isfinite(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 1]).all()
