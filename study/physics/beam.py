@@ -285,6 +285,27 @@ def _shape_factor(beta, code):
 
 
 @numba.njit(cache=True, nogil=True)
+def _echo_factors(om, tl, period, one_wall, tol):
+    """(bad, κ, φ, A) of one mode for the compiled kernels: the resonance/overlong-pulse mask (as
+    :func:`resonance_distance`), κ with C − 1 = ½(−1 + iκ) (cot(ωτ/2) or −tan(ωτ/4)), φ = ωT_L/2 and
+    A = cos φ/(1 − u²) = (π/2) sinc((1 − u)/2)/(1 + u), u = ωT_L/π (regular at u = 1)."""
+    x = om * (0.5 if one_wall else 0.25) * period  # ωτ/2 (one_wall) or ωτ/4 (alternating)
+    if one_wall:
+        nu = x / math.pi
+        dist = abs(nu - round(nu))
+    else:
+        nu = 2.0 * x / math.pi
+        dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
+    if not math.isfinite(om) or tl > (period if one_wall else 0.5 * period) or dist <= tol * max(1.0, nu):
+        return True, 0.0, 0.0, 0.0
+    kappa = math.cos(x) / math.sin(x) if one_wall else -math.tan(x)
+    u = om * tl / math.pi
+    d = 0.5 * (1.0 - u)
+    amp = 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
+    return False, kappa, 0.5 * om * tl, amp
+
+
+@numba.njit(cache=True, nogil=True)
 def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, period, one_wall, code, tol):
     out = np.empty((3, spans.size))
     per_span = modes.shape[0] > 1
@@ -299,26 +320,14 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
             k = n * math.pi / span
             k2 = k * k
             om2 = (ei * k2 * k2 + tension * k2) / mass
-            p = period if one_wall else 0.5 * period
-            if not om2 > 0.0 or tl > p:
+            if not om2 > 0.0:
                 y = v = curv = math.nan
                 break
             om = math.sqrt(om2)
-            x = om * (0.5 if one_wall else 0.25) * period  # ωτ/2 (one_wall) or ωτ/4 (alternating)
-            if one_wall:
-                nu = x / math.pi
-                dist = abs(nu - round(nu))
-            else:
-                nu = 2.0 * x / math.pi
-                dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
-            if dist <= tol * max(1.0, nu):
+            bad, kappa, phi, amp = _echo_factors(om, tl, period, one_wall, tol)
+            if bad:
                 y = v = curv = math.nan
                 break
-            kappa = math.cos(x) / math.sin(x) if one_wall else -math.tan(x)
-            phi = 0.5 * om * tl
-            u = om * tl / math.pi
-            d = 0.5 * (1.0 - u)  # (π/2) sinc((1 − u)/2)/(1 + u), regular at u = 1
-            amp = 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
             q = amp * (kappa * math.cos(phi) + math.sin(phi)) / (2.0 * om)
             qd = 0.5 * amp * (kappa * math.sin(phi) - math.cos(phi))
             weight = 2.0 * _shape_factor(k * half, code) / (mass * span)
@@ -373,22 +382,7 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
     kappa = np.empty(omega.size)
     bad = np.empty(omega.size, dtype=np.bool_)
     for j in range(omega.size):
-        om = omega[j]
-        x = om * (0.5 if one_wall else 0.25) * tau
-        if one_wall:
-            nu = x / math.pi
-            dist = abs(nu - round(nu))
-        else:
-            nu = 2.0 * x / math.pi
-            dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
-        bad[j] = not math.isfinite(om) or tl > p or dist <= tol * max(1.0, nu)
-        if bad[j]:
-            continue
-        kappa[j] = math.cos(x) / math.sin(x) if one_wall else -math.tan(x)
-        phi[j] = 0.5 * om * tl
-        u = om * tl / math.pi
-        d = 0.5 * (1.0 - u)
-        amp[j] = 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
+        bad[j], kappa[j], phi[j], amp[j] = _echo_factors(omega[j], tl, tau, one_wall, tol)
     for i in range(t.size):
         k = math.floor(t[i] / p)
         tm = t[i] - k * p
