@@ -457,7 +457,7 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
             break
         x2 = x1 - i1.residual / slope
         if not lo <= x2 <= hi:
-            i1.problems.append("the exact root left the pole-free interval of the screening root")
+            i1.problems.append("the exact root left the interval between the searched poles around the screening root")
             return i1
         x0, i0, x1 = x1, i1, x2
         i1 = impact_at(scene, x1, options, duration=i0.contact_duration)
