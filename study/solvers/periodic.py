@@ -172,7 +172,7 @@ class Impact:
 
 
 def impact_at(scene: Scene, span_length: float, options: Options, max_iterations: int = 60,
-              duration: float | None = None) -> Impact:
+              duration: float | None = None, half_length: float = 0.0) -> Impact:
     """Solve the T_L–κ fixed point at one span and return the impact with the closure residual.
 
     The pulse duration T_L sets the solution, whose contact curvature κ = −y''(L/2, 0), impact velocity
@@ -180,7 +180,8 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
     steps on map(T_L) − T_L, with a relaxed fixed-point step (halved whenever it overshoots) wherever a
     secant step is not usable; converged when the map moves T_L by less than
     ``options.fixed_point_tol`` (relative). ``duration``: the starting T_L [s] (default: that of the
-    assumed mode y = c sin(πx/L) hitting at V_p = Ω c).
+    assumed mode y = c sin(πx/L) hitting at V_p = Ω c); ``half_length``: the starting contact
+    half-length b [m] (default 0, a point load), iterated with T_L.
     """
     c, e = scene.clearance, scene.restitution
     m_e = float(section.equivalent_mass(scene.props["mass_per_length"], span_length))
@@ -196,7 +197,8 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
     velocity = scene.rotary_speed * c
     start, stiffness = duration_for(c * (np.pi / span_length) ** 2, velocity)
     duration = start if duration is None or not 0 < duration < longest else float(duration)
-    half_length, relaxation, last_step, converged = 0.0, 1.0, 0.0, False
+    half_length = min(max(float(half_length), 0.0), 0.45 * span_length)
+    relaxation, last_step, converged = 1.0, 0.0, False
     previous = None  # (T_L, map(T_L) - T_L) of the last iterate, for the secant
     for iteration in range(1, max_iterations + 1):
         if not duration < longest:
@@ -435,18 +437,19 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
 
 
 def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: int = 8,
-                duration: float | None = None) -> Impact:
+                duration: float | None = None, half_length: float = 0.0) -> Impact:
     """The root of the exact residual (T_L–κ fixed point at every span) near the screening root
     ``approx``, by secant steps kept inside ``bracket`` (an interval free of wide poles). Each T_L–κ
-    iteration starts from the last span's T_L (the first from ``duration`` [s] when given)."""
+    iteration starts from the last span's T_L and contact half-length (the first from ``duration`` [s]
+    and ``half_length`` [m] when given)."""
     lo, hi = float(min(bracket)), float(max(bracket))
     # the first secant step: small against the distance to the nearer pole (a root pinned next to a pole)
     x0 = approx
     x1 = approx + min(1e-6 * approx, 1e-3 * (hi - approx), 1e-3 * (approx - lo)) * (1.0 if hi - approx > approx - lo else -1.0)
-    i0 = impact_at(scene, x0, options, duration=duration)
+    i0 = impact_at(scene, x0, options, duration=duration, half_length=half_length)
     if i0.problems or not np.isfinite(i0.residual):
         return i0
-    i1 = impact_at(scene, x1, options, duration=i0.contact_duration)
+    i1 = impact_at(scene, x1, options, duration=i0.contact_duration, half_length=i0.contact_half_length)
     for _ in range(steps):
         if i1.problems or not np.isfinite(i1.residual) or abs(i1.residual) < 1e-10:
             return i1
@@ -460,7 +463,7 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
             i1.problems.append("the exact root left the interval between the searched poles around the screening root")
             return i1
         x0, i0, x1 = x1, i1, x2
-        i1 = impact_at(scene, x1, options, duration=i0.contact_duration)
+        i1 = impact_at(scene, x1, options, duration=i0.contact_duration, half_length=i0.contact_half_length)
     if abs(i1.residual) > 1e-8:
         i1.problems.append(f"condition 2 residual {i1.residual:.2g} after refinement")
     return i1
@@ -631,9 +634,9 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     screened = midspan_screen(scene, options, search)
     survivors = search.roots[screened]
     candidates, reasons = [], {}
-    durations = search.residual.pulse(survivors)[0] if survivors.size else []
-    for root, bracket, duration in zip(survivors, search.brackets[screened], durations):
-        impact = refine_root(scene, options, float(root), bracket, duration=float(duration))
+    durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
+    for root, bracket, duration, half in zip(survivors, search.brackets[screened], durations, halves):
+        impact = refine_root(scene, options, float(root), bracket, duration=float(duration), half_length=float(half))
         problem = "; ".join(impact.problems) or constraint_violation(scene, impact, options)
         if problem is None:
             candidates.append(impact)
