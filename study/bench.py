@@ -13,6 +13,7 @@ import resource
 import statistics
 import tempfile
 import time
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -61,9 +62,7 @@ def bench_span_search(study, count: int = 24, full_count: int = 6) -> tuple[list
         result = solve_point(point)
         timed.append((time.perf_counter() - start, result))
     seconds = np.array([t for t, _ in timed])
-    statuses = {}
-    for _, r in timed:
-        statuses[r.status] = statuses.get(r.status, 0) + 1
+    statuses = Counter(r.status for _, r in timed)
     full = []
     for point in points[:full_count]:
         start = time.perf_counter()

@@ -233,34 +233,23 @@ def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wal
     """State (q(0), q̇(0)) of the steady periodic response at the start of a pulse, closed form.
 
     The same values as :func:`modal_periodic_response` at t = 0, where the pulse-from-rest part is
-    zero and only the echo of the earlier pulses remains, q = Im[H(ω)(C − 1)]/ω, q̇ = Re[H(ω)(C − 1)],
-    written in real arithmetic: with φ = ωT_L/2, H = A e^{−iφ}, A = cos φ/(1 − u²) (u = ωT_L/π, as
-    :func:`pulse_spectrum`) and C − 1 = ½(−1 + iκ), κ = cot(ωτ/2) (one_wall) or −tan(ωτ/4)
-    (alternating),
+    zero and only the echo of the earlier pulses remains, q = Im[H(ω)(C − 1)]/ω, q̇ = Re[H(ω)(C − 1)].
+    In real arithmetic (the form the compiled kernels use, :func:`_echo_factors`): with φ = ωT_L/2,
+    H = A e^{−iφ}, A = cos φ/(1 − u²) (u = ωT_L/π, as :func:`pulse_spectrum`) and C − 1 = ½(−1 + iκ),
+    κ = cot(ωτ/2) (one_wall) or −tan(ωτ/4) (alternating),
 
         q(0) = A (κ cos φ + sin φ)/(2ω),   q̇(0) = A (κ sin φ − cos φ)/2.
 
-    The span search evaluates it for 10⁵ spans × modes at once. Arguments and units as
-    :func:`modal_periodic_response`; NaN where it is NaN.
+    Arguments and units as :func:`modal_periodic_response`; NaN where it is NaN. The span search
+    sums it over modes with :func:`midspan_state_at_pulse_start`.
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
-    om = np.asarray(omega_n, dtype=float)
-    tl, tau = np.asarray(pulse_duration, dtype=float), np.asarray(period, dtype=float)
-    one_wall = pattern == "one_wall"
+    tl = np.asarray(pulse_duration, dtype=float)
+    bad, oms, c_minus_one = _echo(np.asarray(omega_n, dtype=float), tl, np.asarray(period, dtype=float),
+                                  pattern, resonance_tol)
     with np.errstate(divide="ignore", invalid="ignore"):
-        x = om * (0.5 if one_wall else 0.25) * tau  # ωτ/2 or ωτ/4
-        # distance to the resonance in harmonics of 2π/τ, as resonance_distance (x/π = ν or ν/2)
-        nu = x * (1.0 / np.pi) if one_wall else x * (2.0 / np.pi)
-        dist = np.abs(nu - np.round(nu)) if one_wall else np.abs(nu - (2.0 * np.round(0.5 * (nu - 1.0)) + 1.0))
-        bad = (dist <= resonance_tol * np.maximum(1.0, nu)) | (tl > (tau if one_wall else 0.5 * tau)) | ~np.isfinite(om)
-        kappa = np.cos(x) / np.sin(x) if one_wall else -np.tan(x)
-        phi = 0.5 * om * tl
-        u = om * tl / np.pi
-        amp = 0.5 * np.pi * np.sinc(0.5 * (1.0 - u)) / (1.0 + u)  # A, regular at u = 1
-        cos_phi, sin_phi = np.cos(phi), np.sin(phi)
-        q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-        v = 0.5 * amp * (kappa * sin_phi - cos_phi)
-    return ModalResponse(np.where(bad, np.nan, q), np.where(bad, np.nan, v))
+        free = pulse_spectrum(oms, tl) * c_minus_one
+    return ModalResponse(np.where(bad, np.nan, free.imag / oms), np.where(bad, np.nan, free.real))
 
 
 #: Load shapes as the integer codes of :func:`_midspan_state_kernel`.
@@ -845,6 +834,6 @@ def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impu
                  resonance_tol=1e-15):
     """One field of :func:`series_fields` (``kind`` a name of :data:`SERIES_KINDS` or the integer order
     0, 2, 3, 4); arguments and units as there."""
-    kind = _SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind
+    kind = _SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind  # the key of the result
     return series_fields(x, t, [kind], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
                          period, pattern, half_length, shape, n_modes, harmonics, resonance_tol)[kind]

@@ -90,6 +90,29 @@ def make_scene(inputs: Mapping[str, Any]) -> Scene:
                  closure=inputs.get("closure", "prescribed"))
 
 
+def given_span(inputs: Mapping[str, Any], result: PointResult, start: float, method: str,
+               buckled: str) -> float | None:
+    """The span of a method that is given one (``solver.span_length``) rather than searching for it.
+
+    Returns the span [m], or None after recording on ``result`` the status ``incomplete`` (no span
+    given) or ``buckled`` (``buckled``: the message, formatted with ``tension`` [N] and ``span`` [m]),
+    with its wall time since ``start``. ``method``: how the messages name the method.
+    """
+    span = inputs.get("span_length")
+    if span is None:
+        result.status = "incomplete"
+        result.message = f"{method} needs a span (solver.span_length): it does not search for one"
+    else:
+        props = make_scene(inputs).props
+        if not section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
+            return float(span)
+        result.status = "buckled"
+        result.values["span_length"] = float(span)
+        result.message = buckled.format(tension=props["effective_tension"], span=float(span))
+    result.wall_time = time.perf_counter() - start
+    return None
+
+
 def odd_modes(n_modes: int) -> np.ndarray:
     """Mode numbers 1, 3, 5, … ≤ n_modes (a symmetric load excites no even mode)."""
     return np.arange(1, int(n_modes) + 1, 2, dtype=float)

@@ -54,7 +54,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, oscillator, section
-from study.solvers.periodic import make_scene, natural_frequencies
+from study.solvers.periodic import given_span, make_scene, natural_frequencies
 from study.solvers.result import PointResult, choice_input
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
@@ -271,20 +271,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """
     start = time.perf_counter()
     result = PointResult(method="sdof")
-    span = inputs.get("span_length")
-    if span is None:
-        result.status = "incomplete"
-        result.message = "the sdof screen needs a span (solver.span_length): it does not search for one"
-        result.wall_time = time.perf_counter() - start
-        return result
-    scene = make_scene(inputs)
-    props = scene.props
-    if section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
-        result.status = "buckled"
-        result.values["span_length"] = float(span)
-        result.message = (f"effective tension {props['effective_tension']:.4g} N is at or below the Euler load of "
-                          f"the {float(span):.4g} m span: no first mode to reduce to")
-        result.wall_time = time.perf_counter() - start
+    if given_span(inputs, result, start, "the sdof screen", "effective tension {tension:.4g} N is at or below "
+                  "the Euler load of the {span:.4g} m span: no first mode to reduce to") is None:
         return result
     par = equivalent_parameters(inputs)
     p = impact_params(par)

@@ -66,7 +66,7 @@ import numpy as np
 
 from study.physics import hertz, oscillator, section
 from study.solvers import sdof
-from study.solvers.periodic import make_scene
+from study.solvers.periodic import given_span
 from study.solvers.result import PointResult, choice_input
 
 METHOD = "time-domain"
@@ -496,18 +496,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """
     start = time.perf_counter()
     result = PointResult(method=METHOD)
-    span = inputs.get("span_length")
-    if span is None:
-        result.status = "incomplete"
-        result.message = "the time-domain method needs a span (solver.span_length): it does not search for one"
-        result.wall_time = time.perf_counter() - start
-        return result
-    props = make_scene(inputs).props
-    if section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
-        result.status = "buckled"
-        result.values["span_length"] = float(span)
-        result.message = f"effective tension {props['effective_tension']:.4g} N buckles the {float(span):.4g} m span"
-        result.wall_time = time.perf_counter() - start
+    if given_span(inputs, result, start, "the time-domain method",
+                  "effective tension {tension:.4g} N buckles the {span:.4g} m span") is None:
         return result
     run = simulate(inputs)
     model = run["model"]

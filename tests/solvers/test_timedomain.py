@@ -8,6 +8,7 @@ import pytest
 from study import config
 from study.physics import hertz, oscillator
 from study.solvers import sdof
+from study.solvers.periodic import make_scene
 from study.solvers import timedomain as td
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,7 @@ def test_single_elastic_impact_is_the_hertz_impact_of_the_modal_mass(point, inte
     # impact (paper eq. 8-12) of the mass M L/2 at v0, up to the spring force k c (< 1e-4 of the peak
     # at the default 105 m span).
     run, model = _single_impact(point, integrator)
-    assert model.mass == pytest.approx(td.make_scene(point).props["mass_per_length"] * point["span_length"] / 2)
+    assert model.mass == pytest.approx(make_scene(point).props["mass_per_length"] * point["span_length"] / 2)
     ref = hertz.hertz_impact(model.mass, 1.0, model.stiffness)
     first = run["impacts"][0]
     assert first["approach"] == pytest.approx(1.0, rel=1e-6)
