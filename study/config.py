@@ -131,7 +131,7 @@ FIELDS: tuple[Field, ...] = (
     Field("solver.series_max_harmonics", "series_max_harmonics", "cap on the series method's harmonics", "",
           default=25_600, integer=True, lower=1.0),
     Field("solver.time_integrator", "time_integrator", "integrator of the time-domain method", None,
-          default="explicit", choices=("explicit", "implicit")),
+          default="auto", choices=("auto", "event", "explicit", "implicit")),
     Field("solver.time_modes", "time_modes", "modes of the time-domain model", "", default=5, integer=True,
           lower=1.0),
     Field("solver.time_revolutions", "time_revolutions", "most revolutions the time-domain method integrates",

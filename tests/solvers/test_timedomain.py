@@ -29,7 +29,7 @@ def _single_impact(point, integrator, v0=1.0, e=1.0, **kw):
     return run, run["model"]
 
 
-@pytest.mark.parametrize("integrator,tol", [("explicit", 0.01), ("implicit", 0.005)])
+@pytest.mark.parametrize("integrator,tol", [("event", 0.001), ("explicit", 0.01), ("implicit", 0.005)])
 def test_single_elastic_impact_is_the_hertz_impact_of_the_modal_mass(point, integrator, tol):
     # y = q1 sin(pi x/L): midspan deflection = q1; kinetic energy (1/2) M int ydot^2 dx = (1/2)(M L/2) q1dot^2;
     # a point force F at midspan does work F dq1. So (M L/2) q1'' + k q1 = -K (q1 - c)^(3/2): the Hertz
@@ -45,7 +45,7 @@ def test_single_elastic_impact_is_the_hertz_impact_of_the_modal_mass(point, inte
     assert first["rebound"] == pytest.approx(1.0, rel=tol)
 
 
-@pytest.mark.parametrize("integrator,tol", [("explicit", 2e-3), ("implicit", 1e-4)])
+@pytest.mark.parametrize("integrator,tol", [("event", 1e-5), ("explicit", 2e-3), ("implicit", 1e-4)])
 def test_energy_is_conserved_over_elastic_impacts(point, integrator, tol):
     inputs = {**point, "span_length": 10.0, "time_modes": 3, "time_damping": "none", "drive_amplitude": 0.0,
               "restitution": 1.0, "time_revolutions": 2, "time_check_periodic": False,
@@ -85,6 +85,7 @@ def _driven(point, **kw):
 def test_explicit_step_above_the_contact_limit_fails(point):
     inputs = _driven(point, time_revolutions=3, time_check_periodic=False)
     lim = td.stability_limit(td.build_model(inputs), point["rotary_speed"] * 0.053975)["step_limit"]
+    inputs["time_integrator"] = "explicit"
     bad = td.solve({**inputs, "time_step": 3 * lim})
     assert bad.status == "failed" and td.STEP_FAILURE in bad.message
     ok = td.simulate({**inputs, "time_step": 0.1 * lim})
@@ -117,8 +118,42 @@ def test_without_span_is_incomplete(point):
     assert r.status == "incomplete" and r.method == "time-domain"
 
 
-def test_benchmark_reports_all_three(point):
-    out = td.benchmark(_driven(point), revolutions=1)
-    assert set(out) == {"explicit", "implicit", "penalty_rk45"}
-    assert all(o["wall_time"] > 0 for o in out.values())
-    assert out["explicit"]["impacts"] == out["implicit"]["impacts"] >= 1
+def test_event_driven_matches_converged_implicit_with_modes_and_contact_points(point):
+    # three modes, contact at midspan and at the quarter points, mud damping and drive: the event-driven
+    # run (exact flights, RK4 through contact) against LSODA at rtol 1e-11 on the same model
+    inputs = _driven(point, time_modes=3, contact_points=(0.25, 0.5, 0.75), time_revolutions=3,
+                     time_check_periodic=False)
+    ev = td.simulate({**inputs, "time_integrator": "event", "contact_steps": 800})
+    ref = td.simulate({**inputs, "time_integrator": "implicit", "time_rtol": 1e-11, "time_atol": 1e-13})
+    assert ev["verdict"] == ref["verdict"] == "not_periodic"
+    # the quarter points move together (only the symmetric modes are driven): order simultaneous onsets
+    ev_imp, ref_imp = (sorted(r["impacts"], key=lambda i: (round(i["start"], 6), i["point"])) for r in (ev, ref))
+    assert [r["point"] for r in ev_imp] == [r["point"] for r in ref_imp]
+    assert len(ev_imp) >= 6 and {r["point"] for r in ev_imp} == {0, 1, 2}
+    m = ev["model"]
+    scale = np.r_[np.full(3, m.clearance), np.full(3, m.rotary_speed * m.clearance)]
+    assert np.max(np.abs(np.concatenate(ev["final_state"]) - np.concatenate(ref["final_state"])) / scale) < 1e-5
+    for a, b in zip(ev_imp, ref_imp):
+        # measured at 800 RK4 steps per contact: 5e-9 s, 4e-7, 3e-7 (1.5e-7 s, 1.3e-5, 1e-5 at 200)
+        assert a["start"] == pytest.approx(b["start"], abs=2e-8)
+        assert a["approach"] == pytest.approx(b["approach"], rel=2e-6)
+        assert a["rebound"] == pytest.approx(b["rebound"], rel=2e-6)
+
+
+@pytest.mark.parametrize("damping,expected", [("linearised", "event"), ("none", "event"), ("drag", "explicit")])
+def test_auto_integrator_is_event_driven_unless_drag(point, damping, expected):
+    run = td.simulate(_driven(point, time_damping=damping, time_revolutions=1, time_check_periodic=False))
+    assert run["integrator"] == expected and run["verdict"] == "not_periodic"
+    forced = td.simulate(_driven(point, time_damping="drag", time_integrator="event", time_revolutions=1))
+    assert forced["verdict"] == "failed" and "linear damping" in forced["failure"]
+
+
+def test_benchmark_compares_errors_against_each_models_converged_run(point):
+    rows = td.benchmark(_driven(point), revolutions=1, repeat=1, contact_steps=(25, 400), penalty_rtols=(1e-4,))
+    names = [r["name"] for r in rows]
+    assert names == ["event", "event", "explicit", "implicit", "penalty_rk45"]
+    assert all(r["wall_time"] > 0 and r["error"] >= 0 for r in rows)
+    assert rows[1]["error"] < rows[0]["error"]  # more RK4 steps per contact, smaller error
+    assert rows[0]["impacts"] == rows[2]["impacts"] == rows[3]["impacts"] >= 1
+    (ref, best, ratio), = td.equal_accuracy_speedups(rows)
+    assert best is None or (best["error"] <= ref["error"] and ratio == ref["wall_time"] / best["wall_time"])
