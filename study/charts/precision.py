@@ -30,3 +30,46 @@ def work_precision_chart(rows, case: str) -> Figure:
         ax.legend(fontsize=8)
     figure.suptitle("Work and precision of the periodic methods\n" + case, fontsize=9)
     return figure
+
+
+TIME_DOMAIN_STYLE = {"event": ("o", "C0"), "explicit": ("s", "C1"), "implicit": ("D", "C2"),
+                     "penalty_rk45": ("^", "C3")}
+
+
+def time_domain_chart(work_rows, stability_rows, case: str) -> Figure:
+    """The time-domain integrators: cost against error, and error against step (failures marked ×).
+
+    work_rows: :func:`study.solvers.timedomain.benchmark` rows (name, setting, wall_time [s], error);
+    stability_rows: :func:`study.solvers.timedomain.step_stability` rows (name, step_ratio, error, NaN
+    when failed); case: a one-line description for the title.
+    """
+    figure = Figure(figsize=(9.0, 4.2), dpi=150, layout="constrained")
+    work, steps = figure.subplots(1, 2)
+    for name in dict.fromkeys(r["name"] for r in work_rows):
+        mine = [r for r in work_rows if r["name"] == name]
+        marker, colour = TIME_DOMAIN_STYLE.get(name, ("v", "C4"))
+        label = name + (" (linear penalty model)" if name == "penalty_rk45" else "")
+        work.loglog([r["wall_time"] * 1e3 for r in mine], [max(r["error"], 1e-16) for r in mine], marker=marker,
+                    color=colour, label=label)
+    work.set_xlabel("time for the run [ms]")
+    work.set_ylabel("error of the final modal state [-]")
+    work.set_title("work and precision", fontsize=9)
+    for name in dict.fromkeys(r["name"] for r in stability_rows):
+        mine = [r for r in stability_rows if r["name"] == name]
+        marker, colour = TIME_DOMAIN_STYLE.get(name, ("v", "C4"))
+        ok = [r for r in mine if r["error"] == r["error"]]
+        steps.loglog([r["step_ratio"] for r in ok], [max(r["error"], 1e-16) for r in ok], marker=marker, color=colour,
+                     label=name + (" (RK4 contact step)" if name == "event" else " (Verlet step)"))
+        failed = [r for r in mine if r["error"] != r["error"]]
+        if failed:
+            steps.scatter([r["step_ratio"] for r in failed], [1.0] * len(failed), marker="x", color=colour, s=50,
+                          label=f"{name}: failed (blow-up detected)")
+    steps.axvline(1.0, color="0.4", lw=0.8, ls="--")
+    steps.set_xlabel("step / explicit limit 2/ω_max [-]")
+    steps.set_ylabel("error of the final modal state [-]")
+    steps.set_title("stability against the contact stiffness", fontsize=9)
+    for ax in (work, steps):
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    figure.suptitle("Time-domain integrators\n" + case, fontsize=9)
+    return figure

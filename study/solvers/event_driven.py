@@ -223,6 +223,24 @@ def _velocity_root(R, Rd, Y, Yd, w0, lam, Om, ts, p, sg, a, b):
 
 
 @numba.njit(cache=True, nogil=True)
+def _record(ev_kind, ev_p, ev_t, ev_v, ev_peak, n, kind, p, t, v, f):
+    """Store event n; returns n + 1, or -1 when the arrays are full."""
+    if n >= ev_kind.size:
+        return -1
+    ev_kind[n], ev_p[n], ev_t[n], ev_v[n], ev_peak[n] = kind, p, t, v, f
+    return n + 1
+
+
+@numba.njit(cache=True, nogil=True)
+def _onset(active, chi, peak, hyst, p, t, v0, ev_kind, ev_p, ev_t, ev_v, ev_peak, n):
+    """A contact of point p starts at t with approach speed v0: χ = h/v0, peak reset, event recorded."""
+    active[p] = True
+    chi[p] = hyst / v0 if v0 > 0.0 else 0.0
+    peak[p] = 0.0
+    return _record(ev_kind, ev_p, ev_t, ev_v, ev_peak, n, 0, p, t, v0, 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
 def _advance(t0, t1, z, active, chi, peak, lam, V, Vinv, Z, R, Rd, Y, Yd, Om, phi, omega2, Cm, g0, inv_m, K,
              c, hyst, h_flight, dt_contact, ev_kind, ev_p, ev_t, ev_v, ev_peak):
     N = omega2.size
@@ -282,13 +300,9 @@ def _advance(t0, t1, z, active, chi, peak, lam, V, Vinv, Z, R, Rd, Y, Yd, Om, ph
                     s = d0 / (d0 - d1) if d0 < 0.0 else 0.0
                     sg = 1.0 if y1 > 0.0 else -1.0
                     v0 = max(sg * (yd0 + s * (yd1 - yd0)), 0.0)
-                    active[p] = True
-                    chi[p] = hyst / v0 if v0 > 0.0 else 0.0
-                    peak[p] = 0.0
-                    if n_ev >= ev_kind.size:
-                        return zn, n_ev, 2
-                    ev_kind[n_ev], ev_p[n_ev], ev_t[n_ev], ev_v[n_ev], ev_peak[n_ev] = 0, p, t + s * dt, v0, 0.0
-                    n_ev += 1
+                    n_ev = _onset(active, chi, peak, hyst, p, t + s * dt, v0, ev_kind, ev_p, ev_t, ev_v, ev_peak, n_ev)
+                    if n_ev < 0:
+                        return zn, ev_kind.size, 2
             for p in range(P):
                 if active[p]:
                     peak[p] = max(peak[p], abs(forces[p]))
@@ -297,10 +311,9 @@ def _advance(t0, t1, z, active, chi, peak, lam, V, Vinv, Z, R, Rd, Y, Yd, Om, ph
                 sg = 1.0 if y1 > 0.0 else -1.0
                 active[p_end] = False
                 chi[p_end] = 0.0
-                if n_ev >= ev_kind.size:
-                    return zn, n_ev, 2
-                ev_kind[n_ev], ev_p[n_ev], ev_t[n_ev], ev_v[n_ev], ev_peak[n_ev] = 1, p_end, t + dt, -sg * yd1, peak[p_end]
-                n_ev += 1
+                n_ev = _record(ev_kind, ev_p, ev_t, ev_v, ev_peak, n_ev, 1, p_end, t + dt, -sg * yd1, peak[p_end])
+                if n_ev < 0:
+                    return zn, ev_kind.size, 2
             z = zn
             t = t + dt if p_end >= 0 or dt < t1 - t else t1
             for k in range(2 * N):
@@ -358,13 +371,9 @@ def _advance(t0, t1, z, active, chi, peak, lam, V, Vinv, Z, R, Rd, Y, Yd, Om, ph
             if hit >= 0.0:
                 _, yd = _contact_state(z, phi, hit_p, N)
                 v0 = max(hit_sg * yd, 0.0)
-                active[hit_p] = True
-                chi[hit_p] = hyst / v0 if v0 > 0.0 else 0.0
-                peak[hit_p] = 0.0
-                if n_ev >= ev_kind.size:
-                    return z, n_ev, 2
-                ev_kind[n_ev], ev_p[n_ev], ev_t[n_ev], ev_v[n_ev], ev_peak[n_ev] = 0, hit_p, t + hit, v0, 0.0
-                n_ev += 1
+                n_ev = _onset(active, chi, peak, hyst, hit_p, t + hit, v0, ev_kind, ev_p, ev_t, ev_v, ev_peak, n_ev)
+                if n_ev < 0:
+                    return z, ev_kind.size, 2
                 t = t + hit
             else:
                 t = t1

@@ -711,6 +711,37 @@ def benchmark(inputs: Mapping[str, Any], revolutions: int = 10, repeat: int = 3,
     return rows
 
 
+def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0.05, 0.1, 0.2, 0.5, 0.9, 1.1, 2.0, 4.0),
+                   contact_steps=(1, 2, 3, 5, 10, 25, 100, 400)) -> list[dict[str, Any]]:
+    """Error and outcome of the explicit and event-driven integrators against their step (MODEL.md §9).
+
+    The step is given as a fraction of the explicit step limit 2/ω_max (:func:`stability_limit`, the
+    contact linearised at the expected penetration): the Verlet step for ``"explicit"`` at each of
+    ``fractions``, the RK4 contact step for ``"event"`` at each of ``contact_steps`` steps per contact.
+    Error as in :func:`benchmark`, against LSODA at rtol 1e-12. Returns rows: name, step_ratio,
+    setting, verdict, error (NaN when the run failed), failure.
+    """
+    base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
+    model = build_model(base)
+    scale = np.concatenate((np.full(len(model.modes), model.clearance),
+                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
+    reference = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
+                                         "time_atol": 1e-14})["final_state"])
+    runs = [("explicit", f"step {f:g} of the limit", {"time_integrator": "explicit", "time_step_fraction": f})
+            for f in fractions]
+    runs += [("event", f"{n} RK4 steps per contact", {"time_integrator": "event", "contact_steps": n})
+             for n in contact_steps]
+    rows = []
+    for name, setting, extra in runs:
+        run = simulate({**base, **extra})
+        step = run["time_step"] if name == "explicit" else run.get("contact_step", np.nan)
+        failed = run["verdict"] == "failed"
+        rows.append(dict(name=name, setting=setting, step_ratio=step / run["step_limit"], verdict=run["verdict"],
+                         error=np.nan if failed else _final_error(np.concatenate(run["final_state"]), reference, scale),
+                         failure=run["failure"]))
+    return rows
+
+
 def equal_accuracy_speedups(rows: list[dict[str, Any]], reference: str = "penalty_rk45",
                             method: str = "event") -> list[tuple[dict, dict | None, float]]:
     """For each ``reference`` row, the fastest ``method`` row at least as accurate, and the time ratio."""

@@ -20,3 +20,19 @@ def test_chart_has_both_methods_log_axes_and_units():
     # An exact (zero) error is drawn at the floor, not dropped.
     series_line = [line for line in axes[1].get_lines() if line.get_label() == "series"][0]
     assert series_line.get_ydata()[0] == 1e-16
+
+
+def test_time_domain_chart_marks_failures_and_labels_units():
+    from study.charts.precision import time_domain_chart
+
+    work = [{"name": "event", "wall_time": 0.002, "error": 1e-6},
+            {"name": "penalty_rk45", "wall_time": 0.5, "error": 1e-5}]
+    stability = [{"name": "explicit", "step_ratio": 0.1, "error": 1e-3},
+                 {"name": "explicit", "step_ratio": 2.0, "error": float("nan")},
+                 {"name": "event", "step_ratio": 0.02, "error": 3e-7}]
+    figure = time_domain_chart(work, stability, "test case")
+    work_ax, step_ax = figure.axes
+    assert work_ax.get_xlabel() == "time for the run [ms]" and step_ax.get_xlabel().endswith("[-]")
+    labels = [t.get_text() for t in step_ax.get_legend().get_texts()]
+    assert "explicit: failed (blow-up detected)" in labels and "event (RK4 contact step)" in labels
+    assert "penalty_rk45 (linear penalty model)" in [t.get_text() for t in work_ax.get_legend().get_texts()]

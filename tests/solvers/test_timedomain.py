@@ -157,3 +157,14 @@ def test_benchmark_compares_errors_against_each_models_converged_run(point):
     assert rows[0]["impacts"] == rows[2]["impacts"] == rows[3]["impacts"] >= 1
     (ref, best, ratio), = td.equal_accuracy_speedups(rows)
     assert best is None or (best["error"] <= ref["error"] and ratio == ref["wall_time"] / best["wall_time"])
+
+
+def test_explicit_fails_near_its_limit_while_event_driven_converges(point):
+    rows = td.step_stability(_driven(point), revolutions=2, fractions=(0.1, 2.0), contact_steps=(10, 40, 160))
+    explicit = [r for r in rows if r["name"] == "explicit"]
+    event = [r for r in rows if r["name"] == "event"]
+    assert explicit[0]["verdict"] != "failed" and explicit[1]["verdict"] == "failed"
+    assert explicit[1]["step_ratio"] == pytest.approx(2.0, rel=0.01)
+    errors = [r["error"] for r in event]
+    # RK4 through a Hertz contact converges at about the 2.4th order here (contact force ~ delta^1.5)
+    assert errors[0] > 8 * errors[1] > 64 * errors[2] and errors[2] < 1e-6
