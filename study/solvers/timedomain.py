@@ -663,6 +663,17 @@ def _final_error(run_state, reference_state, scale) -> float:
     return float(np.max(np.abs(np.asarray(run_state) - np.asarray(reference_state)) / scale))
 
 
+def _converged_run(inputs: Mapping[str, Any], revolutions: int):
+    """The inputs of a fixed-length run, the state scale (c, Ωc) and LSODA's final state at rtol 1e-12."""
+    base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
+    model = build_model(base)
+    scale = np.concatenate((np.full(len(model.modes), model.clearance),
+                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
+    reference = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
+                                         "time_atol": 1e-14})["final_state"])
+    return base, scale, reference
+
+
 def benchmark(inputs: Mapping[str, Any], revolutions: int = 10, repeat: int = 3,
               contact_steps=(25, 100, 400), penalty_rtols=(1e-4, 1e-6, 1e-8)) -> list[dict[str, Any]]:
     """Work and precision of the integrators and the penalty reference on one case.
@@ -674,12 +685,7 @@ def benchmark(inputs: Mapping[str, Any], revolutions: int = 10, repeat: int = 3,
     kernels loaded). Returns rows: name, setting, wall_time [s], error [-], impacts, impact_velocity
     [m/s] of the last impact.
     """
-    base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
-    model = build_model(base)
-    scale = np.concatenate((np.full(len(model.modes), model.clearance),
-                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
-    hertz_ref = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
-                                         "time_atol": 1e-14})["final_state"])
+    base, scale, hertz_ref = _converged_run(inputs, revolutions)
     penalty_ref = penalty_reference(base, revolutions, rtol=1e-12, atol=1e-15, method="DOP853")["final_state"]
     simulate({**base, "time_integrator": "event", "time_revolutions": 1})  # compiled kernels loaded
 
@@ -721,12 +727,7 @@ def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0
     Error as in :func:`benchmark`, against LSODA at rtol 1e-12. Returns rows: name, step_ratio,
     setting, verdict, error (NaN when the run failed), failure.
     """
-    base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
-    model = build_model(base)
-    scale = np.concatenate((np.full(len(model.modes), model.clearance),
-                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
-    reference = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
-                                         "time_atol": 1e-14})["final_state"])
+    base, scale, reference = _converged_run(inputs, revolutions)
     runs = [("explicit", f"step {f:g} of the limit", {"time_integrator": "explicit", "time_step_fraction": f})
             for f in fractions]
     runs += [("event", f"{n} RK4 steps per contact", {"time_integrator": "event", "contact_steps": n})
