@@ -361,10 +361,23 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
 
 
 @numba.njit(cache=True, nogil=True)
+def _modal_displacement(tm, om, tl, kappa, phi, amp):
+    """q at the time tm ∈ [0, P) since the last pulse, given the mode's :func:`_echo_factors`."""
+    psi = om * tm - phi
+    s, c = math.sin(psi), math.cos(psi)
+    if tm <= tl:  # pulse from rest + echo of the earlier pulses
+        a = math.pi / tl
+        z = 0.5 * (om - a) * tm
+        sinc = 1.0 if z == 0.0 else math.sin(z) / z
+        q = a / (2.0 * om * (om + a)) * (math.sin(om * tm) - om * tm * math.cos(0.5 * (om + a) * tm) * sinc)
+        return q + 0.5 * amp / om * (kappa * c - s)
+    return 0.5 * amp / om * (s + kappa * c)  # free vibration after the pulse, its echo included
+
+
+@numba.njit(cache=True, nogil=True)
 def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
     out = np.empty((t.size, omega.size))
     p = tau if one_wall else 0.5 * tau
-    a = math.pi / tl
     # per mode: A = cos φ/(1 − u²), φ = ωT_L/2, κ (C − 1 = ½(−1 + iκ)), and the resonance mask
     amp = np.empty(omega.size)
     phi = np.empty(omega.size)
@@ -377,21 +390,49 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
         tm = t[i] - k * p
         sign = 1.0 if one_wall or k % 2 == 0 else -1.0
         for j in range(omega.size):
-            if bad[j]:
-                out[i, j] = math.nan
-                continue
-            om = omega[j]
-            psi = om * tm - phi[j]
-            s, c = math.sin(psi), math.cos(psi)
-            if tm <= tl:  # pulse from rest + echo of the earlier pulses
-                z = 0.5 * (om - a) * tm
-                sinc = 1.0 if z == 0.0 else math.sin(z) / z
-                q = a / (2.0 * om * (om + a)) * (math.sin(om * tm) - om * tm * math.cos(0.5 * (om + a) * tm) * sinc)
-                q += 0.5 * amp[j] / om * (kappa[j] * c - s)
-            else:  # free vibration after the pulse, its echo included
-                q = 0.5 * amp[j] / om * (s + kappa[j] * c)
-            out[i, j] = sign * q
+            out[i, j] = math.nan if bad[j] else sign * _modal_displacement(tm, omega[j], tl, kappa[j], phi[j], amp[j])
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
+    out = np.empty(omega.shape[0])
+    p = tau if one_wall else 0.5 * tau
+    M = omega.shape[1]
+    amp, phi, kappa = np.empty(M), np.empty(M), np.empty(M)
+    for r in range(omega.shape[0]):
+        bad = False
+        for j in range(M):
+            b, kappa[j], phi[j], amp[j] = _echo_factors(omega[r, j], tl[r], tau, one_wall, tol)
+            bad = bad or b
+        if bad:
+            out[r] = math.nan
+            continue
+        largest = 0.0
+        for i in range(t.shape[1]):
+            k = math.floor(t[r, i] / p)
+            tm = t[r, i] - k * p
+            y = 0.0
+            for j in range(M):
+                y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])
+            largest = max(largest, abs(y))
+        out[r] = largest
+    return out
+
+
+def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_wall", resonance_tol=1e-15):
+    """max over t of |Σ_m w_m q_m(t)| per row, q of :func:`modal_periodic_response` (compiled loop).
+
+    t [s] of shape (R, T), omega_n ω [rad/s] and weights w_m of shape (R, M), pulse_duration T_L [s] of
+    shape (R,), scalar period τ [s]. With w_m the modal load factors at a point per unit impulse, this
+    is the largest deflection there per unit impulse at the times t (the span search's midspan
+    screen). NaN for a row with a resonant or buckled mode or a pulse longer than the (half) period.
+    """
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    t, omega, weights = (np.ascontiguousarray(np.asarray(v, dtype=float)) for v in (t, omega_n, weights))
+    durations = np.ascontiguousarray(np.broadcast_to(np.asarray(pulse_duration, dtype=float), omega.shape[:1]))
+    return _largest_excursion_kernel(t, omega, durations, weights, float(period), pattern == "one_wall",
+                                     float(resonance_tol))
 
 
 def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):

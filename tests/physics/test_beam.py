@@ -512,6 +512,24 @@ def test_midspan_state_is_nan_at_resonance_buckling_and_overlong_pulse():
 
 
 @pytest.mark.parametrize("pattern", PATTERNS)
+def test_largest_excursion_is_the_maximum_of_the_weighted_closed_form(pattern):
+    # source: modal_periodic_response (the closed form) summed with weights and maximised over the times
+    # in numpy; per row its own times (during and after the pulse, past a period), frequencies, T_L
+    rng = np.random.default_rng(7)
+    R, T, M = 6, 40, 9
+    t = np.sort(rng.uniform(-0.05, 0.45, (R, T)), axis=1)
+    omega = np.sort(rng.uniform(2.0, 3e3, (R, M)), axis=1)
+    tl = rng.uniform(1e-3, 0.04, R)
+    w = rng.normal(size=(R, M))
+    q = bm.modal_periodic_response(t[:, :, None], omega[:, None, :], tl[:, None, None], 0.2, pattern).displacement
+    want = np.max(np.abs(np.einsum("rtm,rm->rt", q, w)), axis=1)
+    np.testing.assert_allclose(bm.largest_excursion(t, omega, tl, w, 0.2, pattern), want, rtol=1e-12)
+    omega[2, 4] = 2 * np.pi / 0.2 * 3  # the third harmonic: resonant for both patterns, the row is NaN
+    got = bm.largest_excursion(t, omega, tl, w, 0.2, pattern)
+    assert np.isnan(got[2]) and np.isfinite(np.delete(got, 2)).all()
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
 @pytest.mark.parametrize("tl", [1e-3, 0.03])
 def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
     # source: the closed form itself (modal_periodic_response, tested against the ODE and the Fourier
