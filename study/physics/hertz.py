@@ -73,8 +73,11 @@ def _shape_functions(p):
     return ((1.0 + c2) * ee - 2.0 * c2 * kk) / (e2 * ee), one_minus, kk, ee
 
 
-def _log_c2(theta):
-    """Scalar inverse of θ ↦ p = log(1 − e²) by brentq on a log-scaled residual."""
+def _log_c2(theta, full_bracket=False):
+    """Scalar inverse of θ ↦ p = log(1 − e²) by brentq on a log-scaled residual.
+
+    brentq runs on a bracket of ±1e-3 |p| round a tabulated guess (:func:`_guess_log_c2`), and on the
+    whole range 1 − e² ∈ [1e-300, 1) when the root is not inside it or ``full_bracket``."""
     if np.isnan(theta) or theta >= np.pi / 2:
         return theta * 0.0  # nan stays nan
     if theta <= 0.0:
@@ -88,10 +91,30 @@ def _log_c2(theta):
     def resid(p):
         return sign * (np.log(_shape_functions(p)[idx]) - target)
 
+    if not full_bracket:  # a narrow bracket round the tabulated guess: half the evaluations
+        guess = _guess_log_c2(theta)
+        width = 1e-3 * abs(guess) + 1e-9
+        try:
+            return brentq(resid, guess - width, min(guess + width, -1e-300), xtol=1e-300, maxiter=500)
+        except ValueError:  # the root is outside it
+            pass
     lo, hi = _P_MIN, -1e-300
     if resid(lo) >= 0.0:  # θ beyond the bracket: clip to 1 − e² = 1e-300
         return lo
     return brentq(resid, lo, hi, xtol=1e-300, maxiter=500)
+
+
+@lru_cache(maxsize=1)
+def _guess_table():
+    """(log θ, p) on 200 angles from 1e-6 rad to just below π/2, solved on the full bracket."""
+    theta = np.concatenate((np.geomspace(1e-6, 0.3, 80), np.linspace(0.3, np.pi / 2 - 1e-6, 121)[1:]))
+    return np.log(theta), np.array([_log_c2(t, full_bracket=True) for t in theta])
+
+
+def _guess_log_c2(theta):
+    """p = log(1 − e²) at θ interpolated in the table (about 1e-4 relative); θ outside it: its end."""
+    log_theta, p = _guess_table()
+    return float(np.interp(np.log(theta), log_theta, p))
 
 
 @lru_cache(maxsize=4096)

@@ -380,3 +380,13 @@ def test_validity_array():
     v = h.contact_validity([0.01, 0.2, np.inf], [0.001, 0.01, 0.0], [0.25, 0.25, 0.25], 10.0)
     np.testing.assert_array_equal(v.ok, [True, False, False])
     assert v.criterion == "line_contact"  # first criterion in order, failed by element 2
+
+
+def test_inversion_round_the_tabulated_guess_equals_the_full_bracket_one():
+    # source: the same brentq inversion on the whole range 1 - e^2 in [1e-300, 1); the narrow bracket
+    # only saves evaluations. Angles from 1e-9 rad (below the table) to just under pi/2.
+    theta = np.concatenate((np.geomspace(1e-9, 1.0, 400), np.linspace(1.0, np.pi / 2 - 1e-12, 400)))
+    narrow = np.array([h._log_c2(t) for t in theta])
+    full = np.array([h._log_c2(t, full_bracket=True) for t in theta])
+    np.testing.assert_allclose(narrow, full, rtol=1e-11)  # both at the residual's rounding level
+    np.testing.assert_allclose(np.exp(-narrow / 3.0), np.exp(-full / 3.0), rtol=1e-13)  # m's factor
