@@ -276,6 +276,15 @@ def _mark_missing(ax):
 # Generic line and map figures
 
 
+def _panel_figures(ds, plan, size, rows, columns):
+    """One figure per value of the plan's figure dimension (one figure without it): yields the index
+    (or None), the figure of ``size`` [in], its rows × columns axes and a mask of the axes drawn on."""
+    for fi in (range(ds.sizes[plan.figure]) if plan.figure else [None]):
+        fig = Figure(figsize=size, dpi=DPI, layout="constrained")
+        axes = fig.subplots(rows, columns, squeeze=False)
+        yield fi, fig, axes, np.zeros(axes.shape, dtype=bool)
+
+
 def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x: str, series: str | None, *,
                  overlay: str | None = None, x_quantity: Quantity | None = None,
                  y_quantities: dict[str, Quantity] | None = None,
@@ -303,11 +312,7 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
     width = min(4.0 + 3.6 * columns, 20.0) + legend_width - 1.0
     height = min(max(5.0, 1.3 + 2.9 * rows), 16.0)
     charts = []
-    figure_indices = range(ds.sizes[plan.figure]) if plan.figure else [None]
-    for fi in figure_indices:
-        fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
-        axes = fig.subplots(rows, columns, squeeze=False)
-        visible = np.zeros(axes.shape, dtype=bool)
+    for fi, fig, axes, visible in _panel_figures(ds, plan, (width, height), rows, columns):
         drawn = np.zeros(ds.sizes[plan.series] if plan.series else 1, dtype=bool)  # a series with a result
         for b, block in enumerate(blocks):
             for p in range(n_panels):
@@ -387,11 +392,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
     height = min(1.4 + 2.9 * rows, 16.0)
     contours = xpos.size >= 3 and ypos.size >= 3
     charts = []
-    figure_indices = range(ds.sizes[plan.figure]) if plan.figure else [None]
-    for fi in figure_indices:
-        fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
-        axes = fig.subplots(rows, columns, squeeze=False)
-        visible = np.zeros(axes.shape, dtype=bool)
+    for fi, fig, axes, visible in _panel_figures(ds, plan, (width, height), rows, columns):
         any_missing = False
         for b, name in enumerate(names):
             mesh = None
