@@ -361,6 +361,13 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
 
 
 @numba.njit(cache=True, nogil=True)
+def _since_last_pulse(t, p, one_wall):
+    """(time since the last pulse in [0, P), sign (−1)^k of the alternating train), as :func:`_wrap`."""
+    k = math.floor(t / p)
+    return t - k * p, (1.0 if one_wall or k % 2 == 0 else -1.0)
+
+
+@numba.njit(cache=True, nogil=True)
 def _modal_displacement(tm, om, tl, kappa, phi, amp):
     """q at the time tm ∈ [0, P) since the last pulse, given the mode's :func:`_echo_factors`."""
     psi = om * tm - phi
@@ -386,9 +393,7 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
     for j in range(omega.size):
         bad[j], kappa[j], phi[j], amp[j] = _echo_factors(omega[j], tl, tau, one_wall, tol)
     for i in range(t.size):
-        k = math.floor(t[i] / p)
-        tm = t[i] - k * p
-        sign = 1.0 if one_wall or k % 2 == 0 else -1.0
+        tm, sign = _since_last_pulse(t[i], p, one_wall)
         for j in range(omega.size):
             out[i, j] = math.nan if bad[j] else sign * _modal_displacement(tm, omega[j], tl, kappa[j], phi[j], amp[j])
     return out
@@ -410,8 +415,7 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
             continue
         largest = 0.0
         for i in range(t.shape[1]):
-            k = math.floor(t[r, i] / p)
-            tm = t[r, i] - k * p
+            tm, _ = _since_last_pulse(t[r, i], p, one_wall)  # the sign drops out of |y|
             y = 0.0
             for j in range(M):
                 y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])

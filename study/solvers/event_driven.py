@@ -128,6 +128,17 @@ def _contact_y(R, Rd, Y, Yd, w0, lam, Om, t_start, s, p):
 
 
 @numba.njit(cache=True, nogil=True)
+def _contact_state(z, phi, p, N):
+    """Deflection and velocity of contact point p from the modal state z = (q, q̇)."""
+    y = 0.0
+    yd = 0.0
+    for n in range(N):
+        y += phi[p, n] * z[n]
+        yd += phi[p, n] * z[N + n]
+    return y, yd
+
+
+@numba.njit(cache=True, nogil=True)
 def _acceleration(t, z, chi, phi, omega2, Cm, g0, inv_m, K, c, Om, out, forces):
     """ż of the full model (contact included) into ``out``; contact forces into ``forces``."""
     N = omega2.size
@@ -139,11 +150,7 @@ def _acceleration(t, z, chi, phi, omega2, Cm, g0, inv_m, K, c, Om, out, forces):
         out[N + n] = acc
     out[N] += g0 * np.cos(Om * t)
     for p in range(phi.shape[0]):
-        y = 0.0
-        yd = 0.0
-        for n in range(N):
-            y += phi[p, n] * z[n]
-            yd += phi[p, n] * z[N + n]
+        y, yd = _contact_state(z, phi, p, N)
         d = abs(y) - c
         f = 0.0
         if d > 0.0:
@@ -168,16 +175,6 @@ def _rk4(t, z, dt, chi, phi, omega2, Cm, g0, inv_m, K, c, Om, forces):
     out = z + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
     _acceleration(t + dt, out, chi, phi, omega2, Cm, g0, inv_m, K, c, Om, tmp, forces)  # forces at the end
     return out
-
-
-@numba.njit(cache=True, nogil=True)
-def _contact_state(z, phi, p, N):
-    y = 0.0
-    yd = 0.0
-    for n in range(N):
-        y += phi[p, n] * z[n]
-        yd += phi[p, n] * z[N + n]
-    return y, yd
 
 
 @numba.njit(cache=True, nogil=True)

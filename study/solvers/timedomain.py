@@ -458,6 +458,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     # contacts already closed at t = 0 start inside a wall: χ = 0 until they end
     d0 = np.abs(model.phi @ q) - model.clearance
     contacts.active[:] = d0 > 0
+    failure = None  # a set-up failure skips the integration
     if integrator == "explicit":
         dt_req = inputs.get("time_step")
         if dt_req is None:
@@ -470,7 +471,6 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
         budget = [model.energy(q, v), 0.0]
     elif integrator == "event":
         out.update(time_step=None)
-        failure = None
         if model.drag_shapes is not None:
             failure = ("the event-driven integrator needs linear damping (time_damping = 'linearised' or 'none'); "
                        "with time_damping = 'drag' use 'explicit' or 'implicit'")
@@ -483,13 +483,9 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
                                               int(inputs.get("contact_steps", 100)))
             except ValueError as exc:
                 failure = str(exc)
-        if failure:
-            out.update(verdict="failed", period=None, failure=failure, impacts=[], open_contacts=[],
-                       states=np.array([np.concatenate((q, v))]), energies=np.array([model.energy(q, v)]),
-                       revolutions_simulated=0, final_state=(q, v))
-            return out
-        out.update(contact_step=system.contact_step, flight_step=system.flight_step)
-        peak = np.zeros(len(model.points))
+            else:
+                out.update(contact_step=system.contact_step, flight_step=system.flight_step)
+                peak = np.zeros(len(model.points))
     else:
         opts = dict(method=inputs.get("time_ode_method", "LSODA"), rtol=float(inputs.get("time_rtol", 1e-8)),
                     atol=float(inputs.get("time_atol", 1e-10)) * np.concatenate(
@@ -498,7 +494,9 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     scale = np.concatenate((np.full(len(model.modes), model.clearance), np.full(len(model.modes), v_scale)))
     states = [np.concatenate((q, v))]
     energies = [model.energy(q, v)]
-    verdict, period, failure = "not_periodic", None, None
+    verdict, period = ("failed" if failure else "not_periodic"), None
+    if failure:
+        revolutions = 0
     for k in range(1, revolutions + 1):
         t0 = (k - 1) * tau
         if integrator == "explicit":
