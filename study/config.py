@@ -107,6 +107,8 @@ FIELDS: tuple[Field, ...] = (
           choices=("alternating", "one_wall")),
     Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
           choices=("prescribed", "self_consistent")),
+    Field("impact.mass", "impact_mass", "mass of the closure's impulse m_e (1 + e) V_p: 'momentum' 2ML/pi (the "
+          "paper's), 'modal' ML/2", None, default="momentum", choices=("momentum", "modal")),
     Field("solver.method", "solver_method", "solution method", None, default="core", choices=tuple(METHODS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
           "m", default=None, display_unit="ft", **_POSITIVE),
@@ -144,6 +146,8 @@ FIELDS: tuple[Field, ...] = (
           "mean impact force of the prescribed closure)", "N", default=None, display_unit="lbf", **_NON_NEGATIVE),
     Field("solver.side_force", "side_force", "constant side force towards one wall (sdof)", "N", default=0.0,
           display_unit="lbf"),
+    Field("solver.check_tolerance", "check_tolerance", "relative difference the crosscheck method accepts "
+          "between the time domain and the periodic solution", "", default=0.02, lower=0.0, lower_open=True),
     Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None, default="modal",
           choices=("modal", "momentum")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,

@@ -590,6 +590,30 @@ def static_shear(x, span_length, bending_stiffness, tension, half_length=0.0, sh
 
 # --- the periodic field: modal sums with the quasi-static correction ----------------------------
 #: Fields :func:`periodic_fields` evaluates: kind → description [unit].
+def point_load_moment(x, load_at, span_length: float, bending_stiffness: float, tension: float) -> np.ndarray:
+    """Bending moment −EI y'' [N m per N] at x [m] of a unit point load at ``load_at`` [m] on a simply
+    supported beam-column EI y'''' − T y'' = δ(x − a) (closed form below); x and load_at
+    broadcast together. Tension T [N] (negative: compression, below the buckling load).
+
+    With u = y'': EI u'' − T u = δ(x − a), u(0) = u(L) = 0, so the moment −EI u is the Green's function
+    sinh μx_< sinh μ(L − x_>)/(μ sinh μL), μ² = T/EI, x_< = min(x, a), x_> = max(x, a); its limit
+    x_<(L − x_>)/L at T = 0 (the string-free beam) and sin for compression. Equal to the modal sum
+    Σ_n (2/L) EI sin k_n a sin k_n x/(EI k_n² + T), k_n = nπ/L."""
+    x, a = np.broadcast_arrays(np.asarray(x, float), np.asarray(load_at, float))
+    lo, hi = np.minimum(x, a), np.maximum(x, a)
+    L, mu2 = float(span_length), float(tension) / float(bending_stiffness)
+    if mu2 == 0.0:
+        return lo * (L - hi) / L
+    if mu2 < 0.0:
+        nu = np.sqrt(-mu2)
+        return np.sin(nu * lo) * np.sin(nu * (L - hi)) / (nu * np.sin(nu * L))
+    mu = np.sqrt(mu2)
+    # sinh A sinh B / sinh C = e^(A+B-C) (1 - e^-2A)(1 - e^-2B) / (2 (1 - e^-2C)), A + B <= C: no overflow
+    A, B, C = mu * lo, mu * (L - hi), mu * L
+    return np.exp(A + B - C) * -np.expm1(-2 * A) * -np.expm1(-2 * B) / (-2.0 * np.expm1(-2 * C) * mu)
+
+
+
 FIELD_KINDS = {
     "deflection": "y [m]",
     "moment": "bending moment −EI y'' [N m] (sagging positive)",

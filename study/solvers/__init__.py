@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import auto, core, fast, sdof, series, timedomain
+from study.solvers import auto, core, crosscheck, fast, sdof, series, timedomain
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
@@ -25,6 +25,8 @@ METHODS = {
              "solver.tolerance"),
     "time-domain": (timedomain.solve, "modal span integrated through Hertz contact with both walls (explicit "
                     "Verlet or implicit LSODA) until periodic: the check on the periodic assumption"),
+    "crosscheck": (crosscheck.solve, "the fast periodic solution replayed through one revolution of real Hertz "
+                   "contact in the time domain: agrees within solver.check_tolerance, or flagged with the reasons"),
     "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "
              "exact period-1 orbit and Floquet stability at a given span"),
 }

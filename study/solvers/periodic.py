@@ -37,7 +37,10 @@ import numpy as np
 
 from study.physics import beam, hertz, section
 from study.solvers.core import scene as section_scene
-from study.solvers.result import PointResult
+from study.solvers.result import PointResult, choice_input
+
+#: The mass of the closure's impulse (Scene.equivalent_mass).
+IMPACT_MASSES = ("momentum", "modal")
 
 
 @dataclass(frozen=True)
@@ -69,6 +72,16 @@ class Scene:
     restitution: float
     pattern: str
     closure: str
+    impact_mass: str = "momentum"  #: IMPACT_MASSES
+
+    def equivalent_mass(self, span_length):
+        """m_e [kg] of the closure's impulse J = m_e (1 + e) V_p: 2ML/π (``momentum``, the paper's
+        equivalent mass) or ML/2 (``modal``, the modal mass of sin(πx/L) referred to midspan — the mass a
+        one-mode model strikes the wall with; MODEL.md §4, §8)."""
+        mass = self.props["mass_per_length"]
+        if self.impact_mass == "modal":
+            return 0.5 * mass * np.asarray(span_length, dtype=float)
+        return section.equivalent_mass(mass, span_length)
 
     @property
     def clearance(self) -> float:
@@ -87,7 +100,8 @@ def make_scene(inputs: Mapping[str, Any]) -> Scene:
     return Scene(props=props, outer_radius=inputs["outer_diameter"] / 2.0, hole_radius=inputs["hole_diameter"] / 2.0,
                  compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
                  restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
-                 closure=inputs.get("closure", "prescribed"))
+                 closure=inputs.get("closure", "prescribed"),
+                 impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES))
 
 
 def given_span(inputs: Mapping[str, Any], result: PointResult, start: float, method: str,
@@ -207,7 +221,7 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
     half-length b [m] (default 0, a point load), iterated with T_L.
     """
     c, e = scene.clearance, scene.restitution
-    m_e = float(section.equivalent_mass(scene.props["mass_per_length"], span_length))
+    m_e = float(scene.equivalent_mass(span_length))
     out = Impact(span_length=span_length, residual=np.nan, equivalent_mass=m_e)
     longest = (0.5 if scene.pattern == "alternating" else 1.0) * scene.period
 
@@ -291,7 +305,6 @@ def screen_residual(scene: Scene, options: Options):
         return None
     logs = np.log(grid[ok])
     e = scene.restitution
-    mass = scene.props["mass_per_length"]
 
     def pulse(spans):
         """(T_L, b) interpolated at ``spans``."""
@@ -303,7 +316,7 @@ def screen_residual(scene: Scene, options: Options):
         spans = np.asarray(spans, dtype=float)
         duration, half = pulse(spans)
         y1, v1, _ = unit_state(scene, spans, duration, half, options, modes=modes)
-        m_e = section.equivalent_mass(mass, spans)
+        m_e = scene.equivalent_mass(spans)
         offset = 1.0 if modes is None else 0.0
         if scene.closure == "self_consistent":
             return -m_e * (1.0 + e) * v1 - offset  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
@@ -429,7 +442,7 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
     duration, half = search.residual.pulse(spans)
     c, e, mass = scene.clearance, scene.restitution, scene.props["mass_per_length"]
     y0, v0, curv0 = unit_state(scene, spans, duration, half, options)
-    m_e = section.equivalent_mass(mass, spans)
+    m_e = scene.equivalent_mass(spans)
     impulse = -c / y0 if scene.closure == "self_consistent" else m_e * (1.0 + e) * scene.rotary_speed * c
     # as impact_at rejects at its first iterate: approach, convex towards the wall, a positive impulse
     keep = (-impulse * v0 > 0) & (impulse * curv0 > 0) & (impulse > 0)
@@ -597,41 +610,44 @@ def options_from(inputs: Mapping[str, Any]) -> Options:
 
 
 def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
-                         shear) -> dict[str, float]:
+                         shear=None, mirrored: bool | None = None) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period from the fields (MODEL.md §5, paper
-    eq. 37–38) — the same for every periodic method, whatever made the fields.
+    eq. 37–38) — the same for every method, whatever made the fields.
 
-    x [m] (half span), t [s] (the half period for the alternating pattern: the other half mirrors it),
-    deflection y [m], moment M_b = −EI y'' [N m], shear V = −EI y''' [N], each of shape t × x.
-    Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b| (the larger of
-    T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the range of σ_b
-    over the period at the worst section (σ(t + τ/2) = −σ(t) for the alternating pattern).
+    x [m], t [s] (the half period for the alternating pattern: the other half mirrors it), deflection
+    y [m], moment M_b = −EI y'' [N m], shear V = −EI y''' [N] (None: no shear outputs), each of shape
+    t × x. ``mirrored``: whether the other half period is the mirror image (default: the alternating
+    pattern of ``scene``). Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b|
+    (the larger of T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the
+    range of σ_b over the period at the worst section (σ(t + τ/2) = −σ(t) when mirrored).
     """
     p = scene.props
+    mirrored = scene.pattern == "alternating" if mirrored is None else mirrored
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     inertia = float(section.second_moment_of_area(r_o, r_i))
     area = p["steel_area"]
     y = np.asarray(deflection, dtype=float)
     sigma = np.asarray(moment, dtype=float) * r_o / inertia
-    shear = np.asarray(shear, dtype=float)
-    full = np.concatenate([sigma, -sigma]) if scene.pattern == "alternating" else sigma
+    full = np.concatenate([sigma, -sigma]) if mirrored else sigma
     half_range = 0.5 * (full.max(axis=0) - full.min(axis=0))
     axial = abs(inputs["axial_tension"]) / area
     i_b = np.unravel_index(np.nanargmax(np.abs(sigma)), sigma.shape)
-    i_s = np.unravel_index(np.nanargmax(np.abs(shear)), shear.shape)
     i_y = np.unravel_index(np.nanargmax(np.abs(y)), y.shape)
-    return {
+    out = {
         "max_deflection": float(np.abs(y[i_y])),
         "max_bending_stress": float(np.abs(sigma[i_b])),
         "max_normal_stress": float(axial + np.abs(sigma[i_b])),
         "max_normal_stress_x": float(x[i_b[1]]),
         "max_normal_stress_t": float(t[i_b[0]]),
-        "max_shear_stress": float(2.0 * np.abs(shear[i_s]) / area),
-        "max_shear_stress_x": float(x[i_s[1]]),
-        "max_shear_stress_t": float(t[i_s[0]]),
         "alternating_bending_stress": float(np.nanmax(half_range)),
     }
+    if shear is not None:
+        shear = np.asarray(shear, dtype=float)
+        i_s = np.unravel_index(np.nanargmax(np.abs(shear)), shear.shape)
+        out.update(max_shear_stress=float(2.0 * np.abs(shear[i_s]) / area), max_shear_stress_x=float(x[i_s[1]]),
+                   max_shear_stress_t=float(t[i_s[0]]))
+    return out
 
 
 @dataclass

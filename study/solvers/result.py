@@ -26,6 +26,7 @@ STATUS = {
     "chattering": (12, "impacts accumulate (chatter) instead of a periodic motion"),
     "sticking": (13, "the pipe comes to rest against the wall"),
     "not_periodic": (14, "no periodic motion found"),
+    "disagrees": (15, "the time domain with real contact disagrees with the periodic solution (see message)"),
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
@@ -82,7 +83,7 @@ OUTPUTS = {
     "buckling_length": ("m", "shortest simply supported span that buckles"),
     "span_length": ("m", "length of the sample span between nodes"),
     "first_natural_frequency": ("Hz", "first natural frequency of the span"),
-    "equivalent_mass": ("kg", "equivalent mass of the midspan (2ML/pi; the sdof method: its modal mass)"),
+    "equivalent_mass": ("kg", "mass of the impact closure (impact.mass: 2ML/pi momentum or ML/2 modal; sdof and time domain: the modal mass)"),
     "impact_velocity": ("m s-1", "lateral velocity of midspan just before impact"),
     "impulse": ("N s", "impulse of one impact m_e (1 + e) V_p"),
     "axial_curvature": ("m-1", "curvature of the bent pipe at the contact"),
@@ -118,4 +119,10 @@ OUTPUTS = {
     "step_limit": ("s", "explicit stability limit 2/omega_max with the contact linearised"),
     "revolutions_simulated": ("1", "revolutions integrated"),
     "energy_drift": ("1", "largest relative energy change (undriven, undamped runs)"),
+    "impulse_ratio": ("1", "impulse of the real contact over the periodic solution's J (method crosscheck)"),
+    "peak_force_ratio": ("1", "peak force of the real contact over the periodic solution's (method crosscheck)"),
+    "normal_stress_ratio": ("1", "largest normal stress, time domain over periodic solution (method crosscheck)"),
+    "deflection_ratio": ("1", "largest deflection, time domain over periodic solution (method crosscheck)"),
+    "periodicity_defect": ("1", "change of the modal state over one revolution of the real contact, in units of "
+                           "c and Omega c (method crosscheck)"),
 }

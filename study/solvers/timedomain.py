@@ -69,7 +69,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, oscillator, section
-from study.solvers import event_driven, sdof
+from study.solvers import event_driven, periodic, sdof, trajectory
 from study.solvers.periodic import given_span
 from study.solvers.result import PointResult, choice_input
 
@@ -133,6 +133,7 @@ class ModalModel:
     drag_shapes: np.ndarray | None = None  #: (G, N) sin(nπx_g/L)
     drag_weights: np.ndarray | None = None  #: (G,) Gauss weights on [0, L] [m]
     extras: dict = field(default_factory=dict)
+    scene: Any = None  #: the point's periodic.Scene (section properties, for the stresses)
 
     @property
     def period(self) -> float:
@@ -200,7 +201,7 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
                        phi=np.sin(np.pi * np.outer(points, modes)), rotary_speed=par["rotary_speed"],
                        drive=par["drive_amplitude"], drive_source=par["drive_source"],
                        restitution=par["restitution"], contact_damping=contact_damping,
-                       damping_model=damping_model)
+                       damping_model=damping_model, scene=scene)
     D = props["drag_coefficient_per_length"]
     if damping_model == "linearised":
         x, w = np.polynomial.legendre.leggauss(max(2 * N + 4, 16))
@@ -515,11 +516,41 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
             if period is not None:
                 verdict = "periodic"
                 break
+    if integrator == "event" and not failure:  # where the run stopped, for sampling it further
+        out.update(system=system, end_time=(len(states) - 1) * tau,
+                   contact_state=(contacts.active.copy(), contacts.chi.copy(), peak.copy()))
     out.update(verdict=verdict, period=period, failure=failure, impacts=contacts.done,
                open_contacts=[r for r in contacts.current if r is not None], states=np.array(states),
                energies=np.array(energies), revolutions_simulated=len(states) - 1,
                final_state=(q, v))
     return out
+
+
+def sample_after(run: Mapping[str, Any], revolutions: int | None = None) -> trajectory.Samples | None:
+    """The motion over ``revolutions`` (default: the run's period, else 1) after the run's end,
+    sampled (:func:`study.solvers.trajectory.sample_revolution`); None unless the run used the
+    event-driven integrator and did not fail."""
+    if "system" not in run:
+        return None
+    model = run["model"]
+    t0 = run["end_time"]
+    t1 = t0 + (revolutions or run["period"] or 1) * model.period
+    active, chi, peak = run["contact_state"]
+    return trajectory.sample_revolution(run["system"], model.contact_forces, t0, t1,
+                                        np.concatenate(run["final_state"]), active, chi, peak)
+
+
+def stresses(inputs: Mapping[str, Any], model: ModalModel, samples: trajectory.Samples,
+             space_points: int = 65) -> dict[str, float]:
+    """Deflection and normal-stress maxima (MODEL.md §5) over the sampled motion, on ``space_points``
+    points along the whole span and at the contact points, the fields with the quasi-static correction
+    for the contact forces (:func:`study.solvers.trajectory.fields`); times from the first sample."""
+    x = np.unique(np.concatenate([np.linspace(0.0, model.span, space_points), model.points * model.span]))
+    props = model.scene.props
+    f = trajectory.fields(samples, x, model.modes, model.points, model.span, props["bending_stiffness"],
+                          props["effective_tension"])
+    return periodic.stresses_from_fields(model.scene, inputs, x, samples.times - samples.times[0],
+                                         f["deflection"], f["moment"], mirrored=False)
 
 
 def _period(states, scale, tol):
@@ -545,7 +576,9 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     impact), peak_contact_force (largest over the last period), contact_duration (of the last
     impact), impacts_per_revolution (over the last period), and new: period_revolutions,
     achieved_restitution (rebound/approach of the last impact), time_step, step_limit,
-    revolutions_simulated, energy_drift (undamped, undriven runs only).
+    revolutions_simulated, energy_drift (undamped, undriven runs only); with the event-driven integrator
+    also max_deflection, max_bending_stress, max_normal_stress (with its x and t) and
+    alternating_bending_stress over one more period (:func:`stresses`; t from its start).
     """
     start = time.perf_counter()
     result = PointResult(method=METHOD)
@@ -600,6 +633,13 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         e = run["energies"]
         vals["energy_drift"] = float(np.max(np.abs(e - e[0])) / e[0]) if e[0] > 0 else 0.0
     result.extras["impact_record"] = [dict(r) for r in run["impacts"][-8:]]
+    samples = sample_after(run)
+    if samples is not None and samples.outcome == event_driven.OK:
+        vals.update(stresses(inputs, model, samples))
+        messages.append(f"stresses over the {'period' if run['verdict'] == 'periodic' else 'next revolution'} "
+                        f"after the run")
+    else:
+        messages.append("no stresses: they are sampled from the event-driven integrator only")
     result.message = "; ".join(messages)
     result.wall_time = time.perf_counter() - start
     return result

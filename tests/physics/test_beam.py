@@ -543,3 +543,16 @@ def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
     resonant = np.array([2 * np.pi / 0.2 * 3, 40.0])  # the third harmonic: resonant for both patterns
     assert np.isnan(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 0]).all()
     assert np.isfinite(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 1]).all()
+
+
+@pytest.mark.parametrize("tension", [0.0, 5e4, 5e6, -0.5 * 2e6 * (np.pi / 10.0) ** 2],
+                         ids=["no tension", "tension", "strong tension", "half the Euler compression"])
+def test_point_load_moment_is_the_sum_of_its_modal_series(tension):
+    # Source: the closed-form Green's function must equal its own Fourier sine series
+    # sum (2/L) EI sin(k a) sin(k x)/(EI k^2 + T) (the terms fall like 1/n^2: 2e5 terms, tail ~1e-6).
+    span, ei, load_at = 10.0, 2e6, 3.3
+    x = np.linspace(0.0, span, 9)
+    k = np.arange(1, 200_001, dtype=float) * np.pi / span
+    series = ((2.0 / span) * ei * np.sin(k * load_at) / (ei * k**2 + tension)) @ np.sin(np.outer(k, x))
+    closed = bm.point_load_moment(x, load_at, span, ei, tension)
+    assert np.max(np.abs(closed - series)) <= 1e-6 * np.max(np.abs(series))

@@ -1,0 +1,192 @@
+"""Is the periodic solution an orbit of the real contact? (method ``crosscheck``; MODEL.md §4, §8–9)
+
+The periodic methods assume the contact: a Lee half-sine pulse of impulse J = m_e (1 + e) V_p at
+midspan, once per (half) period. The time domain knows only the Hertz contact. This method puts the
+periodic solution's own motion into the time domain and lets the real contact act on it:
+
+1. ``fast`` solves the point (span search included); its smallest valid span, impact and stresses.
+2. The periodic solution's modal state (odd modes 1 … N, N = ``solver.modes``; even modes at rest) a
+   little before the impact, at t = −P/50 (P the time between impacts), starts the time domain
+   (:mod:`study.solvers.timedomain`) on the same span with the same modes, the same scene as the
+   periodic model (no mud damping, no drive: the periodic solution has neither), a Hertz contact at
+   midspan with the stiffness at the periodic solution's own contact curvature κ, and restitution e.
+3. One revolution is integrated (event-driven) and sampled (:mod:`study.solvers.trajectory`), and
+   compared with the periodic solution: the impulse and the peak force of the first contact, the
+   largest normal stress and deflection over the revolution (time-domain fields with the quasi-static
+   correction), and whether the modal state after one revolution is the state it started from
+   (``periodicity_defect``: largest difference over the modes, q in units of c and q̇ in units of Ω c).
+
+Within ``check_tolerance`` (default 0.02, relative; the defect against the same number) on all of them:
+status ``ok``. Otherwise status ``disagrees`` and the message names each quantity that differs, both
+values, and the reason the model gives for it: the impulse the real contact delivers differs from the
+closure's J (its mass m_e is not the mass the span strikes with), or the contact dissipates energy that
+the undamped periodic solution never loses (e < 1: its steady state needs an energy input, the damped
+periodic solution of MODEL.md §7). A point without a periodic solution keeps ``fast``'s status.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import beam, hertz
+from study.solvers import fast, periodic, timedomain
+from study.solvers.result import PointResult
+
+METHOD = "crosscheck"
+DEFAULT_TOLERANCE = 0.02
+#: Compared quantities: name -> (output of the check, what it is).
+COMPARED = {
+    "impulse": ("impulse_ratio", "impulse of the first contact"),
+    "peak_contact_force": ("peak_force_ratio", "peak contact force"),
+    "max_normal_stress": ("normal_stress_ratio", "largest normal stress over the revolution"),
+    "max_deflection": ("deflection_ratio", "largest deflection over the revolution"),
+}
+
+
+def periodic_state(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options, modes: int,
+                   t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Modal coordinates q_n [m] and velocities q̇_n [m/s] of modes n = 1 … ``modes`` at time t [s] of the
+    periodic solution (t = 0: a pulse starts at the wall y = +c); even modes are at rest (symmetric load).
+
+    q_n = (−J) g_n/(M L/2) · q̂_n(t), q̂ the unit-impulse response of :func:`beam.modal_periodic_response`
+    (the load pushes the pipe off the wall, along −y)."""
+    L = impact.span_length
+    odd = periodic.odd_modes(modes)
+    omega = periodic.natural_frequencies(scene, L, odd)
+    g = beam.modal_load_factors(odd, L, impact.contact_half_length, options.load_shape)
+    amp = -impact.impulse * g / (0.5 * scene.props["mass_per_length"] * L)
+    r = beam.modal_periodic_response(np.array([[t]]), omega, impact.contact_duration, scene.period, scene.pattern)
+    q, v = np.zeros(modes), np.zeros(modes)
+    q[odd.astype(int) - 1] = amp * r.displacement[0]
+    v[odd.astype(int) - 1] = amp * r.velocity[0]
+    return q, v
+
+
+def replay(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact,
+           options: periodic.Options) -> dict[str, Any]:
+    """The periodic solution's state run through one revolution of the real contact (module docstring,
+    step 2–3). Returns the time-domain model, the samples (or None with ``failure``), the start time
+    [s] relative to the periodic pulse start and the start state."""
+    n_modes = int(options.modes)
+    gap = (0.5 if scene.pattern == "alternating" else 1.0) * scene.period
+    start = -gap / 50.0
+    q0, v0 = periodic_state(scene, impact, options, n_modes, start)
+    td_inputs = {**inputs, "span_length": impact.span_length, "time_modes": n_modes, "time_damping": "none",
+                 "drive_amplitude": 0.0, "contact_points": (0.5,), "time_integrator": "event",
+                 "time_revolutions": 0, "initial_state": (q0, v0)}
+    model = timedomain.build_model(td_inputs)
+    a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, impact.axial_curvature)
+    model.stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
+    run = timedomain.simulate(td_inputs, model)
+    out = dict(model=model, start=start, state=np.concatenate((q0, v0)), samples=None, failure=run["failure"])
+    if run["failure"] is None:
+        out["samples"] = timedomain.sample_after(run, revolutions=1)
+    return out
+
+
+def compare(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact,
+            periodic_values: Mapping[str, float], run: Mapping[str, Any]) -> dict[str, Any]:
+    """Time-domain values of :data:`COMPARED` and the periodicity defect from the replay ``run``, with
+    the number of contacts, the duration and achieved restitution (midspan rebound/approach speed) of the
+    first contact, and the relative change of the span's mechanical energy over the revolution."""
+    model, s = run["model"], run["samples"]
+    first = s.contacts[0]
+    inside = (s.times >= first[1]) & (s.times <= first[2])
+    force = np.abs(s.forces[inside, first[0]])
+    mid = model.phi[0]
+    td = timedomain.stresses(inputs, model, s)
+    scale = np.concatenate((np.full(len(model.modes), model.clearance),
+                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
+    end_state = np.concatenate((s.q[-1], s.v[-1]))
+    i_on, i_off = np.flatnonzero(inside)[[0, -1]]
+    approach, rebound = mid @ s.v[i_on], mid @ s.v[i_off]
+    return dict(
+        impulse=float(np.trapezoid(force, s.times[inside])), peak_contact_force=float(force.max()),
+        max_normal_stress=td["max_normal_stress"], max_deflection=td["max_deflection"],
+        contacts=len(s.contacts), contact_duration=first[2] - first[1],
+        achieved_restitution=float(-rebound / approach) if approach else np.nan,
+        periodicity_defect=float(np.max(np.abs(end_state - run["state"]) / scale)),
+        energy_change=model.energy(s.q[-1], s.v[-1]) / model.energy(*np.split(run["state"], 2)) - 1.0,
+    )
+
+
+def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: periodic.Scene,
+            impact: periodic.Impact, tolerance: float) -> list[str]:
+    """The reasons the time domain disagrees with the periodic solution (empty: it agrees)."""
+    reasons = []
+    expected_contacts = 2 if scene.pattern == "alternating" else 1
+    if td["contacts"] != expected_contacts:
+        reasons.append(f"the real contact gives {td['contacts']} contact(s) in the revolution, the periodic "
+                       f"solution {expected_contacts}")
+    for name, (_, what) in COMPARED.items():
+        ratio = td[name] / periodic_values[name]
+        if abs(ratio - 1.0) > tolerance:
+            reasons.append(f"{what}: time domain {td[name]:.4g}, periodic {periodic_values[name]:.4g} "
+                           f"(ratio {ratio:.3g})")
+    if td["periodicity_defect"] > tolerance:
+        reasons.append(f"the modal state does not return after one revolution (defect "
+                       f"{td['periodicity_defect']:.3g} in units of c and Omega c)")
+    if reasons:
+        if abs(td["impulse"] / periodic_values["impulse"] - 1.0) > tolerance:
+            reasons.append(f"why: the closure's impulse J = m_e (1 + e) V_p takes m_e = {impact.equivalent_mass:.4g} kg "
+                           f"({scene.impact_mass} mass); the span's modes take {td['impulse'] / periodic_values['impulse']:.3g} "
+                           "J from the Hertz contact")
+        if abs(td["peak_contact_force"] / periodic_values["peak_contact_force"] - 1.0) > tolerance:
+            reasons.append(f"why: the real contact force is not Lee's half-sine of the equivalent mass (it lasts "
+                           f"{td['contact_duration'] * 1e3:.3g} ms against T_L = {impact.contact_duration * 1e3:.3g} ms): "
+                           "the span's modes do not strike the wall like one mass")
+        if td["energy_change"] < -tolerance:
+            reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
+                           f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: its "
+                           "steady state needs an energy input (MODEL.md §7)")
+    return reasons
+
+
+def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options,
+          periodic_values: Mapping[str, float], tolerance: float = DEFAULT_TOLERANCE) -> tuple[dict | None, list[str]]:
+    """Replay and compare one periodic solution (``impact`` at a root of condition 2, with its
+    ``periodic_values``: impulse, peak_contact_force, max_normal_stress, max_deflection). Returns the
+    time-domain values of :func:`compare` (None when the replay failed or never reached the wall) and
+    the reasons for disagreement (empty: agreement within ``tolerance``)."""
+    run = replay(inputs, scene, impact, options)
+    samples = run["samples"]
+    if samples is None or samples.outcome != 0:
+        return None, ["the time-domain replay failed: " + str(run["failure"] or "integration stopped")]
+    if not samples.contacts:
+        return None, ["the periodic solution's motion does not reach the wall in the time domain"]
+    td = compare(inputs, scene, impact, periodic_values, run)
+    return td, verdict(periodic_values, td, scene, impact, tolerance)
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The ``crosscheck`` method (module docstring)."""
+    start = time.perf_counter()
+    result = fast.solve(inputs)
+    result.method = METHOD
+    if result.status != "ok":
+        result.message = f"no periodic solution to check: {result.message}"
+        result.wall_time = time.perf_counter() - start
+        return result
+    options = periodic.options_from(inputs)
+    scene = periodic.make_scene(inputs)
+    v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
+    impact = periodic.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
+                                half_length=v["contact_half_length"])
+    tolerance = float(inputs.get("check_tolerance") or DEFAULT_TOLERANCE)
+    td, reasons = check(inputs, scene, impact, options, v, tolerance)
+    if td is not None:
+        for name, (output, _) in COMPARED.items():
+            v[output] = td[name] / v[name]
+        v["periodicity_defect"] = td["periodicity_defect"]
+        result.extras["time_domain"] = dict(td)
+    if reasons:
+        result.status = "disagrees"
+        result.message = "the real contact disagrees with the periodic solution: " + "; ".join(reasons)
+    else:
+        result.message = (f"{result.message}; the real contact agrees with the periodic solution within "
+                          f"{tolerance:g} over one revolution")
+    result.wall_time = time.perf_counter() - start
+    return result
