@@ -186,3 +186,23 @@ def test_stresses_need_the_event_driven_integrator(point):
     r = td.solve({**point, "span_length": 20.0, "time_integrator": "explicit", "time_revolutions": 2})
     assert "max_normal_stress" not in r.values
     assert "no stresses: they are sampled from the event-driven integrator only" in r.message
+
+
+def test_quadratic_drag_decays_the_free_first_mode_as_averaging_predicts(point):
+    # Source: closed form. One mode q sin(pi x/L) under the drag D |ydot| ydot per length: the modal
+    # force is D |qdot| qdot int_0^L sin^3(pi x/L) dx = c2 |qdot| qdot with c2 = 4 D L/(3 pi). For light
+    # damping, averaging over a cycle of amplitude A (energy (1/2) m omega^2 A^2, loss (8/3) c2 omega^2 A^3
+    # per cycle) gives dA/dt = -(4/(3 pi)) (c2/m) omega A^2, i.e. 1/A(t) = 1/A0 + (4/(3 pi)) (c2/m) omega t.
+    span, a0 = 20.0, 0.002  # amplitude well inside the clearance: no contact
+    inputs = {**point, "span_length": span, "time_modes": 1, "time_damping": "drag", "drive_amplitude": 0.0,
+              "time_integrator": "explicit", "time_step": 2e-3, "time_check_periodic": False, "time_revolutions": 60}
+    model = td.build_model(inputs)  # a 2-ms step: omega dt = 0.01 (no contact, so no contact step limit)
+    omega, m = model.omega[0], model.mass
+    run = td.simulate({**inputs, "initial_state": ([0.0], [a0 * omega])}, model)
+    assert run["verdict"] != "failed" and not run["impacts"]
+    c2 = 4.0 * make_scene(point).props["drag_coefficient_per_length"] * span / (3 * np.pi)
+    t = np.arange(len(run["states"])) * model.period
+    amplitude = np.sqrt(2.0 * run["energies"] / (m * omega**2))
+    predicted = 1.0 / (1.0 / a0 + 4.0 / (3 * np.pi) * c2 / m * omega * t)
+    assert amplitude[-1] < 0.9 * a0  # the drag has visibly acted (over 10 % of the amplitude)
+    assert np.max(np.abs(amplitude / predicted - 1.0)) < 0.01
