@@ -32,7 +32,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import beam, hertz
-from study.solvers import fast, periodic, timedomain
+from study.solvers import event_driven, fast, periodic, timedomain
 from study.solvers.result import PointResult
 
 METHOD = "crosscheck"
@@ -87,8 +87,7 @@ def replay(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Im
     return out
 
 
-def compare(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact,
-            periodic_values: Mapping[str, float], run: Mapping[str, Any]) -> dict[str, Any]:
+def compare(inputs: Mapping[str, Any], run: Mapping[str, Any]) -> dict[str, Any]:
     """Time-domain values of :data:`COMPARED` and the periodicity defect from the replay ``run``, with
     the number of contacts, the duration and achieved restitution (midspan rebound/approach speed) of the
     first contact, and the relative change of the span's mechanical energy over the revolution."""
@@ -153,11 +152,11 @@ def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Imp
     the reasons for disagreement (empty: agreement within ``tolerance``)."""
     run = replay(inputs, scene, impact, options)
     samples = run["samples"]
-    if samples is None or samples.outcome != 0:
+    if samples is None or samples.outcome != event_driven.OK:
         return None, ["the time-domain replay failed: " + str(run["failure"] or "integration stopped")]
     if not samples.contacts:
         return None, ["the periodic solution's motion does not reach the wall in the time domain"]
-    td = compare(inputs, scene, impact, periodic_values, run)
+    td = compare(inputs, run)
     return td, verdict(periodic_values, td, scene, impact, tolerance)
 
 
