@@ -26,6 +26,7 @@ import numpy as np
 from study.physics.beam import LOAD_SHAPES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers import METHODS
+from study.solvers.periodic import IMPACT_MASSES
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -108,7 +109,7 @@ FIELDS: tuple[Field, ...] = (
     Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
           choices=("prescribed", "self_consistent")),
     Field("impact.mass", "impact_mass", "mass of the closure's impulse m_e (1 + e) V_p: 'momentum' 2ML/pi (the "
-          "paper's), 'modal' ML/2", None, default="momentum", choices=("momentum", "modal")),
+          "paper's), 'modal' ML/2", None, default="momentum", choices=IMPACT_MASSES),
     Field("solver.method", "solver_method", "solution method", None, default="core", choices=tuple(METHODS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
           "m", default=None, display_unit="ft", **_POSITIVE),

@@ -92,6 +92,16 @@ class Scene:
         """Period of the motion τ = 2π/Ω [s] (one revolution)."""
         return 2.0 * np.pi / self.rotary_speed
 
+    @property
+    def impacts_per_revolution(self) -> int:
+        """Impacts per revolution: 2 (alternating walls) or 1 (one wall)."""
+        return 2 if self.pattern == "alternating" else 1
+
+    @property
+    def impact_interval(self) -> float:
+        """Time from one impact to the next [s]: τ/2 (alternating walls) or τ (one wall)."""
+        return self.period / self.impacts_per_revolution
+
 
 def make_scene(inputs: Mapping[str, Any]) -> Scene:
     props = section_scene(inputs)
@@ -141,8 +151,7 @@ def natural_frequencies(scene: Scene, span_length, modes) -> np.ndarray:
 
 def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
     """Harmonic numbers of the rotation present in the pulse train: all (one_wall) or odd (alternating)."""
-    step = 2 if scene.pattern == "alternating" else 1
-    return np.arange(1, highest + 1, step, dtype=float)
+    return np.arange(1, highest + 1, scene.impacts_per_revolution, dtype=float)
 
 
 def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:
@@ -223,7 +232,7 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
     c, e = scene.clearance, scene.restitution
     m_e = float(scene.equivalent_mass(span_length))
     out = Impact(span_length=span_length, residual=np.nan, equivalent_mass=m_e)
-    longest = (0.5 if scene.pattern == "alternating" else 1.0) * scene.period
+    longest = scene.impact_interval
 
     def duration_for(curvature, velocity):
         a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, curvature)
@@ -450,7 +459,7 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
     if rows.size == 0:
         return keep
     spans, duration, half, impulse = spans[rows], duration[rows], half[rows], np.broadcast_to(impulse, keep.shape)[rows]
-    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    span_t = scene.impact_interval
     modes = odd_modes(options.modes)
     omega = natural_frequencies(scene, spans, modes)  # (R, M)
     g = beam.modal_load_factors(modes, spans, half, options.load_shape)
@@ -549,7 +558,7 @@ def first_consistent_root(scene: Scene, options: Options, longer_than: float = 0
 def time_grid(scene: Scene, duration: float, options: Options) -> np.ndarray:
     """Times over one period (half a period for alternating: the other half is its mirror image), dense
     across the pulse [0, T_L] and uniform after it, ending just before the next impact."""
-    span = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    span = scene.impact_interval
     pulse = np.linspace(0.0, duration, options.pulse_points)
     rest = np.linspace(duration, span, options.time_points + 1)[1:-1]
     tail = span - np.geomspace(duration * 1e-3, duration, 8)  # the approach to the next impact

@@ -49,11 +49,12 @@ Floquet multipliers of the period-τ orbit are the squares of R's eigenvalues (b
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, oscillator, section
+from study.physics import hertz, oscillator
 from study.solvers.periodic import given_span, make_scene, natural_frequencies
 from study.solvers.result import PointResult, choice_input
 
@@ -85,8 +86,7 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> dict[str, Any]:
     props = scene.props
     mass_model = choice_input(inputs, "sdof_mass", "modal", MASS_CHOICES)
     damping_model = choice_input(inputs, "sdof_damping", "mud", DAMPING_CHOICES)
-    M = props["mass_per_length"]
-    m = M * span / 2.0 if mass_model == "modal" else float(section.equivalent_mass(M, span))
+    m = float(replace(scene, impact_mass=mass_model).equivalent_mass(span))
     omega1 = float(natural_frequencies(scene, span, [1])[0])
     c = scene.clearance
     Om = scene.rotary_speed
@@ -95,7 +95,7 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> dict[str, Any]:
         damping = 8.0 * props["drag_coefficient_per_length"] * Om * c / (3 * np.pi) * 4.0 * span / (3 * np.pi)
     else:
         damping = 0.0
-    impacts = 2 if scene.pattern == "alternating" else 1
+    impacts = scene.impacts_per_revolution
     if inputs.get("drive_amplitude") is not None:
         F0, source = float(inputs["drive_amplitude"]), "input drive_amplitude"
     else:

@@ -156,7 +156,7 @@ def term_grid(scene: periodic.Scene, impact: periodic.Impact, points_per_pulse: 
     """(x, t) for the term ratios: UNIFORM grids over the half span [0, L/2] and the (half) period,
     so that the averages (B) are the paper's time and location averages (the solver's grid is dense
     across the pulse and would weight it). Δt ≤ T_L/points_per_pulse, at most max_times points."""
-    span_t = 0.5 * scene.period if scene.pattern == "alternating" else scene.period
+    span_t = scene.impact_interval
     nt = int(min(max_times, max(200, np.ceil(span_t / impact.contact_duration * points_per_pulse))))
     return (np.linspace(0.0, 0.5 * impact.span_length, space_points),
             np.linspace(0.0, span_t, nt, endpoint=False))

@@ -634,12 +634,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         vals["energy_drift"] = float(np.max(np.abs(e - e[0])) / e[0]) if e[0] > 0 else 0.0
     result.extras["impact_record"] = [dict(r) for r in run["impacts"][-8:]]
     samples = sample_after(run)
-    if samples is not None and samples.outcome == event_driven.OK:
+    if samples is None:
+        messages.append("no stresses: they are sampled from the event-driven integrator only")
+    elif samples.outcome != event_driven.OK:
+        messages.append("no stresses: the revolution sampled after the run stopped (blow-up or chatter)")
+    else:
         vals.update(stresses(inputs, model, samples))
         messages.append(f"stresses over the {'period' if run['verdict'] == 'periodic' else 'next revolution'} "
                         f"after the run")
-    else:
-        messages.append("no stresses: they are sampled from the event-driven integrator only")
     result.message = "; ".join(messages)
     result.wall_time = time.perf_counter() - start
     return result
