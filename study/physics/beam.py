@@ -257,27 +257,31 @@ _SHAPE_CODES = {"point": 0, "uniform": 1, "parabolic": 2}
 
 
 @numba.njit(cache=True, nogil=True)
-def _shape_factor(beta, code):
-    """|g_n| for an odd mode: 1 (point), sin β/β (uniform), 3(sin β − β cos β)/β³ (parabolic)."""
+def _shape_factor(beta, code, sin_beta=math.nan, cos_beta=math.nan):
+    """|g_n| for an odd mode: 1 (point), sin β/β (uniform), 3(sin β − β cos β)/β³ (parabolic).
+
+    ``sin_beta``, ``cos_beta``: sin β and cos β when the caller has them (NaN: computed here)."""
     if code == 0:
         return 1.0
     if code == 1:
-        return 1.0 if beta == 0.0 else math.sin(beta) / beta
+        if beta == 0.0:
+            return 1.0
+        return (math.sin(beta) if math.isnan(sin_beta) else sin_beta) / beta
     b2 = beta * beta
     if abs(beta) < 0.5:  # Maclaurin series (as _parabolic_factor): 1 − β²/10 + β⁴/280 − β⁶/15120 + …
-        acc, term = 0.0, 1.0
-        for j in range(1, 10):
-            acc += term
-            term *= -b2 / (2 * j * (2 * j + 3))  # ratio of the terms 6j(−β²)^(j−1)/(2j+1)!
+        acc = 0.0
+        for j in range(_PARABOLIC_SERIES.size):  # Horner in β² (highest power first, as np.polyval)
+            acc = acc * b2 + _PARABOLIC_SERIES[j]
         return acc
-    return 3.0 * (math.sin(beta) - beta * math.cos(beta)) / (b2 * beta)
+    if math.isnan(sin_beta):
+        sin_beta, cos_beta = math.sin(beta), math.cos(beta)
+    return 3.0 * (sin_beta - beta * cos_beta) / (b2 * beta)
 
 
 @numba.njit(cache=True, nogil=True)
-def _echo_factors(om, tl, period, one_wall, tol):
-    """(bad, κ, φ, A) of one mode for the compiled kernels: the resonance/overlong-pulse mask (as
-    :func:`resonance_distance`), κ with C − 1 = ½(−1 + iκ) (cot(ωτ/2) or −tan(ωτ/4)), φ = ωT_L/2 and
-    A = cos φ/(1 − u²) = (π/2) sinc((1 − u)/2)/(1 + u), u = ωT_L/π (regular at u = 1)."""
+def _echo_kappa(om, tl, period, one_wall, tol):
+    """(bad, κ) of one mode for the compiled kernels: the resonance/overlong-pulse mask (as
+    :func:`resonance_distance`) and κ with C − 1 = ½(−1 + iκ) (cot(ωτ/2) or −tan(ωτ/4))."""
     x = om * (0.5 if one_wall else 0.25) * period  # ωτ/2 (one_wall) or ωτ/4 (alternating)
     if one_wall:
         nu = x / math.pi
@@ -286,16 +290,37 @@ def _echo_factors(om, tl, period, one_wall, tol):
         nu = 2.0 * x / math.pi
         dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
     if not math.isfinite(om) or tl > (period if one_wall else 0.5 * period) or dist <= tol * max(1.0, nu):
-        return True, 0.0, 0.0, 0.0
-    kappa = math.cos(x) / math.sin(x) if one_wall else -math.tan(x)
-    u = om * tl / math.pi
-    d = 0.5 * (1.0 - u)
-    amp = 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
-    return False, kappa, 0.5 * om * tl, amp
+        return True, 0.0
+    return False, (1.0 / math.tan(x) if one_wall else -math.tan(x))
 
 
 @numba.njit(cache=True, nogil=True)
-def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, period, one_wall, code, tol):
+def _echo_factors(om, tl, period, one_wall, tol):
+    """(bad, κ, φ, A) of one mode: :func:`_echo_kappa`, φ = ωT_L/2 and A = cos φ/(1 − u²) =
+    (π/2) sinc((1 − u)/2)/(1 + u), u = ωT_L/π (:func:`_echo_amplitude`)."""
+    bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
+    if bad:
+        return True, 0.0, 0.0, 0.0
+    phi = 0.5 * om * tl
+    return False, kappa, phi, _echo_amplitude(om * tl / math.pi, math.cos(phi))
+
+
+@numba.njit(cache=True, nogil=True)
+def _echo_amplitude(u, cos_phi):
+    """A = cos φ/(1 − u²) with φ = πu/2, as (π/2) sinc((1 − u)/2)/(1 + u) near u = 1 where both
+    factors of the first form vanish (sin(π(1 − u)/2) = cos φ)."""
+    d = 0.5 * (1.0 - u)
+    if abs(d) > 1e-3:
+        return cos_phi / ((1.0 - u) * (1.0 + u))
+    return 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
+
+
+@numba.njit(cache=True, nogil=True)
+def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, period, one_wall, code, tol,
+                          consecutive):
+    """The loop of :func:`midspan_state_at_pulse_start`. ``consecutive``: the modes are 1, 3, 5, …
+    for every span, so sin and cos of β_n = n β_1 (the load factors) follow by rotation through 2β_1
+    instead of two transcendentals per mode."""
     out = np.empty((3, spans.size))
     per_span = modes.shape[0] > 1
     for i in range(spans.size):
@@ -304,6 +329,9 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
         y = 0.0
         v = 0.0
         curv = 0.0
+        beta1 = math.pi * half / span
+        s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
+        s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
         for j in range(modes.shape[1]):
             n = modes[row, j]
             k = n * math.pi / span
@@ -313,13 +341,21 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
                 y = v = curv = math.nan
                 break
             om = math.sqrt(om2)
-            bad, kappa, phi, amp = _echo_factors(om, tl, period, one_wall, tol)
+            bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
             if bad:
                 y = v = curv = math.nan
                 break
-            q = amp * (kappa * math.cos(phi) + math.sin(phi)) / (2.0 * om)
-            qd = 0.5 * amp * (kappa * math.sin(phi) - math.cos(phi))
-            weight = 2.0 * _shape_factor(k * half, code) / (mass * span)
+            phi = 0.5 * om * tl
+            cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+            amp = _echo_amplitude(om * tl / math.pi, cos_phi)
+            q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
+            qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
+            if consecutive:
+                shape = _shape_factor(k * half, code, s_n, c_n)
+                s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
+            else:
+                shape = _shape_factor(k * half, code)
+            weight = 2.0 * shape / (mass * span)
             y += weight * q
             v += weight * qd
             curv -= weight * k2 * q
@@ -349,6 +385,7 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
     _check("shape", shape, LOAD_SHAPES)
     span, tl, half = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (span_length, pulse_duration, half_length)))
     modes = np.asarray(modes, dtype=float)
+    consecutive = modes.ndim <= 1 and np.array_equal(modes.ravel(), np.arange(1.0, 2.0 * modes.size, 2.0))
     if modes.ndim <= 1:
         table = modes.reshape(1, -1)
     else:
@@ -356,7 +393,7 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
     out = _midspan_state_kernel(np.ascontiguousarray(span.ravel()), np.ascontiguousarray(tl.ravel()),
                                 np.ascontiguousarray(half.ravel()), np.ascontiguousarray(table), float(bending_stiffness),
                                 float(tension), float(mass), float(period), pattern == "one_wall",
-                                _SHAPE_CODES[shape], float(resonance_tol))
+                                _SHAPE_CODES[shape], float(resonance_tol), consecutive)
     return tuple(out[i].reshape(span.shape) for i in range(3))
 
 
