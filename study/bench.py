@@ -89,11 +89,10 @@ def bench_span_search(study, count: int = 24, full_count: int = 6) -> tuple[list
 
 
 def bench_hertz_coefficients(count: int = 2000) -> list[tuple[str, float]]:
-    """Exact m, n: per-call scalar inversion vs one vectorised call over the same angles [s per angle]."""
+    """Exact m, n: per-call scalar inversion vs one array call over the same angles [s per angle]."""
     theta = np.radians(np.linspace(1.0, 89.0, count))
-    forget = hertz._coefficients_scalar.cache_clear  # each run inverts every angle afresh
-    scalar = _median_time(lambda: (forget(), [hertz.contact_coefficients(t) for t in theta]), 3) / count
-    vector = _median_time(lambda: (forget(), hertz.contact_coefficients(theta)), 3) / count
+    scalar = _median_time(lambda: [hertz.contact_coefficients(t) for t in theta], 3) / count
+    vector = _median_time(lambda: hertz.contact_coefficients(theta), 3) / count
     return [("scalar calls", scalar), ("one array call", vector)]
 
 

@@ -13,13 +13,16 @@ integrals of parameter e² (scipy convention).
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 from typing import NamedTuple
 
+import llvmlite.binding as llvm
+import numba
 import numpy as np
-from numpy.polynomial import polynomial as _poly
-from scipy.optimize import brentq
-from scipy.special import beta, binom, ellipe, ellipkm1
+from numba import types
+from numba.extending import get_cython_function_address
+from scipy.special import beta, binom
 
 
 class ContactCoefficients(NamedTuple):
@@ -61,47 +64,112 @@ _SERIES_MAX = 0.02  # e² below which the series is used (0.02**24 ~ 1e-41)
 _P_MIN = -690.0  # log(1 − e²) lower bracket: 1 − e² ≈ 1e-300
 
 
+def _special(name: str):
+    """scipy.special's compiled double → double function ``name`` (scipy.special.cython_special),
+    callable from compiled code: its address is registered under a symbol name that the cached
+    machine code links against in every process."""
+    symbol = f"study_scipy_special_{name}"
+    llvm.add_symbol(symbol, get_cython_function_address("scipy.special.cython_special", name))
+    return types.ExternalFunction(symbol, types.float64(types.float64))
+
+
+_ELLIPKM1 = _special("ellipkm1")  # K(1 − m): no loss as e → 1
+_ELLIPE = _special("ellipe")
+
+
+@numba.njit(cache=True, nogil=True)
 def _shape_functions(p):
-    """(cos θ, 1 − cos θ, K(e), E(e)) for p = log(1 − e²), each to full relative precision."""
-    c2, e2 = np.exp(p), -np.expm1(p)
-    kk, ee = ellipkm1(c2), ellipe(e2)  # ellipkm1(c²) = K(1 − c²): no loss as e → 1
-    if e2 < _SERIES_MAX:
-        cos_t = e2 * _poly.polyval(e2, _N_K[2:]) / _poly.polyval(e2, _E_K)
+    """(cos θ, 1 − cos θ, K(e), E(e)) for p = log(1 − e²) < 0, each to full relative precision."""
+    c2, e2 = math.exp(p), -math.expm1(p)
+    kk, ee = _ELLIPKM1(c2), _ELLIPE(e2)
+    if e2 < _SERIES_MAX:  # cos θ = N/(e² E) by the series: the closed form cancels
+        num, den = 0.0, 0.0
+        for j in range(_N_K.size - 1, 1, -1):
+            num = num * e2 + _N_K[j]
+        for j in range(_E_K.size - 1, -1, -1):
+            den = den * e2 + _E_K[j]
+        cos_t = e2 * num / den
         return cos_t, 1.0 - cos_t, kk, ee
     # 1 − cos θ = 2 c² (K − E)/(e² E), exact rearrangement of Johnson 4.39, accurate as θ → 0
-    one_minus = 2.0 * c2 * (kk - ee) / (e2 * ee)
-    return ((1.0 + c2) * ee - 2.0 * c2 * kk) / (e2 * ee), one_minus, kk, ee
+    return ((1.0 + c2) * ee - 2.0 * c2 * kk) / (e2 * ee), 2.0 * c2 * (kk - ee) / (e2 * ee), kk, ee
+
+
+@numba.njit(cache=True, nogil=True)
+def _angle_residual(p, theta):
+    """Residual of θ(p) = θ on a log scale, increasing in p: log of 1 − cos θ = 2 sin²(θ/2) for
+    θ ≤ π/4 (resolves θ down to ~1e-149 rad), of cos θ above (resolves θ → π/2)."""
+    cos_t, one_minus, _, _ = _shape_functions(p)
+    if theta <= 0.25 * math.pi:
+        return math.log(one_minus) - (math.log(2.0) + 2.0 * math.log(math.sin(0.5 * theta)))
+    return math.log(math.cos(theta)) - math.log(cos_t)
+
+
+@numba.njit(cache=True, nogil=True)
+def _solve_log_c2(theta, guess):
+    """p = log(1 − e²) of θ ∈ (0, π/2) by regula falsi (Illinois) to 1e-15 relative: on ±1e-3 |p| round
+    ``guess`` when that brackets the root, else (or with a NaN guess) on the whole range
+    1 − e² ∈ [1e-300, 1); θ beyond that range is clipped to 1 − e² = 1e-300."""
+    a, b = _P_MIN, -1e-300
+    if math.isfinite(guess):
+        width = 1e-3 * abs(guess) + 1e-9
+        lo, hi = guess - width, min(guess + width, -1e-300)
+        if _angle_residual(lo, theta) * _angle_residual(hi, theta) <= 0.0:
+            a, b = lo, hi
+    fa, fb = _angle_residual(a, theta), _angle_residual(b, theta)
+    if a == _P_MIN and fa >= 0.0:
+        return _P_MIN
+    side = 0
+    for _ in range(400):
+        if fa == 0.0:
+            return a
+        if fb == 0.0 or b - a <= 1e-15 * abs(b):
+            break
+        mid = b - fb * (b - a) / (fb - fa)
+        if not a < mid < b:
+            mid = 0.5 * (a + b)
+            if not a < mid < b:
+                break
+        fm = _angle_residual(mid, theta)
+        if (fm < 0.0) == (fa < 0.0):  # the root is in [mid, b]
+            if side == 1:
+                fb *= 0.5
+            a, fa, side = mid, fm, 1
+        else:
+            if side == -1:
+                fa *= 0.5
+            b, fb, side = mid, fm, -1
+    return a if abs(fa) < abs(fb) else b
+
+
+@numba.njit(cache=True, nogil=True)
+def _coefficients_kernel(theta, guess):
+    """(m, n, 2K(e)/(π m)) for every angle of ``theta`` [rad] (flat), p solved from ``guess``."""
+    out = np.empty((3, theta.size))
+    for i in range(theta.size):
+        t = theta[i]
+        if math.isnan(t):
+            out[0, i] = out[1, i] = out[2, i] = math.nan
+        elif t >= 0.5 * math.pi:  # a sphere
+            out[0, i] = out[1, i] = out[2, i] = 1.0
+        elif t <= 0.0:  # line contact: the ellipse is unbounded
+            out[0, i], out[1, i], out[2, i] = math.inf, 0.0, 0.0
+        else:
+            p = _solve_log_c2(t, guess[i])
+            _, _, kk, ee = _shape_functions(p)
+            m = np.cbrt(2.0 * ee / math.pi) * math.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
+            out[0, i], out[1, i], out[2, i] = m, m * math.exp(0.5 * p), 2.0 * kk / (math.pi * m)  # n = m √(1 − e²)
+    return out
 
 
 def _log_c2(theta, full_bracket=False):
-    """Scalar inverse of θ ↦ p = log(1 − e²) by brentq on a log-scaled residual.
-
-    brentq runs on a bracket of ±1e-3 |p| round a tabulated guess (:func:`_guess_log_c2`), and on the
-    whole range 1 − e² ∈ [1e-300, 1) when the root is not inside it or ``full_bracket``."""
+    """p = log(1 − e²) of a scalar θ [rad] (:func:`_solve_log_c2`): from the tabulated guess
+    (:func:`_guess_log_c2`), or on the whole range when ``full_bracket``. θ ≥ π/2 gives 0 (NaN stays
+    NaN), θ ≤ 0 gives −inf."""
     if np.isnan(theta) or theta >= np.pi / 2:
         return theta * 0.0  # nan stays nan
     if theta <= 0.0:
         return -np.inf
-    if theta <= np.pi / 4:  # match 1 − cos θ = 2 sin²(θ/2): resolves θ down to ~1e-149 rad
-        target, idx = np.log(2.0) + 2.0 * np.log(np.sin(theta / 2)), 1
-    else:  # match cos θ: resolves θ → π/2
-        target, idx = np.log(np.cos(theta)), 0
-    sign = 1.0 if idx == 1 else -1.0  # residual increasing in p
-
-    def resid(p):
-        return sign * (np.log(_shape_functions(p)[idx]) - target)
-
-    if not full_bracket:  # a narrow bracket round the tabulated guess: half the evaluations
-        guess = _guess_log_c2(theta)
-        width = 1e-3 * abs(guess) + 1e-9
-        try:
-            return brentq(resid, guess - width, min(guess + width, -1e-300), xtol=1e-300, maxiter=500)
-        except ValueError:  # the root is outside it
-            pass
-    lo, hi = _P_MIN, -1e-300
-    if resid(lo) >= 0.0:  # θ beyond the bracket: clip to 1 − e² = 1e-300
-        return lo
-    return brentq(resid, lo, hi, xtol=1e-300, maxiter=500)
+    return _solve_log_c2(float(theta), np.nan if full_bracket else _guess_log_c2(theta))
 
 
 @lru_cache(maxsize=1)
@@ -114,32 +182,19 @@ def _guess_table():
 def _guess_log_c2(theta):
     """p = log(1 − e²) at θ interpolated in the table (about 1e-4 relative); θ outside it: its end."""
     log_theta, p = _guess_table()
-    return float(np.interp(np.log(theta), log_theta, p))
-
-
-@lru_cache(maxsize=4096)
-def _coefficients_scalar(theta):
-    """(m, n, 2K(e)/(π m)) for scalar θ [rad]; the last factor scales the approach (=1 for a sphere).
-
-    Memoised: the periodic solver asks for the same contact angle for the stiffness and the ellipse."""
-    p = _log_c2(float(theta))
-    if p == -np.inf:  # θ = 0: line contact, the ellipse is unbounded
-        return np.inf, 0.0, 0.0
-    if np.isnan(p):
-        return np.nan, np.nan, np.nan
-    _, _, kk, ee = _shape_functions(p) if p < 0.0 else (0.0, 1.0, np.pi / 2, np.pi / 2)
-    m = np.cbrt(2.0 * ee / np.pi) * np.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
-    return m, m * np.exp(p / 2.0), 2.0 * kk / (np.pi * m)  # n = m √(1 − e²)
-
-
-_coefficients_vec = np.vectorize(_coefficients_scalar, otypes=[float, float, float])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.interp(np.log(theta), log_theta, p)
 
 
 def _coefficients(theta):
+    """(m, n, 2K(e)/(π m)) of θ [rad], scalar or array (one compiled loop); the last factor scales
+    the approach (=1 for a sphere)."""
     theta = np.asarray(theta, dtype=float)
+    flat = np.ascontiguousarray(theta.ravel())
+    out = _coefficients_kernel(flat, np.ascontiguousarray(_guess_log_c2(flat), dtype=float))
     if theta.ndim == 0:
-        return tuple(np.float64(v) for v in _coefficients_scalar(float(theta)))
-    return _coefficients_vec(theta)
+        return tuple(np.float64(v) for v in out[:, 0])
+    return tuple(out[i].reshape(theta.shape) for i in range(3))
 
 
 def contact_coefficients(theta):

@@ -36,6 +36,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.physics import beam, hertz, section
+from study.physics.roots import bracketed_roots
 from study.solvers.core import scene as section_scene
 from study.solvers.result import PointResult, choice_input
 
@@ -227,74 +228,109 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
     secant step is not usable; converged when the map moves T_L by less than
     ``options.fixed_point_tol`` (relative). ``duration``: the starting T_L [s] (default: that of the
     assumed mode y = c sin(πx/L) hitting at V_p = Ω c); ``half_length``: the starting contact
-    half-length b [m] (default 0, a point load), iterated with T_L.
+    half-length b [m] (default 0, a point load), iterated with T_L. One span of :func:`impacts_at`.
     """
-    c, e = scene.clearance, scene.restitution
-    m_e = float(scene.equivalent_mass(span_length))
-    out = Impact(span_length=span_length, residual=np.nan, equivalent_mass=m_e)
-    longest = scene.impact_interval
+    return impacts_at(scene, [span_length], options, max_iterations,
+                      None if duration is None else [duration], [half_length])[0]
 
-    def duration_for(curvature, velocity):
+
+def impacts_at(scene: Scene, spans, options: Options, max_iterations: int = 60, durations=None,
+               halves=None) -> list[Impact]:
+    """:func:`impact_at` at every span of ``spans`` [m] at once: each step of the iteration is one array
+    evaluation for all the spans still iterating (the refinement of a design point's roots). durations
+    [s], halves [m]: the starting T_L and b per span (None: the defaults of :func:`impact_at`; a
+    NaN duration: the default for that span). Returns one :class:`Impact` per span, in order."""
+    spans = np.atleast_1d(np.asarray(spans, dtype=float))
+    count = spans.size
+    c, e = scene.clearance, scene.restitution
+    m_e = np.broadcast_to(np.asarray(scene.equivalent_mass(spans), dtype=float), spans.shape)
+    longest = scene.impact_interval
+    problems: list[list[str]] = [[] for _ in range(count)]
+
+    def duration_for(curvature, velocity, mass):
         a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, curvature)
-        stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
-        return float(hertz.lee_duration(m_e, velocity, stiffness)), stiffness
+        stiffness = hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum)
+        return hertz.lee_duration(mass, velocity, stiffness), stiffness
 
     # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
-    velocity = scene.rotary_speed * c
-    start, stiffness = duration_for(c * (np.pi / span_length) ** 2, velocity)
-    duration = start if duration is None or not 0 < duration < longest else float(duration)
-    half_length = min(max(float(half_length), 0.0), 0.45 * span_length)
-    relaxation, last_step, converged = 1.0, 0.0, False
-    previous = None  # (T_L, map(T_L) - T_L) of the last iterate, for the secant
+    velocity = np.full(count, scene.rotary_speed * c)
+    start, stiffness = duration_for(c * (np.pi / spans) ** 2, velocity, m_e)
+    given = np.full(count, np.nan) if durations is None else np.broadcast_to(np.asarray(durations, dtype=float), spans.shape)
+    duration = np.where((given > 0) & (given < longest), given, start)
+    half = np.broadcast_to(np.asarray(0.0 if halves is None else halves, dtype=float), spans.shape)
+    half = np.minimum(np.maximum(half, 0.0), 0.45 * spans)
+    residual, impulse, curvature, peak, half_width = (np.full(count, np.nan) for _ in range(5))
+    relaxation, last_step = np.ones(count), np.zeros(count)
+    previous, previous_step = np.full(count, np.nan), np.full(count, np.nan)  # the last iterate, for the secant
+    iterations, converged = np.zeros(count, dtype=int), np.zeros(count, dtype=bool)
+    failed = np.zeros(count, dtype=bool)
+    active = np.arange(count)
     for iteration in range(1, max_iterations + 1):
-        if not duration < longest:
-            out.problems.append(f"pulse longer than the time between impacts (T_L = {duration:.3g} s)")
-            return out
-        y1, v1, curv1 = (float(v) for v in unit_state(scene, span_length, duration, half_length, options))
-        if not np.isfinite(y1):
-            out.problems.append("the span is at a resonance or buckled")
-            return out
-        if scene.closure == "self_consistent":
-            impulse, velocity = -c / y1, c * v1 / y1
-            residual = m_e * (1.0 + e) * velocity / impulse - 1.0
-        else:
-            impulse = m_e * (1.0 + e) * velocity
-            residual = -impulse * y1 / c - 1.0
-        curvature = impulse * curv1
-        out.residual, out.impulse, out.impact_velocity, out.axial_curvature = residual, impulse, velocity, curvature
-        if not (curvature > 0 and velocity > 0 and impulse > 0):
-            out.problems.append(
-                "the pipe is not convex towards the wall at the contact" if curvature <= 0 else
-                "the midspan does not approach the wall before contact" if velocity <= 0 else
-                "condition 2 needs a negative impulse")
-            return out
-        peak = float(hertz.lee_peak_force(impulse, duration))
-        ellipse = hertz.contact_ellipse(peak, scene.outer_radius, scene.hole_radius, curvature, scene.compliance_sum)
-        half_length = min(float(ellipse.contact_half_length), 0.45 * span_length)
-        mapped, stiffness = duration_for(curvature, velocity)
-        step = mapped - duration
-        if abs(step) <= options.fixed_point_tol * mapped:
-            converged = True
+        long_pulse = ~(duration[active] < longest)
+        for i in active[long_pulse]:
+            problems[i].append(f"pulse longer than the time between impacts (T_L = {duration[i]:.3g} s)")
+        active = active[~long_pulse]
+        if active.size == 0:
             break
+        y1, v1, curv1 = unit_state(scene, spans[active], duration[active], half[active], options)
+        for i in active[~np.isfinite(y1)]:
+            problems[i].append("the span is at a resonance or buckled")
+        finite = np.isfinite(y1)
+        active, y1, v1, curv1 = active[finite], y1[finite], v1[finite], curv1[finite]
+        if scene.closure == "self_consistent":
+            imp, vel = -c / y1, c * v1 / y1
+            res = m_e[active] * (1.0 + e) * vel / imp - 1.0
+        else:
+            vel = velocity[active]
+            imp = m_e[active] * (1.0 + e) * vel
+            res = -imp * y1 / c - 1.0
+        curv = imp * curv1
+        residual[active], impulse[active], velocity[active], curvature[active] = res, imp, vel, curv
+        wrong = ~((curv > 0) & (vel > 0) & (imp > 0))
+        for i in active[wrong]:
+            problems[i].append("the pipe is not convex towards the wall at the contact" if curvature[i] <= 0 else
+                               "the midspan does not approach the wall before contact" if velocity[i] <= 0 else
+                               "condition 2 needs a negative impulse")
+        active, imp, vel, curv = active[~wrong], imp[~wrong], vel[~wrong], curv[~wrong]
+        if active.size == 0:
+            break
+        peak[active] = hertz.lee_peak_force(imp, duration[active])
+        ellipse = hertz.contact_ellipse(peak[active], scene.outer_radius, scene.hole_radius, curv, scene.compliance_sum)
+        half[active] = np.minimum(ellipse.contact_half_length, 0.45 * spans[active])
+        half_width[active] = ellipse.contact_half_width
+        mapped, stiffness[active] = duration_for(curv, vel, m_e[active])
+        step = mapped - duration[active]
+        iterations[active] = iteration
+        done = np.abs(step) <= options.fixed_point_tol * mapped
+        converged[active[done]] = True
         if iteration == max_iterations:  # report the T_L the solution was computed with
             break
-        if last_step * step < 0:
-            relaxation *= 0.5
-        last_step = step
-        secant = np.nan
-        if previous is not None and step != previous[1]:
-            secant = duration - step * (duration - previous[0]) / (step - previous[1])
-        previous = (duration, step)
-        duration = secant if 0 < secant < longest else duration + relaxation * step
+        active, step = active[~done], step[~done]
+        relaxation[active] = np.where(last_step[active] * step < 0, 0.5 * relaxation[active], relaxation[active])
+        last_step[active] = step
+        with np.errstate(divide="ignore", invalid="ignore"):
+            secant = np.where(np.isfinite(previous[active]) & (step != previous_step[active]),
+                              duration[active] - step * (duration[active] - previous[active]) / (step - previous_step[active]),
+                              np.nan)
+        previous[active], previous_step[active] = duration[active], step
+        duration[active] = np.where((secant > 0) & (secant < longest), secant, duration[active] + relaxation[active] * step)
+    failed = np.array([bool(p) for p in problems], dtype=bool)
     elastic = hertz.hertz_impact(m_e, velocity, stiffness)
-    out.contact_duration = duration
-    out.hertz_duration, out.hertz_peak_force = float(elastic.duration), float(elastic.max_force)
-    out.max_approach = float(elastic.max_approach)
-    out.peak_contact_force = peak
-    out.contact_half_length, out.contact_half_width = half_length, float(ellipse.contact_half_width)
-    out.iterations = iteration
-    if not converged and max_iterations > 1:
-        out.problems.append(f"T_L–curvature iteration not converged in {max_iterations} steps")
+    out = []
+    for i in range(count):
+        impact = Impact(span_length=float(spans[i]), residual=float(residual[i]), impulse=float(impulse[i]),
+                        impact_velocity=float(velocity[i]), equivalent_mass=float(m_e[i]),
+                        axial_curvature=float(curvature[i]), problems=problems[i])
+        if not failed[i]:
+            impact.contact_duration = float(duration[i])
+            impact.hertz_duration, impact.hertz_peak_force = float(elastic.duration[i]), float(elastic.max_force[i])
+            impact.max_approach = float(elastic.max_approach[i])
+            impact.peak_contact_force = float(peak[i])
+            impact.contact_half_length, impact.contact_half_width = float(half[i]), float(half_width[i])
+            impact.iterations = int(iterations[i])
+            if not converged[i] and max_iterations > 1:
+                impact.problems.append(f"T_L–curvature iteration not converged in {max_iterations} steps")
+        out.append(impact)
     return out
 
 
@@ -306,7 +342,7 @@ def screen_residual(scene: Scene, options: Options):
     Returns a function of an array of spans, or None when no span gives a valid pulse.
     """
     grid = np.geomspace(options.min_span, options.max_span, 12)
-    impacts = [impact_at(scene, float(L), options, max_iterations=1) for L in grid]
+    impacts = impacts_at(scene, grid, options, max_iterations=1)
     durations = np.array([i.contact_duration for i in impacts])
     halves = np.array([i.contact_half_length for i in impacts])
     ok = np.isfinite(durations) & (durations > 0)
@@ -364,37 +400,6 @@ class SpanSearch:
     narrow_count: int = 0  #: poles not searched, their resonance narrower than ``Options.resonance_width``
 
 
-def _bisect(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12) -> np.ndarray:
-    """Roots of sign-changing brackets, all at once: regula falsi with the Illinois modification
-    (superlinear; the end kept twice in a row has its value halved, so both ends close in). A bracket
-    is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the unfinished
-    brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their brackets.
-    Returns the end with the smaller |f|."""
-    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    every = np.arange(lo.size)
-    f_lo, f_hi = func(lo, every), func(hi, every)
-    side = np.zeros(lo.shape, dtype=int)  # which end was kept last time (Illinois weight)
-    done = (hi - lo <= rtol * np.abs(hi)) | (f_lo == 0) | (f_hi == 0)
-    for _ in range(iterations):
-        active = np.nonzero(~done)[0]
-        if active.size == 0:
-            break
-        a, b, fa, fb, sd = lo[active], hi[active], f_lo[active], f_hi[active], side[active]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            mid = np.where(np.isfinite(fa) & np.isfinite(fb) & (fb != fa), b - fb * (b - a) / (fb - fa), 0.5 * (a + b))
-        mid = np.where((mid > a) & (mid < b), mid, 0.5 * (a + b))
-        fm = func(mid, active)
-        left = np.sign(fm) == np.sign(fa)  # the root is in [mid, b]: mid replaces a
-        fb = np.where(left & (sd == 1), 0.5 * fb, fb)
-        fa = np.where(~left & (sd == -1), 0.5 * fa, fa)
-        a, fa = np.where(left, mid, a), np.where(left, fm, fa)
-        b, fb = np.where(left, b, mid), np.where(left, fb, fm)
-        lo[active], hi[active], f_lo[active], f_hi[active] = a, b, fa, fb
-        side[active] = np.where(left, 1, -1)
-        done[active] = (b - a <= rtol * np.abs(b)) | (fm == 0)
-    return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
-
-
 def find_roots(scene: Scene, options: Options) -> SpanSearch:
     """Roots of the closure residual F(L) in [min_span, max_span], bracketed between poles.
 
@@ -431,7 +436,7 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     def smoothed(x, rows):
         return residual(x) * (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
 
-    roots = _bisect(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10) if len(i) else np.array([])
+    roots = bracketed_roots(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10) if len(i) else np.array([])
     if roots.size:  # a sign change across a narrow resonance converges onto its pole, where |F| grows
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
         real = np.abs(residual(roots)) < 1e-3 * ends
@@ -484,32 +489,69 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
     """The root of the exact residual (T_L–κ fixed point at every span) near the screening root
     ``approx``, by secant steps kept inside ``bracket`` (an interval free of wide poles). Each T_L–κ
     iteration starts from the last span's T_L and contact half-length (the first from ``duration`` [s]
-    and ``half_length`` [m] when given)."""
-    lo, hi = float(min(bracket)), float(max(bracket))
+    and ``half_length`` [m] when given). One root of :func:`refine_roots`."""
+    return refine_roots(scene, options, [approx], [bracket], steps,
+                        None if duration is None else [duration], [half_length])[0]
+
+
+def refine_roots(scene: Scene, options: Options, approx, brackets, steps: int = 8, durations=None,
+                 halves=None) -> list[Impact]:
+    """:func:`refine_root` for every screening root of ``approx`` [m] at once (``brackets``: one
+    interval per root; durations [s], halves [m]: starting T_L and b per root, None for the defaults):
+    each secant step is one :func:`impacts_at` call for all the roots still moving. Returns one
+    :class:`Impact` per root, in order."""
+    approx = np.atleast_1d(np.asarray(approx, dtype=float))
+    if approx.size == 0:
+        return []
+    brackets = np.asarray(brackets, dtype=float).reshape(-1, 2)
+    lo, hi = brackets.min(axis=1), brackets.max(axis=1)
     # the first secant step: small against the distance to the nearer pole (a root pinned next to a pole)
-    x0 = approx
-    x1 = approx + min(1e-6 * approx, 1e-3 * (hi - approx), 1e-3 * (approx - lo)) * (1.0 if hi - approx > approx - lo else -1.0)
-    i0 = impact_at(scene, x0, options, duration=duration, half_length=half_length)
-    if i0.problems or not np.isfinite(i0.residual):
-        return i0
-    i1 = impact_at(scene, x1, options, duration=i0.contact_duration, half_length=i0.contact_half_length)
+    x0 = approx.copy()
+    x1 = approx + np.minimum(np.minimum(1e-6 * approx, 1e-3 * (hi - approx)), 1e-3 * (approx - lo)) \
+        * np.where(hi - approx > approx - lo, 1.0, -1.0)
+    first = impacts_at(scene, x0, options, durations=durations, halves=halves)
+    result = list(first)
+    moving = [k for k, i in enumerate(first) if not i.problems and np.isfinite(i.residual)]
+    last = {k: first[k] for k in moving}  # the impact at x0 of each root still moving
+    latest = dict(zip(moving, _impacts_from(scene, options, x1, moving, last)))  # at x1
     for _ in range(steps):
-        if i1.problems or not np.isfinite(i1.residual) or abs(i1.residual) < 1e-10:
-            return i1
-        if x1 == x0:
-            break
-        slope = (i1.residual - i0.residual) / (x1 - x0)
-        if slope == 0:
-            break
-        x2 = x1 - i1.residual / slope
-        if not lo <= x2 <= hi:
-            i1.problems.append("the exact root left the interval between the searched poles around the screening root")
-            return i1
-        x0, i0, x1 = x1, i1, x2
-        i1 = impact_at(scene, x1, options, duration=i0.contact_duration, half_length=i0.contact_half_length)
-    if abs(i1.residual) > 1e-8:
-        i1.problems.append(f"condition 2 residual {i1.residual:.2g} after refinement")
-    return i1
+        again = []
+        for k in moving:
+            here = latest[k]
+            if here.problems or not np.isfinite(here.residual) or abs(here.residual) < 1e-10:
+                result[k] = here
+                continue
+            slope = (here.residual - last[k].residual) / (x1[k] - x0[k]) if x1[k] != x0[k] else 0.0
+            if slope == 0:
+                result[k] = _checked(here)
+                continue
+            x2 = x1[k] - here.residual / slope
+            if not lo[k] <= x2 <= hi[k]:
+                here.problems.append("the exact root left the interval between the searched poles around the screening root")
+                result[k] = here
+                continue
+            x0[k], last[k], x1[k] = x1[k], here, x2
+            again.append(k)
+        latest.update(zip(again, _impacts_from(scene, options, x1, again, last)))
+        moving = again
+    for k in moving:  # the steps ran out
+        result[k] = _checked(latest[k])
+    return result
+
+
+def _impacts_from(scene: Scene, options: Options, spans, rows, start) -> list[Impact]:
+    """:func:`impacts_at` at ``spans[rows]``, each T_L–κ iteration started from ``start[row]``'s T_L and b."""
+    if not rows:
+        return []
+    return impacts_at(scene, spans[rows], options, durations=[start[k].contact_duration for k in rows],
+                      halves=[start[k].contact_half_length for k in rows])
+
+
+def _checked(impact: Impact) -> Impact:
+    """The refined impact, with a problem when condition 2 still has a residual above 1e-8."""
+    if abs(impact.residual) > 1e-8:
+        impact.problems.append(f"condition 2 residual {impact.residual:.2g} after refinement")
+    return impact
 
 
 def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
@@ -681,8 +723,8 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     survivors = search.roots[screened]
     candidates, reasons = [], {}
     durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
-    for root, bracket, duration, half in zip(survivors, search.brackets[screened], durations, halves):
-        impact = refine_root(scene, options, float(root), bracket, duration=float(duration), half_length=float(half))
+    refined = refine_roots(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
+    for root, impact in zip(survivors, refined):
         problem = "; ".join(impact.problems) or constraint_violation(scene, impact, options)
         if problem is None:
             candidates.append(impact)

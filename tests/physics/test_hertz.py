@@ -383,10 +383,23 @@ def test_validity_array():
 
 
 def test_inversion_round_the_tabulated_guess_equals_the_full_bracket_one():
-    # source: the same brentq inversion on the whole range 1 - e^2 in [1e-300, 1); the narrow bracket
-    # only saves evaluations. Angles from 1e-9 rad (below the table) to just under pi/2.
+    # source: the same inversion (regula falsi) on the whole range 1 - e^2 in [1e-300, 1); the narrow
+    # bracket only saves evaluations. Angles from 1e-9 rad (below the table) to just under pi/2.
     theta = np.concatenate((np.geomspace(1e-9, 1.0, 400), np.linspace(1.0, np.pi / 2 - 1e-12, 400)))
     narrow = np.array([h._log_c2(t) for t in theta])
     full = np.array([h._log_c2(t, full_bracket=True) for t in theta])
     np.testing.assert_allclose(narrow, full, rtol=1e-11)  # both at the residual's rounding level
     np.testing.assert_allclose(np.exp(-narrow / 3.0), np.exp(-full / 3.0), rtol=1e-13)  # m's factor
+
+
+@pytest.mark.parametrize("deg", [0.5, 5.0, 30.0, 60.0, 85.0, 89.9])
+def test_inverted_eccentricity_satisfies_johnson_4_39(deg):
+    # source: Johnson, Contact Mechanics, eq. 4.39 - cos(theta) = [(2 - e^2)E(e) - 2(1 - e^2)K(e)]/(e^2 E(e)),
+    # evaluated here with numpy's scipy.special.ellipk/ellipe, independently of the compiled kernel
+    # that solved it (scipy's functions linked into compiled code).
+    from scipy.special import ellipe, ellipk
+
+    theta = np.radians(deg)
+    e2 = -np.expm1(h._log_c2(theta))
+    cos_t = ((2 - e2) * ellipe(e2) - 2 * (1 - e2) * ellipk(e2)) / (e2 * ellipe(e2))
+    assert cos_t == pytest.approx(np.cos(theta), rel=1e-9, abs=1e-12)

@@ -104,3 +104,41 @@ def test_narrow_resonances_only_hide_the_roots_pinned_to_them(paper_inputs):
     for root in skipped:
         nearest = np.argmin(np.abs(poles - root))
         assert abs(poles[nearest] - root) < 1e-5 * root and widths[nearest] < 1e-6
+
+
+@pytest.mark.parametrize("pattern, closure", [("alternating", "prescribed"), ("one_wall", "self_consistent")])
+def test_many_spans_at_once_solve_each_as_alone(paper_inputs, pattern, closure):
+    # source: the definition - impacts_at iterates every span's own T_L-curvature fixed point; masking the
+    # finished spans must not change the others. Spans from 5 to 200 m, one on a resonance pole (which
+    # fails), and a mixture of converging and rejected ones (not convex, not approaching).
+    scene = scene_of(paper_inputs, pattern, closure)
+    options = periodic.Options(modes=11)
+    pole = periodic.resonant_spans(scene, periodic.odd_modes(11), 30.0, 200.0)[0]
+    spans = np.concatenate([np.geomspace(5.0, 200.0, 23), [pole]])
+    batch = periodic.impacts_at(scene, spans, options)
+    alone = [periodic.impact_at(scene, float(L), options) for L in spans]
+    assert {tuple(i.problems) for i in batch} != {()}  # some spans fail ...
+    assert any(not i.problems for i in batch)  # ... and some converge
+    assert any("resonance" in p for p in batch[-1].problems)
+    for b, a in zip(batch, alone):
+        assert b.problems == a.problems
+        assert b.iterations == a.iterations
+        for name in ("residual", "impulse", "impact_velocity", "contact_duration", "peak_contact_force",
+                     "contact_half_length", "axial_curvature", "hertz_duration"):
+            np.testing.assert_array_equal(getattr(b, name), getattr(a, name), err_msg=name)
+
+
+def test_roots_refined_together_are_refined_as_alone(paper_inputs):
+    # source: the definition - refine_roots moves every root by its own secant steps inside its own bracket.
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    options = periodic.Options(modes=15, min_span=9.0)
+    search = periodic.find_roots(scene, options)
+    roots, brackets = search.roots, search.brackets
+    together = periodic.refine_roots(scene, options, roots, brackets)
+    alone = [periodic.refine_root(scene, options, float(r), b) for r, b in zip(roots, brackets)]
+    assert sum(not i.problems for i in together) >= 5
+    assert any(i.problems for i in together)
+    for t, a in zip(together, alone):
+        assert t.problems == a.problems
+        assert t.span_length == a.span_length and t.contact_duration == a.contact_duration \
+            or (np.isnan(t.contact_duration) and np.isnan(a.contact_duration))
