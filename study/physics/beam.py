@@ -329,9 +329,11 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
         y = 0.0
         v = 0.0
         curv = 0.0
-        beta1 = math.pi * half / span
-        s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
-        s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
+        s_n = c_n = s_2 = c_2 = 0.0
+        if consecutive and code != 0:
+            beta1 = math.pi * half / span
+            s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
+            s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
         for j in range(modes.shape[1]):
             n = modes[row, j]
             k = n * math.pi / span

@@ -10,15 +10,20 @@ from __future__ import annotations
 import numpy as np
 
 
-def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12) -> np.ndarray:
+def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
+                    f_lo=None, f_hi=None, with_values: bool = False):
     """Roots of sign-changing brackets, all at once: regula falsi with the Illinois modification
     (superlinear; the end kept twice in a row has its value halved, so both ends close in). A bracket
     is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the unfinished
     brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their brackets.
-    Returns the end with the smaller |f|."""
+    ``f_lo``, ``f_hi``: func at the ends when the caller has them (saves two evaluations per bracket).
+    Returns the end with the smaller |f|, and with ``with_values`` also func there (as computed by
+    func, not halved)."""
     lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
     every = np.arange(lo.size)
-    f_lo, f_hi = func(lo, every), func(hi, every)
+    f_lo = func(lo, every) if f_lo is None else np.asarray(f_lo, dtype=float).copy()
+    f_hi = func(hi, every) if f_hi is None else np.asarray(f_hi, dtype=float).copy()
+    raw_lo, raw_hi = f_lo.copy(), f_hi.copy()  # func at the current ends (f_lo, f_hi get halved)
     side = np.zeros(lo.shape, dtype=int)  # which end was kept last time (Illinois weight)
     done = (hi - lo <= rtol * np.abs(hi)) | (f_lo == 0) | (f_hi == 0)
     for _ in range(iterations):
@@ -35,7 +40,11 @@ def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, 
         fa = np.where(~left & (sd == -1), 0.5 * fa, fa)
         a, fa = np.where(left, mid, a), np.where(left, fm, fa)
         b, fb = np.where(left, b, mid), np.where(left, fb, fm)
+        raw_lo[active] = np.where(left, fm, raw_lo[active])
+        raw_hi[active] = np.where(left, raw_hi[active], fm)
         lo[active], hi[active], f_lo[active], f_hi[active] = a, b, fa, fb
         side[active] = np.where(left, 1, -1)
         done[active] = (b - a <= rtol * np.abs(b)) | (fm == 0)
-    return np.where(np.abs(f_lo) < np.abs(f_hi), lo, hi)
+    low = np.abs(f_lo) < np.abs(f_hi)
+    roots = np.where(low, lo, hi)
+    return (roots, np.where(low, raw_lo, raw_hi)) if with_values else roots

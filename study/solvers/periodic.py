@@ -433,13 +433,21 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
     # F times the distance to both poles of the interval: the same roots, no singularity at the ends
     # (regula falsi converges in a few steps instead of crawling along the pole's hyperbola).
-    def smoothed(x, rows):
-        return residual(x) * (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
+    def distances(x, rows):
+        return (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
 
-    roots = bracketed_roots(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10) if len(i) else np.array([])
-    if roots.size:  # a sign change across a narrow resonance converges onto its pole, where |F| grows
+    def smoothed(x, rows):
+        return residual(x) * distances(x, rows)
+
+    roots = np.array([])
+    if len(i):  # the ends' values are the samples' (the same evaluation)
+        every = np.arange(len(i))
+        roots, at_roots = bracketed_roots(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10,
+                                          f_lo=values[i, j] * distances(brackets[:, 0], every),
+                                          f_hi=values[i, j + 1] * distances(brackets[:, 1], every), with_values=True)
+        # a sign change across a narrow resonance converges onto its pole, where |F| grows
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        real = np.abs(residual(roots)) < 1e-3 * ends
+        real = np.abs(at_roots / distances(roots, every)) < 1e-3 * ends
         roots, intervals = roots[real], intervals[real]
     return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
                       narrow_count=int(np.count_nonzero(~wide)))

@@ -35,3 +35,19 @@ def test_stiff_functions_converge_to_the_tolerance():
     roots = bracketed_roots(lambda x, rows: np.expm1(k[rows] * (x - 1.0)), np.zeros(4), np.full(4, 3.0),
                             iterations=200, rtol=1e-13)
     np.testing.assert_allclose(roots, 1.0, rtol=1e-12)
+
+
+def test_given_end_values_and_returned_values_are_the_functions():
+    # source: the definition - f_lo, f_hi stand for func at the ends; with_values returns func at the roots.
+    a = np.linspace(2.0, 50.0, 30)
+    lo, hi = np.ones_like(a), a + 1.0
+
+    def func(x, rows):
+        return x**3 - a[rows]
+
+    plain = bracketed_roots(func, lo, hi, rtol=1e-12)
+    every = np.arange(a.size)
+    roots, values = bracketed_roots(func, lo, hi, rtol=1e-12, f_lo=func(lo, every), f_hi=func(hi, every),
+                                    with_values=True)
+    np.testing.assert_array_equal(roots, plain)
+    np.testing.assert_array_equal(values, func(roots, every))
