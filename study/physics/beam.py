@@ -500,27 +500,32 @@ _INV_FACT = np.array([1.0 / factorial(i) for i in range(2 * _SERIES_TERMS + 8)])
 
 
 @numba.njit(cache=True, nogil=True)
-def _stumpff_series(ws, k, inv_fact):
-    """Σ_{j < _SERIES_TERMS} w^j/(2j + k)! by Horner's rule, for each w of the flat array ``ws``."""
-    out = np.empty(ws.size)
+def _stumpff_series(ws, orders, inv_fact):
+    """Σ_{j < _SERIES_TERMS} w^j/(2j + k)! by Horner's rule for k = 0 … orders − 1 (rows), for each w of
+    the flat array ``ws`` (columns)."""
+    out = np.empty((orders, ws.size))
     for i in range(ws.size):
-        acc = 0.0
-        for j in range(_SERIES_TERMS - 1, -1, -1):
-            acc = acc * ws[i] + inv_fact[2 * j + k]
-        out[i] = acc
+        for k in range(orders):
+            acc = 0.0
+            for j in range(_SERIES_TERMS - 1, -1, -1):
+                acc = acc * ws[i] + inv_fact[2 * j + k]
+            out[k, i] = acc
     return out
 
 
 def _stumpff(k, w):
-    """c_k(w) = Σ_j w^j/(2j + k)! (Stumpff functions with argument −w) [-], k ≥ 0.
+    """c_0(w) … c_k(w), c_j(w) = Σ_i w^i/(2i + j)! (Stumpff functions with argument −w) [-], k ≥ 0:
+    an array of shape (k + 1,) + w.shape.
 
-    c_0 = cosh √w, c_1 = sinh √w/√w (cos, sin for w < 0), c_{k+2} = (c_k − 1/k!)/w. Series for
+    c_0 = cosh √w, c_1 = sinh √w/√w (cos, sin for w < 0), c_{j+2} = (c_j − 1/j!)/w. Series for
     −30 ≤ w ≤ 60 (positive terms for w > 0; for w < 0 the beam is below buckling only while
     |w| < π²/4), closed form and upward recursion outside, where it loses no digits.
     """
     w = np.asarray(w, dtype=float)
     ser = (w >= -30.0) & (w <= 60.0)
-    acc = _stumpff_series(np.ascontiguousarray(np.where(ser, w, 0.0).ravel()), k, _INV_FACT).reshape(w.shape)
+    acc = _stumpff_series(np.ascontiguousarray(np.where(ser, w, 0.0).ravel()), k + 1, _INV_FACT).reshape((k + 1,) + w.shape)
+    if np.all(ser):
+        return acc
     wc = np.where(ser, 100.0, w)
     with np.errstate(over="ignore", invalid="ignore"):
         r = np.sqrt(np.abs(wc))
@@ -528,16 +533,19 @@ def _stumpff(k, w):
         c = [np.where(pos, np.cosh(r), np.cos(r)), np.where(pos, np.sinh(r), np.sin(r)) / r]
         for i in range(2, k + 1):
             c.append((c[i - 2] - _INV_FACT[i - 2]) / wc)
-    return np.where(ser, acc, c[k])
+    return np.where(ser, acc, np.array(c[:k + 1]))
 
 
 def _gen_hyp(k, x, s):
-    """F_k(x) = x^k c_k(s x²) [m^k], x ≥ 0: F_0 = cosh λx, F_1 = sinh(λx)/λ, F_{k+1}' = F_k, λ² = s.
+    """F_0(x) … F_k(x), F_j(x) = x^j c_j(s x²) [m^j], x ≥ 0 (shape (k + 1,) + x.shape): F_0 = cosh λx,
+    F_1 = sinh(λx)/λ, F_{j+1}' = F_j, λ² = s.
 
-    Entire in s = T/EI (tension s > 0, compression s < 0, s = 0 gives x^k/k!), so one formula
+    Entire in s = T/EI (tension s > 0, compression s < 0, s = 0 gives x^j/j!), so one formula
     covers the beam-column, the plain beam and the compressed column without cancellation.
     """
-    return x**k * _stumpff(k, s * x * x)
+    x = np.asarray(x, dtype=float)
+    powers = x[None] ** np.arange(k + 1).reshape((-1,) + (1,) * x.ndim)
+    return powers * _stumpff(k, s * x * x)
 
 
 def _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape):
@@ -564,24 +572,26 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
     xh = np.clip(np.where(mirror, L - x, x), 0.0, half)
     a = half - b
 
-    def p_deriv(j, xx):  # P^{(j)}(xx) on the half span
+    def p_derivs(xx):  # P and its first three derivatives at xx on the half span
         r = np.clip(xx - a, 0.0, None)
         if shape == "point":
-            return np.zeros_like(r)
-        if shape == "uniform":
-            with np.errstate(divide="ignore", invalid="ignore"):
-                return _gen_hyp(4 - j, r, s) / (2.0 * b * ei)
+            return [np.zeros_like(r)] * 4
+        f = _gen_hyp(6, r, s)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return 3.0 * (b * _gen_hyp(5 - j, r, s) - _gen_hyp(6 - j, r, s)) / (2.0 * b**3 * ei)
+            if shape == "uniform":
+                return [f[4 - j] / (2.0 * b * ei) for j in range(4)]
+            return [3.0 * (b * f[5 - j] - f[6 - j]) / (2.0 * b**3 * ei) for j in range(4)]
 
     g_half = 0.0 if shape == "point" else 0.5
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        big_b = -((0.5 - g_half) / ei + p_deriv(3, half)) / _gen_hyp(0, half, s)
-        big_a = -big_b * _gen_hyp(2, half, s) - p_deriv(1, half)
-        y = big_a * xh + big_b * _gen_hyp(3, xh, s) + p_deriv(0, xh)
-        y1 = big_a + big_b * _gen_hyp(2, xh, s) + p_deriv(1, xh)
-        y2 = big_b * _gen_hyp(1, xh, s) + p_deriv(2, xh)
-        y3 = big_b * _gen_hyp(0, xh, s) + p_deriv(3, xh)
+        at_half, at_x = _gen_hyp(2, half, s), _gen_hyp(3, xh, s)
+        p_half, p_x = p_derivs(half), p_derivs(xh)
+        big_b = -((0.5 - g_half) / ei + p_half[3]) / at_half[0]
+        big_a = -big_b * at_half[2] - p_half[1]
+        y = big_a * xh + big_b * at_x[3] + p_x[0]
+        y1 = big_a + big_b * at_x[2] + p_x[1]
+        y2 = big_b * at_x[1] + p_x[2]
+        y3 = big_b * at_x[0] + p_x[3]
     sgn = np.where(mirror, -1.0, 1.0)
     invalid = (b < 0) | (b >= half) | ~(s * half**2 > -0.25 * np.pi**2)  # buckled: F_0(L/2) ≤ 0
     out = [y, sgn * y1, y2, sgn * y3]
