@@ -737,11 +737,20 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
         if problem is None:
             candidates.append(impact)
         else:
-            reasons.setdefault(problem.split(" at ")[0].split(" (")[0], []).append(root)
+            reasons.setdefault(_reason(problem), []).append(root)
     summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count - search.narrow_count} poles "
                f"in [{options.min_span:.4g}, {options.max_span:.4g}] m ({search.narrow_count} resonances narrower "
                f"than {options.resonance_width:.2g} L not searched); {survivors.size} pass the midspan screen")
     return SpanChoice(search, survivors, candidates, reasons, summary, options)
+
+
+def _reason(problem: str) -> str:
+    """The kind of a rejection, for counting: the message without where and by how much."""
+    if problem.startswith("|y| reaches"):
+        return "the pipe reaches past a wall elsewhere (condition 1)"
+    if problem.startswith("condition 2 residual"):
+        return "condition 2 not met after refinement"
+    return problem.split(" at ")[0].split(" (")[0]
 
 
 Finish = Callable[[Scene, Impact, Mapping[str, Any], Options, PointResult], None]

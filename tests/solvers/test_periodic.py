@@ -142,3 +142,14 @@ def test_roots_refined_together_are_refined_as_alone(paper_inputs):
         assert t.problems == a.problems
         assert t.span_length == a.span_length and t.contact_duration == a.contact_duration \
             or (np.isnan(t.contact_duration) and np.isnan(a.contact_duration))
+
+
+def test_rejected_roots_are_counted_by_kind(paper_inputs):
+    # source: the definition - the no_span message counts the rejections by kind (condition 1, not convex,
+    # ...), not one line per value of |y|/c or of the residual.
+    import re
+
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    choice = periodic.find_span(scene, periodic.Options(modes=11))
+    assert sum(len(v) for v in choice.reasons.values()) >= 3
+    assert not [key for key in choice.reasons if re.search(r"\d\.\d", key)]
