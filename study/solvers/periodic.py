@@ -263,7 +263,6 @@ def impacts_at(scene: Scene, spans, options: Options, max_iterations: int = 60, 
     relaxation, last_step = np.ones(count), np.zeros(count)
     previous, previous_step = np.full(count, np.nan), np.full(count, np.nan)  # the last iterate, for the secant
     iterations, converged = np.zeros(count, dtype=int), np.zeros(count, dtype=bool)
-    failed = np.zeros(count, dtype=bool)
     active = np.arange(count)
     for iteration in range(1, max_iterations + 1):
         long_pulse = ~(duration[active] < longest)
