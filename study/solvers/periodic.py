@@ -366,26 +366,47 @@ def screen_residual(scene: Scene, options: Options):
             return -m_e * (1.0 + e) * v1 - offset  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
         return -m_e * (1.0 + e) * scene.rotary_speed * y1 - offset  # -J y1/c - 1 with J = m_e (1+e) Omega c
 
+    def residue(spans, modes):
+        """R [m] of the term of mode ``modes`` in F at its pole ``spans``: F ≈ R/(L − L_p) there.
+
+        The term is −m_e(1 + e) Ω w q(0) (prescribed) or −m_e(1 + e) w q̇(0) (self-consistent), w the
+        mode's midspan weight, and q(0), q̇(0) (:func:`beam.modal_state_at_pulse_start`) carry the pole
+        through κ ≈ 1/(x − x_p), x = ω s (s = τ/2 for cot(ωτ/2), τ/4 for −tan(ωτ/4)): the factor of κ,
+        A cos φ/(2ω) or A sin φ/2 (A e^{−iφ} = H(ω), :func:`beam.pulse_spectrum`), over s dω/dL."""
+        spans, n = np.asarray(spans, dtype=float), np.asarray(modes, dtype=float)
+        duration, half = pulse(spans)
+        p = scene.props
+        k_sq = (n * np.pi / spans) ** 2
+        with np.errstate(invalid="ignore"):
+            omega = np.sqrt((p["bending_stiffness"] * k_sq**2 + p["effective_tension"] * k_sq) / p["mass_per_length"])
+        spectrum = beam.pulse_spectrum(omega, duration)
+        weight = 2.0 * np.abs(beam.modal_load_factors(n[:, None], spans, half, options.load_shape)[:, 0]) \
+            / (p["mass_per_length"] * spans)
+        factor = -scene.equivalent_mass(spans) * (1.0 + e) * weight * (
+            -0.5 * spectrum.imag if scene.closure == "self_consistent" else
+            scene.rotary_speed * spectrum.real / (2.0 * omega))
+        slope = -(2.0 * p["bending_stiffness"] * k_sq**2 + p["effective_tension"] * k_sq) \
+            / (p["mass_per_length"] * spans * omega)  # dω/dL
+        return factor / (0.5 * scene.impact_interval * slope)
+
     residual.pulse = pulse
+    residual.residue = residue
     return residual
 
 
-def resonance_widths(residual, spans, modes, offset: float = 1e-7) -> np.ndarray:
+def resonance_widths(residual, spans, modes) -> np.ndarray:
     """Relative width of each resonance [-]: |R|/L_p, R the residue in L of the resonant mode's term of
-    the closure residual F at its pole L_p (``spans``, mode numbers ``modes``).
+    the closure residual F at its pole L_p (``spans``, mode numbers ``modes``), in closed form
+    (``residual.residue`` of :func:`screen_residual`).
 
     Near the pole F = R/(L − L_p) + B(L): the resonant mode alone moves F by more than 1 (it alone
     carries the midspan to the wall) only within |L − L_p| < |R|, and the root it pins sits within
     |R/B| of the pole. Light damping of ratio ζ bounds the resonant term by about |R|/(ζ L_p), so a
     resonance with |R|/L_p ≪ ζ has no root once the pipe is damped at all (MODEL.md §7): such a root is
-    an artefact of the undamped model. Estimated from the mode's own term t at L_p (1 ± offset):
-    R ≈ [t(+) − t(−)] offset L_p/2, in which the term's regular part cancels to first order.
+    an artefact of the undamped model.
     """
     spans = np.asarray(spans, dtype=float)
-    own = np.asarray(modes, dtype=float)[:, None]
-    above = residual(spans * (1.0 + offset), modes=own)
-    below = residual(spans * (1.0 - offset), modes=own)
-    return np.abs(above - below) * 0.5 * offset
+    return np.abs(residual.residue(spans, np.asarray(modes, dtype=float))) / spans
 
 
 @dataclass
