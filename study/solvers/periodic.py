@@ -377,8 +377,7 @@ def screen_residual(scene: Scene, options: Options):
         duration, half = pulse(spans)
         p = scene.props
         k_sq = (n * np.pi / spans) ** 2
-        with np.errstate(invalid="ignore"):
-            omega = np.sqrt((p["bending_stiffness"] * k_sq**2 + p["effective_tension"] * k_sq) / p["mass_per_length"])
+        omega = natural_frequencies(scene, spans, n[:, None])[:, 0]  # each pole's own mode
         spectrum = beam.pulse_spectrum(omega, duration)
         weight = 2.0 * np.abs(beam.modal_load_factors(n[:, None], spans, half, options.load_shape)[:, 0]) \
             / (p["mass_per_length"] * spans)
