@@ -420,21 +420,78 @@ def _modal_displacement(tm, om, tl, kappa, phi, amp):
     return 0.5 * amp / om * (s + kappa * c)  # free vibration after the pulse, its echo included
 
 
+#: Steps a uniform run of times is advanced by rotation before sin, cos are evaluated afresh (bounds
+#: the drift of the rotation to a few rounding errors of the phase per step).
+_ROTATION_STEPS = 32
+
+
 @numba.njit(cache=True, nogil=True)
 def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
-    out = np.empty((t.size, omega.size))
+    n_t, n_m = t.size, omega.size
+    out = np.empty((n_t, n_m))
     p = tau if one_wall else 0.5 * tau
+    a = math.pi / tl
     # per mode: A = cos φ/(1 − u²), φ = ωT_L/2, κ (C − 1 = ½(−1 + iκ)), and the resonance mask
-    amp = np.empty(omega.size)
-    phi = np.empty(omega.size)
-    kappa = np.empty(omega.size)
-    bad = np.empty(omega.size, dtype=np.bool_)
-    for j in range(omega.size):
+    amp, phi, kappa = np.empty(n_m), np.empty(n_m), np.empty(n_m)
+    bad = np.empty(n_m, dtype=np.bool_)
+    for j in range(n_m):
         bad[j], kappa[j], phi[j], amp[j] = _echo_factors(omega[j], tl, tau, one_wall, tol)
-    for i in range(t.size):
-        tm, sign = _since_last_pulse(t[i], p, one_wall)
-        for j in range(omega.size):
-            out[i, j] = math.nan if bad[j] else sign * _modal_displacement(tm, omega[j], tl, kappa[j], phi[j], amp[j])
+    free_amp = np.where(bad, np.nan, 0.5 * amp / omega)  # A/(2ω)
+    cos_phi, sin_phi = np.cos(phi), np.sin(phi)
+    pulse_amp = a / (2.0 * omega * (omega + a))
+    near = np.abs(omega - a) * tl < 2e-2  # ω ≈ π/T_L: the pulse from rest by its sinc form
+    # q = A (sin ψ + κ cos ψ)/(2ω), ψ = ωt_P − φ, after the pulse; during it the pulse from rest
+    # a/(2ω(ω + a)) (sin ωt_P − ω (sin ωt_P − sin at_P)/(ω − a)), a = π/T_L, is added and the echo
+    # has −sin ψ. Along a run of equal steps Δ the pair (sin ψ, cos ψ) turns by ωΔ, so sin and cos
+    # are evaluated once per run and every _ROTATION_STEPS steps (the grids come from linspace: the
+    # steps of a run agree to rounding).
+    sin_psi, cos_psi = np.empty(n_m), np.empty(n_m)
+    turn_c, turn_s = np.empty(n_m), np.empty(n_m)
+    run_step, steps, turned = -1.0, 0, False
+    prev_tm, prev_k = 0.0, -1
+    same = 8.0 * 2.220446049250313e-16 * p  # steps of one run differ by rounding only
+    for i in range(n_t):
+        k = math.floor(t[i] / p)
+        tm = t[i] - k * p
+        sign = 1.0 if one_wall or k % 2 == 0 else -1.0
+        rotate = False
+        if i > 0 and k == prev_k:
+            step = tm - prev_tm
+            if abs(step - run_step) > same:  # the step changed: a run starts here, if the next is equal
+                run_step, turned = step, False
+            elif not turned:  # the second equal step: the run's turn per step
+                for j in range(n_m):
+                    turn_c[j], turn_s[j] = math.cos(omega[j] * step), math.sin(omega[j] * step)
+                turned, steps = True, 0
+            rotate = turned and steps < _ROTATION_STEPS
+        if rotate:
+            steps += 1
+            for j in range(n_m):
+                s = sin_psi[j] * turn_c[j] + cos_psi[j] * turn_s[j]
+                cos_psi[j] = cos_psi[j] * turn_c[j] - sin_psi[j] * turn_s[j]
+                sin_psi[j] = s
+        else:
+            steps = 0
+            for j in range(n_m):
+                psi = omega[j] * tm - phi[j]
+                sin_psi[j], cos_psi[j] = math.sin(psi), math.cos(psi)
+        prev_tm, prev_k = tm, k
+        if tm > tl:
+            for j in range(n_m):
+                out[i, j] = sign * free_amp[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
+            continue
+        sin_at = math.sin(a * tm)
+        for j in range(n_m):
+            om = omega[j]
+            if near[j]:
+                z = 0.5 * (om - a) * tm
+                sinc = 1.0 if z == 0.0 else math.sin(z) / z
+                sin_wt = math.sin(om * tm)
+                rest = pulse_amp[j] * (sin_wt - om * tm * math.cos(0.5 * (om + a) * tm) * sinc)
+            else:
+                sin_wt = sin_psi[j] * cos_phi[j] + cos_psi[j] * sin_phi[j]  # sin(ψ + φ)
+                rest = pulse_amp[j] * (sin_wt - om * (sin_wt - sin_at) / (om - a))
+            out[i, j] = sign * (rest + free_amp[j] * (kappa[j] * cos_psi[j] - sin_psi[j]))
     return out
 
 
@@ -500,52 +557,88 @@ _INV_FACT = np.array([1.0 / factorial(i) for i in range(2 * _SERIES_TERMS + 8)])
 
 
 @numba.njit(cache=True, nogil=True)
-def _stumpff_series(ws, orders, inv_fact):
-    """Σ_{j < _SERIES_TERMS} w^j/(2j + k)! by Horner's rule for k = 0 … orders − 1 (rows), for each w of
-    the flat array ``ws`` (columns)."""
-    out = np.empty((orders, ws.size))
-    for i in range(ws.size):
-        for k in range(orders):
+def _stumpff(w, out):
+    """c_0(w) … c_k(w) into ``out`` (k = out.size − 1), c_j(w) = Σ_i w^i/(2i + j)! (Stumpff functions
+    with argument −w) [-].
+
+    c_0 = cosh √w, c_1 = sinh √w/√w (cos, sin for w < 0), c_{j+2} = (c_j − 1/j!)/w. Series (Horner,
+    _SERIES_TERMS terms) for −30 ≤ w ≤ 60 (positive terms for w > 0; for w < 0 the beam is below
+    buckling only while |w| < π²/4), closed form and upward recursion outside, where it loses no digits.
+    """
+    if -30.0 <= w <= 60.0:
+        for k in range(out.size):
             acc = 0.0
             for j in range(_SERIES_TERMS - 1, -1, -1):
-                acc = acc * ws[i] + inv_fact[2 * j + k]
-            out[k, i] = acc
-    return out
+                acc = acc * w + _INV_FACT[2 * j + k]
+            out[k] = acc
+        return
+    r = math.sqrt(abs(w))
+    out[0] = math.cosh(r) if w > 0 else math.cos(r)
+    if out.size > 1:
+        out[1] = (math.sinh(r) if w > 0 else math.sin(r)) / r
+    for k in range(2, out.size):
+        out[k] = (out[k - 2] - _INV_FACT[k - 2]) / w
 
 
-def _stumpff(k, w):
-    """c_0(w) … c_k(w), c_j(w) = Σ_i w^i/(2i + j)! (Stumpff functions with argument −w) [-], k ≥ 0:
-    an array of shape (k + 1,) + w.shape.
-
-    c_0 = cosh √w, c_1 = sinh √w/√w (cos, sin for w < 0), c_{j+2} = (c_j − 1/j!)/w. Series for
-    −30 ≤ w ≤ 60 (positive terms for w > 0; for w < 0 the beam is below buckling only while
-    |w| < π²/4), closed form and upward recursion outside, where it loses no digits.
-    """
-    w = np.asarray(w, dtype=float)
-    ser = (w >= -30.0) & (w <= 60.0)
-    acc = _stumpff_series(np.ascontiguousarray(np.where(ser, w, 0.0).ravel()), k + 1, _INV_FACT).reshape((k + 1,) + w.shape)
-    if np.all(ser):
-        return acc
-    wc = np.where(ser, 100.0, w)
-    with np.errstate(over="ignore", invalid="ignore"):
-        r = np.sqrt(np.abs(wc))
-        pos = wc > 0
-        c = [np.where(pos, np.cosh(r), np.cos(r)), np.where(pos, np.sinh(r), np.sin(r)) / r]
-        for i in range(2, k + 1):
-            c.append((c[i - 2] - _INV_FACT[i - 2]) / wc)
-    return np.where(ser, acc, np.array(c[:k + 1]))
-
-
-def _gen_hyp(k, x, s):
-    """F_0(x) … F_k(x), F_j(x) = x^j c_j(s x²) [m^j], x ≥ 0 (shape (k + 1,) + x.shape): F_0 = cosh λx,
+@numba.njit(cache=True, nogil=True)
+def _gen_hyp(x, s, out):
+    """F_0(x) … F_k(x) into ``out`` (k = out.size − 1), F_j(x) = x^j c_j(s x²) [m^j], x ≥ 0: F_0 = cosh λx,
     F_1 = sinh(λx)/λ, F_{j+1}' = F_j, λ² = s.
 
     Entire in s = T/EI (tension s > 0, compression s < 0, s = 0 gives x^j/j!), so one formula
     covers the beam-column, the plain beam and the compressed column without cancellation.
     """
-    x = np.asarray(x, dtype=float)
-    powers = x[None] ** np.arange(k + 1).reshape((-1,) + (1,) * x.ndim)
-    return powers * _stumpff(k, s * x * x)
+    _stumpff(s * x * x, out)
+    power = 1.0
+    for j in range(out.size):
+        out[j] *= power
+        power *= x
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _load_response(xx, a, b, s, ei, code, f, out):
+    """P, P', P'', P''' at xx into ``out``: the causal response to the spread load on [a, xx] (see
+    :func:`_static_derivatives`); ``f`` is scratch for F_0 … F_6."""
+    if code == 0:  # point load: none on the open half span
+        out[:] = 0.0
+        return
+    _gen_hyp(max(xx - a, 0.0), s, f)
+    for j in range(4):
+        if code == 1:
+            out[j] = f[4 - j] / (2.0 * b * ei)
+        else:
+            out[j] = 3.0 * (b * f[5 - j] - f[6 - j]) / (2.0 * b**3 * ei)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _static_kernel(x, span, ei, tension, b, code):
+    out = np.empty((4, x.size))
+    f, at_half, at_x = np.empty(7), np.empty(3), np.empty(4)
+    p_half, p_x = np.empty(4), np.empty(4)
+    g_half = 0.0 if code == 0 else 0.5
+    big_a = big_b = 0.0
+    for i in range(x.size):
+        s = tension[i] / ei[i]
+        half = 0.5 * span[i]
+        mirror = x[i] > half
+        xh = min(max(span[i] - x[i] if mirror else x[i], 0.0), half)
+        a = half - b[i]
+        if i == 0 or span[i] != span[i - 1] or ei[i] != ei[i - 1] or tension[i] != tension[i - 1] \
+                or b[i] != b[i - 1]:  # A and B, once per beam
+            _gen_hyp(half, s, at_half)
+            _load_response(half, a, b[i], s, ei[i], code, f, p_half)
+            big_b = -((0.5 - g_half) / ei[i] + p_half[3]) / at_half[0]
+            big_a = -big_b * at_half[2] - p_half[1]
+        _gen_hyp(xh, s, at_x)
+        _load_response(xh, a, b[i], s, ei[i], code, f, p_x)
+        sgn = -1.0 if mirror else 1.0
+        out[0, i] = big_a * xh + big_b * at_x[3] + p_x[0]
+        out[1, i] = sgn * (big_a + big_b * at_x[2] + p_x[1])
+        out[2, i] = big_b * at_x[1] + p_x[2]
+        out[3, i] = sgn * (big_b * at_x[0] + p_x[3])
+        if b[i] < 0 or b[i] >= half or not s * half**2 > -0.25 * math.pi**2:  # buckled: F_0(L/2) ≤ 0
+            out[:, i] = math.nan
+    return out
 
 
 def _static_derivatives(x, span_length, bending_stiffness, tension, half_length, shape):
@@ -558,44 +651,16 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
     P^{(j)}(x) = (1/EI) ∫_a^x g(x') F_{3−j}(x − x') dx', r = x − a, which for the shapes is
     uniform: F_{4−j}(r)/(2b EI); parabolic (g = 3ρ(2b − ρ)/(4b³), ρ = x' − a):
     3(b F_{5−j}(r) − F_{6−j}(r))/(2b³ EI) — from ∫₀^r ρ^m/m! F_k(r − ρ) dρ = F_{k+m+1}(r).
-    B = −[(½ − G_half)/EI + P'''(L/2)]/F_0(L/2), A = −B F_2(L/2) − P'(L/2).
+    B = −[(½ − G_half)/EI + P'''(L/2)]/F_0(L/2), A = −B F_2(L/2) − P'(L/2). Compiled, one point at a
+    time (:func:`_static_kernel`); the arguments broadcast.
     """
     _check("shape", shape, LOAD_SHAPES)
-    L = np.asarray(span_length, dtype=float)
-    ei = np.asarray(bending_stiffness, dtype=float)
-    x = np.asarray(x, dtype=float)
-    b = np.zeros_like(L) if shape == "point" else np.asarray(half_length, dtype=float) * np.ones_like(L)
-    x, L, ei, tn, b = np.broadcast_arrays(x, L, ei, np.asarray(tension, dtype=float), b)
-    s = tn / ei
-    half = 0.5 * L
-    mirror = x > half
-    xh = np.clip(np.where(mirror, L - x, x), 0.0, half)
-    a = half - b
-
-    def p_derivs(xx):  # P and its first three derivatives at xx on the half span
-        r = np.clip(xx - a, 0.0, None)
-        if shape == "point":
-            return [np.zeros_like(r)] * 4
-        f = _gen_hyp(6, r, s)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            if shape == "uniform":
-                return [f[4 - j] / (2.0 * b * ei) for j in range(4)]
-            return [3.0 * (b * f[5 - j] - f[6 - j]) / (2.0 * b**3 * ei) for j in range(4)]
-
-    g_half = 0.0 if shape == "point" else 0.5
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        at_half, at_x = _gen_hyp(2, half, s), _gen_hyp(3, xh, s)
-        p_half, p_x = p_derivs(half), p_derivs(xh)
-        big_b = -((0.5 - g_half) / ei + p_half[3]) / at_half[0]
-        big_a = -big_b * at_half[2] - p_half[1]
-        y = big_a * xh + big_b * at_x[3] + p_x[0]
-        y1 = big_a + big_b * at_x[2] + p_x[1]
-        y2 = big_b * at_x[1] + p_x[2]
-        y3 = big_b * at_x[0] + p_x[3]
-    sgn = np.where(mirror, -1.0, 1.0)
-    invalid = (b < 0) | (b >= half) | ~(s * half**2 > -0.25 * np.pi**2)  # buckled: F_0(L/2) ≤ 0
-    out = [y, sgn * y1, y2, sgn * y3]
-    return [np.where(invalid, np.nan, v) for v in out]
+    b = 0.0 if shape == "point" else half_length
+    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, span_length, bending_stiffness,
+                                                                        tension, b)))
+    flat = [np.array(v, dtype=float).ravel() for v in args]  # writeable copies
+    out = _static_kernel(*flat, _SHAPE_CODES[shape])
+    return [row.reshape(args[0].shape) for row in out]
 
 
 def static_deflection(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
@@ -692,26 +757,28 @@ def periodic_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, 
     q = periodic_displacement(t.ravel(), omega, pulse_duration, period, pattern)
     h = pulse_train(t.reshape(-1, 1), pulse_duration, period, pattern)
     if quasi_static:
-        q = q - h / omega**2
-    amp = float(impulse) * g / (0.5 * m * L) * q  # (nt, nmodes) modal coordinates [m]
-    kx = np.outer(k, x.ravel())
-    kc = k[:, None]
+        q -= h / omega**2
+    # one matrix product for every kind: (times × [modes, static]) @ ([modes, static] × (kinds × x))
+    columns = [q * (float(impulse) * g / (0.5 * m * L))]  # modal coordinates [m]
     if quasi_static:  # the static solution and its derivatives, once for every kind (as static_*)
+        columns.append(float(impulse) * h)
         g0, g1, g2, g3 = _static_derivatives(x.ravel(), L, ei, tn, half_length, shape)
         static = {"deflection": g0, "moment": -ei * g2, "shear": -ei * g3 + (tn * g1 if include_tension else 0.0)}
-    out = {}
+    kx = np.outer(k, x.ravel())
+    kc = k[:, None]
+    sin_kx = np.sin(kx) if {"deflection", "moment"} & set(kinds) else None
+    rows = []
     for kind in kinds:
         if kind == "deflection":
-            shapes = np.sin(kx)
+            shapes = sin_kx
         elif kind == "moment":  # −EI y''
-            shapes = ei * kc**2 * np.sin(kx)
+            shapes = ei * kc**2 * sin_kx
         else:  # −EI y''' (+ T y')
             shapes = (ei * kc**3 + (tn * kc if include_tension else 0.0)) * np.cos(kx)
-        field = amp @ shapes
-        if quasi_static:
-            field = field + float(impulse) * h * static[kind][None, :]
-        out[kind] = field.reshape(t.shape + x.shape)
-    return out
+        rows.append(np.vstack([shapes, static[kind]]) if quasi_static else shapes)
+    fields = np.hstack(columns) @ np.hstack(rows)
+    size = x.size
+    return {kind: fields[:, i * size:(i + 1) * size].reshape(t.shape + x.shape) for i, kind in enumerate(kinds)}
 
 
 _FIELD_DOC = """

@@ -705,27 +705,37 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     inertia = float(section.second_moment_of_area(r_o, r_i))
     area = p["steel_area"]
-    y = np.asarray(deflection, dtype=float)
-    sigma = np.asarray(moment, dtype=float) * r_o / inertia
-    full = np.concatenate([sigma, -sigma]) if mirrored else sigma
-    half_range = 0.5 * (full.max(axis=0) - full.min(axis=0))
+    sigma = np.asarray(moment, dtype=float) * (r_o / inertia)
+    abs_sigma = np.abs(sigma)
+    # over the full period σ(t + τ/2) = −σ(t) when mirrored, so half its range is max |σ| there
+    half_range = abs_sigma.max(axis=0) if mirrored else 0.5 * (sigma.max(axis=0) - sigma.min(axis=0))
     axial = abs(inputs["axial_tension"]) / area
-    i_b = np.unravel_index(np.nanargmax(np.abs(sigma)), sigma.shape)
-    i_y = np.unravel_index(np.nanargmax(np.abs(y)), y.shape)
+    i_b = _largest(abs_sigma)
+    y = np.abs(np.asarray(deflection, dtype=float))
+    i_y = _largest(y)
     out = {
-        "max_deflection": float(np.abs(y[i_y])),
-        "max_bending_stress": float(np.abs(sigma[i_b])),
-        "max_normal_stress": float(axial + np.abs(sigma[i_b])),
+        "max_deflection": float(y[i_y]),
+        "max_bending_stress": float(abs_sigma[i_b]),
+        "max_normal_stress": float(axial + abs_sigma[i_b]),
         "max_normal_stress_x": float(x[i_b[1]]),
         "max_normal_stress_t": float(t[i_b[0]]),
         "alternating_bending_stress": float(np.nanmax(half_range)),
     }
     if shear is not None:
         shear = np.asarray(shear, dtype=float)
-        i_s = np.unravel_index(np.nanargmax(np.abs(shear)), shear.shape)
+        i_s = _largest(np.abs(shear))
         out.update(max_shear_stress=float(2.0 * np.abs(shear[i_s]) / area), max_shear_stress_x=float(x[i_s[1]]),
                    max_shear_stress_t=float(t[i_s[0]]))
     return out
+
+
+def _largest(values) -> tuple:
+    """The index of the largest of ``values`` (a 2-d array ≥ 0) ignoring NaN (as np.nanargmax: a
+    ValueError when all are NaN), without nanargmax's copy when there is no NaN."""
+    i = int(values.argmax())
+    if np.isnan(values.flat[i]):  # argmax stops at the first NaN
+        i = int(np.nanargmax(values))
+    return np.unravel_index(i, values.shape)
 
 
 @dataclass

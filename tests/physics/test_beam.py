@@ -534,12 +534,17 @@ def test_largest_excursion_is_the_maximum_of_the_weighted_closed_form(pattern):
 def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
     # source: the closed form itself (modal_periodic_response, tested against the ODE and the Fourier
     # series above) - the compiled grid version rearranges it into per-mode factors times sin/cos of the
-    # phase; times over several periods, before and after t = 0, frequencies across seven decades.
-    t = np.linspace(-0.3, 0.5, 1601)
-    omega = np.geomspace(0.5, 5e4, 250)
+    # phase, turned step by step along the uniform runs of the grid; times over several periods, before
+    # and after t = 0, on a uniform grid and on a grid of random steps, frequencies across seven decades
+    # and on both sides of the pulse frequency pi/T_L (where the pulse from rest changes form).
+    a = np.pi / tl
+    omega = np.concatenate([np.geomspace(0.5, 5e4, 250), a * (1.0 + np.array([-0.05, -2e-2, -1e-2, -1e-5, 0.0,
+                                                                                1e-5, 1e-2, 2e-2, 0.05]))])
+    rng = np.random.default_rng(7)
+    t = np.linspace(-0.3, 0.5, 1601) if tl < 0.01 else np.sort(rng.uniform(-0.3, 0.5, 1601))
     got = bm.periodic_displacement(t, omega, tl, 0.2, pattern)
     want = bm.modal_periodic_response(t[:, None], omega, tl, 0.2, pattern).displacement
-    np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * np.abs(want).max())
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * np.nanmax(np.abs(want)))  # NaN where resonant (a = pi/T_L is, at T_L = 1 ms)
     resonant = np.array([2 * np.pi / 0.2 * 3, 40.0])  # the third harmonic: resonant for both patterns
     assert np.isnan(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 0]).all()
     assert np.isfinite(bm.periodic_displacement(t[:3], resonant, tl, 0.2, pattern)[:, 1]).all()
