@@ -426,9 +426,10 @@ _ROTATION_STEPS = 32
 
 
 @numba.njit(cache=True, nogil=True)
-def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
+def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, static):
+    # out[:, j] = factor_j (q_j − static h/ω_j²), out[:, -1] = h (the pulse train, sign included)
     n_t, n_m = t.size, omega.size
-    out = np.empty((n_t, n_m))
+    out = np.empty((n_t, n_m + 1))
     p = tau if one_wall else 0.5 * tau
     a = math.pi / tl
     # per mode: A = cos φ/(1 − u²), φ = ωT_L/2, κ (C − 1 = ½(−1 + iκ)), and the resonance mask
@@ -437,6 +438,8 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
     for j in range(n_m):
         bad[j], kappa[j], phi[j], amp[j] = _echo_factors(omega[j], tl, tau, one_wall, tol)
     free_amp = np.where(bad, np.nan, 0.5 * amp / omega)  # A/(2ω)
+    free_factor = free_amp * factor
+    pulse_static = static / omega**2
     cos_phi, sin_phi = np.cos(phi), np.sin(phi)
     pulse_amp = a / (2.0 * omega * (omega + a))
     near = np.abs(omega - a) * tl < 2e-2  # ω ≈ π/T_L: the pulse from rest by its sinc form
@@ -478,9 +481,11 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
         prev_tm, prev_k = tm, k
         if tm > tl:
             for j in range(n_m):
-                out[i, j] = sign * free_amp[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
+                out[i, j] = sign * free_factor[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
+            out[i, n_m] = 0.0
             continue
         sin_at = math.sin(a * tm)
+        h = 0.5 * a * sin_at  # the unit pulse
         for j in range(n_m):
             om = omega[j]
             if near[j]:
@@ -491,7 +496,9 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol):
             else:
                 sin_wt = sin_psi[j] * cos_phi[j] + cos_psi[j] * sin_phi[j]  # sin(ψ + φ)
                 rest = pulse_amp[j] * (sin_wt - om * (sin_wt - sin_at) / (om - a))
-            out[i, j] = sign * (rest + free_amp[j] * (kappa[j] * cos_psi[j] - sin_psi[j]))
+            out[i, j] = sign * factor[j] * (rest + free_amp[j] * (kappa[j] * cos_psi[j] - sin_psi[j])
+                                            - pulse_static[j] * h)
+        out[i, n_m] = sign * h
     return out
 
 
@@ -535,6 +542,23 @@ def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_
                                      float(resonance_tol))
 
 
+@numba.njit(cache=True, nogil=True)
+def _odd_harmonics(theta, count):
+    """(sin nθ, cos nθ) for n = 1, 3, …, 2 count − 1 (rows) at each θ (columns) [-]: angle addition
+    from one mode to the next (turn by 2θ), sin and cos afresh every _ROTATION_STEPS modes."""
+    sines, cosines = np.empty((count, theta.size)), np.empty((count, theta.size))
+    for i in range(theta.size):
+        turn_s, turn_c = math.sin(2.0 * theta[i]), math.cos(2.0 * theta[i])
+        s = c = 0.0
+        for j in range(count):
+            if j % _ROTATION_STEPS == 0:
+                s, c = math.sin((2 * j + 1) * theta[i]), math.cos((2 * j + 1) * theta[i])
+            else:
+                s, c = s * turn_c + c * turn_s, c * turn_c - s * turn_s
+            sines[j, i], cosines[j, i] = s, c
+    return sines, cosines
+
+
 def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
     """q(t) of :func:`modal_periodic_response` on the grid t × ω (compiled loop, real arithmetic).
 
@@ -545,10 +569,10 @@ def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall"
     rest. The per-mode factors are computed once, not per time. NaN where that function is NaN.
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
-    return _periodic_displacement_kernel(np.ascontiguousarray(np.asarray(t, dtype=float).ravel()),
-                                         np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel()),
+    omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
+    return _periodic_displacement_kernel(np.ascontiguousarray(np.asarray(t, dtype=float).ravel()), omega,
                                          float(pulse_duration), float(period), pattern == "one_wall",
-                                         float(resonance_tol))
+                                         float(resonance_tol), np.ones_like(omega), 0.0)[:, :-1]
 
 
 # --- static beam-column under the unit spread load (closed form) ---------------------------------
@@ -612,31 +636,35 @@ def _load_response(xx, a, b, s, ei, code, f, out):
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _static_kernel(x, span, ei, tension, b, code):
+    # the beam's parameters: one per x, or one for all (arrays of size 1)
     out = np.empty((4, x.size))
     f, at_half, at_x = np.empty(7), np.empty(3), np.empty(4)
     p_half, p_x = np.empty(4), np.empty(4)
     g_half = 0.0 if code == 0 else 0.5
     big_a = big_b = 0.0
+    one = span.size == 1
     for i in range(x.size):
-        s = tension[i] / ei[i]
-        half = 0.5 * span[i]
+        j = 0 if one else i
+        L, e, bj = span[j], ei[j], b[j]
+        s = tension[j] / e
+        half = 0.5 * L
         mirror = x[i] > half
-        xh = min(max(span[i] - x[i] if mirror else x[i], 0.0), half)
-        a = half - b[i]
-        if i == 0 or span[i] != span[i - 1] or ei[i] != ei[i - 1] or tension[i] != tension[i - 1] \
-                or b[i] != b[i - 1]:  # A and B, once per beam
+        xh = min(max(L - x[i] if mirror else x[i], 0.0), half)
+        a = half - bj
+        if i == 0 or (not one and (L != span[j - 1] or e != ei[j - 1] or tension[j] != tension[j - 1]
+                                   or bj != b[j - 1])):  # A and B, once per beam
             _gen_hyp(half, s, at_half)
-            _load_response(half, a, b[i], s, ei[i], code, f, p_half)
-            big_b = -((0.5 - g_half) / ei[i] + p_half[3]) / at_half[0]
+            _load_response(half, a, bj, s, e, code, f, p_half)
+            big_b = -((0.5 - g_half) / e + p_half[3]) / at_half[0]
             big_a = -big_b * at_half[2] - p_half[1]
         _gen_hyp(xh, s, at_x)
-        _load_response(xh, a, b[i], s, ei[i], code, f, p_x)
+        _load_response(xh, a, bj, s, e, code, f, p_x)
         sgn = -1.0 if mirror else 1.0
         out[0, i] = big_a * xh + big_b * at_x[3] + p_x[0]
         out[1, i] = sgn * (big_a + big_b * at_x[2] + p_x[1])
         out[2, i] = big_b * at_x[1] + p_x[2]
         out[3, i] = sgn * (big_b * at_x[0] + p_x[3])
-        if b[i] < 0 or b[i] >= half or not s * half**2 > -0.25 * math.pi**2:  # buckled: F_0(L/2) ≤ 0
+        if bj < 0 or bj >= half or not s * half**2 > -0.25 * math.pi**2:  # buckled: F_0(L/2) ≤ 0
             out[:, i] = math.nan
     return out
 
@@ -656,11 +684,15 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
     """
     _check("shape", shape, LOAD_SHAPES)
     b = 0.0 if shape == "point" else half_length
-    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, span_length, bending_stiffness,
-                                                                        tension, b)))
-    flat = [np.array(v, dtype=float).ravel() for v in args]  # writeable copies
+    beam = [np.asarray(v, dtype=float) for v in (span_length, bending_stiffness, tension, b)]
+    x = np.asarray(x, dtype=float)
+    if all(v.ndim == 0 for v in beam):  # one beam: its parameters once
+        shape_out, flat = x.shape, [x.ravel()] + [v.reshape(1) for v in beam]
+    else:
+        args = np.broadcast_arrays(x, *beam)
+        shape_out, flat = args[0].shape, [np.array(v).ravel() for v in args]  # writeable copies
     out = _static_kernel(*flat, _SHAPE_CODES[shape])
-    return [row.reshape(args[0].shape) for row in out]
+    return [row.reshape(shape_out) for row in out]
 
 
 def static_deflection(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
@@ -754,29 +786,32 @@ def periodic_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, 
     with np.errstate(invalid="ignore"):
         omega = np.sqrt(np.where(ei * k**4 + tn * k**2 > 0, (ei * k**4 + tn * k**2) / m, np.nan))
     g = modal_load_factors(n, L, half_length, shape)
-    q = periodic_displacement(t.ravel(), omega, pulse_duration, period, pattern)
-    h = pulse_train(t.reshape(-1, 1), pulse_duration, period, pattern)
-    if quasi_static:
-        q -= h / omega**2
-    # one matrix product for every kind: (times × [modes, static]) @ ([modes, static] × (kinds × x))
-    columns = [q * (float(impulse) * g / (0.5 * m * L))]  # modal coordinates [m]
+    # (times × [modes, pulse]): the modal coordinates [m] J g_n/(M L/2) (q_n − h/ω_n² with
+    # ``quasi_static``) and J h(t), the weight of the static field
+    columns = _periodic_displacement_kernel(np.ascontiguousarray(t.ravel()), omega, float(pulse_duration),
+                                            float(period), pattern == "one_wall", 1e-15,  # resonance_tol as elsewhere
+                                            float(impulse) * g / (0.5 * m * L), 1.0 if quasi_static else 0.0)
+    columns[:, -1] *= float(impulse)
     if quasi_static:  # the static solution and its derivatives, once for every kind (as static_*)
-        columns.append(float(impulse) * h)
         g0, g1, g2, g3 = _static_derivatives(x.ravel(), L, ei, tn, half_length, shape)
         static = {"deflection": g0, "moment": -ei * g2, "shear": -ei * g3 + (tn * g1 if include_tension else 0.0)}
-    kx = np.outer(k, x.ravel())
+    else:
+        columns = columns[:, :-1]
+    # one matrix product for every kind: (times × [modes, static]) @ ([modes, static] × (kinds × x))
+    sin_kx, cos_kx = _odd_harmonics(np.pi / L * x.ravel(), n.size)
     kc = k[:, None]
-    sin_kx = np.sin(kx) if {"deflection", "moment"} & set(kinds) else None
-    rows = []
-    for kind in kinds:
+    rows = np.empty((columns.shape[1], len(kinds) * x.size))
+    for i, kind in enumerate(kinds):
+        block = rows[:n.size, i * x.size:(i + 1) * x.size]
         if kind == "deflection":
-            shapes = sin_kx
+            block[:] = sin_kx
         elif kind == "moment":  # −EI y''
-            shapes = ei * kc**2 * sin_kx
+            np.multiply(ei * kc**2, sin_kx, out=block)
         else:  # −EI y''' (+ T y')
-            shapes = (ei * kc**3 + (tn * kc if include_tension else 0.0)) * np.cos(kx)
-        rows.append(np.vstack([shapes, static[kind]]) if quasi_static else shapes)
-    fields = np.hstack(columns) @ np.hstack(rows)
+            np.multiply(ei * kc**3 + (tn * kc if include_tension else 0.0), cos_kx, out=block)
+        if quasi_static:
+            rows[n.size, i * x.size:(i + 1) * x.size] = static[kind]
+    fields = columns @ rows
     size = x.size
     return {kind: fields[:, i * size:(i + 1) * size].reshape(t.shape + x.shape) for i, kind in enumerate(kinds)}
 

@@ -29,10 +29,12 @@ the contact during the pulse, and the midspan arrives at the wall moving towards
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping
 
+import numba
 import numpy as np
 
 from study.physics import beam, hertz, section
@@ -705,37 +707,59 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     inertia = float(section.second_moment_of_area(r_o, r_i))
     area = p["steel_area"]
-    sigma = np.asarray(moment, dtype=float) * (r_o / inertia)
-    abs_sigma = np.abs(sigma)
+    deflection, moment = np.asarray(deflection, dtype=float), np.asarray(moment, dtype=float)
+    i_b, largest, smallest = _field_extremes(moment, columns=True)
+    scale = r_o / inertia  # σ_b = M_b r_o/I
     # over the full period σ(t + τ/2) = −σ(t) when mirrored, so half its range is max |σ| there
-    half_range = abs_sigma.max(axis=0) if mirrored else 0.5 * (sigma.max(axis=0) - sigma.min(axis=0))
+    half_range = np.maximum(largest, -smallest) if mirrored else 0.5 * (largest - smallest)
     axial = abs(inputs["axial_tension"]) / area
-    i_b = _largest(abs_sigma)
-    y = np.abs(np.asarray(deflection, dtype=float))
-    i_y = _largest(y)
+    i_y = _field_extremes(deflection)[0]
     out = {
-        "max_deflection": float(y[i_y]),
-        "max_bending_stress": float(abs_sigma[i_b]),
-        "max_normal_stress": float(axial + abs_sigma[i_b]),
+        "max_deflection": float(np.abs(deflection[i_y])),
+        "max_bending_stress": float(np.abs(moment[i_b]) * scale),
+        "max_normal_stress": float(axial + np.abs(moment[i_b]) * scale),
         "max_normal_stress_x": float(x[i_b[1]]),
         "max_normal_stress_t": float(t[i_b[0]]),
-        "alternating_bending_stress": float(np.nanmax(half_range)),
+        "alternating_bending_stress": float(np.nanmax(half_range) * scale),
     }
     if shear is not None:
         shear = np.asarray(shear, dtype=float)
-        i_s = _largest(np.abs(shear))
+        i_s = _field_extremes(shear)[0]
         out.update(max_shear_stress=float(2.0 * np.abs(shear[i_s]) / area), max_shear_stress_x=float(x[i_s[1]]),
                    max_shear_stress_t=float(t[i_s[0]]))
     return out
 
 
-def _largest(values) -> tuple:
-    """The index of the largest of ``values`` (a 2-d array ≥ 0) ignoring NaN (as np.nanargmax: a
-    ValueError when all are NaN), without nanargmax's copy when there is no NaN."""
-    i = int(values.argmax())
-    if np.isnan(values.flat[i]):  # argmax stops at the first NaN
-        i = int(np.nanargmax(values))
-    return np.unravel_index(i, values.shape)
+def _field_extremes(values, columns: bool = False) -> tuple:
+    """(index of the largest |value| ignoring NaN, and with ``columns`` the largest and smallest value of
+    each column, NaN in a column with a NaN) of a field of shape t × x; a ValueError when every value is
+    NaN (as np.nanargmax)."""
+    values = np.asarray(values, dtype=float)  # any layout: the fields are views of one product
+    index, largest, smallest = _extremes_kernel(values, columns)
+    if index < 0:
+        raise ValueError("all the field's values are NaN (a resonant or buckled mode)")
+    return np.unravel_index(index, values.shape), largest, smallest
+
+
+@numba.njit(cache=True, nogil=True)
+def _extremes_kernel(values, columns):
+    rows, cols = values.shape
+    largest, smallest = np.full(cols, -np.inf), np.full(cols, np.inf)
+    index, peak = -1, -1.0
+    for i in range(rows):
+        for j in range(cols):
+            v = values[i, j]
+            if abs(v) > peak:  # False for NaN
+                index, peak = i * cols + j, abs(v)
+            if not columns:
+                continue
+            if math.isnan(v):
+                largest[j] = smallest[j] = math.nan
+            elif v > largest[j]:
+                largest[j] = v
+            if v < smallest[j]:
+                smallest[j] = v
+    return index, largest, smallest
 
 
 @dataclass

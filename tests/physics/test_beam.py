@@ -561,3 +561,14 @@ def test_point_load_moment_is_the_sum_of_its_modal_series(tension):
     series = ((2.0 / span) * ei * np.sin(k * load_at) / (ei * k**2 + tension)) @ np.sin(np.outer(k, x))
     closed = bm.point_load_moment(x, load_at, span, ei, tension)
     assert np.max(np.abs(closed - series)) <= 1e-6 * np.max(np.abs(series))
+
+
+def test_odd_harmonics_by_angle_addition_equal_sin_and_cos():
+    # source: the definition - sin(n theta), cos(n theta) for odd n, here by turning from one odd n to
+    # the next; 400 modes (anchored afresh every bm._ROTATION_STEPS) over a span's points.
+    theta = np.linspace(0.0, np.pi / 2, 63)
+    n = np.arange(1, 800, 2)
+    s, c = bm._odd_harmonics(theta, n.size)
+    # to a few roundings of the argument n theta (up to 1255 here: 1255 eps = 2.8e-13) either way
+    np.testing.assert_allclose(s, np.sin(np.outer(n, theta)), rtol=0, atol=5e-13)
+    np.testing.assert_allclose(c, np.cos(np.outer(n, theta)), rtol=0, atol=5e-13)

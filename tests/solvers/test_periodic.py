@@ -153,3 +153,18 @@ def test_rejected_roots_are_counted_by_kind(paper_inputs):
     choice = periodic.find_span(scene, periodic.Options(modes=11))
     assert sum(len(v) for v in choice.reasons.values()) >= 3
     assert not [key for key in choice.reasons if re.search(r"\d\.\d", key)]
+
+
+def test_field_extremes_ignore_nan_as_numpy_does():
+    # source: numpy's nanargmax and the NaN-propagating max/min along the time axis, which the compiled
+    # pass over the field replaces; a field sliced from a wider one (any memory layout).
+    rng = np.random.default_rng(3)
+    wide = rng.normal(size=(40, 30))
+    field = wide[:, 10:20]
+    field[5, 3] = np.nan
+    index, largest, smallest = periodic._field_extremes(field, columns=True)
+    assert index == np.unravel_index(np.nanargmax(np.abs(field)), field.shape)
+    np.testing.assert_array_equal(largest, field.max(axis=0))  # NaN in column 3
+    np.testing.assert_array_equal(smallest, field.min(axis=0))
+    with pytest.raises(ValueError, match="all the field's values are NaN"):
+        periodic._field_extremes(np.full((3, 4), np.nan))
