@@ -229,6 +229,33 @@ def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wal
     return ModalResponse(np.where(bad, np.nan, sign * q), np.where(bad, np.nan, sign * v))
 
 
+@numba.njit(cache=True, nogil=True)
+def _loaded_spectrum_kernel(omega, spans, modes, durations, halves, code):
+    real, imag = np.empty(omega.size), np.empty(omega.size)
+    for i in range(omega.size):
+        g = abs(_shape_factor(modes[i] * math.pi / spans[i] * halves[i], code))
+        phi = 0.5 * omega[i] * durations[i]
+        c = math.cos(phi)
+        amp = g * _echo_amplitude(omega[i] * durations[i] / math.pi, c)
+        real[i], imag[i] = amp * c, -amp * math.sin(phi)
+    return real, imag
+
+
+def loaded_pulse_spectrum(omega, span_length, modes, pulse_duration, half_length=0.0, shape="point"):
+    """|g_n| H(ω) [-] per element: the size of the modal load factor of odd mode n
+    (:func:`modal_load_factors`) times the pulse spectrum at ω (:func:`pulse_spectrum`), returned as
+    (real part, imaginary part); compiled, one pass (the span search weighs every resonance with it).
+
+    omega ω [rad/s], span_length L [m], modes n (odd), pulse_duration T_L [s], half_length b [m]
+    broadcast together; shape one of :data:`LOAD_SHAPES`.
+    """
+    _check("shape", shape, LOAD_SHAPES)
+    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (omega, span_length, modes, pulse_duration,
+                                                                        half_length)))
+    real, imag = _loaded_spectrum_kernel(*(np.array(v).ravel() for v in args), _SHAPE_CODES[shape])
+    return real.reshape(args[0].shape), imag.reshape(args[0].shape)
+
+
 def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
     """State (q(0), q̇(0)) of the steady periodic response at the start of a pulse, closed form.
 

@@ -380,12 +380,9 @@ def screen_residual(scene: Scene, options: Options):
         p = scene.props
         k_sq = (n * np.pi / spans) ** 2
         omega = natural_frequencies(scene, spans, n[:, None])[:, 0]  # each pole's own mode
-        spectrum = beam.pulse_spectrum(omega, duration)
-        weight = 2.0 * np.abs(beam.modal_load_factors(n[:, None], spans, half, options.load_shape)[:, 0]) \
-            / (p["mass_per_length"] * spans)
-        factor = -scene.equivalent_mass(spans) * (1.0 + e) * weight * (
-            -0.5 * spectrum.imag if scene.closure == "self_consistent" else
-            scene.rotary_speed * spectrum.real / (2.0 * omega))
+        real, imag = beam.loaded_pulse_spectrum(omega, spans, n, duration, half, options.load_shape)  # |g_n| H(ω)
+        factor = -scene.equivalent_mass(spans) * (1.0 + e) * 2.0 / (p["mass_per_length"] * spans) * (
+            -0.5 * imag if scene.closure == "self_consistent" else scene.rotary_speed * real / (2.0 * omega))
         slope = -(2.0 * p["bending_stiffness"] * k_sq**2 + p["effective_tension"] * k_sq) \
             / (p["mass_per_length"] * spans * omega)  # dω/dL
         return factor / (0.5 * scene.impact_interval * slope)

@@ -572,3 +572,18 @@ def test_odd_harmonics_by_angle_addition_equal_sin_and_cos():
     # to a few roundings of the argument n theta (up to 1255 here: 1255 eps = 2.8e-13) either way
     np.testing.assert_allclose(s, np.sin(np.outer(n, theta)), rtol=0, atol=5e-13)
     np.testing.assert_allclose(c, np.cos(np.outer(n, theta)), rtol=0, atol=5e-13)
+
+
+@pytest.mark.parametrize("shape", ["point", "uniform", "parabolic"])
+def test_loaded_pulse_spectrum_is_the_load_factor_times_the_spectrum(shape):
+    # source: the two closed forms it fuses, modal_load_factors and pulse_spectrum (tested above), over
+    # frequencies on both sides of u = omega T_L/pi = 1 and contact lengths from a point to a tenth of the span
+    tl, span = 2e-3, 12.0
+    omega = np.concatenate([np.geomspace(1.0, 1e6, 400), np.pi / tl * (1.0 + np.array([-1e-3, -1e-9, 0.0, 1e-9, 1e-3]))])
+    n = np.arange(1, 2 * omega.size, 2)[: omega.size].astype(float)
+    half = np.linspace(0.0, 1.2, omega.size)
+    real, imag = bm.loaded_pulse_spectrum(omega, span, n, tl, half, shape)
+    factors = np.array([bm.modal_load_factors([k], span, b, shape)[0] for k, b in zip(n, half)])
+    want = np.abs(factors) * bm.pulse_spectrum(omega, tl)
+    np.testing.assert_allclose(real, want.real, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(imag, want.imag, rtol=0, atol=1e-13)
