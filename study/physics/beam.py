@@ -534,21 +534,52 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
     out = np.empty(omega.shape[0])
     p = tau if one_wall else 0.5 * tau
     M = omega.shape[1]
-    amp, phi, kappa = np.empty(M), np.empty(M), np.empty(M)
+    amp, phi, kappa, free_weight = np.empty(M), np.empty(M), np.empty(M), np.empty(M)
+    sin_psi, cos_psi, turn_c, turn_s = np.empty(M), np.empty(M), np.empty(M), np.empty(M)
+    same = 8.0 * 2.220446049250313e-16 * p  # steps of one run differ by rounding only
     for r in range(omega.shape[0]):
         bad = False
         for j in range(M):
             b, kappa[j], phi[j], amp[j] = _echo_factors(omega[r, j], tl[r], tau, one_wall, tol)
             bad = bad or b
+            free_weight[j] = weights[r, j] * 0.5 * amp[j] / omega[r, j]  # w A/(2ω)
         if bad:
             out[r] = math.nan
             continue
-        largest = 0.0
+        # after the pulse q = A (sin ψ + κ cos ψ)/(2ω): along a run of equal steps (sin ψ, cos ψ) turn
+        # by ωΔ (as _periodic_displacement_kernel), afresh every _ROTATION_STEPS steps
+        largest, run_step, steps = 0.0, -1.0, _ROTATION_STEPS
+        prev_tm, prev_k, prev_free = 0.0, -1, False
         for i in range(t.shape[1]):
-            tm, _ = _since_last_pulse(t[r, i], p, one_wall)  # the sign drops out of |y|
+            k = math.floor(t[r, i] / p)  # the sign of the alternating train drops out of |y|
+            tm = t[r, i] - k * p
+            free = tm > tl[r]
+            rotate = False
+            if free and prev_free and k == prev_k:
+                step = tm - prev_tm
+                if abs(step - run_step) > same:  # a new run: turn by this step
+                    run_step, steps = step, 0
+                    for j in range(M):
+                        turn_c[j], turn_s[j] = math.cos(omega[r, j] * step), math.sin(omega[r, j] * step)
+                rotate = steps < _ROTATION_STEPS
             y = 0.0
-            for j in range(M):
-                y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])
+            if rotate:
+                steps += 1
+                for j in range(M):
+                    s = sin_psi[j] * turn_c[j] + cos_psi[j] * turn_s[j]
+                    cos_psi[j] = cos_psi[j] * turn_c[j] - sin_psi[j] * turn_s[j]
+                    sin_psi[j] = s
+                    y += free_weight[j] * (s + kappa[j] * cos_psi[j])
+            elif free:
+                steps = 0
+                for j in range(M):
+                    psi = omega[r, j] * tm - phi[j]
+                    sin_psi[j], cos_psi[j] = math.sin(psi), math.cos(psi)
+                    y += free_weight[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
+            else:
+                for j in range(M):
+                    y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])
+            prev_tm, prev_k, prev_free = tm, k, free
             largest = max(largest, abs(y))
         out[r] = largest
     return out

@@ -514,10 +514,12 @@ def test_midspan_state_is_nan_at_resonance_buckling_and_overlong_pulse():
 @pytest.mark.parametrize("pattern", PATTERNS)
 def test_largest_excursion_is_the_maximum_of_the_weighted_closed_form(pattern):
     # source: modal_periodic_response (the closed form) summed with weights and maximised over the times
-    # in numpy; per row its own times (during and after the pulse, past a period), frequencies, T_L
+    # in numpy; per row its own times (during and after the pulse, past a period; random steps, or
+    # uniform ones along which the kernel turns sin and cos instead of evaluating them), frequencies, T_L
     rng = np.random.default_rng(7)
     R, T, M = 6, 40, 9
     t = np.sort(rng.uniform(-0.05, 0.45, (R, T)), axis=1)
+    t[3:] = np.linspace(rng.uniform(0.0, 0.05, 3), rng.uniform(0.15, 0.45, 3), T).T  # uniform rows: turned
     omega = np.sort(rng.uniform(2.0, 3e3, (R, M)), axis=1)
     tl = rng.uniform(1e-3, 0.04, R)
     w = rng.normal(size=(R, M))
