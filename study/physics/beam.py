@@ -453,6 +453,33 @@ _ROTATION_STEPS = 32
 
 
 @numba.njit(cache=True, nogil=True)
+def _phases_at(tm, prev_tm, continuing, omega, phi, same, sin_psi, cos_psi, turn_c, turn_s, run_step, steps):
+    """sin ψ_j, cos ψ_j with ψ_j = ω_j tm − φ_j for every mode, in place; returns (run_step, steps).
+
+    ``continuing``: sin_psi, cos_psi hold the phases at prev_tm (the same pulse interval), so they are
+    turned by ω_j (tm − prev_tm) instead of evaluated: along a run of equal steps (within ``same``;
+    the grids come from linspace, whose steps agree to rounding) turn_c, turn_s = cos, sin ω_jΔ are
+    computed once, at the run's first step, and the phases are evaluated afresh every
+    _ROTATION_STEPS steps."""
+    if continuing:
+        step = tm - prev_tm
+        if abs(step - run_step) > same:  # a new run: its turn per step
+            run_step, steps = step, 0
+            for j in range(omega.size):
+                turn_c[j], turn_s[j] = math.cos(omega[j] * step), math.sin(omega[j] * step)
+        if steps < _ROTATION_STEPS:
+            for j in range(omega.size):
+                s = sin_psi[j] * turn_c[j] + cos_psi[j] * turn_s[j]
+                cos_psi[j] = cos_psi[j] * turn_c[j] - sin_psi[j] * turn_s[j]
+                sin_psi[j] = s
+            return run_step, steps + 1
+    for j in range(omega.size):
+        psi = omega[j] * tm - phi[j]
+        sin_psi[j], cos_psi[j] = math.sin(psi), math.cos(psi)
+    return run_step, 0
+
+
+@numba.njit(cache=True, nogil=True)
 def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, static):
     # out[:, j] = factor_j (q_j − static h/ω_j²), out[:, -1] = h (the pulse train, sign included)
     n_t, n_m = t.size, omega.size
@@ -472,39 +499,16 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, stat
     near = np.abs(omega - a) * tl < 2e-2  # ω ≈ π/T_L: the pulse from rest by its sinc form
     # q = A (sin ψ + κ cos ψ)/(2ω), ψ = ωt_P − φ, after the pulse; during it the pulse from rest
     # a/(2ω(ω + a)) (sin ωt_P − ω (sin ωt_P − sin at_P)/(ω − a)), a = π/T_L, is added and the echo
-    # has −sin ψ. Along a run of equal steps Δ the pair (sin ψ, cos ψ) turns by ωΔ, so sin and cos
-    # are evaluated once per run and every _ROTATION_STEPS steps (the grids come from linspace: the
-    # steps of a run agree to rounding).
-    sin_psi, cos_psi = np.empty(n_m), np.empty(n_m)
-    turn_c, turn_s = np.empty(n_m), np.empty(n_m)
-    run_step, steps, turned = -1.0, 0, False
-    prev_tm, prev_k = 0.0, -1
+    # has −sin ψ. The phases ψ turn along the grid (_phases_at).
+    sin_psi, cos_psi, turn_c, turn_s = np.empty(n_m), np.empty(n_m), np.empty(n_m), np.empty(n_m)
+    run_step, steps, prev_tm, prev_k = -1.0, 0, 0.0, -1
     same = 8.0 * 2.220446049250313e-16 * p  # steps of one run differ by rounding only
     for i in range(n_t):
         k = math.floor(t[i] / p)
         tm = t[i] - k * p
         sign = 1.0 if one_wall or k % 2 == 0 else -1.0
-        rotate = False
-        if i > 0 and k == prev_k:
-            step = tm - prev_tm
-            if abs(step - run_step) > same:  # the step changed: a run starts here, if the next is equal
-                run_step, turned = step, False
-            elif not turned:  # the second equal step: the run's turn per step
-                for j in range(n_m):
-                    turn_c[j], turn_s[j] = math.cos(omega[j] * step), math.sin(omega[j] * step)
-                turned, steps = True, 0
-            rotate = turned and steps < _ROTATION_STEPS
-        if rotate:
-            steps += 1
-            for j in range(n_m):
-                s = sin_psi[j] * turn_c[j] + cos_psi[j] * turn_s[j]
-                cos_psi[j] = cos_psi[j] * turn_c[j] - sin_psi[j] * turn_s[j]
-                sin_psi[j] = s
-        else:
-            steps = 0
-            for j in range(n_m):
-                psi = omega[j] * tm - phi[j]
-                sin_psi[j], cos_psi[j] = math.sin(psi), math.cos(psi)
+        run_step, steps = _phases_at(tm, prev_tm, i > 0 and k == prev_k, omega, phi, same, sin_psi, cos_psi,
+                                     turn_c, turn_s, run_step, steps)
         prev_tm, prev_k = tm, k
         if tm > tl:
             for j in range(n_m):
@@ -546,35 +550,18 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
         if bad:
             out[r] = math.nan
             continue
-        # after the pulse q = A (sin ψ + κ cos ψ)/(2ω): along a run of equal steps (sin ψ, cos ψ) turn
-        # by ωΔ (as _periodic_displacement_kernel), afresh every _ROTATION_STEPS steps
-        largest, run_step, steps = 0.0, -1.0, _ROTATION_STEPS
+        # after the pulse q = A (sin ψ + κ cos ψ)/(2ω), the phases ψ turning along the times (_phases_at)
+        largest, run_step, steps = 0.0, -1.0, 0
         prev_tm, prev_k, prev_free = 0.0, -1, False
         for i in range(t.shape[1]):
             k = math.floor(t[r, i] / p)  # the sign of the alternating train drops out of |y|
             tm = t[r, i] - k * p
             free = tm > tl[r]
-            rotate = False
-            if free and prev_free and k == prev_k:
-                step = tm - prev_tm
-                if abs(step - run_step) > same:  # a new run: turn by this step
-                    run_step, steps = step, 0
-                    for j in range(M):
-                        turn_c[j], turn_s[j] = math.cos(omega[r, j] * step), math.sin(omega[r, j] * step)
-                rotate = steps < _ROTATION_STEPS
             y = 0.0
-            if rotate:
-                steps += 1
+            if free:
+                run_step, steps = _phases_at(tm, prev_tm, prev_free and k == prev_k, omega[r], phi, same, sin_psi,
+                                             cos_psi, turn_c, turn_s, run_step, steps)
                 for j in range(M):
-                    s = sin_psi[j] * turn_c[j] + cos_psi[j] * turn_s[j]
-                    cos_psi[j] = cos_psi[j] * turn_c[j] - sin_psi[j] * turn_s[j]
-                    sin_psi[j] = s
-                    y += free_weight[j] * (s + kappa[j] * cos_psi[j])
-            elif free:
-                steps = 0
-                for j in range(M):
-                    psi = omega[r, j] * tm - phi[j]
-                    sin_psi[j], cos_psi[j] = math.sin(psi), math.cos(psi)
                     y += free_weight[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
             else:
                 for j in range(M):
