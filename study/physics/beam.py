@@ -428,9 +428,10 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
 
 @numba.njit(cache=True, nogil=True)
 def _since_last_pulse(t, p, one_wall):
-    """(time since the last pulse in [0, P), sign (−1)^k of the alternating train), as :func:`_wrap`."""
+    """(time since the last pulse in [0, P), sign (−1)^k of the alternating train, the pulse's number
+    k), as :func:`_wrap`."""
     k = math.floor(t / p)
-    return t - k * p, (1.0 if one_wall or k % 2 == 0 else -1.0)
+    return t - k * p, (1.0 if one_wall or k % 2 == 0 else -1.0), k
 
 
 @numba.njit(cache=True, nogil=True)
@@ -453,17 +454,17 @@ _ROTATION_STEPS = 32
 
 
 @numba.njit(cache=True, nogil=True)
-def _phases_at(tm, prev_tm, continuing, omega, phi, same, sin_psi, cos_psi, turn_c, turn_s, run_step, steps):
+def _phases_at(tm, prev_tm, continuing, omega, phi, p, sin_psi, cos_psi, turn_c, turn_s, run_step, steps):
     """sin ψ_j, cos ψ_j with ψ_j = ω_j tm − φ_j for every mode, in place; returns (run_step, steps).
 
     ``continuing``: sin_psi, cos_psi hold the phases at prev_tm (the same pulse interval), so they are
-    turned by ω_j (tm − prev_tm) instead of evaluated: along a run of equal steps (within ``same``;
-    the grids come from linspace, whose steps agree to rounding) turn_c, turn_s = cos, sin ω_jΔ are
+    turned by ω_j (tm − prev_tm) instead of evaluated: along a run of equal steps (equal to a few
+    roundings of the pulse interval ``p``: the grids come from linspace) turn_c, turn_s = cos, sin ω_jΔ are
     computed once, at the run's first step, and the phases are evaluated afresh every
     _ROTATION_STEPS steps."""
     if continuing:
         step = tm - prev_tm
-        if abs(step - run_step) > same:  # a new run: its turn per step
+        if abs(step - run_step) > 8.0 * 2.220446049250313e-16 * p:  # a new run: its turn per step
             run_step, steps = step, 0
             for j in range(omega.size):
                 turn_c[j], turn_s[j] = math.cos(omega[j] * step), math.sin(omega[j] * step)
@@ -502,12 +503,9 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, stat
     # has −sin ψ. The phases ψ turn along the grid (_phases_at).
     sin_psi, cos_psi, turn_c, turn_s = np.empty(n_m), np.empty(n_m), np.empty(n_m), np.empty(n_m)
     run_step, steps, prev_tm, prev_k = -1.0, 0, 0.0, -1
-    same = 8.0 * 2.220446049250313e-16 * p  # steps of one run differ by rounding only
     for i in range(n_t):
-        k = math.floor(t[i] / p)
-        tm = t[i] - k * p
-        sign = 1.0 if one_wall or k % 2 == 0 else -1.0
-        run_step, steps = _phases_at(tm, prev_tm, i > 0 and k == prev_k, omega, phi, same, sin_psi, cos_psi,
+        tm, sign, k = _since_last_pulse(t[i], p, one_wall)
+        run_step, steps = _phases_at(tm, prev_tm, i > 0 and k == prev_k, omega, phi, p, sin_psi, cos_psi,
                                      turn_c, turn_s, run_step, steps)
         prev_tm, prev_k = tm, k
         if tm > tl:
@@ -540,7 +538,6 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
     M = omega.shape[1]
     amp, phi, kappa, free_weight = np.empty(M), np.empty(M), np.empty(M), np.empty(M)
     sin_psi, cos_psi, turn_c, turn_s = np.empty(M), np.empty(M), np.empty(M), np.empty(M)
-    same = 8.0 * 2.220446049250313e-16 * p  # steps of one run differ by rounding only
     for r in range(omega.shape[0]):
         bad = False
         for j in range(M):
@@ -554,12 +551,11 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
         largest, run_step, steps = 0.0, -1.0, 0
         prev_tm, prev_k, prev_free = 0.0, -1, False
         for i in range(t.shape[1]):
-            k = math.floor(t[r, i] / p)  # the sign of the alternating train drops out of |y|
-            tm = t[r, i] - k * p
+            tm, _, k = _since_last_pulse(t[r, i], p, one_wall)  # the sign drops out of |y|
             free = tm > tl[r]
             y = 0.0
             if free:
-                run_step, steps = _phases_at(tm, prev_tm, prev_free and k == prev_k, omega[r], phi, same, sin_psi,
+                run_step, steps = _phases_at(tm, prev_tm, prev_free and k == prev_k, omega[r], phi, p, sin_psi,
                                              cos_psi, turn_c, turn_s, run_step, steps)
                 for j in range(M):
                     y += free_weight[j] * (sin_psi[j] + kappa[j] * cos_psi[j])
