@@ -611,9 +611,16 @@ def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall"
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
     omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
-    return _periodic_displacement_kernel(np.ascontiguousarray(np.asarray(t, dtype=float).ravel()), omega,
-                                         float(pulse_duration), float(period), pattern == "one_wall",
-                                         float(resonance_tol), np.ones_like(omega), 0.0)[:, :-1]
+    return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 0.0, resonance_tol)[:, :-1]
+
+
+def _modal_columns(t, omega, pulse_duration, period, pattern, factor, static, resonance_tol=1e-15):
+    """(times × [modes, pulse]) of :func:`_periodic_displacement_kernel`: factor_n (q_n − static h/ω_n²)
+    and h(t), on the flattened t (the one entry to the kernel)."""
+    return _periodic_displacement_kernel(np.ascontiguousarray(np.asarray(t, dtype=float).ravel()),
+                                         np.ascontiguousarray(omega, dtype=float), float(pulse_duration),
+                                         float(period), pattern == "one_wall", float(resonance_tol),
+                                         np.ascontiguousarray(factor, dtype=float), float(static))
 
 
 # --- static beam-column under the unit spread load (closed form) ---------------------------------
@@ -829,9 +836,8 @@ def periodic_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, 
     g = modal_load_factors(n, L, half_length, shape)
     # (times × [modes, pulse]): the modal coordinates [m] J g_n/(M L/2) (q_n − h/ω_n² with
     # ``quasi_static``) and J h(t), the weight of the static field
-    columns = _periodic_displacement_kernel(np.ascontiguousarray(t.ravel()), omega, float(pulse_duration),
-                                            float(period), pattern == "one_wall", 1e-15,  # resonance_tol as elsewhere
-                                            float(impulse) * g / (0.5 * m * L), 1.0 if quasi_static else 0.0)
+    columns = _modal_columns(t, omega, pulse_duration, period, pattern, float(impulse) * g / (0.5 * m * L),
+                             1.0 if quasi_static else 0.0)
     columns[:, -1] *= float(impulse)
     if quasi_static:  # the static solution and its derivatives, once for every kind (as static_*)
         g0, g1, g2, g3 = _static_derivatives(x.ravel(), L, ei, tn, half_length, shape)
