@@ -308,17 +308,21 @@ def _shape_factor(beta, code, sin_beta=math.nan, cos_beta=math.nan):
 @numba.njit(cache=True, nogil=True)
 def _echo_kappa(om, tl, period, one_wall, tol):
     """(bad, κ) of one mode for the compiled kernels: the resonance/overlong-pulse mask (as
-    :func:`resonance_distance`) and κ with C − 1 = ½(−1 + iκ) (cot(ωτ/2) or −tan(ωτ/4))."""
-    x = om * (0.5 if one_wall else 0.25) * period  # ωτ/2 (one_wall) or ωτ/4 (alternating)
+    :func:`resonance_distance`) and κ with C − 1 = ½(−1 + iκ) (cot(ωτ/2) or −tan(ωτ/4)).
+
+    Both are read from ν = ωτ/(2π), resonant at whole ν (one_wall) or odd ν (alternating), and its
+    distance d to the nearest such ν: κ = cot(πd) (one_wall) or cot(πd/2) (alternating, from
+    −tan(πν/2) with ν odd + d). The reduced angle keeps the tangent's argument within ±π/2 (its
+    argument reduction from ωτ/2, thousands of radians, was half the span search's time) and carries
+    the same rounding as ωτ itself."""
+    nu = om * period * (0.5 / math.pi)
     if one_wall:
-        nu = x / math.pi
-        dist = abs(nu - round(nu))
+        d = nu - round(nu)
     else:
-        nu = 2.0 * x / math.pi
-        dist = abs(nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0))
-    if not math.isfinite(om) or tl > (period if one_wall else 0.5 * period) or dist <= tol * max(1.0, nu):
+        d = nu - (2.0 * round(0.5 * (nu - 1.0)) + 1.0)
+    if not math.isfinite(om) or tl > (period if one_wall else 0.5 * period) or abs(d) <= tol * max(1.0, nu):
         return True, 0.0
-    return False, (1.0 / math.tan(x) if one_wall else -math.tan(x))
+    return False, 1.0 / math.tan(math.pi * d if one_wall else 0.5 * math.pi * d)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -350,22 +354,26 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
     instead of two transcendentals per mode."""
     out = np.empty((3, spans.size))
     per_span = modes.shape[0] > 1
+    inv_mass = 1.0 / mass
     for i in range(spans.size):
         span, tl, half = spans[i], durations[i], halves[i]
         row = i if per_span else 0
+        k1 = math.pi / span  # k_n = n k_1
+        weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
+        u_1 = tl / math.pi  # u = ω T_L/π
         y = 0.0
         v = 0.0
         curv = 0.0
         s_n = c_n = s_2 = c_2 = 0.0
         if consecutive and code != 0:
-            beta1 = math.pi * half / span
+            beta1 = k1 * half
             s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
             s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
         for j in range(modes.shape[1]):
             n = modes[row, j]
-            k = n * math.pi / span
+            k = n * k1
             k2 = k * k
-            om2 = (ei * k2 * k2 + tension * k2) / mass
+            om2 = (ei * k2 + tension) * k2 * inv_mass
             if not om2 > 0.0:
                 y = v = curv = math.nan
                 break
@@ -376,7 +384,7 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
                 break
             phi = 0.5 * om * tl
             cos_phi, sin_phi = math.cos(phi), math.sin(phi)
-            amp = _echo_amplitude(om * tl / math.pi, cos_phi)
+            amp = _echo_amplitude(om * u_1, cos_phi)
             q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
             qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
             if consecutive:
@@ -384,7 +392,7 @@ def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, pe
                 s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
             else:
                 shape = _shape_factor(k * half, code)
-            weight = 2.0 * shape / (mass * span)
+            weight = weight_1 * shape
             y += weight * q
             v += weight * qd
             curv -= weight * k2 * q

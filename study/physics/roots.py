@@ -7,18 +7,30 @@ equations whose brackets are known; one array call per step replaces a Python lo
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 
-def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
-                    f_lo=None, f_hi=None, with_values: bool = False):
-    """Roots of sign-changing brackets, all at once: regula falsi with the Illinois modification
-    (superlinear; the end kept twice in a row has its value halved, so both ends close in). A bracket
-    is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the unfinished
-    brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their brackets.
-    ``f_lo``, ``f_hi``: func at the ends when the caller has them (saves two evaluations per bracket).
-    Returns the end with the smaller |f|, and with ``with_values`` also func there (as computed by
-    func, not halved)."""
+class Shrunk(NamedTuple):
+    """The brackets of :func:`shrink_brackets` when they are done."""
+
+    roots: np.ndarray  #: the end with the smaller |f|
+    values: np.ndarray  #: func at the roots (as computed by func)
+    lo: np.ndarray  #: the final brackets [lo, hi], still holding the sign change
+    hi: np.ndarray
+    f_lo: np.ndarray  #: func at lo and hi (as computed by func)
+    f_hi: np.ndarray
+
+
+def shrink_brackets(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
+                    f_lo=None, f_hi=None) -> Shrunk:
+    """Shrink sign-changing brackets onto their sign change, all at once: regula falsi with the Illinois
+    modification (superlinear; the end kept twice in a row has its value halved, so both ends close in).
+    A bracket is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the
+    unfinished brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their
+    brackets. ``f_lo``, ``f_hi``: func at the ends when the caller has them (saves two evaluations per
+    bracket). Returns the final brackets, their ends' values and the end with the smaller |f|."""
     lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
     every = np.arange(lo.size)
     f_lo = func(lo, every) if f_lo is None else np.asarray(f_lo, dtype=float).copy()
@@ -46,5 +58,12 @@ def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, 
         side[active] = np.where(left, 1, -1)
         done[active] = (b - a <= rtol * np.abs(b)) | (fm == 0)
     low = np.abs(f_lo) < np.abs(f_hi)
-    roots = np.where(low, lo, hi)
-    return (roots, np.where(low, raw_lo, raw_hi)) if with_values else roots
+    return Shrunk(np.where(low, lo, hi), np.where(low, raw_lo, raw_hi), lo, hi, raw_lo, raw_hi)
+
+
+def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
+                    f_lo=None, f_hi=None, with_values: bool = False):
+    """Roots of sign-changing brackets, all at once (:func:`shrink_brackets`): the end with the smaller
+    |f|, and with ``with_values`` also func there (as computed by func, not halved)."""
+    shrunk = shrink_brackets(func, lo, hi, iterations, rtol, f_lo, f_hi)
+    return (shrunk.roots, shrunk.values) if with_values else shrunk.roots

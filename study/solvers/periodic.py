@@ -727,8 +727,14 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     return out
 
 
+#: Relative difference below which two maxima of a field are equal: the first in time (then x) is reported,
+#: so that rounding cannot move the reported (x, t) of a maximum reached twice (a symmetric motion).
+TIE_TOLERANCE = 1e-9
+
+
 def _field_extremes(values, columns: bool = False) -> tuple:
-    """(index of the largest |value| ignoring NaN, and with ``columns`` the largest and smallest value of
+    """(index of the largest |value| ignoring NaN — the first within :data:`TIE_TOLERANCE` of it, in
+    time, then x — and with ``columns`` the largest and smallest value of
     each column, NaN in a column with a NaN) of a field of shape t × x; a ValueError when every value is
     NaN (as np.nanargmax)."""
     values = np.asarray(values, dtype=float)  # any layout: the fields are views of one product
@@ -756,6 +762,11 @@ def _extremes_kernel(values, columns):
                 largest[j] = v
             if v < smallest[j]:
                 smallest[j] = v
+    if index >= 0:  # the first value within TIE_TOLERANCE of the peak: ties broken by time, then x
+        floor = peak * (1.0 - TIE_TOLERANCE)
+        for k in range(index):
+            if abs(values[k // cols, k % cols]) >= floor:
+                return k, largest, smallest
     return index, largest, smallest
 
 

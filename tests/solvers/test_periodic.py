@@ -168,3 +168,15 @@ def test_field_extremes_ignore_nan_as_numpy_does():
     np.testing.assert_array_equal(smallest, field.min(axis=0))
     with pytest.raises(ValueError, match="all the field's values are NaN"):
         periodic._field_extremes(np.full((3, 4), np.nan))
+
+
+@pytest.mark.parametrize("jitter", [-1e-13, 0.0, 1e-13])
+def test_field_extremes_report_the_first_of_equal_maxima(jitter):
+    # source: the definition (periodic.TIE_TOLERANCE) - a maximum reached twice, at t index 7 and 31
+    # (a symmetric motion), differing only by rounding: the earlier one is reported whichever is larger.
+    field = np.zeros((40, 6))
+    field[7, 2] = -5.0
+    field[31, 4] = 5.0 * (1.0 + jitter)
+    assert periodic._field_extremes(field)[0] == (7, 2)
+    field[31, 4] = 5.0 * (1.0 + 1e-6)  # a real difference still wins
+    assert periodic._field_extremes(field)[0] == (31, 4)
