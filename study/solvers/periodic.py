@@ -38,7 +38,7 @@ import numba
 import numpy as np
 
 from study.physics import beam, hertz, section
-from study.physics.roots import bracketed_roots
+from study.physics.roots import shrink_brackets
 from study.solvers.core import scene as section_scene
 from study.solvers.result import PointResult, choice_input
 
@@ -423,7 +423,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
 
     Poles whose resonance is narrower than ``options.resonance_width`` (:func:`resonance_widths`) are
     not searched: the root each pins lies within that relative distance of the pole and vanishes with
-    any damping of that order. Between the remaining poles F is sampled and sign changes bisected.
+    any damping of that order. Between the remaining poles F is sampled and sign changes bisected. A
+    sign change that converges onto no pole is a root (F is continuous there); one with a pole in its
+    last bracket is a root only where |F| has fallen far below its values at the samples.
     """
     modes = odd_modes(options.modes)
     poles, pole_modes = resonances(scene, modes, options.min_span, options.max_span)
@@ -460,12 +462,18 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     roots = np.array([])
     if len(i):  # the ends' values are the samples' (the same evaluation)
         every = np.arange(len(i))
-        roots, at_roots = bracketed_roots(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10,
-                                          f_lo=values[i, j] * distances(brackets[:, 0], every),
-                                          f_hi=values[i, j + 1] * distances(brackets[:, 1], every), with_values=True)
-        # a sign change across a narrow resonance converges onto its pole, where |F| grows
+        shrunk = shrink_brackets(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10,
+                                 f_lo=values[i, j] * distances(brackets[:, 0], every),
+                                 f_hi=values[i, j + 1] * distances(brackets[:, 1], every))
+        roots = shrunk.roots
+        # F is continuous between poles: a sign change left in a bracket free of every pole (the narrow
+        # ones included) is a root. One with a pole inside may have converged onto the pole, where |F|
+        # grows: it is a root only if |F| there is far below its value at the samples.
+        margin = 1e-12 * shrunk.hi
+        unsure = (np.searchsorted(poles, shrunk.lo - margin, side="left")
+                  < np.searchsorted(poles, shrunk.hi + margin, side="right"))
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        real = np.abs(at_roots / distances(roots, every)) < 1e-3 * ends
+        real = ~unsure | (np.abs(shrunk.values / distances(roots, every)) < 1e-3 * ends)
         roots, intervals = roots[real], intervals[real]
     return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
                       narrow_count=int(np.count_nonzero(~wide)))

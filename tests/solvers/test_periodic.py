@@ -180,3 +180,27 @@ def test_field_extremes_report_the_first_of_equal_maxima(jitter):
     assert periodic._field_extremes(field)[0] == (7, 2)
     field[31, 4] = 5.0 * (1.0 + 1e-6)  # a real difference still wins
     assert periodic._field_extremes(field)[0] == (31, 4)
+
+
+@pytest.mark.parametrize("low, high", [(5.2035, 5.2065), (3.1900, 3.1930), (4.7480, 4.7520)])
+def test_every_root_of_the_continuous_residual_is_kept(paper_inputs, low, high):
+    # source: the intermediate value theorem - F is continuous between its poles, so a sign change
+    # between two scan points with no pole between them is a root. A dense scan of short windows of the
+    # paper's point (one wall, self-consistent V_p; roots pinned beside wide poles among them) finds such
+    # roots; the search keeps each one, however close one of its samples lies to it (a test of |F|
+    # against the samples' values once rejected some), except those within 1e-5 L of a resonance
+    # narrower than 1e-6 L, which it does not search by design (see the test above).
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent")
+    options = periodic.Options(modes=21)
+    search = periodic.find_roots(scene, options)
+    poles, modes = periodic.resonances(scene, periodic.odd_modes(21), options.min_span, options.max_span)
+    narrow = poles[periodic.resonance_widths(search.residual, poles, modes) < options.resonance_width]
+    x = np.linspace(low, high, 30001)
+    f = search.residual(x)
+    change = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
+    free = np.searchsorted(poles, x[change], side="right") == np.searchsorted(poles, x[change + 1], side="left")
+    pinned = np.searchsorted(narrow, x[change] * (1 - 1e-5)) < np.searchsorted(narrow, x[change + 1] * (1 + 1e-5))
+    cells = change[free & ~pinned]
+    assert cells.size >= 1
+    for k in cells:
+        assert np.any((search.roots >= x[k]) & (search.roots <= x[k + 1])), (x[k], x[k + 1])
