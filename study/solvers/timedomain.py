@@ -411,7 +411,9 @@ def _implicit_revolution(model, t0, t1, q, v, contacts, opts):
 
 
 def _event_revolution(system, model, t0, t1, q, v, contacts, peak):
-    """The event-driven integrator from t0 to t1; returns (q, v, failure message or None)."""
+    """The event-driven integrator from t0 to t1; returns (q, v, failure message or None, verdict of a
+    failure: 'chattering' when contact onsets and ends accumulate past event_driven.MAX_EVENTS, else
+    'failed')."""
     N = len(model.modes)
     z, events, outcome = event_driven.advance(system, t0, t1, np.concatenate((q, v)), contacts.active,
                                               contacts.chi, peak)
@@ -426,11 +428,11 @@ def _event_revolution(system, model, t0, t1, q, v, contacts, peak):
         if contacts.current[p] is not None:
             contacts.current[p]["peak"] = max(contacts.current[p]["peak"], float(peak[p]))
     if outcome == event_driven.BLOWN_UP:
-        return z[:N], z[N:], f"non-finite state or deflection above 100 c before t = {t1:.6g} s"
+        return z[:N], z[N:], f"non-finite state or deflection above 100 c before t = {t1:.6g} s", "failed"
     if outcome == event_driven.TOO_MANY_EVENTS:
         return z[:N], z[N:], (f"more than {event_driven.MAX_EVENTS} contact onsets and ends between t = {t0:.6g} "
-                              f"and {t1:.6g} s (chatter)")
-    return z[:N], z[N:], None
+                              f"and {t1:.6g} s (chatter)"), "chattering"
+    return z[:N], z[N:], None, None
 
 
 # --- the run -----------------------------------------------------------------------------------------
@@ -439,7 +441,7 @@ def _event_revolution(system, model, t0, t1, q, v, contacts, peak):
 def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict[str, Any]:
     """Integrate revolution by revolution until periodic or ``time_revolutions`` (default 60).
 
-    Returns a dict: verdict ('periodic', 'not_periodic', 'failed'), message, period (revolutions
+    Returns a dict: verdict ('periodic', 'not_periodic', 'chattering', 'failed'), message, period (revolutions
     or None), impacts (contact records: point, start, approach, peak, duration, rebound,
     hysteresis), boundary states, times, energies at the boundaries, step data, model.
     """
@@ -500,14 +502,15 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
         revolutions = 0
     for k in range(1, revolutions + 1):
         t0 = (k - 1) * tau
+        stop = "failed"  # the verdict of a failure in this revolution
         if integrator == "explicit":
             q, v, a, fc, failure = _verlet_revolution(model, t0, q, v, a, fc, dt, n_steps, contacts, budget, fused)
         elif integrator == "event":
-            q, v, failure = _event_revolution(system, model, t0, k * tau, q, v, contacts, peak)
+            q, v, failure, stop = _event_revolution(system, model, t0, k * tau, q, v, contacts, peak)
         else:
             q, v, failure = _implicit_revolution(model, t0, k * tau, q, v, contacts, opts)
         if failure:
-            verdict = "failed"
+            verdict = stop
             break
         states.append(np.concatenate((q, v)))
         energies.append(model.energy(q, v))
@@ -597,6 +600,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result.extras.update(time_integrator=run["integrator"], drive_source=model.drive_source,
                          time_damping=model.damping_model, contact_damping=model.contact_damping,
                          time_modes=int(len(model.modes)), contact_points=[float(x) for x in model.points])
+    if run["verdict"] == "chattering":
+        result.status = "chattering"
+        result.message = f"impacts accumulate instead of settling: {run['failure']}"
+        result.wall_time = time.perf_counter() - start
+        return result
     if run["verdict"] == "failed":
         result.status = "failed"
         above = run["time_step"] is not None and run["time_step"] > run["step_limit"]
@@ -776,7 +784,7 @@ def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0
     for name, setting, extra in runs:
         run = simulate({**base, **extra})
         step = run["time_step"] if name == "explicit" else run.get("contact_step", np.nan)
-        failed = run["verdict"] == "failed"
+        failed = run["verdict"] in ("failed", "chattering")
         rows.append(dict(name=name, setting=setting, step_ratio=step / run["step_limit"], verdict=run["verdict"],
                          error=np.nan if failed else _final_error(np.concatenate(run["final_state"]), reference, scale),
                          failure=run["failure"]))

@@ -113,6 +113,20 @@ def test_driven_damped_span_settles_to_the_sdof_orbit(point, integrator):
     assert r.values["achieved_restitution"] == pytest.approx(point["restitution"], rel=0.02)
 
 
+def test_accumulating_contacts_are_reported_as_chattering(point, monkeypatch):
+    # source: the status table (result.STATUS "chattering") - a run that meets more contact onsets and
+    # ends in one revolution than event_driven.MAX_EVENTS allows is stopped and flagged as chatter, not
+    # as a numerical failure. The cap is lowered to 3 so that the two impacts per revolution of the
+    # driven span reach it in its second revolution.
+    from study.solvers import event_driven
+    monkeypatch.setattr(event_driven, "MAX_EVENTS", 3)
+    r = td.solve(_driven(point, time_integrator="event", time_revolutions=4))
+    assert r.status == "chattering"
+    assert "more than 3 contact onsets and ends" in r.message and "accumulate" in r.message
+    monkeypatch.undo()
+    assert td.solve(_driven(point, time_integrator="event", time_revolutions=4)).status != "chattering"
+
+
 def test_without_span_is_incomplete(point):
     r = td.solve({**point, "span_length": None})
     assert r.status == "incomplete" and r.method == "time-domain"
