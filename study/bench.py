@@ -254,7 +254,7 @@ def run_bench(out: str | None = None) -> str:
               "`event`. Error as above, against LSODA at rtol 1e-12.", "",
               "| integrator | setting | step / limit | outcome | error |", "|---|---|---|---|---|"]
     for row in stability:
-        outcome = "failed: blow-up detected" if row["verdict"] == "failed" else "ran"
+        outcome = {"failed": "failed: blow-up detected", "chattering": "stopped: chatter"}.get(row["verdict"], "ran")
         lines.append(f"| {row['name']} | {row['setting']} | {row['step_ratio']:.3g} | {outcome} | {row['error']:.2g} |")
     lines.append("")
     if out:
