@@ -1,8 +1,8 @@
 """Roots of many sign-changing brackets at once (vectorised regula falsi), for the physics and solvers.
 
-Pure numerics on numpy arrays, no I/O: the span search (:mod:`study.solvers.periodic`) and the
-inversion of the Hertz contact angle (:mod:`study.physics.hertz`) each solve thousands of scalar
-equations whose brackets are known; one array call per step replaces a Python loop of scalar solvers.
+Pure numerics on numpy arrays, no I/O: the span search (:mod:`study.solvers.periodic`) solves
+thousands of scalar equations whose brackets are known; one array call per step replaces a Python
+loop of scalar solvers.
 """
 
 from __future__ import annotations
@@ -60,10 +60,3 @@ def shrink_brackets(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, 
     low = np.abs(f_lo) < np.abs(f_hi)
     return Shrunk(np.where(low, lo, hi), np.where(low, raw_lo, raw_hi), lo, hi, raw_lo, raw_hi)
 
-
-def bracketed_roots(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
-                    f_lo=None, f_hi=None, with_values: bool = False):
-    """Roots of sign-changing brackets, all at once (:func:`shrink_brackets`): the end with the smaller
-    |f|, and with ``with_values`` also func there (as computed by func, not halved)."""
-    shrunk = shrink_brackets(func, lo, hi, iterations, rtol, f_lo, f_hi)
-    return (shrunk.roots, shrunk.values) if with_values else shrunk.roots
