@@ -21,8 +21,9 @@ iterated to a fixed point at every span evaluated exactly.
 
 Span search. F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train
 (MODEL.md §4): a sign change across a pole is not a root. The poles are located analytically
-(:func:`resonant_spans`), F is sampled inside every interval between consecutive poles, and only sign
-changes between samples inside one interval are bracketed and solved. Roots are then refined with the
+(:func:`resonant_spans`), F times the distances to the interval's two poles is sampled inside every
+interval between consecutive poles (its values at the poles follow from their residues), and only sign
+changes inside one interval are bracketed and solved. Roots are then refined with the
 exact model and kept as candidates when condition 1 holds: |y| < c everywhere and always except at
 the contact during the pulse, and the midspan arrives at the wall moving towards it.
 """
@@ -423,36 +424,49 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
 
     Poles whose resonance is narrower than ``options.resonance_width`` (:func:`resonance_widths`) are
     not searched: the root each pins lies within that relative distance of the pole and vanishes with
-    any damping of that order. Between the remaining poles F is sampled and sign changes bisected. A
-    sign change that converges onto no pole is a root (F is continuous there); one with a pole in its
-    last bracket is a root only where |F| has fallen far below its values at the samples.
+    any damping of that order. Between the remaining poles the search works on G = F (L − a)(b − L),
+    a and b the poles around L: the same roots, continuous up to both poles, where it equals R_a (b − a)
+    and −R_b (b − a) (R the poles' residues, :func:`resonance_widths`) — the ends' values in closed
+    form, so a root pinned however close to a pole is bracketed. G is sampled between the poles and
+    its sign changes are shrunk by regula falsi. A sign change that converges onto no pole is a root
+    (F is continuous there); one with a (narrow) pole in its last bracket is a root only where |F| has
+    fallen far below its values at the samples.
     """
     modes = odd_modes(options.modes)
     poles, pole_modes = resonances(scene, modes, options.min_span, options.max_span)
     residual = screen_residual(scene, options)
     if residual is None:
         return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
-    widths = resonance_widths(residual, poles, pole_modes) if poles.size else np.zeros(0)
-    wide = widths >= options.resonance_width
-    edges = np.concatenate([[options.min_span], poles[wide], [options.max_span]])
-    reach = np.concatenate([[0.0], widths[wide], [0.0]])  # relative width of each edge's resonance
+    residues = residual.residue(poles, pole_modes.astype(float)) if poles.size else np.zeros(0)
+    wide = np.abs(residues) >= options.resonance_width * poles  # resonance_widths, from the same residues
+    edges, edge_residues = _merged_poles(poles[wide], residues[wide])
+    edges = np.concatenate([[options.min_span], edges, [options.max_span]])
+    edge_residues = np.concatenate([[np.nan], edge_residues, [np.nan]])  # NaN: the search range's end, no pole
     lo, hi = edges[:-1], edges[1:]
     keep = hi > lo * (1 + 1e-12)
-    lo, hi, reach_lo, reach_hi = lo[keep], hi[keep], reach[:-1][keep], reach[1:][keep]
-    # Samples strictly inside each interval, denser towards the poles where F changes fastest, plus one
-    # just inside each pole, within a thousandth of its resonance width: there the pole's own term
-    # dominates F, so a root pinned between the pole and the first interior sample is bracketed too.
+    lo, hi, residue_lo, residue_hi = lo[keep], hi[keep], edge_residues[:-1][keep], edge_residues[1:][keep]
+    width = hi - lo
+    # samples strictly inside each interval, denser towards the poles where F changes fastest; at a
+    # pole G is R (b − a) in closed form, at an end of the search range F is computed just inside it
     fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
-    gap = (hi - lo) / lo
-    near_lo = lo * (1.0 + np.minimum(np.maximum(1e-3 * reach_lo, 1e-12), 0.1 * gap * fractions[0]))
-    near_hi = hi * (1.0 - np.minimum(np.maximum(1e-3 * reach_hi, 1e-12), 0.1 * gap * fractions[0]))
-    spans = np.column_stack([near_lo, lo[:, None] + (hi - lo)[:, None] * fractions[None, :], near_hi])
-    values = residual(spans.ravel()).reshape(spans.shape)
-    i, j = np.nonzero(np.sign(values[:, :-1]) * np.sign(values[:, 1:]) < 0)
+    ends_lo, ends_hi = np.isnan(residue_lo), np.isnan(residue_hi)
+    start = np.where(ends_lo, lo * (1.0 + 1e-12), lo)
+    stop = np.where(ends_hi, hi * (1.0 - 1e-12), hi)
+    spans = np.column_stack([start, lo[:, None] + width[:, None] * fractions[None, :], stop])
+    inside = np.zeros(spans.shape, dtype=bool)
+    inside[:, 1:-1], inside[:, 0], inside[:, -1] = True, ends_lo, ends_hi
+    values = np.full(spans.shape, np.inf)  # F (infinite at the poles)
+    values[inside] = residual(spans[inside])
+    with np.errstate(invalid="ignore"):  # inf x 0 at the poles, replaced next
+        smooth = values * (spans - lo[:, None]) * (hi[:, None] - spans)  # G
+    smooth[:, 0] = np.where(ends_lo, smooth[:, 0], residue_lo * width)
+    smooth[:, -1] = np.where(ends_hi, smooth[:, -1], -residue_hi * width)
+    i, j = np.nonzero(np.sign(smooth[:, :-1]) * np.sign(smooth[:, 1:]) < 0)
     brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
     intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
-    # F times the distance to both poles of the interval: the same roots, no singularity at the ends
-    # (regula falsi converges in a few steps instead of crawling along the pole's hyperbola).
+    # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
+    # crawling along the pole's hyperbola
+
     def distances(x, rows):
         return (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
 
@@ -460,11 +474,10 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
         return residual(x) * distances(x, rows)
 
     roots = np.array([])
-    if len(i):  # the ends' values are the samples' (the same evaluation)
+    if len(i):  # the ends' values are the samples'
         every = np.arange(len(i))
         shrunk = shrink_brackets(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10,
-                                 f_lo=values[i, j] * distances(brackets[:, 0], every),
-                                 f_hi=values[i, j + 1] * distances(brackets[:, 1], every))
+                                 f_lo=smooth[i, j], f_hi=smooth[i, j + 1])
         roots = shrunk.roots
         # F is continuous between poles: a sign change left in a bracket free of every pole (the narrow
         # ones included) is a root. One with a pole inside may have converged onto the pole, where |F|
@@ -473,10 +486,21 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
         unsure = (np.searchsorted(poles, shrunk.lo - margin, side="left")
                   < np.searchsorted(poles, shrunk.hi + margin, side="right"))
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        real = ~unsure | (np.abs(shrunk.values / distances(roots, every)) < 1e-3 * ends)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            real = ~unsure | (np.abs(shrunk.values / distances(roots, every)) < 1e-3 * ends)
         roots, intervals = roots[real], intervals[real]
     return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
                       narrow_count=int(np.count_nonzero(~wide)))
+
+
+def _merged_poles(poles, residues):
+    """Poles [m] closer than 1e-12 (relative) to the one before merged into one, with the sum of their
+    residues [m] (coinciding resonances of two modes add their terms); both ascending."""
+    if poles.size == 0:
+        return poles, residues
+    first = np.concatenate([[True], poles[1:] > poles[:-1] * (1 + 1e-12)])
+    starts = np.nonzero(first)[0]
+    return poles[starts], np.add.reduceat(residues, starts)
 
 
 def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.ndarray:

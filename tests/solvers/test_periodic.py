@@ -204,3 +204,32 @@ def test_every_root_of_the_continuous_residual_is_kept(paper_inputs, low, high):
     assert cells.size >= 1
     for k in cells:
         assert np.any((search.roots >= x[k]) & (search.roots <= x[k + 1])), (x[k], x[k + 1])
+
+
+def test_roots_pinned_closer_to_a_wide_pole_than_any_sample_are_kept(paper_inputs):
+    # source: the definition of the residue - G = F (L - a)(b - L) tends to R_a (b - a) at the pole a, so the
+    # search takes G's value at each wide pole in closed form and brackets a root however close to the pole
+    # it is pinned (the samples once started a thousandth of the resonance width inside each pole and
+    # missed the roots closer than that). F scanned from 1e-7 to 3e-3 of |R| on both sides of every wide
+    # pole of the paper's point (one wall, self-consistent V_p, spans 3-40 m): each sign change with no
+    # pole between its scan points is a root the search kept, and some lie within 1e-3 |R| of their pole.
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent")
+    options = periodic.Options(modes=21, max_span=40.0)
+    search = periodic.find_roots(scene, options)
+    poles, modes = periodic.resonances(scene, periodic.odd_modes(21), options.min_span, options.max_span)
+    residues = search.residual.residue(poles, modes)
+    wide = np.abs(residues) >= options.resonance_width * poles
+    fractions = np.geomspace(1e-7, 3e-3, 200)
+    closest = []
+    for pole, residue in zip(poles[wide], np.abs(residues[wide])):
+        for side in (-1.0, 1.0):
+            x = pole + side * residue * fractions
+            f = search.residual(x)
+            change = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
+            for k in change:
+                a, b = sorted((x[k], x[k + 1]))
+                if np.searchsorted(poles, a, side="right") != np.searchsorted(poles, b, side="left"):
+                    continue  # a narrow pole between the scan points: a sign change, not a root
+                assert np.any((search.roots >= a) & (search.roots <= b)), (pole, a, b)
+                closest.append(fractions[k + 1])
+    assert len(closest) > 5 and min(closest) < 1e-3
