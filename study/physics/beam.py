@@ -349,57 +349,61 @@ def _echo_amplitude(u, cos_phi):
 @numba.njit(cache=True, nogil=True)
 def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, period, one_wall, code, tol,
                           consecutive):
-    """The loop of :func:`midspan_state_at_pulse_start`. ``consecutive``: the modes are 1, 3, 5, …
-    for every span, so sin and cos of β_n = n β_1 (the load factors) follow by rotation through 2β_1
-    instead of two transcendentals per mode."""
+    """The loop of :func:`midspan_state_at_pulse_start` over :func:`midspan_state_one`."""
     out = np.empty((3, spans.size))
     per_span = modes.shape[0] > 1
-    inv_mass = 1.0 / mass
     for i in range(spans.size):
-        span, tl, half = spans[i], durations[i], halves[i]
-        row = i if per_span else 0
-        k1 = math.pi / span  # k_n = n k_1
-        weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
-        u_1 = tl / math.pi  # u = ω T_L/π
-        y = 0.0
-        v = 0.0
-        curv = 0.0
-        s_n = c_n = s_2 = c_2 = 0.0
-        if consecutive and code != 0:
-            beta1 = k1 * half
-            s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
-            s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
-        for j in range(modes.shape[1]):
-            n = modes[row, j]
-            k = n * k1
-            k2 = k * k
-            om2 = (ei * k2 + tension) * k2 * inv_mass
-            if not om2 > 0.0:
-                y = v = curv = math.nan
-                break
-            om = math.sqrt(om2)
-            bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
-            if bad:
-                y = v = curv = math.nan
-                break
-            phi = 0.5 * om * tl
-            cos_phi, sin_phi = math.cos(phi), math.sin(phi)
-            amp = _echo_amplitude(om * u_1, cos_phi)
-            q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-            qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
-            if consecutive:
-                shape = _shape_factor(k * half, code, s_n, c_n)
-                s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
-            else:
-                shape = _shape_factor(k * half, code)
-            weight = weight_1 * shape
-            y += weight * q
-            v += weight * qd
-            curv -= weight * k2 * q
-        out[0, i] = y
-        out[1, i] = v
-        out[2, i] = curv
+        out[0, i], out[1, i], out[2, i] = midspan_state_one(spans[i], durations[i], halves[i], modes[i if per_span else 0],
+                                                            ei, tension, mass, period, one_wall, code, tol, consecutive)
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall, code, tol, consecutive):
+    """(y₁, v₁, y₁'') of :func:`midspan_state_at_pulse_start` at one span, compiled (for the compiled
+    root finders of the span search): span L [m], tl T_L [s], half b [m], modes the odd mode numbers
+    (1-D), ei, tension, mass, period as there; one_wall: the pattern; code: the load shape's
+    (``_SHAPE_CODES``); tol: resonance_tol. ``consecutive``: the modes are 1, 3, 5, …, so sin and cos
+    of β_n = n β_1 (the load factors) follow by rotation through 2β_1 instead of two transcendentals
+    per mode."""
+    inv_mass = 1.0 / mass
+    k1 = math.pi / span  # k_n = n k_1
+    weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
+    u_1 = tl / math.pi  # u = ω T_L/π
+    y = 0.0
+    v = 0.0
+    curv = 0.0
+    s_n = c_n = s_2 = c_2 = 0.0
+    if consecutive and code != 0:
+        beta1 = k1 * half
+        s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
+        s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
+    for j in range(modes.size):
+        n = modes[j]
+        k = n * k1
+        k2 = k * k
+        om2 = (ei * k2 + tension) * k2 * inv_mass
+        if not om2 > 0.0:
+            return math.nan, math.nan, math.nan
+        om = math.sqrt(om2)
+        bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
+        if bad:
+            return math.nan, math.nan, math.nan
+        phi = 0.5 * om * tl
+        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
+        amp = _echo_amplitude(om * u_1, cos_phi)
+        q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
+        qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
+        if consecutive:
+            shape = _shape_factor(k * half, code, s_n, c_n)
+            s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
+        else:
+            shape = _shape_factor(k * half, code)
+        weight = weight_1 * shape
+        y += weight * q
+        v += weight * qd
+        curv -= weight * k2 * q
+    return y, v, curv
 
 
 def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes, bending_stiffness, tension,

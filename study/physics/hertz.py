@@ -146,19 +146,43 @@ def _coefficients_kernel(theta, guess):
     """(m, n, 2K(e)/(π m)) for every angle of ``theta`` [rad] (flat), p solved from ``guess``."""
     out = np.empty((3, theta.size))
     for i in range(theta.size):
-        t = theta[i]
-        if math.isnan(t):
-            out[0, i] = out[1, i] = out[2, i] = math.nan
-        elif t >= 0.5 * math.pi:  # a sphere
-            out[0, i] = out[1, i] = out[2, i] = 1.0
-        elif t <= 0.0:  # line contact: the ellipse is unbounded
-            out[0, i], out[1, i], out[2, i] = math.inf, 0.0, 0.0
-        else:
-            p = _solve_log_c2(t, guess[i])
-            _, _, kk, ee = _shape_functions(p)
-            m = np.cbrt(2.0 * ee / math.pi) * math.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
-            out[0, i], out[1, i], out[2, i] = m, m * math.exp(0.5 * p), 2.0 * kk / (math.pi * m)  # n = m √(1 − e²)
+        out[0, i], out[1, i], out[2, i] = _coefficients_one(theta[i], guess[i])
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _coefficients_one(t, guess):
+    """(m, n, 2K(e)/(π m)) of one angle t [rad], p = log(1 − e²) solved from ``guess``."""
+    if math.isnan(t):
+        return math.nan, math.nan, math.nan
+    if t >= 0.5 * math.pi:  # a sphere
+        return 1.0, 1.0, 1.0
+    if t <= 0.0:  # line contact: the ellipse is unbounded
+        return math.inf, 0.0, 0.0
+    p = _solve_log_c2(t, guess)
+    _, _, kk, ee = _shape_functions(p)
+    m = np.cbrt(2.0 * ee / math.pi) * math.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
+    return m, m * math.exp(0.5 * p), 2.0 * kk / (math.pi * m)  # n = m √(1 − e²)
+
+
+@numba.njit(cache=True, nogil=True)
+def contact_one(force, pipe_radius, hole_radius, axial_curvature, compliance_sum, guess_table):
+    """(contact_half_length [m], contact_half_width [m], Hertz stiffness K [N m^(−3/2)]) of one
+    contact, compiled: :func:`contact_ellipse` and :func:`hertz_stiffness` at its curvature sums, in
+    the same arithmetic (the T_L–curvature iteration of the periodic solution runs in a compiled
+    loop). force F [N], pipe_radius, hole_radius [m], axial_curvature κ [1/m], compliance_sum
+    [1/Pa]; guess_table: :func:`guess_table` (log θ, p) for the eccentricity's starting value."""
+    k_c = 1.0 / pipe_radius - 1.0 / hole_radius
+    a_sum, b_sum = 0.5 * min(k_c, axial_curvature), 0.5 * max(k_c, axial_curvature)
+    theta = math.atan2(2.0 * math.sqrt(a_sum * b_sum), b_sum - a_sum)
+    m, n, k_factor = _coefficients_one(theta, np.interp(np.log(theta), guess_table[0], guess_table[1]))
+    x = np.cbrt(3.0 * math.pi * force * compliance_sum / (4.0 * (a_sum + b_sum)))
+    x_1 = np.cbrt(3.0 * math.pi * 1.0 * compliance_sum / (4.0 * (a_sum + b_sum)))
+    coefficient = 0.75 * math.pi * k_factor * compliance_sum / x_1
+    stiffness = math.inf if coefficient == 0.0 else coefficient**-1.5
+    if axial_curvature <= k_c:  # the major axis along the pipe
+        return m * x, n * x, stiffness
+    return n * x, m * x, stiffness
 
 
 def _log_c2(theta, full_bracket=False):
@@ -173,7 +197,7 @@ def _log_c2(theta, full_bracket=False):
 
 
 @lru_cache(maxsize=1)
-def _guess_table():
+def guess_table():
     """(log θ, p) on 200 angles from 1e-6 rad to just below π/2, solved on the full bracket."""
     theta = np.concatenate((np.geomspace(1e-6, 0.3, 80), np.linspace(0.3, np.pi / 2 - 1e-6, 121)[1:]))
     return np.log(theta), np.array([_log_c2(t, full_bracket=True) for t in theta])
@@ -181,7 +205,7 @@ def _guess_table():
 
 def _guess_log_c2(theta):
     """p = log(1 − e²) at θ interpolated in the table (about 1e-4 relative); θ outside it: its end."""
-    log_theta, p = _guess_table()
+    log_theta, p = guess_table()
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.interp(np.log(theta), log_theta, p)
 
@@ -332,6 +356,14 @@ def lee_duration(equivalent_mass, velocity, stiffness):
     """
     f_max = hertz_impact(equivalent_mass, velocity, stiffness).max_force
     return np.pi * np.asarray(equivalent_mass) * np.asarray(velocity) / f_max
+
+
+@numba.njit(cache=True, nogil=True)
+def lee_duration_one(equivalent_mass, velocity, stiffness):
+    """:func:`lee_duration` of one impact, compiled, in the same arithmetic: T_L = π m_e v0/F_max with
+    F_max = K α_max^(3/2), α_max = (5 m_e v0²/(4K))^(2/5) [s]."""
+    alpha = (1.25 * equivalent_mass * velocity**2 / stiffness) ** 0.4
+    return math.pi * equivalent_mass * velocity / (stiffness * alpha**1.5)
 
 
 def lee_peak_force(impulse, duration):

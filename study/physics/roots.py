@@ -1,62 +1,60 @@
-"""Roots of many sign-changing brackets at once (vectorised regula falsi), for the physics and solvers.
+"""Regula falsi with the Illinois modification, one compiled step at a time, for the compiled root
+finders of the physics and solvers (the span search, :mod:`study.solvers.periodic`, shrinks thousands
+of sign-changing brackets of its screening residual in one compiled loop).
 
-Pure numerics on numpy arrays, no I/O: the span search (:mod:`study.solvers.periodic`) solves
-thousands of scalar equations whose brackets are known; one array call per step replaces a Python
-loop of scalar solvers.
+Pure numerics on floats, no I/O. A caller's loop::
+
+    while not bracket_done(a, b, fa, fb, rtol):
+        x = falsi_point(a, b, fa, fb)
+        a, b, fa, fb, raw_a, raw_b, side = keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, f(x))
+
+and the root is :func:`closer_end`. Superlinear on smooth functions: the end kept twice in a row has
+its value halved, so both ends close in (plain regula falsi crawls along a convex side).
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple
+import math
 
-import numpy as np
-
-
-class Shrunk(NamedTuple):
-    """The brackets of :func:`shrink_brackets` when they are done."""
-
-    roots: np.ndarray  #: the end with the smaller |f|
-    values: np.ndarray  #: func at the roots (as computed by func)
-    lo: np.ndarray  #: the final brackets [lo, hi], still holding the sign change
-    hi: np.ndarray
-    f_lo: np.ndarray  #: func at lo and hi (as computed by func)
-    f_hi: np.ndarray
+import numba
 
 
-def shrink_brackets(func, lo: np.ndarray, hi: np.ndarray, iterations: int = 60, rtol: float = 1e-12,
-                    f_lo=None, f_hi=None) -> Shrunk:
-    """Shrink sign-changing brackets onto their sign change, all at once: regula falsi with the Illinois
-    modification (superlinear; the end kept twice in a row has its value halved, so both ends close in).
-    A bracket is done when it is narrower than ``rtol`` (relative) or at an exact zero; only the
-    unfinished brackets are evaluated: ``func(x, rows)`` gets the points and the indices of their
-    brackets. ``f_lo``, ``f_hi``: func at the ends when the caller has them (saves two evaluations per
-    bracket). Returns the final brackets, their ends' values and the end with the smaller |f|."""
-    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    every = np.arange(lo.size)
-    f_lo = func(lo, every) if f_lo is None else np.asarray(f_lo, dtype=float).copy()
-    f_hi = func(hi, every) if f_hi is None else np.asarray(f_hi, dtype=float).copy()
-    raw_lo, raw_hi = f_lo.copy(), f_hi.copy()  # func at the current ends (f_lo, f_hi get halved)
-    side = np.zeros(lo.shape, dtype=int)  # which end was kept last time (Illinois weight)
-    done = (hi - lo <= rtol * np.abs(hi)) | (f_lo == 0) | (f_hi == 0)
-    for _ in range(iterations):
-        active = np.nonzero(~done)[0]
-        if active.size == 0:
-            break
-        a, b, fa, fb, sd = lo[active], hi[active], f_lo[active], f_hi[active], side[active]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            mid = np.where(np.isfinite(fa) & np.isfinite(fb) & (fb != fa), b - fb * (b - a) / (fb - fa), 0.5 * (a + b))
-        mid = np.where((mid > a) & (mid < b), mid, 0.5 * (a + b))
-        fm = func(mid, active)
-        left = np.sign(fm) == np.sign(fa)  # the root is in [mid, b]: mid replaces a
-        fb = np.where(left & (sd == 1), 0.5 * fb, fb)
-        fa = np.where(~left & (sd == -1), 0.5 * fa, fa)
-        a, fa = np.where(left, mid, a), np.where(left, fm, fa)
-        b, fb = np.where(left, b, mid), np.where(left, fb, fm)
-        raw_lo[active] = np.where(left, fm, raw_lo[active])
-        raw_hi[active] = np.where(left, raw_hi[active], fm)
-        lo[active], hi[active], f_lo[active], f_hi[active] = a, b, fa, fb
-        side[active] = np.where(left, 1, -1)
-        done[active] = (b - a <= rtol * np.abs(b)) | (fm == 0)
-    low = np.abs(f_lo) < np.abs(f_hi)
-    return Shrunk(np.where(low, lo, hi), np.where(low, raw_lo, raw_hi), lo, hi, raw_lo, raw_hi)
+@numba.njit(cache=True, nogil=True)
+def bracket_done(a, b, fa, fb, rtol):
+    """Whether the bracket [a, b] is narrower than ``rtol`` (relative to b) or holds an exact zero at an end."""
+    return b - a <= rtol * abs(b) or fa == 0.0 or fb == 0.0
 
+
+@numba.njit(cache=True, nogil=True)
+def falsi_point(a, b, fa, fb):
+    """The next point inside (a, b): where the chord through (a, fa), (b, fb) crosses zero, or the
+    midpoint when the chord is unusable (an end value not finite, equal end values) or falls on or
+    outside an end."""
+    if math.isfinite(fa) and math.isfinite(fb) and fb != fa:
+        x = b - fb * (b - a) / (fb - fa)
+        if a < x < b:
+            return x
+    return 0.5 * (a + b)
+
+
+@numba.njit(cache=True, nogil=True)
+def keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, fx):
+    """The bracket after evaluating f(x) = ``fx`` at x in (a, b): x replaces the end whose value has
+    the sign of fx (a NaN replaces b). fa, fb: the Illinois weights (f at the ends, halved each time
+    the other end moved twice in a row); raw_a, raw_b: f at the ends as computed; side: which end
+    moved last (1: a, −1: b, 0: none yet). Returns (a, b, fa, fb, raw_a, raw_b, side)."""
+    if (fx > 0.0 and fa > 0.0) or (fx < 0.0 and fa < 0.0):  # the sign change is in [x, b]
+        if side == 1:
+            fb *= 0.5
+        return x, b, fx, fb, fx, raw_b, 1
+    if side == -1:
+        fa *= 0.5
+    return a, x, fa, fx, raw_a, fx, -1
+
+
+@numba.njit(cache=True, nogil=True)
+def closer_end(a, b, fa, fb, raw_a, raw_b):
+    """(root, f at the root): the end of the final bracket with the smaller weighted |f|."""
+    if abs(fa) < abs(fb):
+        return a, raw_a
+    return b, raw_b

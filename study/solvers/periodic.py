@@ -39,7 +39,7 @@ import numba
 import numpy as np
 
 from study.physics import beam, hertz, section
-from study.physics.roots import shrink_brackets
+from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
 from study.solvers.core import scene as section_scene
 from study.solvers.result import PointResult, choice_input
 
@@ -239,101 +239,182 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
 
 def impacts_at(scene: Scene, spans, options: Options, max_iterations: int = 60, durations=None,
                halves=None) -> list[Impact]:
-    """:func:`impact_at` at every span of ``spans`` [m] at once: each step of the iteration is one array
-    evaluation for all the spans still iterating (the refinement of a design point's roots). durations
-    [s], halves [m]: the starting T_L and b per span (None: the defaults of :func:`impact_at`; a
-    NaN duration: the default for that span). Returns one :class:`Impact` per span, in order."""
+    """:func:`impact_at` at every span of ``spans`` [m] at once, in one compiled loop
+    (:func:`_impact_one`). durations [s], halves [m]: the starting T_L and b per span (None: the
+    defaults of :func:`impact_at`; a NaN duration: the default for that span). Returns one
+    :class:`Impact` per span, in order."""
     spans = np.atleast_1d(np.asarray(spans, dtype=float))
-    count = spans.size
-    c, e = scene.clearance, scene.restitution
-    m_e = np.broadcast_to(np.asarray(scene.equivalent_mass(spans), dtype=float), spans.shape)
-    longest = scene.impact_interval
-    problems: list[list[str]] = [[] for _ in range(count)]
+    durations = np.full(spans.shape, np.nan) if durations is None else durations
+    halves = 0.0 if halves is None else halves
+    starts = [np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), spans.shape)) for v in (durations, halves)]
+    rows = _impacts_kernel(np.ascontiguousarray(spans), *starts, int(max_iterations), *_kernel_args(scene, options))
+    return _impacts_of(scene, rows)
 
-    def duration_for(curvature, velocity, mass):
-        a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, curvature)
-        stiffness = hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum)
-        return hertz.lee_duration(mass, velocity, stiffness), stiffness
 
-    # Start from the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c.
-    velocity = np.full(count, scene.rotary_speed * c)
-    start, stiffness = duration_for(c * (np.pi / spans) ** 2, velocity, m_e)
-    given = np.full(count, np.nan) if durations is None else np.broadcast_to(np.asarray(durations, dtype=float), spans.shape)
-    duration = np.where((given > 0) & (given < longest), given, start)
-    half = np.broadcast_to(np.asarray(0.0 if halves is None else halves, dtype=float), spans.shape)
-    half = np.minimum(np.maximum(half, 0.0), 0.45 * spans)
-    residual, impulse, curvature, peak, half_width = (np.full(count, np.nan) for _ in range(5))
-    relaxation, last_step = np.ones(count), np.zeros(count)
-    previous, previous_step = np.full(count, np.nan), np.full(count, np.nan)  # the last iterate, for the secant
-    iterations, converged = np.zeros(count, dtype=int), np.zeros(count, dtype=bool)
-    active = np.arange(count)
-    for iteration in range(1, max_iterations + 1):
-        long_pulse = ~(duration[active] < longest)
-        for i in active[long_pulse]:
-            problems[i].append(f"pulse longer than the time between impacts (T_L = {duration[i]:.3g} s)")
-        active = active[~long_pulse]
-        if active.size == 0:
-            break
-        y1, v1, curv1 = unit_state(scene, spans[active], duration[active], half[active], options)
-        for i in active[~np.isfinite(y1)]:
-            problems[i].append("the span is at a resonance or buckled")
-        finite = np.isfinite(y1)
-        active, y1, v1, curv1 = active[finite], y1[finite], v1[finite], curv1[finite]
-        if scene.closure == "self_consistent":
-            imp, vel = -c / y1, c * v1 / y1
-            res = m_e[active] * (1.0 + e) * vel / imp - 1.0
-        else:
-            vel = velocity[active]
-            imp = m_e[active] * (1.0 + e) * vel
-            res = -imp * y1 / c - 1.0
-        curv = imp * curv1
-        residual[active], impulse[active], velocity[active], curvature[active] = res, imp, vel, curv
-        wrong = ~((curv > 0) & (vel > 0) & (imp > 0))
-        for i in active[wrong]:
-            problems[i].append("the pipe is not convex towards the wall at the contact" if curvature[i] <= 0 else
-                               "the midspan does not approach the wall before contact" if velocity[i] <= 0 else
-                               "condition 2 needs a negative impulse")
-        active, imp, vel, curv = active[~wrong], imp[~wrong], vel[~wrong], curv[~wrong]
-        if active.size == 0:
-            break
-        peak[active] = hertz.lee_peak_force(imp, duration[active])
-        ellipse = hertz.contact_ellipse(peak[active], scene.outer_radius, scene.hole_radius, curv, scene.compliance_sum)
-        half[active] = np.minimum(ellipse.contact_half_length, 0.45 * spans[active])
-        half_width[active] = ellipse.contact_half_width
-        mapped, stiffness[active] = duration_for(curv, vel, m_e[active])
-        step = mapped - duration[active]
-        iterations[active] = iteration
-        done = np.abs(step) <= options.fixed_point_tol * mapped
-        converged[active[done]] = True
-        if iteration == max_iterations:  # report the T_L the solution was computed with
-            break
-        active, step = active[~done], step[~done]
-        relaxation[active] = np.where(last_step[active] * step < 0, 0.5 * relaxation[active], relaxation[active])
-        last_step[active] = step
-        with np.errstate(divide="ignore", invalid="ignore"):
-            secant = np.where(np.isfinite(previous[active]) & (step != previous_step[active]),
-                              duration[active] - step * (duration[active] - previous[active]) / (step - previous_step[active]),
-                              np.nan)
-        previous[active], previous_step[active] = duration[active], step
-        duration[active] = np.where((secant > 0) & (secant < longest), secant, duration[active] + relaxation[active] * step)
-    failed = np.array([bool(p) for p in problems], dtype=bool)
-    elastic = hertz.hertz_impact(m_e, velocity, stiffness)
+def _impacts_of(scene: Scene, rows) -> list[Impact]:
+    """The :class:`Impact` of each column of a compiled impact kernel's output (:data:`_ROWS`)."""
+    col = dict(zip(_ROWS, rows))
+    m_e = np.broadcast_to(np.asarray(scene.equivalent_mass(col["span"]), dtype=float), col["span"].shape)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        elastic = hertz.hertz_impact(m_e, col["velocity"], col["stiffness"])
     out = []
-    for i in range(count):
-        impact = Impact(span_length=float(spans[i]), residual=float(residual[i]), impulse=float(impulse[i]),
-                        impact_velocity=float(velocity[i]), equivalent_mass=float(m_e[i]),
-                        axial_curvature=float(curvature[i]), problems=problems[i])
-        if not failed[i]:
-            impact.contact_duration = float(duration[i])
+    for i in range(col["span"].size):
+        code = int(col["problem"][i])
+        impact = Impact(span_length=float(col["span"][i]), residual=float(col["residual"][i]),
+                        impulse=float(col["impulse"][i]), impact_velocity=float(col["velocity"][i]),
+                        equivalent_mass=float(m_e[i]), axial_curvature=float(col["curvature"][i]),
+                        problems=[_PROBLEMS[code](col["value"][i])] if code else [])
+        if code == 0 or code > _FAILED:
+            impact.contact_duration = float(col["duration"][i])
             impact.hertz_duration, impact.hertz_peak_force = float(elastic.duration[i]), float(elastic.max_force[i])
             impact.max_approach = float(elastic.max_approach[i])
-            impact.peak_contact_force = float(peak[i])
-            impact.contact_half_length, impact.contact_half_width = float(half[i]), float(half_width[i])
-            impact.iterations = int(iterations[i])
-            if not converged[i] and max_iterations > 1:
-                impact.problems.append(f"T_L–curvature iteration not converged in {max_iterations} steps")
+            impact.peak_contact_force = float(col["peak"][i])
+            impact.contact_half_length, impact.contact_half_width = float(col["half"][i]), float(col["half_width"][i])
+            impact.iterations = int(col["iterations"][i])
         out.append(impact)
     return out
+
+
+#: Why the T_L–curvature iteration of a span stopped (codes of :func:`_impact_one`), with the value
+#: each message shows.
+_PROBLEMS = {
+    1: lambda value: f"pulse longer than the time between impacts (T_L = {value:.3g} s)",
+    2: lambda value: "the span is at a resonance or buckled",
+    3: lambda value: "the pipe is not convex towards the wall at the contact",
+    4: lambda value: "the midspan does not approach the wall before contact",
+    5: lambda value: "condition 2 needs a negative impulse",
+    6: lambda value: f"T_L–curvature iteration not converged in {value:.0f} steps",
+    7: lambda value: "the exact root left the interval between the searched poles around the screening root",
+    8: lambda value: f"condition 2 residual {value:.2g} after refinement",
+}
+_FAILED = 5  #: codes up to this one leave the span without a solution
+
+
+def _kernel_args(scene: Scene, options: Options) -> tuple:
+    """The scene and settings as the compiled kernels take them: (beam state, modes, contact, closure)."""
+    p = scene.props
+    modes = odd_modes(options.modes)
+    state = (float(p["bending_stiffness"]), float(p["effective_tension"]), float(p["mass_per_length"]),
+             float(scene.period), scene.pattern == "one_wall", beam._SHAPE_CODES[options.load_shape], 1e-15, True)
+    contact = (float(scene.outer_radius), float(scene.hole_radius), float(scene.compliance_sum), hertz.guess_table())
+    # m_e = mass_factor L (Scene.equivalent_mass is proportional to L)
+    closure = (scene.closure == "self_consistent", float(scene.equivalent_mass(1.0)), float(scene.restitution),
+               float(scene.rotary_speed), float(scene.clearance), float(scene.impact_interval),
+               float(options.fixed_point_tol))
+    return state, modes, contact, closure
+
+
+@numba.njit(cache=True, nogil=True)
+def _impact_one(span, duration, half, max_iterations, state, modes, contact, closure):
+    """The T_L–κ fixed point of one span (compiled; :func:`impacts_at` documents it). ``duration``:
+    the starting T_L [s] (NaN or out of range: that of the assumed mode); ``half``: the starting b [m].
+    Returns an array (:data:`_ROWS`): the span, residual, impulse, V_p, κ, T_L, b, contact half-width,
+    Hertz stiffness, peak force, iterations, problem code (:data:`_PROBLEMS`; 0: none) and its value."""
+    self_consistent, mass_factor, restitution, rotary_speed, c, longest, tol = closure
+    radius, hole, compliance, table = contact
+    ei, tension, mass, period, one_wall, code, resonance_tol, consecutive = state
+    m_e = mass_factor * span
+    out = np.full(13, np.nan)
+    out[0], out[11] = span, 0.0
+    velocity = rotary_speed * c
+    # the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c
+    _, _, stiffness = hertz.contact_one(1.0, radius, hole, c * (math.pi / span) ** 2, compliance, table)
+    if not (duration > 0.0 and duration < longest):
+        duration = hertz.lee_duration_one(m_e, velocity, stiffness)
+    half = min(max(half, 0.0), 0.45 * span)
+    half_width = peak = math.nan
+    relaxation, last_step, previous, previous_step = 1.0, 0.0, math.nan, math.nan
+    out[3] = velocity
+    for iteration in range(1, max_iterations + 1):
+        if not duration < longest:
+            out[11], out[12] = 1.0, duration
+            return out
+        y1, v1, curv1 = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code,
+                                               resonance_tol, consecutive)
+        if not math.isfinite(y1):
+            out[11] = 2.0
+            return out
+        if self_consistent:
+            impulse, velocity = -c / y1, c * v1 / y1
+            residual = m_e * (1.0 + restitution) * velocity / impulse - 1.0
+        else:
+            impulse = m_e * (1.0 + restitution) * velocity
+            residual = -impulse * y1 / c - 1.0
+        curvature = impulse * curv1
+        out[1], out[2], out[3], out[4] = residual, impulse, velocity, curvature
+        if not (curvature > 0.0 and velocity > 0.0 and impulse > 0.0):
+            out[11] = 3.0 if curvature <= 0.0 else 4.0 if velocity <= 0.0 else 5.0
+            return out
+        peak = math.pi * impulse / (2.0 * duration)  # hertz.lee_peak_force
+        half, half_width, stiffness = hertz.contact_one(peak, radius, hole, curvature, compliance, table)
+        half = min(half, 0.45 * span)
+        mapped = hertz.lee_duration_one(m_e, velocity, stiffness)
+        step = mapped - duration
+        out[5], out[6], out[7], out[8], out[9], out[10] = duration, half, half_width, stiffness, peak, iteration
+        if abs(step) <= tol * mapped:
+            return out
+        if iteration == max_iterations:  # report the T_L the solution was computed with
+            break
+        if last_step * step < 0:
+            relaxation *= 0.5
+        last_step = step
+        secant = math.nan
+        if math.isfinite(previous) and step != previous_step:
+            secant = duration - step * (duration - previous) / (step - previous_step)
+        previous, previous_step = duration, step
+        duration = secant if 0.0 < secant < longest else duration + relaxation * step
+    if max_iterations > 1:
+        out[11], out[12] = 6.0, max_iterations
+    return out
+
+
+#: The rows of the compiled impact kernels' output.
+_ROWS = ("span", "residual", "impulse", "velocity", "curvature", "duration", "half", "half_width", "stiffness", "peak",
+         "iterations", "problem", "value")
+
+
+@numba.njit(cache=True, nogil=True)
+def _impacts_kernel(spans, durations, halves, max_iterations, state, modes, contact, closure):
+    """:func:`_impact_one` at every span; one column per span."""
+    out = np.empty((13, spans.size))
+    for i in range(spans.size):
+        out[:, i] = _impact_one(spans[i], durations[i], halves[i], max_iterations, state, modes, contact, closure)
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _refine_kernel(approx, lo, hi, durations, halves, steps, state, modes, contact, closure):
+    """The secant iteration of :func:`refine_roots` for every root (compiled); one column per root."""
+    out = np.empty((13, approx.size))
+    for k in range(approx.size):
+        x0 = approx[k]
+        size = min(min(1e-6 * x0, 1e-3 * (hi[k] - x0)), 1e-3 * (x0 - lo[k]))
+        x1 = x0 + (size if hi[k] - x0 > x0 - lo[k] else -size)
+        last = _impact_one(x0, durations[k], halves[k], 60, state, modes, contact, closure)
+        if last[11] != 0.0 or not math.isfinite(last[1]):
+            out[:, k] = last
+            continue
+        here = _impact_one(x1, last[5], last[6], 60, state, modes, contact, closure)
+        moving = True
+        for _ in range(steps):
+            if here[11] != 0.0 or not math.isfinite(here[1]) or abs(here[1]) < 1e-10:
+                moving = False
+                break
+            slope = (here[1] - last[1]) / (x1 - x0) if x1 != x0 else 0.0
+            if slope == 0.0:
+                break
+            x2 = x1 - here[1] / slope
+            if not lo[k] <= x2 <= hi[k]:
+                here[11] = 7.0
+                moving = False
+                break
+            x0, last, x1 = x1, here, x2
+            here = _impact_one(x1, last[5], last[6], 60, state, modes, contact, closure)
+        if moving and here[11] == 0.0 and abs(here[1]) > 1e-8:  # the steps ran out, or a flat secant
+            here[11], here[12] = 8.0, here[1]
+        out[:, k] = here
+    return out
+
 
 
 def screen_residual(scene: Scene, options: Options):
@@ -341,7 +422,9 @@ def screen_residual(scene: Scene, options: Options):
 
     T_L(L) and the contact half-length b(L) come from one fixed-point step at a dozen spans,
     interpolated in log L; the roots found with it are refined with the exact model afterwards.
-    Returns a function of an array of spans, or None when no span gives a valid pulse.
+    Returns a function of an array of spans (compiled, :func:`_screen_value`), or None when no span
+    gives a valid pulse; its ``shrink`` shrinks sign-changing brackets of F times the distances to two
+    poles onto their roots in one compiled loop (:func:`_shrink_kernel`).
     """
     grid = np.geomspace(options.min_span, options.max_span, 12)
     impacts = impacts_at(scene, grid, options, max_iterations=1)
@@ -350,24 +433,36 @@ def screen_residual(scene: Scene, options: Options):
     ok = np.isfinite(durations) & (durations > 0)
     if not np.any(ok):
         return None
-    logs = np.log(grid[ok])
     e = scene.restitution
+    p = scene.props
+    table = (np.log(grid[ok]), np.log(durations[ok]), halves[ok])
+    state, all_modes, _, closure = _kernel_args(scene, options)
+    any_modes = state[:-1] + (False,)  # modes not 1, 3, 5, ...
 
     def pulse(spans):
         """(T_L, b) interpolated at ``spans``."""
-        return (np.exp(np.interp(np.log(spans), logs, np.log(durations[ok]))),
-                np.interp(np.log(spans), logs, halves[ok]))
+        return (np.exp(np.interp(np.log(spans), table[0], table[1])), np.interp(np.log(spans), table[0], table[2]))
 
     def residual(spans, modes=None):
         """F(L) at ``spans``; with ``modes`` (see :func:`unit_state`) F + 1 from those modes alone."""
         spans = np.asarray(spans, dtype=float)
-        duration, half = pulse(spans)
-        y1, v1, _ = unit_state(scene, spans, duration, half, options, modes=modes)
-        m_e = scene.equivalent_mass(spans)
-        offset = 1.0 if modes is None else 0.0
-        if scene.closure == "self_consistent":
-            return -m_e * (1.0 + e) * v1 - offset  # m_e (1+e) V_p / J - 1 with V_p = c v1/y1, J = -c/y1
-        return -m_e * (1.0 + e) * scene.rotary_speed * y1 - offset  # -J y1/c - 1 with J = m_e (1+e) Omega c
+        if modes is None:
+            values = _screen_values(np.ascontiguousarray(spans.ravel()), all_modes[None, :], 1.0, table, state, closure)
+        else:
+            per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
+            values = _screen_values(np.ascontiguousarray(spans.ravel()),
+                                    np.ascontiguousarray(per_span.reshape(spans.size, -1)), 0.0, table, any_modes,
+                                    closure)
+        return values.reshape(spans.shape)
+
+    def shrink(lo, hi, f_lo, f_hi, pole_lo, pole_hi, rtol=1e-10, iterations=60):
+        """Brackets [lo, hi] of G = F (L − pole_lo)(pole_hi − L) with G = f_lo, f_hi at the ends, shrunk
+        onto their sign change (regula falsi with the Illinois modification, :mod:`study.physics.roots`)
+        until narrower than ``rtol`` (relative) or at an exact zero. Returns (roots, G at the roots,
+        final lo, final hi), the root being the end with the smaller weighted |G|."""
+        args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
+        out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations))
+        return tuple(out)
 
     def residue(spans, modes):
         """R [m] of the term of mode ``modes`` in F at its pole ``spans``: F ≈ R/(L − L_p) there.
@@ -378,7 +473,6 @@ def screen_residual(scene: Scene, options: Options):
         A cos φ/(2ω) or A sin φ/2 (A e^{−iφ} = H(ω), :func:`beam.pulse_spectrum`), over s dω/dL."""
         spans, n = np.asarray(spans, dtype=float), np.asarray(modes, dtype=float)
         duration, half = pulse(spans)
-        p = scene.props
         k_sq = (n * np.pi / spans) ** 2
         omega = natural_frequencies(scene, spans, n[:, None])[:, 0]  # each pole's own mode
         real, imag = beam.loaded_pulse_spectrum(omega, spans, n, duration, half, options.load_shape)  # |g_n| H(ω)
@@ -390,7 +484,56 @@ def screen_residual(scene: Scene, options: Options):
 
     residual.pulse = pulse
     residual.residue = residue
+    residual.shrink = shrink
     return residual
+
+
+@numba.njit(cache=True, nogil=True)
+def _screen_value(span, modes, offset, table, state, closure):
+    """The screening residual F(L) + 1 − ``offset`` at one span [m] (compiled): T_L and b interpolated in
+    log L from ``table`` (log L, log T_L, b), the midspan state per unit impulse summed over ``modes``
+    (:func:`beam.midspan_state_one` with ``state``), then the closure (``closure`` of
+    :func:`_kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent: m_e (1+e) V_p/J with V_p = c v₁/y₁,
+    J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c)."""
+    log_span = math.log(span)
+    duration = math.exp(np.interp(log_span, table[0], table[1]))
+    half = np.interp(log_span, table[0], table[2])
+    ei, tension, mass, period, one_wall, code, tol, consecutive = state
+    y1, v1, _ = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code, tol,
+                                       consecutive)
+    self_consistent, mass_factor, restitution, omega, _, _, _ = closure
+    impulse_factor = mass_factor * span * (1.0 + restitution)
+    if self_consistent:
+        return -impulse_factor * v1 - offset
+    return -impulse_factor * omega * y1 - offset
+
+
+@numba.njit(cache=True, nogil=True)
+def _screen_values(spans, modes, offset, table, state, closure):
+    """:func:`_screen_value` at every span; ``modes`` one row for all spans or one row per span."""
+    out = np.empty(spans.size)
+    per_span = modes.shape[0] > 1
+    for i in range(spans.size):
+        out[i] = _screen_value(spans[i], modes[i if per_span else 0], offset, table, state, closure)
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations):
+    """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi."""
+    out = np.empty((4, lo.size))
+    for i in range(lo.size):
+        a, b, fa, fb = lo[i], hi[i], f_lo[i], f_hi[i]
+        raw_a, raw_b, side = fa, fb, 0
+        for _ in range(iterations):
+            if bracket_done(a, b, fa, fb, rtol):
+                break
+            x = falsi_point(a, b, fa, fb)
+            g = _screen_value(x, modes[0], 1.0, table, state, closure) * (x - pole_lo[i]) * (pole_hi[i] - x)
+            a, b, fa, fb, raw_a, raw_b, side = keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, g)
+        out[0, i], out[1, i] = closer_end(a, b, fa, fb, raw_a, raw_b)
+        out[2, i], out[3, i] = a, b
+    return out
 
 
 def resonance_widths(residual, spans, modes) -> np.ndarray:
@@ -466,28 +609,20 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
     # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
     # crawling along the pole's hyperbola
-
-    def distances(x, rows):
-        return (x - intervals[rows, 0]) * (intervals[rows, 1] - x)
-
-    def smoothed(x, rows):
-        return residual(x) * distances(x, rows)
-
     roots = np.array([])
     if len(i):  # the ends' values are the samples'
-        every = np.arange(len(i))
-        shrunk = shrink_brackets(smoothed, brackets[:, 0], brackets[:, 1], rtol=1e-10,
-                                 f_lo=smooth[i, j], f_hi=smooth[i, j + 1])
-        roots = shrunk.roots
+        roots, root_values, final_lo, final_hi = residual.shrink(brackets[:, 0], brackets[:, 1], smooth[i, j],
+                                                                 smooth[i, j + 1], intervals[:, 0], intervals[:, 1])
         # F is continuous between poles: a sign change left in a bracket free of every pole (the narrow
         # ones included) is a root. One with a pole inside may have converged onto the pole, where |F|
         # grows: it is a root only if |F| there is far below its value at the samples.
-        margin = 1e-12 * shrunk.hi
-        unsure = (np.searchsorted(poles, shrunk.lo - margin, side="left")
-                  < np.searchsorted(poles, shrunk.hi + margin, side="right"))
+        margin = 1e-12 * final_hi
+        unsure = (np.searchsorted(poles, final_lo - margin, side="left")
+                  < np.searchsorted(poles, final_hi + margin, side="right"))
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
+        distances = (roots - intervals[:, 0]) * (intervals[:, 1] - roots)
         with np.errstate(divide="ignore", invalid="ignore"):
-            real = ~unsure | (np.abs(shrunk.values / distances(roots, every)) < 1e-3 * ends)
+            real = ~unsure | (np.abs(root_values / distances) < 1e-3 * ends)
         roots, intervals = roots[real], intervals[real]
     return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
                       narrow_count=int(np.count_nonzero(~wide)))
@@ -554,62 +689,23 @@ def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: i
 
 def refine_roots(scene: Scene, options: Options, approx, brackets, steps: int = 8, durations=None,
                  halves=None) -> list[Impact]:
-    """:func:`refine_root` for every screening root of ``approx`` [m] at once (``brackets``: one
-    interval per root; durations [s], halves [m]: starting T_L and b per root, None for the defaults):
-    each secant step is one :func:`impacts_at` call for all the roots still moving. Returns one
+    """:func:`refine_root` for every screening root of ``approx`` [m] at once, in one compiled loop
+    (:func:`_refine_kernel`; ``brackets``: one interval per root; durations [s], halves [m]: starting
+    T_L and b per root, None for the defaults). The first secant step is small against the distance
+    to the nearer pole (a root pinned next to a pole); a root still off by more than 1e-8 in F when
+    the steps run out, or whose secant leaves its bracket, carries the problem. Returns one
     :class:`Impact` per root, in order."""
     approx = np.atleast_1d(np.asarray(approx, dtype=float))
     if approx.size == 0:
         return []
     brackets = np.asarray(brackets, dtype=float).reshape(-1, 2)
     lo, hi = brackets.min(axis=1), brackets.max(axis=1)
-    # the first secant step: small against the distance to the nearer pole (a root pinned next to a pole)
-    x0 = approx.copy()
-    x1 = approx + np.minimum(np.minimum(1e-6 * approx, 1e-3 * (hi - approx)), 1e-3 * (approx - lo)) \
-        * np.where(hi - approx > approx - lo, 1.0, -1.0)
-    first = impacts_at(scene, x0, options, durations=durations, halves=halves)
-    result = list(first)
-    moving = [k for k, i in enumerate(first) if not i.problems and np.isfinite(i.residual)]
-    last = {k: first[k] for k in moving}  # the impact at x0 of each root still moving
-    latest = dict(zip(moving, _impacts_from(scene, options, x1, moving, last)))  # at x1
-    for _ in range(steps):
-        again = []
-        for k in moving:
-            here = latest[k]
-            if here.problems or not np.isfinite(here.residual) or abs(here.residual) < 1e-10:
-                result[k] = here
-                continue
-            slope = (here.residual - last[k].residual) / (x1[k] - x0[k]) if x1[k] != x0[k] else 0.0
-            if slope == 0:
-                result[k] = _checked(here)
-                continue
-            x2 = x1[k] - here.residual / slope
-            if not lo[k] <= x2 <= hi[k]:
-                here.problems.append("the exact root left the interval between the searched poles around the screening root")
-                result[k] = here
-                continue
-            x0[k], last[k], x1[k] = x1[k], here, x2
-            again.append(k)
-        latest.update(zip(again, _impacts_from(scene, options, x1, again, last)))
-        moving = again
-    for k in moving:  # the steps ran out
-        result[k] = _checked(latest[k])
-    return result
-
-
-def _impacts_from(scene: Scene, options: Options, spans, rows, start) -> list[Impact]:
-    """:func:`impacts_at` at ``spans[rows]``, each T_L–κ iteration started from ``start[row]``'s T_L and b."""
-    if not rows:
-        return []
-    return impacts_at(scene, spans[rows], options, durations=[start[k].contact_duration for k in rows],
-                      halves=[start[k].contact_half_length for k in rows])
-
-
-def _checked(impact: Impact) -> Impact:
-    """The refined impact, with a problem when condition 2 still has a residual above 1e-8."""
-    if abs(impact.residual) > 1e-8:
-        impact.problems.append(f"condition 2 residual {impact.residual:.2g} after refinement")
-    return impact
+    durations = np.full(approx.shape, np.nan) if durations is None else durations
+    halves = 0.0 if halves is None else halves
+    starts = [np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), approx.shape)) for v in (durations, halves)]
+    rows = _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi), *starts,
+                          int(steps), *_kernel_args(scene, options))
+    return _impacts_of(scene, rows)
 
 
 def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],

@@ -403,3 +403,25 @@ def test_inverted_eccentricity_satisfies_johnson_4_39(deg):
     e2 = -np.expm1(h._log_c2(theta))
     cos_t = ((2 - e2) * ellipe(e2) - 2 * (1 - e2) * ellipk(e2)) / (e2 * ellipe(e2))
     assert cos_t == pytest.approx(np.cos(theta), rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("m_e, v0, k", IMPACT_CASES)
+def test_compiled_lee_duration_is_the_array_one(m_e, v0, k):
+    # source: the definition - lee_duration_one is lee_duration of one impact, for compiled loops.
+    k = _stiffness(k)
+    assert h.lee_duration_one(m_e, v0, k) == pytest.approx(float(h.lee_duration(m_e, v0, k)), rel=1e-15)
+
+
+@pytest.mark.parametrize("kappa", [1e-6, 0.01, 0.2, 3.0, 9.9, 12.0, 40.0])
+@pytest.mark.parametrize("force", [1.0, 3.2e4])
+def test_compiled_contact_is_the_ellipse_and_stiffness(kappa, force):
+    # source: the definition - contact_one is contact_ellipse and hertz_stiffness of one contact (the
+    # periodic solution's compiled T_L-curvature loop), the major axis along the pipe or round it
+    # (k_c = 1/r_o - 1/R_hole = 6.4 1/m here, so 9.9, 12 and 40 1/m turn the ellipse).
+    r_o, r_h, comp = 0.0635, 0.1075, 2 * h.compliance(2.07e11, 0.3)
+    ellipse = h.contact_ellipse(force, r_o, r_h, kappa, comp)
+    stiffness = h.hertz_stiffness(ellipse.A, ellipse.B, comp)
+    half_length, half_width, k = h.contact_one(force, r_o, r_h, kappa, comp, h.guess_table())
+    assert half_length == pytest.approx(float(ellipse.contact_half_length), rel=1e-14)
+    assert half_width == pytest.approx(float(ellipse.contact_half_width), rel=1e-14)
+    assert k == pytest.approx(float(stiffness), rel=1e-14)

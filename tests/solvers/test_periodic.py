@@ -233,3 +233,24 @@ def test_roots_pinned_closer_to_a_wide_pole_than_any_sample_are_kept(paper_input
                 assert np.any((search.roots >= a) & (search.roots <= b)), (pole, a, b)
                 closest.append(fractions[k + 1])
     assert len(closest) > 5 and min(closest) < 1e-3
+
+
+def test_refinement_and_iteration_say_why_they_stopped(paper_inputs):
+    # source: the definition - a root whose secant step leaves its bracket, one still off in F when the steps
+    # run out, and a T_L-curvature iteration cut short each carry their own problem, with the solution
+    # they reached (a span that fails inside the iteration carries none).
+    scene = scene_of(paper_inputs, "alternating", "prescribed")
+    options = periodic.Options(modes=15, min_span=9.0)
+    search = periodic.find_roots(scene, options)
+    good = [k for k, i in enumerate(periodic.refine_roots(scene, options, search.roots, search.brackets))
+            if not i.problems]
+    root = float(search.roots[good[0]])
+    tight = periodic.refine_root(scene, options, root, (root * (1 - 1e-13), root * (1 + 1e-13)))
+    assert tight.problems == ["the exact root left the interval between the searched poles around the screening root"]
+    assert np.isfinite(tight.contact_duration)
+    cut = periodic.refine_root(scene, options, root, search.brackets[good[0]], steps=0)
+    assert len(cut.problems) == 1 and cut.problems[0].startswith("condition 2 residual ")
+    assert abs(cut.residual) > 1e-8 and cut.problems[0].endswith(" after refinement")
+    short = periodic.impact_at(scene, root, options, max_iterations=2)
+    assert short.problems == ["T_L–curvature iteration not converged in 2 steps"] and short.iterations == 2
+    assert np.isfinite(short.contact_duration)
