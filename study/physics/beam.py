@@ -233,12 +233,19 @@ def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wal
 def _loaded_spectrum_kernel(omega, spans, modes, durations, halves, code):
     real, imag = np.empty(omega.size), np.empty(omega.size)
     for i in range(omega.size):
-        g = abs(_shape_factor(modes[i] * math.pi / spans[i] * halves[i], code))
-        phi = 0.5 * omega[i] * durations[i]
-        c = math.cos(phi)
-        amp = g * _echo_amplitude(omega[i] * durations[i] / math.pi, c)
-        real[i], imag[i] = amp * c, -amp * math.sin(phi)
+        real[i], imag[i] = loaded_spectrum_one(omega[i], spans[i], modes[i], durations[i], halves[i], code)
     return real, imag
+
+
+@numba.njit(cache=True, nogil=True)
+def loaded_spectrum_one(omega, span, mode, duration, half, code):
+    """(real, imaginary part) of :func:`loaded_pulse_spectrum` at one ω [rad/s], compiled; ``code``:
+    the load shape's (``_SHAPE_CODES``)."""
+    g = abs(_shape_factor(mode * math.pi / span * half, code))
+    phi = 0.5 * omega * duration
+    c = math.cos(phi)
+    amp = g * _echo_amplitude(omega * duration / math.pi, c)
+    return amp * c, -amp * math.sin(phi)
 
 
 def loaded_pulse_spectrum(omega, span_length, modes, pulse_duration, half_length=0.0, shape="point"):

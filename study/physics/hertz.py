@@ -24,6 +24,8 @@ from numba import types
 from numba.extending import get_cython_function_address
 from scipy.special import beta, binom
 
+from study.physics.interpolation import interp_one
+
 
 class ContactCoefficients(NamedTuple):
     m: np.ndarray  #: semi-major axis a = m X [-]
@@ -175,7 +177,7 @@ def contact_one(force, pipe_radius, hole_radius, axial_curvature, compliance_sum
     k_c = 1.0 / pipe_radius - 1.0 / hole_radius
     a_sum, b_sum = 0.5 * min(k_c, axial_curvature), 0.5 * max(k_c, axial_curvature)
     theta = math.atan2(2.0 * math.sqrt(a_sum * b_sum), b_sum - a_sum)
-    m, n, k_factor = _coefficients_one(theta, np.interp(np.log(theta), guess_table[0], guess_table[1]))
+    m, n, k_factor = _coefficients_one(theta, interp_one(math.log(theta), guess_table[0], guess_table[1]))
     x = np.cbrt(3.0 * math.pi * force * compliance_sum / (4.0 * (a_sum + b_sum)))
     x_1 = np.cbrt(3.0 * math.pi * 1.0 * compliance_sum / (4.0 * (a_sum + b_sum)))
     coefficient = 0.75 * math.pi * k_factor * compliance_sum / x_1

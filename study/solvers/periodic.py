@@ -39,6 +39,7 @@ import numba
 import numpy as np
 
 from study.physics import beam, hertz, section
+from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
 from study.solvers.core import scene as section_scene
 from study.solvers.result import PointResult, choice_input
@@ -433,8 +434,6 @@ def screen_residual(scene: Scene, options: Options):
     ok = np.isfinite(durations) & (durations > 0)
     if not np.any(ok):
         return None
-    e = scene.restitution
-    p = scene.props
     table = (np.log(grid[ok]), np.log(durations[ok]), halves[ok])
     state, all_modes, _, closure = _kernel_args(scene, options)
     any_modes = state[:-1] + (False,)  # modes not 1, 3, 5, ...
@@ -471,16 +470,9 @@ def screen_residual(scene: Scene, options: Options):
         mode's midspan weight, and q(0), q̇(0) (:func:`beam.modal_state_at_pulse_start`) carry the pole
         through κ ≈ 1/(x − x_p), x = ω s (s = τ/2 for cot(ωτ/2), τ/4 for −tan(ωτ/4)): the factor of κ,
         A cos φ/(2ω) or A sin φ/2 (A e^{−iφ} = H(ω), :func:`beam.pulse_spectrum`), over s dω/dL."""
-        spans, n = np.asarray(spans, dtype=float), np.asarray(modes, dtype=float)
-        duration, half = pulse(spans)
-        k_sq = (n * np.pi / spans) ** 2
-        omega = natural_frequencies(scene, spans, n[:, None])[:, 0]  # each pole's own mode
-        real, imag = beam.loaded_pulse_spectrum(omega, spans, n, duration, half, options.load_shape)  # |g_n| H(ω)
-        factor = -scene.equivalent_mass(spans) * (1.0 + e) * 2.0 / (p["mass_per_length"] * spans) * (
-            -0.5 * imag if scene.closure == "self_consistent" else scene.rotary_speed * real / (2.0 * omega))
-        slope = -(2.0 * p["bending_stiffness"] * k_sq**2 + p["effective_tension"] * k_sq) \
-            / (p["mass_per_length"] * spans * omega)  # dω/dL
-        return factor / (0.5 * scene.impact_interval * slope)
+        spans, n = np.broadcast_arrays(np.asarray(spans, dtype=float), np.asarray(modes, dtype=float))
+        flat = [np.ascontiguousarray(v.ravel()) for v in (spans, n)]
+        return _residues_kernel(*flat, table, state, closure).reshape(spans.shape)
 
     residual.pulse = pulse
     residual.residue = residue
@@ -496,8 +488,8 @@ def _screen_value(span, modes, offset, table, state, closure):
     :func:`_kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent: m_e (1+e) V_p/J with V_p = c v₁/y₁,
     J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c)."""
     log_span = math.log(span)
-    duration = math.exp(np.interp(log_span, table[0], table[1]))
-    half = np.interp(log_span, table[0], table[2])
+    duration = math.exp(interp_one(log_span, table[0], table[1]))
+    half = interp_one(log_span, table[0], table[2])
     ei, tension, mass, period, one_wall, code, tol, consecutive = state
     y1, v1, _ = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code, tol,
                                        consecutive)
@@ -506,6 +498,29 @@ def _screen_value(span, modes, offset, table, state, closure):
     if self_consistent:
         return -impulse_factor * v1 - offset
     return -impulse_factor * omega * y1 - offset
+
+
+@numba.njit(cache=True, nogil=True)
+def _residues_kernel(spans, modes, table, state, closure):
+    """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
+    :func:`_screen_value`."""
+    ei, tension, mass, _, _, code, _, _ = state
+    self_consistent, mass_factor, restitution, omega_rot, _, interval, _ = closure
+    out = np.empty(spans.size)
+    for i in range(spans.size):
+        span, n = spans[i], modes[i]
+        log_span = math.log(span)
+        duration = math.exp(interp_one(log_span, table[0], table[1]))
+        half = interp_one(log_span, table[0], table[2])
+        k_sq = (n * math.pi / span) ** 2
+        om_sq = (ei * k_sq + tension) * k_sq / mass
+        omega = math.sqrt(om_sq) if om_sq > 0.0 else math.nan
+        real, imag = beam.loaded_spectrum_one(omega, span, n, duration, half, code)  # |g_n| H(ω)
+        factor = -mass_factor * span * (1.0 + restitution) * 2.0 / (mass * span) * (
+            -0.5 * imag if self_consistent else omega_rot * real / (2.0 * omega))
+        slope = -(2.0 * ei * k_sq**2 + tension * k_sq) / (mass * span * omega)  # dω/dL
+        out[i] = factor / (0.5 * interval * slope)
+    return out
 
 
 @numba.njit(cache=True, nogil=True)
