@@ -458,10 +458,11 @@ def screen_residual(scene: Scene, options: Options):
         """Brackets [lo, hi] of G = F (L − pole_lo)(pole_hi − L) with G = f_lo, f_hi at the ends, shrunk
         onto their sign change (regula falsi with the Illinois modification, :mod:`study.physics.roots`)
         until narrower than ``rtol`` (relative) or at an exact zero. Returns (roots, G at the roots,
-        final lo, final hi), the root being the end with the smaller weighted |G|."""
+        final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as :func:`unit_state` with the screening
+        pulse, NaN where not evaluated), the root being the end with the smaller weighted |G|."""
         args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
         out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations))
-        return tuple(out)
+        return out[0], out[1], out[2], out[3], out[4:]
 
     def residue(spans, modes):
         """R [m] of the term of mode ``modes`` in F at its pole ``spans``: F ≈ R/(L − L_p) there.
@@ -482,22 +483,29 @@ def screen_residual(scene: Scene, options: Options):
 
 @numba.njit(cache=True, nogil=True)
 def _screen_value(span, modes, offset, table, state, closure):
-    """The screening residual F(L) + 1 − ``offset`` at one span [m] (compiled): T_L and b interpolated in
+    """The screening residual F(L) + 1 − ``offset`` at one span [m] (compiled; :func:`_screen_state`)."""
+    return _screen_state(span, modes, offset, table, state, closure)[0]
+
+
+@numba.njit(cache=True, nogil=True)
+def _screen_state(span, modes, offset, table, state, closure):
+    """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') at one span [m] (compiled): T_L and b interpolated in
     log L from ``table`` (log L, log T_L, b), the midspan state per unit impulse summed over ``modes``
     (:func:`beam.midspan_state_one` with ``state``), then the closure (``closure`` of
     :func:`_kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent: m_e (1+e) V_p/J with V_p = c v₁/y₁,
-    J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c)."""
+    J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c); y₁, v₁, y₁'' the
+    midspan state per unit impulse of :func:`unit_state`."""
     log_span = math.log(span)
     duration = math.exp(interp_one(log_span, table[0], table[1]))
     half = interp_one(log_span, table[0], table[2])
     ei, tension, mass, period, one_wall, code, tol, consecutive = state
-    y1, v1, _ = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code, tol,
-                                       consecutive)
+    y1, v1, curv1 = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code,
+                                           tol, consecutive)
     self_consistent, mass_factor, restitution, omega, _, _, _ = closure
     impulse_factor = mass_factor * span * (1.0 + restitution)
     if self_consistent:
-        return -impulse_factor * v1 - offset
-    return -impulse_factor * omega * y1 - offset
+        return -impulse_factor * v1 - offset, y1, v1, curv1
+    return -impulse_factor * omega * y1 - offset, y1, v1, curv1
 
 
 @numba.njit(cache=True, nogil=True)
@@ -535,19 +543,27 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 @numba.njit(cache=True, nogil=True)
 def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations):
-    """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi."""
-    out = np.empty((4, lo.size))
+    """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi, and
+    y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate)."""
+    out = np.empty((7, lo.size))
     for i in range(lo.size):
         a, b, fa, fb = lo[i], hi[i], f_lo[i], f_hi[i]
         raw_a, raw_b, side = fa, fb, 0
+        state_a = state_b = (math.nan, math.nan, math.nan)
         for _ in range(iterations):
             if bracket_done(a, b, fa, fb, rtol):
                 break
             x = falsi_point(a, b, fa, fb)
-            g = _screen_value(x, modes[0], 1.0, table, state, closure) * (x - pole_lo[i]) * (pole_hi[i] - x)
+            value, y1, v1, curv1 = _screen_state(x, modes[0], 1.0, table, state, closure)
+            g = value * (x - pole_lo[i]) * (pole_hi[i] - x)
             a, b, fa, fb, raw_a, raw_b, side = keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, g)
+            if side == 1:
+                state_a = (y1, v1, curv1)
+            else:
+                state_b = (y1, v1, curv1)
         out[0, i], out[1, i] = closer_end(a, b, fa, fb, raw_a, raw_b)
         out[2, i], out[3, i] = a, b
+        out[4, i], out[5, i], out[6, i] = state_a if out[0, i] == a else state_b
     return out
 
 
@@ -575,6 +591,8 @@ class SpanSearch:
     pole_count: int
     residual: Any = None  #: the screening residual (with ``.pulse``), for the screening checks
     narrow_count: int = 0  #: poles not searched, their resonance narrower than ``Options.resonance_width``
+    #: (3, n) y₁, v₁, y₁'' at each root as :func:`unit_state` with the screening pulse (NaN: not evaluated)
+    states: np.ndarray | None = None
 
 
 def find_roots(scene: Scene, options: Options) -> SpanSearch:
@@ -624,9 +642,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
     # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
     # crawling along the pole's hyperbola
-    roots = np.array([])
+    roots, states = np.array([]), np.zeros((3, 0))
     if len(i):  # the ends' values are the samples'
-        roots, root_values, final_lo, final_hi = residual.shrink(brackets[:, 0], brackets[:, 1], smooth[i, j],
+        roots, root_values, final_lo, final_hi, states = residual.shrink(brackets[:, 0], brackets[:, 1], smooth[i, j],
                                                                  smooth[i, j + 1], intervals[:, 0], intervals[:, 1])
         # F is continuous between poles: a sign change left in a bracket free of every pole (the narrow
         # ones included) is a root. One with a pole inside may have converged onto the pole, where |F|
@@ -638,9 +656,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
         distances = (roots - intervals[:, 0]) * (intervals[:, 1] - roots)
         with np.errstate(divide="ignore", invalid="ignore"):
             real = ~unsure | (np.abs(root_values / distances) < 1e-3 * ends)
-        roots, intervals = roots[real], intervals[real]
+        roots, intervals, states = roots[real], intervals[real], states[:, real]
     return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
-                      narrow_count=int(np.count_nonzero(~wide)))
+                      narrow_count=int(np.count_nonzero(~wide)), states=states)
 
 
 def _merged_poles(poles, residues):
@@ -663,7 +681,11 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
     spans = search.roots
     duration, half = search.residual.pulse(spans)
     c, e, mass = scene.clearance, scene.restitution, scene.props["mass_per_length"]
-    y0, v0, curv0 = unit_state(scene, spans, duration, half, options)
+    y0, v0, curv0 = np.full((3, spans.size), np.nan) if search.states is None else search.states.copy()
+    missing = np.isnan(y0)  # where the search did not evaluate the state at the root
+    if np.any(missing):
+        y0[missing], v0[missing], curv0[missing] = unit_state(scene, spans[missing], duration[missing], half[missing],
+                                                              options)
     m_e = scene.equivalent_mass(spans)
     impulse = -c / y0 if scene.closure == "self_consistent" else m_e * (1.0 + e) * scene.rotary_speed * c
     # as impact_at rejects at its first iterate: approach, convex towards the wall, a positive impulse

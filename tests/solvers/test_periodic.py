@@ -254,3 +254,16 @@ def test_refinement_and_iteration_say_why_they_stopped(paper_inputs):
     short = periodic.impact_at(scene, root, options, max_iterations=2)
     assert short.problems == ["T_L–curvature iteration not converged in 2 steps"] and short.iterations == 2
     assert np.isfinite(short.contact_duration)
+
+
+def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
+    # source: the definition - the regula falsi evaluates y1, v1, y1'' with F at every point; the state it
+    # keeps for a root is unit_state there with the screening pulse (the midspan screen's input), bit for bit.
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent")
+    options = periodic.Options(modes=21, max_span=60.0)
+    search = periodic.find_roots(scene, options)
+    duration, half = search.residual.pulse(search.roots)
+    expected = np.array(periodic.unit_state(scene, search.roots, duration, half, options))
+    known = ~np.isnan(search.states[0])
+    assert search.states.shape == (3, search.roots.size) and np.mean(known) > 0.9
+    np.testing.assert_array_equal(search.states[:, known], expected[:, known])
