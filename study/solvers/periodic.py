@@ -417,7 +417,6 @@ def _refine_kernel(approx, lo, hi, durations, halves, steps, state, modes, conta
     return out
 
 
-
 def screen_residual(scene: Scene, options: Options):
     """A cheap, smooth stand-in for F(L), vectorised over spans, for the search.
 
