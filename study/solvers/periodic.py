@@ -494,9 +494,7 @@ def _screen_state(span, modes, offset, table, state, closure):
     :func:`_kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent: m_e (1+e) V_p/J with V_p = c v₁/y₁,
     J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c); y₁, v₁, y₁'' the
     midspan state per unit impulse of :func:`unit_state`."""
-    log_span = math.log(span)
-    duration = math.exp(interp_one(log_span, table[0], table[1]))
-    half = interp_one(log_span, table[0], table[2])
+    duration, half = _pulse_one(span, table)
     ei, tension, mass, period, one_wall, code, tol, consecutive = state
     y1, v1, curv1 = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code,
                                            tol, consecutive)
@@ -508,6 +506,14 @@ def _screen_state(span, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
+def _pulse_one(span, table):
+    """(T_L [s], b [m]) of the screening residual at one span [m]: ``pulse`` of :func:`screen_residual`,
+    compiled, from ``table`` (log L, log T_L, b)."""
+    log_span = math.log(span)
+    return math.exp(interp_one(log_span, table[0], table[1])), interp_one(log_span, table[0], table[2])
+
+
+@numba.njit(cache=True, nogil=True)
 def _residues_kernel(spans, modes, table, state, closure):
     """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
     :func:`_screen_value`."""
@@ -516,9 +522,7 @@ def _residues_kernel(spans, modes, table, state, closure):
     out = np.empty(spans.size)
     for i in range(spans.size):
         span, n = spans[i], modes[i]
-        log_span = math.log(span)
-        duration = math.exp(interp_one(log_span, table[0], table[1]))
-        half = interp_one(log_span, table[0], table[2])
+        duration, half = _pulse_one(span, table)
         k_sq = (n * math.pi / span) ** 2
         om_sq = (ei * k_sq + tension) * k_sq / mass
         omega = math.sqrt(om_sq) if om_sq > 0.0 else math.nan
