@@ -422,7 +422,7 @@ def screen_residual(scene: Scene, options: Options):
 
     T_L(L) and the contact half-length b(L) come from one fixed-point step at a dozen spans,
     interpolated in log L; the roots found with it are refined with the exact model afterwards.
-    Returns a function of an array of spans (compiled, :func:`_screen_value`), or None when no span
+    Returns a function of an array of spans (compiled, :func:`_screen_state`), or None when no span
     gives a valid pulse; its ``shrink`` shrinks sign-changing brackets of F times the distances to two
     poles onto their roots in one compiled loop (:func:`_shrink_kernel`).
     """
@@ -481,12 +481,6 @@ def screen_residual(scene: Scene, options: Options):
 
 
 @numba.njit(cache=True, nogil=True)
-def _screen_value(span, modes, offset, table, state, closure):
-    """The screening residual F(L) + 1 − ``offset`` at one span [m] (compiled; :func:`_screen_state`)."""
-    return _screen_state(span, modes, offset, table, state, closure)[0]
-
-
-@numba.njit(cache=True, nogil=True)
 def _screen_state(span, modes, offset, table, state, closure):
     """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') at one span [m] (compiled): T_L and b interpolated in
     log L from ``table`` (log L, log T_L, b), the midspan state per unit impulse summed over ``modes``
@@ -516,7 +510,7 @@ def _pulse_one(span, table):
 @numba.njit(cache=True, nogil=True)
 def _residues_kernel(spans, modes, table, state, closure):
     """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
-    :func:`_screen_value`."""
+    :func:`_screen_state`."""
     ei, tension, mass, _, _, code, _, _ = state
     self_consistent, mass_factor, restitution, omega_rot, _, interval, _ = closure
     out = np.empty(spans.size)
@@ -536,11 +530,12 @@ def _residues_kernel(spans, modes, table, state, closure):
 
 @numba.njit(cache=True, nogil=True)
 def _screen_values(spans, modes, offset, table, state, closure):
-    """:func:`_screen_value` at every span; ``modes`` one row for all spans or one row per span."""
+    """The screening residual of :func:`_screen_state` at every span; ``modes`` one row for all spans or
+    one row per span."""
     out = np.empty(spans.size)
     per_span = modes.shape[0] > 1
     for i in range(spans.size):
-        out[i] = _screen_value(spans[i], modes[i if per_span else 0], offset, table, state, closure)
+        out[i] = _screen_state(spans[i], modes[i if per_span else 0], offset, table, state, closure)[0]
     return out
 
 
