@@ -245,11 +245,17 @@ def impacts_at(scene: Scene, spans, options: Options, max_iterations: int = 60, 
     defaults of :func:`impact_at`; a NaN duration: the default for that span). Returns one
     :class:`Impact` per span, in order."""
     spans = np.atleast_1d(np.asarray(spans, dtype=float))
-    durations = np.full(spans.shape, np.nan) if durations is None else durations
-    halves = 0.0 if halves is None else halves
-    starts = [np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), spans.shape)) for v in (durations, halves)]
-    rows = _impacts_kernel(np.ascontiguousarray(spans), *starts, int(max_iterations), *_kernel_args(scene, options))
+    rows = _impacts_kernel(np.ascontiguousarray(spans), *_starts(spans.shape, durations, halves), int(max_iterations),
+                           *_kernel_args(scene, options))
     return _impacts_of(scene, rows)
+
+
+def _starts(shape, durations, halves) -> tuple[np.ndarray, np.ndarray]:
+    """The starting T_L [s] and b [m] per span for the compiled kernels, of ``shape``: durations None
+    gives NaN (the assumed mode's T_L), halves None gives 0."""
+    durations = np.nan if durations is None else durations
+    halves = 0.0 if halves is None else halves
+    return tuple(np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), shape)) for v in (durations, halves))
 
 
 def _impacts_of(scene: Scene, rows) -> list[Impact]:
@@ -735,11 +741,8 @@ def refine_roots(scene: Scene, options: Options, approx, brackets, steps: int = 
         return []
     brackets = np.asarray(brackets, dtype=float).reshape(-1, 2)
     lo, hi = brackets.min(axis=1), brackets.max(axis=1)
-    durations = np.full(approx.shape, np.nan) if durations is None else durations
-    halves = 0.0 if halves is None else halves
-    starts = [np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), approx.shape)) for v in (durations, halves)]
-    rows = _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi), *starts,
-                          int(steps), *_kernel_args(scene, options))
+    rows = _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi),
+                          *_starts(approx.shape, durations, halves), int(steps), *_kernel_args(scene, options))
     return _impacts_of(scene, rows)
 
 
