@@ -551,7 +551,7 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, stat
 
 
 @numba.njit(cache=True, nogil=True)
-def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
+def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol, limit):
     out = np.empty(omega.shape[0])
     p = tau if one_wall else 0.5 * tau
     M = omega.shape[1]
@@ -583,23 +583,31 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol):
                     y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])
             prev_tm, prev_k, prev_free = tm, k, free
             largest = max(largest, abs(y))
+            if largest > limit[r]:  # the row's verdict is known: the rest of its times cannot lower it
+                break
         out[r] = largest
     return out
 
 
-def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_wall", resonance_tol=1e-15):
+def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_wall", resonance_tol=1e-15,
+                      limit=None):
     """max over t of |Σ_m w_m q_m(t)| per row, q of :func:`modal_periodic_response` (compiled loop).
 
     t [s] of shape (R, T), omega_n ω [rad/s] and weights w_m of shape (R, M), pulse_duration T_L [s] of
     shape (R,), scalar period τ [s]. With w_m the modal load factors at a point per unit impulse, this
     is the largest deflection there per unit impulse at the times t (the span search's midspan
     screen). NaN for a row with a resonant or buckled mode or a pulse longer than the (half) period.
+    ``limit`` (shape (R,), same units; None: no limit): a row stops at the first time its excursion
+    exceeds its limit, and returns that excursion — above the limit, but not the maximum over all of
+    t; put the times most likely to exceed first.
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
     t, omega, weights = (np.ascontiguousarray(np.asarray(v, dtype=float)) for v in (t, omega_n, weights))
     durations = np.ascontiguousarray(np.broadcast_to(np.asarray(pulse_duration, dtype=float), omega.shape[:1]))
+    limit = np.full(omega.shape[0], np.inf) if limit is None else np.asarray(limit, dtype=float)
     return _largest_excursion_kernel(t, omega, durations, weights, float(period), pattern == "one_wall",
-                                     float(resonance_tol))
+                                     float(resonance_tol),
+                                     np.ascontiguousarray(np.broadcast_to(limit, omega.shape[:1])))
 
 
 @numba.njit(cache=True, nogil=True)

@@ -532,6 +532,30 @@ def test_largest_excursion_is_the_maximum_of_the_weighted_closed_form(pattern):
 
 
 @pytest.mark.parametrize("pattern", PATTERNS)
+def test_largest_excursion_with_a_limit_stops_a_row_at_its_first_time_above_it(pattern):
+    # source: the same numpy closed form as above; a row whose running maximum first passes its limit at
+    # time i returns the excursion at i (above the limit, below the row's maximum when a later time is
+    # larger); a row that never passes it returns its full maximum - the verdict largest <= limit is the
+    # unlimited one either way
+    rng = np.random.default_rng(11)
+    R, T, M = 5, 30, 7
+    t = np.sort(rng.uniform(0.0, 0.4, (R, T)), axis=1)
+    omega = np.sort(rng.uniform(2.0, 3e3, (R, M)), axis=1)
+    tl = rng.uniform(1e-3, 0.04, R)
+    w = rng.normal(size=(R, M))
+    q = bm.modal_periodic_response(t[:, :, None], omega[:, None, :], tl[:, None, None], 0.2, pattern).displacement
+    excursion = np.abs(np.einsum("rtm,rm->rt", q, w))
+    full = excursion.max(axis=1)
+    limit = np.array([0.5, 0.8, 0.95, 0.999, 1.5]) * full  # the last row never passes it
+    got = bm.largest_excursion(t, omega, tl, w, 0.2, pattern, limit=limit)
+    first = [np.argmax(np.maximum.accumulate(row) > lim) for row, lim in zip(excursion, limit)]
+    want = [excursion[r, i] if full[r] > limit[r] else full[r] for r, i in enumerate(first)]
+    np.testing.assert_allclose(got, want, rtol=1e-12)
+    assert np.all((got <= limit) == (full <= limit))
+    assert got[0] < full[0] or np.argmax(excursion[0]) == first[0]
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
 @pytest.mark.parametrize("tl", [1e-3, 0.03])
 def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
     # source: the closed form itself (modal_periodic_response, tested against the ODE and the Fourier
