@@ -469,16 +469,17 @@ def screen_residual(scene: Scene, options: Options):
         out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations))
         return out[0], out[1], out[2], out[3], out[4:]
 
-    def residue(spans, modes):
-        """R [m] of the term of mode ``modes`` in F at its pole ``spans``: F ≈ R/(L − L_p) there.
+    def residue(spans, modes, floor=0.0):
+        """R [m] of the term of mode ``modes`` in F at its pole ``spans``: F ≈ R/(L − L_p) there; NaN
+        where |R| is certainly below ``floor`` [m] (broadcast with spans), not computed.
 
         The term is −m_e(1 + e) Ω w q(0) (prescribed) or −m_e(1 + e) w q̇(0) (self-consistent), w the
         mode's midspan weight, and q(0), q̇(0) (:func:`beam.modal_state_at_pulse_start`) carry the pole
         through κ ≈ 1/(x − x_p), x = ω s (s = τ/2 for cot(ωτ/2), τ/4 for −tan(ωτ/4)): the factor of κ,
         A cos φ/(2ω) or A sin φ/2 (A e^{−iφ} = H(ω), :func:`beam.pulse_spectrum`), over s dω/dL."""
-        spans, n = np.broadcast_arrays(np.asarray(spans, dtype=float), np.asarray(modes, dtype=float))
+        spans, n, floors = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (spans, modes, floor)))
         flat = [np.ascontiguousarray(v.ravel()) for v in (spans, n)]
-        return _residues_kernel(*flat, table, state, closure).reshape(spans.shape)
+        return _residues_kernel(*flat, table, state, closure, np.ascontiguousarray(floors.ravel())).reshape(spans.shape)
 
     residual.pulse = pulse
     residual.residue = residue
@@ -514,23 +515,34 @@ def _pulse_one(span, table):
 
 
 @numba.njit(cache=True, nogil=True)
-def _residues_kernel(spans, modes, table, state, closure):
+def _residues_kernel(spans, modes, table, state, closure, floors):
     """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
-    :func:`_screen_state`."""
+    :func:`_screen_state`; NaN, not computed, where a bound without trigonometry puts |R| below
+    ``floors`` [m] (one per pole).
+
+    The bound: |g_n H(ω)| ≤ min(1, 1/|u² − 1|), u = ωT_L/π. The load and the pulse are non-negative, so
+    |g_n| ≤ g(0) = 1 and |H(ω)| ≤ H(0) = 1, and H = A e^{−iφ} with |A| = |cos φ/(1 − u²)|. T_L is at
+    least the table's shortest (the interpolation stays within its values), so u ≥ ω min T_L/π."""
     ei, tension, mass, _, _, code, _, _ = state
     self_consistent, mass_factor, restitution, omega_rot, _, interval, _ = closure
+    shortest = math.exp(np.min(table[1]))
     out = np.empty(spans.size)
     for i in range(spans.size):
         span, n = spans[i], modes[i]
-        duration, half = _pulse_one(span, table)
         k_sq = (n * math.pi / span) ** 2
         om_sq = (ei * k_sq + tension) * k_sq / mass
         omega = math.sqrt(om_sq) if om_sq > 0.0 else math.nan
-        real, imag = beam.loaded_spectrum_one(omega, span, n, duration, half, code)  # |g_n| H(ω)
-        factor = -mass_factor * span * (1.0 + restitution) * 2.0 / (mass * span) * (
-            -0.5 * imag if self_consistent else omega_rot * real / (2.0 * omega))
         slope = -(2.0 * ei * k_sq**2 + tension * k_sq) / (mass * span * omega)  # dω/dL
-        out[i] = factor / (0.5 * interval * slope)
+        scale = -mass_factor * span * (1.0 + restitution) * 2.0 / (mass * span) / (0.5 * interval * slope)
+        u = omega * shortest / math.pi
+        bound = abs(scale) * (1.0 / (u * u - 1.0) if u * u > 2.0 else 1.0) * (
+            0.5 if self_consistent else omega_rot / (2.0 * omega))
+        if bound < floors[i]:
+            out[i] = math.nan
+            continue
+        duration, half = _pulse_one(span, table)
+        real, imag = beam.loaded_spectrum_one(omega, span, n, duration, half, code)  # |g_n| H(ω)
+        out[i] = scale * (-0.5 * imag if self_consistent else omega_rot * real / (2.0 * omega))
     return out
 
 
@@ -603,8 +615,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     """Roots of the closure residual F(L) in [min_span, max_span], bracketed between poles.
 
     Poles whose resonance is narrower than ``options.resonance_width`` (:func:`resonance_widths`) are
-    not searched: the root each pins lies within that relative distance of the pole and vanishes with
-    any damping of that order. Between the remaining poles the search works on G = F (L − a)(b − L),
+    not searched (their residues not even computed where a bound without trigonometry shows it,
+    :func:`_residues_kernel`): the root each pins lies within that relative distance of the pole and
+    vanishes with any damping of that order. Between the remaining poles the search works on G = F (L − a)(b − L),
     a and b the poles around L: the same roots, continuous up to both poles, where it equals R_a (b − a)
     and −R_b (b − a) (R the poles' residues, :func:`resonance_widths`) — the ends' values in closed
     form, so a root pinned however close to a pole is bracketed. G is sampled between the poles and
@@ -617,8 +630,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     residual = screen_residual(scene, options)
     if residual is None:
         return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
-    residues = residual.residue(poles, pole_modes.astype(float)) if poles.size else np.zeros(0)
-    wide = np.abs(residues) >= options.resonance_width * poles  # resonance_widths, from the same residues
+    floors = options.resonance_width * poles  # resonance_widths, from the same residues (NaN: narrow for sure)
+    residues = residual.residue(poles, pole_modes.astype(float), floors) if poles.size else np.zeros(0)
+    wide = np.abs(residues) >= floors
     edges, edge_residues = _merged_poles(poles[wide], residues[wide])
     edges = np.concatenate([[options.min_span], edges, [options.max_span]])
     edge_residues = np.concatenate([[np.nan], edge_residues, [np.nan]])  # NaN: the search range's end, no pole

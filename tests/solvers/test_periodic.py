@@ -83,6 +83,25 @@ def test_resonance_width_is_the_residue_of_the_resonant_term(paper_inputs):
     assert np.all(widths > 0)
 
 
+@pytest.mark.parametrize("pattern, closure", [("alternating", "prescribed"), ("one_wall", "self_consistent")])
+def test_residues_skipped_below_a_floor_are_certainly_below_it(paper_inputs, pattern, closure):
+    # source: the definition of the bound - |g_n H(w)| <= min(1, 1/|u^2 - 1|) for a non-negative load and
+    # pulse; a residue is left out (NaN) only when that bound, hence |R|, is below the floor. Every pole of
+    # the point up to 150 m: with the floor just under each exact |R| none is left out (the bound is never
+    # below |R|); with the search's floor (1e-6 L) the ones left out are exactly narrow, and they are most.
+    scene = scene_of(paper_inputs, pattern, closure, rpm=100.0)
+    options = periodic.Options(modes=41, max_span=150.0)
+    poles, modes = periodic.resonances(scene, periodic.odd_modes(41), options.min_span, options.max_span)
+    residual = periodic.screen_residual(scene, options)
+    exact = residual.residue(poles, modes)
+    assert np.all(np.isfinite(exact))
+    assert not np.any(np.isnan(residual.residue(poles, modes, np.abs(exact) * (1 - 1e-12))))
+    floors = options.resonance_width * poles
+    skipped = np.isnan(residual.residue(poles, modes, floors))
+    assert np.all(np.abs(exact[skipped]) < floors[skipped])
+    assert np.count_nonzero(skipped) > 0.5 * np.count_nonzero(np.abs(exact) < floors)
+
+
 def test_narrow_resonances_only_hide_the_roots_pinned_to_them(paper_inputs):
     # The search with every pole (resonance_width = 0) against the default (1e-6): the default finds no
     # root the full search does not, and every root it skips lies within 1e-5 L of a resonance narrower
