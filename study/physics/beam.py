@@ -552,7 +552,7 @@ def _periodic_displacement_kernel(t, omega, tl, tau, one_wall, tol, factor, stat
 
 @numba.njit(cache=True, nogil=True)
 def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol, limit):
-    out = np.empty(omega.shape[0])
+    out, where = np.empty(omega.shape[0]), np.zeros(omega.shape[0], dtype=np.int64)
     p = tau if one_wall else 0.5 * tau
     M = omega.shape[1]
     amp, phi, kappa, free_weight = np.empty(M), np.empty(M), np.empty(M), np.empty(M)
@@ -582,15 +582,16 @@ def _largest_excursion_kernel(t, omega, tl, weights, tau, one_wall, tol, limit):
                 for j in range(M):
                     y += weights[r, j] * _modal_displacement(tm, omega[r, j], tl[r], kappa[j], phi[j], amp[j])
             prev_tm, prev_k, prev_free = tm, k, free
-            largest = max(largest, abs(y))
+            if abs(y) > largest:
+                largest, where[r] = abs(y), i
             if largest > limit[r]:  # the row's verdict is known: the rest of its times cannot lower it
                 break
         out[r] = largest
-    return out
+    return out, where
 
 
 def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_wall", resonance_tol=1e-15,
-                      limit=None):
+                      limit=None, where=False):
     """max over t of |Σ_m w_m q_m(t)| per row, q of :func:`modal_periodic_response` (compiled loop).
 
     t [s] of shape (R, T), omega_n ω [rad/s] and weights w_m of shape (R, M), pulse_duration T_L [s] of
@@ -599,15 +600,17 @@ def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_
     screen). NaN for a row with a resonant or buckled mode or a pulse longer than the (half) period.
     ``limit`` (shape (R,), same units; None: no limit): a row stops at the first time its excursion
     exceeds its limit, and returns that excursion — above the limit, but not the maximum over all of
-    t; put the times most likely to exceed first.
+    t; put the times most likely to exceed first. ``where``: also return, per row, the index along t
+    of the returned excursion (the first of equal ones).
     """
     _check("pattern", pattern, IMPACT_PATTERNS)
     t, omega, weights = (np.ascontiguousarray(np.asarray(v, dtype=float)) for v in (t, omega_n, weights))
     durations = np.ascontiguousarray(np.broadcast_to(np.asarray(pulse_duration, dtype=float), omega.shape[:1]))
     limit = np.full(omega.shape[0], np.inf) if limit is None else np.asarray(limit, dtype=float)
-    return _largest_excursion_kernel(t, omega, durations, weights, float(period), pattern == "one_wall",
-                                     float(resonance_tol),
-                                     np.ascontiguousarray(np.broadcast_to(limit, omega.shape[:1])))
+    largest, index = _largest_excursion_kernel(t, omega, durations, weights, float(period), pattern == "one_wall",
+                                               float(resonance_tol),
+                                               np.ascontiguousarray(np.broadcast_to(limit, omega.shape[:1])))
+    return (largest, index) if where else largest
 
 
 @numba.njit(cache=True, nogil=True)

@@ -698,7 +698,7 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
         return np.zeros(0, dtype=bool)
     spans = search.roots
     duration, half = search.residual.pulse(spans)
-    c, e, mass = scene.clearance, scene.restitution, scene.props["mass_per_length"]
+    c, e = scene.clearance, scene.restitution
     y0, v0, curv0 = np.full((3, spans.size), np.nan) if search.states is None else search.states.copy()
     missing = np.isnan(y0)  # where the search did not evaluate the state at the root
     if np.any(missing):
@@ -713,10 +713,7 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
         return keep
     spans, duration, half, impulse = spans[rows], duration[rows], half[rows], np.broadcast_to(impulse, keep.shape)[rows]
     span_t = scene.impact_interval
-    modes = odd_modes(options.modes)
-    omega = natural_frequencies(scene, spans, modes)  # (R, M)
-    g = beam.modal_load_factors(modes, spans, half, options.load_shape)
-    weight = 2.0 * g / (mass * spans[:, None]) * np.where(modes % 4 == 1, 1.0, -1.0)
+    omega, weight = _midspan_weights(scene, spans, half, options)
     # coarse (sampling can miss a violation, never invent one): 48 times after the pulse, interleaved
     # so that the first dozen span the whole period, each root dropped at its first violation
     fractions = np.linspace(0.0, 1.0, 50)[1:-1].reshape(-1, 4).T.ravel()
@@ -725,6 +722,18 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
     largest = beam.largest_excursion(times, omega, duration, weight, scene.period, scene.pattern, limit=limit)
     keep[rows] = largest <= limit  # NaN (a resonant mode): dropped
     return keep
+
+
+def _midspan_weights(scene: Scene, spans, halves, options: Options) -> tuple[np.ndarray, np.ndarray]:
+    """(ω_n [rad/s], w_n [m/(N s)]) of shape (spans, odd modes): the natural frequencies and the
+    midspan deflection of each mode per unit modal coordinate per unit impulse, 2 g_n sin(nπ/2)/(M L)
+    (g_n :func:`beam.modal_load_factors` for contact half-lengths ``halves`` [m]) — the weights that
+    :func:`beam.largest_excursion` sums, as :func:`beam.periodic_fields` does at x = L/2."""
+    spans = np.asarray(spans, dtype=float)
+    modes = odd_modes(options.modes)
+    g = beam.modal_load_factors(modes, spans, np.asarray(halves, dtype=float), options.load_shape)
+    weight = 2.0 * g / (scene.props["mass_per_length"] * spans[:, None]) * np.where(modes % 4 == 1, 1.0, -1.0)
+    return natural_frequencies(scene, spans, modes), weight
 
 
 def refine_root(scene: Scene, options: Options, approx: float, bracket, steps: int = 8,
@@ -816,17 +825,55 @@ def space_grid(span_length: float, half_length: float, options: Options) -> np.n
     return np.unique(np.concatenate([coarse, contact[contact >= 0]]))
 
 
-def constraint_violation(scene: Scene, impact: Impact, options: Options) -> str | None:
-    """None when condition 1 holds for this span; otherwise a message saying where it fails."""
-    if impact.impact_velocity <= 0:
-        return f"the midspan moves away from the wall when contact starts (V_p = {impact.impact_velocity:.3g} m/s)"
-    t = time_grid(scene, impact.contact_duration, options)
-    # the midspan alone first (one point instead of the whole span): most violations show there
-    for x in (np.array([0.5 * impact.span_length]), space_grid(impact.span_length, impact.contact_half_length, options)):
-        problem = _excess(scene, impact, options, x, t)
-        if problem:
-            return problem
-    return None
+def constraint_violations(scene: Scene, impacts: list[Impact], options: Options) -> list[str | None]:
+    """Per impact, None when condition 1 holds for its span; otherwise a message saying where it fails.
+
+    The midspan first, every impact at once (most violations show there): after the pulse — during it
+    the midspan is in contact — the deflection is the modal sum of :func:`beam.largest_excursion`, in
+    one compiled pass over the times of :func:`time_grid` that stops at each impact's first time past
+    the wall (the time reported). Then the whole span × period grid for those that pass there.
+    """
+    problems: list[str | None] = [None] * len(impacts)
+    rows = []
+    for k, impact in enumerate(impacts):
+        if impact.impact_velocity <= 0:
+            problems[k] = ("the midspan moves away from the wall when contact starts "
+                           f"(V_p = {impact.impact_velocity:.3g} m/s)")
+        else:
+            rows.append(k)
+    if not rows:
+        return problems
+    spans, durations, halves, impulses = (np.array([getattr(impacts[k], name) for k in rows]) for name in
+                                          ("span_length", "contact_duration", "contact_half_length", "impulse"))
+    times = _times_after_pulse(scene, durations, options)
+    omega, weight = _midspan_weights(scene, spans, halves, options)
+    bound = scene.clearance * (1.0 + options.tolerance)
+    limit = bound / np.abs(impulses)
+    largest, where = beam.largest_excursion(times, omega, durations, weight, scene.period, scene.pattern,
+                                            limit=limit, where=True)
+    for row, k in enumerate(rows):
+        if not np.isfinite(largest[row]):
+            problems[k] = "the deflection is not finite (resonance)"
+        elif largest[row] > limit[row]:
+            problems[k] = (f"|y| reaches {largest[row] / limit[row] * bound / scene.clearance:.4g} c at "
+                           f"x = {0.5 * spans[row]:.4g} m, t = {times[row, where[row]]:.4g} s (condition 1)")
+        else:
+            impact = impacts[k]
+            problems[k] = _excess(scene, impact, options,
+                                  space_grid(impact.span_length, impact.contact_half_length, options),
+                                  time_grid(scene, impact.contact_duration, options))
+    return problems
+
+
+def _times_after_pulse(scene: Scene, durations, options: Options) -> np.ndarray:
+    """(impacts, times) [s]: the times of :func:`time_grid` after each pulse T_L (``durations``), ascending;
+    any tail time not after the pulse is replaced by the first time after it."""
+    durations = np.asarray(durations, dtype=float)
+    span = scene.impact_interval
+    rest = np.linspace(durations, span, options.time_points + 1, axis=-1)[:, 1:-1]
+    tail = span - np.geomspace(durations * 1e-3, durations, 8, axis=-1)
+    times = np.sort(np.concatenate([rest, tail], axis=1), axis=1)
+    return np.where(times > durations[:, None], times, rest[:, :1])
 
 
 def _excess(scene: Scene, impact: Impact, options: Options, x, t) -> str | None:
@@ -968,8 +1015,10 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     candidates, reasons = [], {}
     durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
     refined = refine_roots(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
+    sound = [impact for impact in refined if not impact.problems]
+    violations = iter(constraint_violations(scene, sound, options))
     for root, impact in zip(survivors, refined):
-        problem = "; ".join(impact.problems) or constraint_violation(scene, impact, options)
+        problem = "; ".join(impact.problems) or next(violations)
         if problem is None:
             candidates.append(impact)
         else:

@@ -1,5 +1,6 @@
 """The periodic solution's closure, pole location and span search (study.solvers.periodic)."""
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -172,6 +173,44 @@ def test_rejected_roots_are_counted_by_kind(paper_inputs):
     choice = periodic.find_span(scene, periodic.Options(modes=11))
     assert sum(len(v) for v in choice.reasons.values()) >= 3
     assert not [key for key in choice.reasons if re.search(r"\d\.\d", key)]
+
+
+@pytest.mark.parametrize("pattern, closure, rpm", [("alternating", "self_consistent", 300.0),
+                                                   ("one_wall", "self_consistent", 100.0)])
+def test_condition_1_for_many_impacts_is_the_check_on_the_whole_grid(paper_inputs, pattern, closure, rpm):
+    # source: the definition of condition 1 - |y| <= c (1 + tolerance) everywhere on the span x period grid
+    # outside the contact, from the field solution (beam.deflection) per impact; the batched check starts
+    # at the midspan with the compiled modal sum and stops at the first time past the wall, which it
+    # reports: there the field itself is that far past the wall. Every refined root of the point (spans
+    # 3-120 m) is checked both ways; some pass.
+    scene = scene_of(paper_inputs, pattern, closure, rpm)
+    options = periodic.Options(modes=21, max_span=120.0)
+    search = periodic.find_roots(scene, options)
+    durations, halves = search.residual.pulse(search.roots)
+    impacts = [i for i in periodic.refine_roots(scene, options, search.roots, search.brackets, durations=durations,
+                                                halves=halves) if not i.problems]
+    assert len(impacts) > 20
+    problems = periodic.constraint_violations(scene, impacts, options)
+    p = scene.props
+    verdicts = set()
+    for impact, problem in zip(impacts, problems):
+        x = periodic.space_grid(impact.span_length, impact.contact_half_length, options)
+        t = periodic.time_grid(scene, impact.contact_duration, options)
+        y = periodic.beam.deflection(x, t, impact.span_length, p["bending_stiffness"], p["effective_tension"],
+                                     p["mass_per_length"], -impact.impulse, impact.contact_duration, scene.period,
+                                     scene.pattern, impact.contact_half_length, options.load_shape, options.modes)
+        contact = (np.abs(x - 0.5 * impact.span_length) <= impact.contact_half_length)[None, :] \
+            & (t <= impact.contact_duration)[:, None]
+        passes = np.max(np.where(contact, 0.0, np.abs(y))) <= scene.clearance * (1 + options.tolerance)
+        assert (problem is None) == passes, (impact.span_length, problem)
+        verdicts.add(problem is None)
+        if problem and f"x = {0.5 * impact.span_length:.4g} m" in problem:  # found at the midspan: where
+            ratio, when = (float(v) for v in re.search(r"reaches (\S+) c at .* t = (\S+) s", problem).groups())
+            assert ratio >= 1.0  # past c (1 + tolerance), printed to 4 digits
+            mid = np.argmin(np.abs(x - 0.5 * impact.span_length))
+            near = np.abs(t - when) <= 5e-4 * when  # the time printed to 4 digits
+            assert np.any(np.abs(np.abs(y[near, mid]) / scene.clearance - ratio) <= 5e-4 * ratio)
+    assert verdicts == {True, False}
 
 
 def test_field_extremes_ignore_nan_as_numpy_does():
