@@ -47,6 +47,15 @@ from study.solvers.result import PointResult, choice_input
 #: The mass of the closure's impulse (Scene.equivalent_mass).
 IMPACT_MASSES = ("momentum", "modal")
 
+#: Relative width at which the span search stops shrinking a bracket of the screening residual with no
+#: pole within :data:`POLE_FREE_WINDOW` bracket widths (F is continuous there, so its sign change is a
+#: root, and the midspan state that the screen reads at it does not swing across the bracket); others
+#: go on to 1e-10. The exact root differs from the screening one by more (median 7e-6 relative, over
+#: the 24 benchmark points and the paper's point in four readings), and :func:`refine_roots` takes it
+#: from there.
+ROOT_RTOL = 1e-6
+POLE_FREE_WINDOW = 10.0
+
 
 @dataclass(frozen=True)
 class Options:
@@ -459,14 +468,17 @@ def screen_residual(scene: Scene, options: Options):
                                     closure)
         return values.reshape(spans.shape)
 
-    def shrink(lo, hi, f_lo, f_hi, pole_lo, pole_hi, rtol=1e-10, iterations=60):
+    def shrink(lo, hi, f_lo, f_hi, pole_lo, pole_hi, rtol=1e-10, iterations=60, poles=None, pole_free_rtol=None):
         """Brackets [lo, hi] of G = F (L − pole_lo)(pole_hi − L) with G = f_lo, f_hi at the ends, shrunk
         onto their sign change (regula falsi with the Illinois modification, :mod:`study.physics.roots`)
-        until narrower than ``rtol`` (relative) or at an exact zero. Returns (roots, G at the roots,
-        final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as :func:`unit_state` with the screening
-        pulse, NaN where not evaluated), the root being the end with the smaller weighted |G|."""
+        until narrower than ``rtol`` (relative) or at an exact zero — or than ``pole_free_rtol`` once
+        none of ``poles`` (sorted [m]) lies within :data:`POLE_FREE_WINDOW` bracket widths. Returns (roots, G at the roots, final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as
+        :func:`unit_state` with the screening pulse, NaN where not evaluated), the root being the end
+        with the smaller weighted |G|."""
         args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
-        out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations))
+        poles = np.zeros(0) if poles is None else np.ascontiguousarray(poles, dtype=float)
+        out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations), poles,
+                             float(rtol if pole_free_rtol is None else pole_free_rtol))
         return out[0], out[1], out[2], out[3], out[4:]
 
     def residue(spans, modes, floor=0.0):
@@ -558,7 +570,8 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
-def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations):
+def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations, poles,
+                   pole_free_rtol):
     """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi, and
     y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate)."""
     out = np.empty((7, lo.size))
@@ -566,8 +579,13 @@ def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, cl
         a, b, fa, fb = lo[i], hi[i], f_lo[i], f_hi[i]
         raw_a, raw_b, side = fa, fb, 0
         state_a = state_b = (math.nan, math.nan, math.nan)
+        tol = rtol
         for _ in range(iterations):
-            if bracket_done(a, b, fa, fb, rtol):
+            if tol != pole_free_rtol and b - a <= pole_free_rtol * abs(b):  # far from every pole?
+                first = np.searchsorted(poles, a - POLE_FREE_WINDOW * (b - a), side="right")
+                if first == poles.size or poles[first] >= b + POLE_FREE_WINDOW * (b - a):
+                    tol = pole_free_rtol
+            if bracket_done(a, b, fa, fb, tol):
                 break
             x = falsi_point(a, b, fa, fb)
             value, y1, v1, curv1 = _screen_state(x, modes[0], 1.0, table, state, closure)
@@ -621,8 +639,9 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     a and b the poles around L: the same roots, continuous up to both poles, where it equals R_a (b − a)
     and −R_b (b − a) (R the poles' residues, :func:`resonance_widths`) — the ends' values in closed
     form, so a root pinned however close to a pole is bracketed. G is sampled between the poles and
-    its sign changes are shrunk by regula falsi. A sign change that converges onto no pole is a root
-    (F is continuous there); one with a (narrow) pole in its last bracket is a root only where |F| has
+    its sign changes are shrunk by regula falsi, to :data:`ROOT_RTOL` where no pole is near and to
+    1e-10 where one is. A sign change that converges onto no pole but the interval's own is a root (G
+    is continuous there); one with a narrow pole in its last bracket is a root only where |F| has
     fallen far below its values at the samples.
     """
     modes = odd_modes(options.modes)
@@ -662,14 +681,17 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     # crawling along the pole's hyperbola
     roots, states = np.array([]), np.zeros((3, 0))
     if len(i):  # the ends' values are the samples'
-        roots, root_values, final_lo, final_hi, states = residual.shrink(brackets[:, 0], brackets[:, 1], smooth[i, j],
-                                                                 smooth[i, j + 1], intervals[:, 0], intervals[:, 1])
-        # F is continuous between poles: a sign change left in a bracket free of every pole (the narrow
-        # ones included) is a root. One with a pole inside may have converged onto the pole, where |F|
-        # grows: it is a root only if |F| there is far below its value at the samples.
+        roots, root_values, final_lo, final_hi, states = residual.shrink(
+            brackets[:, 0], brackets[:, 1], smooth[i, j], smooth[i, j + 1], intervals[:, 0], intervals[:, 1],
+            poles=poles, pole_free_rtol=ROOT_RTOL)
+        # G is continuous between poles and at the wide ones around the interval: a sign change left in a
+        # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
+        # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
+        # far below its value at the samples.
         margin = 1e-12 * final_hi
-        unsure = (np.searchsorted(poles, final_lo - margin, side="left")
-                  < np.searchsorted(poles, final_hi + margin, side="right"))
+        start = np.maximum(final_lo - margin, intervals[:, 0] * (1 + 2e-12))  # the interval's own poles
+        stop = np.minimum(final_hi + margin, intervals[:, 1] * (1 - 2e-12))  # (merged within 1e-12) excluded
+        unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop, side="right")
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
         distances = (roots - intervals[:, 0]) * (intervals[:, 1] - roots)
         with np.errstate(divide="ignore", invalid="ignore"):
