@@ -990,28 +990,30 @@ def _field_extremes(values, columns: bool = False) -> tuple:
 
 @numba.njit(cache=True, nogil=True)
 def _extremes_kernel(values, columns):
+    """Three passes without data-dependent jumps in the first two, so that they run at memory speed:
+    the largest |value| (NaN never compares larger), each column's largest and smallest (a NaN sticks),
+    then the first value within TIE_TOLERANCE of the largest, in time, then x (-1: none)."""
     rows, cols = values.shape
-    largest, smallest = np.full(cols, -np.inf), np.full(cols, np.inf)
-    index, peak = -1, -1.0
+    peak = -1.0
     for i in range(rows):
         for j in range(cols):
-            v = values[i, j]
-            if abs(v) > peak:  # False for NaN
-                index, peak = i * cols + j, abs(v)
-            if not columns:
-                continue
-            if math.isnan(v):
-                largest[j] = smallest[j] = math.nan
-            elif v > largest[j]:
-                largest[j] = v
-            if v < smallest[j]:
-                smallest[j] = v
-    if index >= 0:  # the first value within TIE_TOLERANCE of the peak: ties broken by time, then x
-        floor = peak * (1.0 - TIE_TOLERANCE)
-        for k in range(index):
-            if abs(values[k // cols, k % cols]) >= floor:
-                return k, largest, smallest
-    return index, largest, smallest
+            size = abs(values[i, j])
+            peak = size if size > peak else peak
+    largest, smallest = np.full(cols, -np.inf), np.full(cols, np.inf)
+    if columns:
+        for i in range(rows):
+            for j in range(cols):
+                v = values[i, j]
+                largest[j] = v if (v > largest[j] or v != v) else largest[j]
+                smallest[j] = v if (v < smallest[j] or v != v) else smallest[j]
+    if peak < 0.0:  # every value NaN
+        return -1, largest, smallest
+    floor = peak * (1.0 - TIE_TOLERANCE)
+    for i in range(rows):
+        for j in range(cols):
+            if abs(values[i, j]) >= floor:
+                return i * cols + j, largest, smallest
+    return -1, largest, smallest
 
 
 @dataclass
