@@ -788,6 +788,7 @@ class HertzWallImpact(NamedTuple):
     max_penetration: float  #: largest δ [m]
     status: str  #: 'ok' or 'not_converged'
     message: str
+    max_force: float = float("nan")  #: largest contact force K δ^(3/2)(1 + χ δ̇) [N]
 
 
 def hunt_crossley_damping(impact_velocity, restitution, model: str = "lankarani_nikravesh"):
@@ -819,7 +820,7 @@ def hunt_crossley_damping(impact_velocity, restitution, model: str = "lankarani_
 def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWallImpact:
     """Single impact on a compliant wall, m δ̈ = −K δ^(3/2)(1 + χ δ̇), δ(0) = 0, δ̇(0) = v0.
 
-    Integrated with solve_ivp (DOP853) to separation (δ = 0 with δ̇ < 0, or the contact force
+    Integrated with solve_ivp (DOP853; the peak force located where dF/dt falls through zero) to separation (δ = 0 with δ̇ < 0, or the contact force
     reaching zero: with Hunt–Crossley damping F = 0 when δ̇ = −1/χ). With χ = 0 this is the
     elastic Hertz impact of :func:`study.physics.hertz.hertz_impact`.
 
@@ -860,9 +861,16 @@ def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWall
     def turn(t, y):
         return y[1]
 
+    def force(y):
+        return K * max(y[0], 0.0) ** 1.5 * max(1.0 + chi * y[1], 0.0)
+
+    def peak(t, y):  # dF/dt / K = 1.5 δ^½ δ̇ (1 + χ δ̇) + δ^(3/2) χ δ̈, falling through zero at the peak
+        d = max(y[0], 0.0)
+        return 1.5 * d**0.5 * y[1] * (1.0 + chi * y[1]) + d**1.5 * chi * rhs(t, y)[1]
+
     leave.terminal, leave.direction = True, -1
-    turn.direction = -1
-    sol = solve_ivp(rhs, (0.0, 10 * T_H), [0.0, v0], events=(leave, turn), rtol=1e-10,
+    turn.direction = peak.direction = -1
+    sol = solve_ivp(rhs, (0.0, 10 * T_H), [0.0, v0], events=(leave, turn, peak), rtol=1e-10,
                     atol=1e-12 * a_max, method="DOP853", max_step=T_H / 50)
     if sol.t_events[0].size == 0:
         return HertzWallImpact(float("nan"), float("nan"), float("nan"), float(np.max(sol.y[0])),
@@ -870,4 +878,5 @@ def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWall
     te = float(sol.t_events[0][0])
     ve = float(sol.y_events[0][0][1])
     dmax = float(sol.y_events[1][0][0]) if sol.t_events[1].size else float(np.max(sol.y[0]))
-    return HertzWallImpact(-ve, -ve / v0, te, dmax, "ok", "")
+    f_max = max([force(y) for y in sol.y_events[2]] + [force(y) for y in sol.y.T])
+    return HertzWallImpact(-ve, -ve / v0, te, dmax, "ok", "", f_max)

@@ -436,6 +436,27 @@ def test_elastic_hertz_wall_matches_hertz_module():
     assert r.restitution == pytest.approx(1.0, abs=1e-8)
     assert r.duration == pytest.approx(float(ref.duration), rel=1e-8)
     assert r.max_penetration == pytest.approx(float(ref.max_approach), rel=1e-8)
+    assert r.max_force == pytest.approx(float(ref.max_force), rel=1e-8)
+
+
+@pytest.mark.parametrize("hysteresis", [0.3, 1.0, 3.0])
+def test_damped_hertz_wall_peak_force_is_the_largest_on_a_dense_independent_run(hysteresis):
+    # source: the definition - max over the impact of K d^1.5 (1 + chi d'), here from an independent
+    # integration (LSODA, dense samples, 1e-12) of the same equation; the damped peak comes before the
+    # largest penetration (d' > 0 there) and above K d_max^1.5
+    from scipy.integrate import solve_ivp
+    m, K, v0 = 2.0, 1e9, 1.5
+    chi = hysteresis / v0
+    r = osc.hertz_wall_impact(m, K, v0, chi)
+
+    def rhs(t, y):
+        return [y[1], -K * max(y[0], 0.0) ** 1.5 * (1.0 + chi * y[1]) / m]
+
+    t = np.linspace(0.0, r.duration, 20001)
+    sol = solve_ivp(rhs, (0.0, r.duration), [0.0, v0], method="LSODA", t_eval=t, rtol=1e-12, atol=1e-16)
+    force = K * np.maximum(sol.y[0], 0.0) ** 1.5 * np.maximum(1.0 + chi * sol.y[1], 0.0)
+    assert r.max_force == pytest.approx(force.max(), rel=1e-6)
+    assert r.max_force > K * r.max_penetration ** 1.5
 
 
 @pytest.mark.parametrize("model, e, tol", [
