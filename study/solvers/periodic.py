@@ -832,11 +832,8 @@ def first_consistent_root(scene: Scene, options: Options, longer_than: float = 0
 def time_grid(scene: Scene, duration: float, options: Options) -> np.ndarray:
     """Times over one period (half a period for alternating: the other half is its mirror image), dense
     across the pulse [0, T_L] and uniform after it, ending just before the next impact."""
-    span = scene.impact_interval
     pulse = np.linspace(0.0, duration, options.pulse_points)
-    rest = np.linspace(duration, span, options.time_points + 1)[1:-1]
-    tail = span - np.geomspace(duration * 1e-3, duration, 8)  # the approach to the next impact
-    return np.unique(np.concatenate([pulse, rest, tail]))
+    return np.unique(np.concatenate([pulse, _times_after_pulse(scene, [duration], options)[0]]))
 
 
 def space_grid(span_length: float, half_length: float, options: Options) -> np.ndarray:
@@ -868,6 +865,7 @@ def constraint_violations(scene: Scene, impacts: list[Impact], options: Options)
     spans, durations, halves, impulses = (np.array([getattr(impacts[k], name) for k in rows]) for name in
                                           ("span_length", "contact_duration", "contact_half_length", "impulse"))
     times = _times_after_pulse(scene, durations, options)
+    times = np.where(times > durations[:, None], times, times[:, -1:])  # the midspan is in contact before
     omega, weight = _midspan_weights(scene, spans, halves, options)
     bound = scene.clearance * (1.0 + options.tolerance)
     limit = bound / np.abs(impulses)
@@ -888,14 +886,14 @@ def constraint_violations(scene: Scene, impacts: list[Impact], options: Options)
 
 
 def _times_after_pulse(scene: Scene, durations, options: Options) -> np.ndarray:
-    """(impacts, times) [s]: the times of :func:`time_grid` after each pulse T_L (``durations``), ascending;
-    any tail time not after the pulse is replaced by the first time after it."""
+    """(pulses, times) [s]: the times of :func:`time_grid` after the pulse for each T_L of ``durations``,
+    ascending: uniform up to the next impact, then denser on the approach to it (a tail time can fall
+    inside a pulse longer than half the interval)."""
     durations = np.asarray(durations, dtype=float)
     span = scene.impact_interval
     rest = np.linspace(durations, span, options.time_points + 1, axis=-1)[:, 1:-1]
-    tail = span - np.geomspace(durations * 1e-3, durations, 8, axis=-1)
-    times = np.sort(np.concatenate([rest, tail], axis=1), axis=1)
-    return np.where(times > durations[:, None], times, rest[:, :1])
+    tail = span - np.geomspace(durations * 1e-3, durations, 8, axis=-1)  # the approach to the next impact
+    return np.sort(np.concatenate([rest, tail], axis=1), axis=1)
 
 
 def _excess(scene: Scene, impact: Impact, options: Options, x, t) -> str | None:
