@@ -820,9 +820,10 @@ def hunt_crossley_damping(impact_velocity, restitution, model: str = "lankarani_
 def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWallImpact:
     """Single impact on a compliant wall, m δ̈ = −K δ^(3/2)(1 + χ δ̇), δ(0) = 0, δ̇(0) = v0.
 
-    Integrated with solve_ivp (DOP853; the peak force located where dF/dt falls through zero) to separation (δ = 0 with δ̇ < 0, or the contact force
-    reaching zero: with Hunt–Crossley damping F = 0 when δ̇ = −1/χ). With χ = 0 this is the
-    elastic Hertz impact of :func:`study.physics.hertz.hertz_impact`.
+    Integrated with solve_ivp (DOP853) to separation (δ = 0 with δ̇ < 0, or the contact force
+    reaching zero: with Hunt–Crossley damping F = 0 when δ̇ = −1/χ), the peak force located where
+    dF/dt falls through zero. With χ = 0 this is the elastic Hertz impact of
+    :func:`study.physics.hertz.hertz_impact`.
 
     Parameters
     ----------

@@ -141,11 +141,12 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
                            "J from the Hertz contact")
         if abs(ratio_of["peak_force_ratio"] - 1.0) > tolerance:
             one_mass = td["one_mass_peak_force"] / periodic_values["peak_contact_force"]
-            reasons.append(f"why: the real contact force is not Lee's half-sine, the impulse m_e (1 + e) V_p spread over "
-                           f"the elastic Hertz duration T_L = {impact.contact_duration * 1e3:.3g} ms: the damped contact "
-                           f"that rebounds with e = {scene.restitution:g} peaks higher and lasts longer - {one_mass:.3g}x "
-                           f"Lee's peak for the equivalent mass alone, {ratio_of['peak_force_ratio']:.3g}x on the span "
-                           f"(its contact lasts {td['contact_duration'] * 1e3:.3g} ms)")
+            reasons.append(f"why: the real contact force is not Lee's half-sine, the impulse m_e (1 + e) V_p spread "
+                           f"over the elastic Hertz duration T_L = {impact.contact_duration * 1e3:.3g} ms: the damped "
+                           f"contact that rebounds with e = {scene.restitution:g} peaks higher and lasts longer - "
+                           f"{one_mass:.3g}x Lee's peak for the equivalent mass alone, "
+                           f"{ratio_of['peak_force_ratio']:.3g}x on the span (its contact lasts "
+                           f"{td['contact_duration'] * 1e3:.3g} ms)")
         if td["energy_change"] < -tolerance:
             reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
                            f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: its "
@@ -166,20 +167,18 @@ def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Imp
     if not samples.contacts:
         return None, ["the periodic solution's motion does not reach the wall in the time domain"]
     td = compare(inputs, run)
-    model = run["model"]
-    td["one_mass_peak_force"] = (one_mass_peak_force(impact.equivalent_mass, impact.impact_velocity, model.stiffness,
-                                                     model.restitution)
-                                 if model.contact_damping == "calibrated" else float("nan"))
+    model, velocity = run["model"], impact.impact_velocity
+    td["one_mass_peak_force"] = one_mass_peak_force(impact.equivalent_mass, velocity, model.stiffness,
+                                                    model.hysteresis(velocity))
     return td, verdict(periodic_values, td, scene, impact, tolerance)
 
 
-def one_mass_peak_force(mass: float, velocity: float, stiffness: float, restitution: float) -> float:
-    """Peak force [N] of a Hertz contact of stiffness K [N m^-3/2] with the Hunt–Crossley damping that
-    rebounds with ``restitution`` (the replay's, :func:`timedomain.calibrated_hysteresis`) struck by one
-    mass [kg] at ``velocity`` [m/s] (:func:`oscillator.hertz_wall_impact`): for the closure's m_e and
-    V_p, what the contact law alone does to Lee's peak, apart from the span's modes."""
-    chi = timedomain.calibrated_hysteresis(restitution) / velocity
-    return float(oscillator.hertz_wall_impact(mass, stiffness, velocity, chi).max_force)
+def one_mass_peak_force(mass: float, velocity: float, stiffness: float, hysteresis: float) -> float:
+    """Peak force [N] of a Hertz contact of stiffness K [N m^-3/2] with Hunt–Crossley damping χ
+    (``hysteresis`` [s/m]; the replay's, ``ModalModel.hysteresis``) struck by one mass [kg] at
+    ``velocity`` [m/s] (:func:`oscillator.hertz_wall_impact`): for the closure's m_e and V_p, what the
+    contact law alone does to Lee's peak, apart from the span's modes."""
+    return float(oscillator.hertz_wall_impact(mass, stiffness, velocity, hysteresis).max_force)
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:

@@ -472,7 +472,8 @@ def screen_residual(scene: Scene, options: Options):
         """Brackets [lo, hi] of G = F (L − pole_lo)(pole_hi − L) with G = f_lo, f_hi at the ends, shrunk
         onto their sign change (regula falsi with the Illinois modification, :mod:`study.physics.roots`)
         until narrower than ``rtol`` (relative) or at an exact zero — or than ``pole_free_rtol`` once
-        none of ``poles`` (sorted [m]) lies within :data:`POLE_FREE_WINDOW` bracket widths. Returns (roots, G at the roots, final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as
+        none of ``poles`` (sorted [m]) lies within :data:`POLE_FREE_WINDOW` bracket widths. Returns
+        (roots, G at the roots, final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as
         :func:`unit_state` with the screening pulse, NaN where not evaluated), the root being the end
         with the smaller weighted |G|."""
         args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
