@@ -19,11 +19,12 @@ periodic solution's own motion into the time domain and lets the real contact ac
 Within ``check_tolerance`` (default 0.02, relative; the defect against the same number) on all of them:
 status ``ok``. Otherwise status ``disagrees`` and the message names each quantity that differs, both
 values, and the reason the model gives for it: the impulse the real contact delivers differs from the
-closure's J (its mass m_e is not the mass the span strikes with), the damped contact's force is not
-Lee's half-sine (it peaks higher and lasts longer; the equivalent mass alone on the same contact shows
-how much of that is the contact law), or the contact dissipates energy that
-the undamped periodic solution never loses (e < 1: its steady state needs an energy input, the damped
-periodic solution of MODEL.md §7). A point without a periodic solution keeps ``fast``'s status.
+closure's J (its mass m_e is not the mass the span strikes with), the contact's force is not Lee's
+half-sine (Lee's pulse is imposed on the span, not a contact: at its peak the periodic solution's
+midspan need not be into the wall by the Hertz approach its force needs, :func:`lee_peak_kinematics`;
+the equivalent mass alone on the same contact shows how much is the contact law), or the contact
+dissipates energy that the undamped periodic solution never loses (e < 1: its steady state needs an
+energy input, the damped periodic solution of MODEL.md §7). A point without a periodic solution keeps ``fast``'s status.
 """
 
 from __future__ import annotations
@@ -141,12 +142,15 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
                            "J from the Hertz contact")
         if abs(ratio_of["peak_force_ratio"] - 1.0) > tolerance:
             one_mass = td["one_mass_peak_force"] / periodic_values["peak_contact_force"]
-            reasons.append(f"why: the real contact force is not Lee's half-sine, the impulse m_e (1 + e) V_p spread "
-                           f"over the elastic Hertz duration T_L = {impact.contact_duration * 1e3:.3g} ms: the damped "
-                           f"contact that rebounds with e = {scene.restitution:g} peaks higher and lasts longer - "
-                           f"{one_mass:.3g}x Lee's peak for the equivalent mass alone, "
-                           f"{ratio_of['peak_force_ratio']:.3g}x on the span (its contact lasts "
-                           f"{td['contact_duration'] * 1e3:.3g} ms)")
+            gap = td["midspan_at_lee_peak"]
+            reasons.append(f"why: Lee's half-sine (the impulse m_e (1 + e) V_p over the elastic Hertz duration "
+                           f"T_L = {impact.contact_duration * 1e3:.3g} ms) is imposed on the span, not a contact: at "
+                           f"its peak the periodic solution's midspan is {abs(gap) * 1e6:.3g} um "
+                           f"{'into' if gap > 0 else 'off'} the wall, where that force needs "
+                           f"{td['approach_at_lee_peak'] * 1e6:.3g} um of Hertz approach; the real contact follows "
+                           f"the span's modes and peaks {ratio_of['peak_force_ratio']:.3g}x Lee's (its contact lasts "
+                           f"{td['contact_duration'] * 1e3:.3g} ms). The contact law alone, the equivalent mass on the "
+                           f"same contact, peaks {one_mass:.3g}x Lee's (exactly 1 at e = 1)")
         if td["energy_change"] < -tolerance:
             reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
                            f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: its "
@@ -170,7 +174,21 @@ def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Imp
     model, velocity = run["model"], impact.impact_velocity
     td["one_mass_peak_force"] = one_mass_peak_force(impact.equivalent_mass, velocity, model.stiffness,
                                                     model.hysteresis(velocity))
+    td["midspan_at_lee_peak"], td["approach_at_lee_peak"] = lee_peak_kinematics(
+        scene, impact, options, model.stiffness, periodic_values["peak_contact_force"])
     return td, verdict(periodic_values, td, scene, impact, tolerance)
+
+
+def lee_peak_kinematics(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options,
+                        stiffness: float, peak_force: float) -> tuple[float, float]:
+    """(y − c, (F̂/K)^{2/3}) [m] at the peak of Lee's pulse, t = T_L/2: how far the periodic solution's
+    midspan (the same ``options.modes`` modes as the replay, :func:`periodic_state`) is into the wall
+    while the pulse peaks, and the Hertz approach its peak force F̂ [N] needs on the contact of stiffness
+    K [N m^-3/2] (F = K α^{3/2}, paper eq. 7–8, elastic). A contact would have the two equal; Lee's pulse is imposed, so they
+    need not be."""
+    q, _ = periodic_state(scene, impact, options, int(options.modes), 0.5 * impact.contact_duration)
+    midspan = np.sin(0.5 * np.pi * np.arange(1, len(q) + 1))
+    return float(midspan @ q - scene.clearance), float((peak_force / stiffness) ** (2.0 / 3.0))
 
 
 def one_mass_peak_force(mass: float, velocity: float, stiffness: float, hysteresis: float) -> float:
