@@ -218,20 +218,20 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
     paper's e = 0.5 and at e = 1 (where the single mass peaks exactly at Lee's force)."""
     point = load(DEFAULT_CONFIG).point()
     rows, found = [], {}
-    for restitution in restitutions:
+    for e in restitutions:
         for pattern in ("one_wall", "alternating"):
             result = solve_point({**point, "impact_pattern": pattern, "closure": "self_consistent", "modes": modes,
-                                  "restitution": restitution}, "crosscheck")
+                                  "restitution": e}, "crosscheck")
             v = result.values
             if "impulse_ratio" not in v:
-                rows.append(_row(pattern, f"{restitution:g}", *["-"] * 9, f"`{result.status}`: {result.message}"))
+                rows.append(_row(pattern, f"{e:g}", *["-"] * 9, f"`{result.status}`: {result.message}"))
                 continue
             td = result.extras["time_domain"]
             one_mass = td["one_mass_peak_force"] / v["peak_contact_force"]
             for key, value in (("one_mass", one_mass), ("span", v["peak_force_ratio"]),
                                ("gap", -td["midspan_at_lee_peak"]), ("need", td["approach_at_lee_peak"])):
-                found.setdefault((key, restitution), []).append(value)
-            rows.append(_row(pattern, f"{restitution:g}", f"{convert(v['span_length'], 'm', 'ft'):.2f}",
+                found.setdefault((key, e), []).append(value)
+            rows.append(_row(pattern, f"{e:g}", f"{convert(v['span_length'], 'm', 'ft'):.2f}",
                              *(f"{v[name]:.3f}" for name in ("impulse_ratio", "peak_force_ratio",
                                                               "normal_stress_ratio", "deflection_ratio")),
                              f"{v['periodicity_defect']:.3g}", f"{one_mass:.3f}",
