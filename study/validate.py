@@ -213,6 +213,15 @@ def _span_of(values) -> str:
     return low if low == high else f"{low}-{high}"
 
 
+def _orbit_cell(found) -> str:
+    """The crosscheck's real-contact orbit in one table cell."""
+    if found.get("status") != "converged":
+        return "none" if found.get("status") == "no_orbit" else f"not found ({found.get('status')})"
+    return (f"{found['distance']:.3g} away; force {found['peak_force_ratio']:.3f}, stress "
+            f"{found['normal_stress_ratio']:.3f}; {'stable' if found['stable'] else 'unstable'}, "
+            f"μ {found['largest_multiplier']:.3g}")
+
+
 def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
     """The crosscheck method on the readings of the paper's example that have a periodic solution, at the
     paper's e = 0.5 and at e = 1 (where the single mass peaks exactly at Lee's force)."""
@@ -224,19 +233,22 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
                                   "restitution": e}, "crosscheck")
             v = result.values
             if "impulse_ratio" not in v:
-                rows.append(_row(pattern, f"{e:g}", *["-"] * 9, f"`{result.status}`: {result.message}"))
+                rows.append(_row(pattern, f"{e:g}", *["-"] * 10, f"`{result.status}`: {result.message}"))
                 continue
             td = result.extras["time_domain"]
             one_mass = td["one_mass_peak_force"] / v["peak_contact_force"]
             for key, value in (("one_mass", one_mass), ("span", v["peak_force_ratio"]),
-                               ("gap", -td["midspan_at_lee_peak"]), ("need", td["approach_at_lee_peak"])):
-                found.setdefault((key, e), []).append(value)
+                               ("gap", -td["midspan_at_lee_peak"]), ("need", td["approach_at_lee_peak"]),
+                               ("distance", v["orbit_distance"]), ("multiplier", v["max_floquet_multiplier"]),
+                               ("orbit", v["orbit_peak_force_ratio"])):
+                if np.isfinite(value):
+                    found.setdefault((key, e), []).append(value)
             rows.append(_row(pattern, f"{e:g}", f"{convert(v['span_length'], 'm', 'ft'):.2f}",
                              *(f"{v[name]:.3f}" for name in ("impulse_ratio", "peak_force_ratio",
                                                               "normal_stress_ratio", "deflection_ratio")),
                              f"{v['periodicity_defect']:.3g}", f"{one_mass:.3f}",
                              f"{td['midspan_at_lee_peak'] * 1e6:.3g}", f"{td['approach_at_lee_peak'] * 1e6:.3g}",
-                             f"`{result.status}`"))
+                             _orbit_cell(td["orbit"]), f"`{result.status}`"))
 
     def span(key, restitution, scale=1.0):
         values = found.get((key, restitution))
@@ -255,10 +267,13 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
         "units of Ω c); \"one mass\" is the peak of the equivalent mass alone on the same contact over "
         "Lee's peak; the last two columns are the periodic solution's midspan position at the peak of "
         "Lee's pulse (y - c, positive into the wall) and the Hertz approach (F̂/K)^(2/3) that peak force "
-        "needs. Tolerance 0.02.", "",
+        "needs; the real-contact orbit is the periodic orbit of the replay's scene nearest the periodic "
+        "solution, found by shooting (`study.solvers.orbit`), with its distance from the periodic "
+        "solution's state, its peak force and largest normal stress over the periodic solution's, and its "
+        "largest Floquet multiplier. Tolerance 0.02.", "",
         _row("pattern", "e", "span [ft]", "impulse", "peak contact force", "max normal stress", "max deflection",
              "periodicity defect", "one mass", "y - c at Lee's peak [µm]", "approach Lee's peak needs [µm]",
-             "verdict"), _row(*["---"] * 12), *rows, "",
+             "real-contact orbit", "verdict"), _row(*["---"] * 13), *rows, "",
         f"At e = {half:g} the real contact delivers the impulse the closure assumes and the span carries the "
         "periodic solution's stress and deflection within 2 %; what it does not reproduce is the force "
         "history. Lee's pulse is imposed on the span, not a contact: at its peak the periodic solution's "
@@ -271,7 +286,13 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
         f"that does not follow them. At e = {half:g} the contact law and the modes both act, and the near "
         "match of the two ratios does not single out the contact law (an earlier version of this page "
         "drew that conclusion from e = 0.5 alone). At e = 1 the closure's "
-        "impulse itself is off (one wall) and the state does not return after the revolution. Every "
+        "impulse itself is off (one wall) and the state does not return after the revolution. There the "
+        "scene is conservative and the real contact does have a periodic orbit near the periodic "
+        f"solution (within {span('distance', elastic)} of its state), but it is unstable (largest Floquet "
+        f"multiplier {span('multiplier', elastic)}) and peaks {span('orbit', elastic)}x Lee's force: "
+        "the peak force of the periodic state is sensitive to the state the span meets the wall with, "
+        "and Lee's pulse does not carry that state. With e = 0.5 nothing feeds the energy the contact "
+        "takes, so there is no orbit to find. Every "
         "reading is flagged `disagrees`, with these reasons in its message; "
         "`tests/solvers/test_crosscheck.py` checks these findings.", "",
     ]

@@ -16,6 +16,11 @@ periodic solution's own motion into the time domain and lets the real contact ac
    correction), and whether the modal state after one revolution is the state it started from
    (``periodicity_defect``: largest difference over the modes, q in units of c and q̇ in units of Ω c).
 
+4. With an elastic contact (e = 1) the replay's scene is conservative and may have a periodic orbit:
+   shooting (:mod:`study.solvers.orbit`) from the periodic solution's state finds the nearest one, its
+   stability (Floquet multipliers), peak force and largest normal stress (:func:`real_orbit`). With
+   e < 1 nothing feeds the energy the contact takes, so there is none to find.
+
 Within ``check_tolerance`` (default 0.02, relative; the defect against the same number) on all of them:
 status ``ok``. Otherwise status ``disagrees`` and the message names each quantity that differs, both
 values, and the reason the model gives for it: the impulse the real contact delivers differs from the
@@ -35,7 +40,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import beam, hertz, oscillator
-from study.solvers import event_driven, fast, periodic, timedomain
+from study.solvers import event_driven, fast, orbit, periodic, timedomain, trajectory
 from study.solvers.result import PointResult
 
 METHOD = "crosscheck"
@@ -71,8 +76,8 @@ def periodic_state(scene: periodic.Scene, impact: periodic.Impact, options: peri
 def replay(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact,
            options: periodic.Options) -> dict[str, Any]:
     """The periodic solution's state run through one revolution of the real contact (module docstring,
-    step 2–3). Returns the time-domain model, the samples (or None with ``failure``), the start time
-    [s] relative to the periodic pulse start and the start state."""
+    step 2–3). Returns the time-domain model, its inputs and event system, the samples (or None with
+    ``failure``), the start time [s] relative to the periodic pulse start and the start state."""
     n_modes = int(options.modes)
     start = -scene.impact_interval / 50.0
     q0, v0 = periodic_state(scene, impact, options, n_modes, start)
@@ -83,7 +88,8 @@ def replay(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Im
     a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, impact.axial_curvature)
     model.stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
     run = timedomain.simulate(td_inputs, model)
-    out = dict(model=model, start=start, state=np.concatenate((q0, v0)), samples=None, failure=run["failure"])
+    out = dict(model=model, start=start, state=np.concatenate((q0, v0)), samples=None, failure=run["failure"],
+               system=run.get("system"), inputs=td_inputs)
     if run["failure"] is None:
         out["samples"] = timedomain.sample_after(run, revolutions=1)
     return out
@@ -151,6 +157,15 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
                            f"the span's modes and peaks {ratio_of['peak_force_ratio']:.3g}x Lee's (its contact lasts "
                            f"{td['contact_duration'] * 1e3:.3g} ms). The contact law alone, the equivalent mass on the "
                            f"same contact, peaks {one_mass:.3g}x Lee's (exactly 1 at e = 1)")
+        found = td.get("orbit", {})
+        if found.get("status") == "converged":
+            reasons.append(f"the real contact's periodic orbit nearest the periodic solution (shooting, "
+                           f"{found['distance']:.3g} from its state in units of c and Omega c) peaks "
+                           f"{found['peak_force_ratio']:.3g}x Lee's with {found['normal_stress_ratio']:.3g}x the "
+                           f"stress, and is {'stable' if found['stable'] else 'unstable'} (largest Floquet "
+                           f"multiplier {found['largest_multiplier']:.3g})")
+        elif found:
+            reasons.append(f"no periodic orbit of the real contact near the periodic solution: {found['message']}")
         if td["energy_change"] < -tolerance:
             reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
                            f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: its "
@@ -176,7 +191,38 @@ def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Imp
                                                     model.hysteresis(velocity))
     td["midspan_at_lee_peak"], td["approach_at_lee_peak"] = lee_peak_kinematics(
         scene, impact, options, model.stiffness, periodic_values["peak_contact_force"])
+    td["orbit"] = real_orbit(inputs, run, scene, periodic_values)
     return td, verdict(periodic_values, td, scene, impact, tolerance)
+
+
+def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodic.Scene,
+               periodic_values: Mapping[str, float]) -> dict[str, Any]:
+    """The real contact's periodic orbit nearest the periodic solution (:func:`study.solvers.orbit.find_orbit`
+    from the replay's start state, section at that time, one time between impacts, mirrored for the
+    alternating pattern) and its stability, peak force and stresses over one revolution against the
+    periodic solution's. Only an elastic contact (e = 1) can have one: the replay's scene has no energy
+    input, so with e < 1 every contact loses energy and no motion with contact repeats (status
+    ``no_orbit``)."""
+    model = run["model"]
+    if model.restitution < 1.0:
+        return dict(status="no_orbit", message=f"the contact dissipates energy (e = {model.restitution:g}) and "
+                    "nothing feeds it, so no motion with contact repeats")
+    n = len(model.modes)
+    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    found = orbit.find_orbit(run["system"], run["state"], 0.0, scene.impact_interval, scale,
+                             mirror=scene.pattern != "one_wall")
+    out = dict(status=found.status, message=found.message)
+    if not found.converged:
+        return out
+    active, chi, peak = np.zeros(1, bool), np.zeros(1), np.zeros(1)
+    samples = trajectory.sample_revolution(run["system"], model.contact_forces, 0.0, model.period, found.state,
+                                           active, chi, peak)
+    stresses = timedomain.stresses(inputs, model, samples)
+    out.update(state=found.state, peak_force=found.peak_force, largest_multiplier=found.largest_multiplier, stable=found.stable,
+               distance=float(np.max(np.abs(found.state - run["state"]) / scale)),
+               peak_force_ratio=found.peak_force / periodic_values["peak_contact_force"],
+               normal_stress_ratio=stresses["max_normal_stress"] / periodic_values["max_normal_stress"])
+    return out
 
 
 def lee_peak_kinematics(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options,
@@ -218,6 +264,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if td is not None:
         v.update(ratios(v, td))
         v["periodicity_defect"] = td["periodicity_defect"]
+        found = td["orbit"]
+        for name, key in (("orbit_peak_force_ratio", "peak_force_ratio"), ("orbit_normal_stress_ratio",
+                          "normal_stress_ratio"), ("orbit_distance", "distance"),
+                          ("max_floquet_multiplier", "largest_multiplier")):
+            v[name] = float(found.get(key, np.nan))
         result.extras["time_domain"] = dict(td)
     if reasons:
         result.status = "disagrees"

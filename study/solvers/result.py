@@ -125,4 +125,10 @@ OUTPUTS = {
     "deflection_ratio": ("1", "largest deflection, time domain over periodic solution (method crosscheck)"),
     "periodicity_defect": ("1", "change of the modal state over one revolution of the real contact, in units of "
                            "c and Omega c (method crosscheck)"),
+    "orbit_peak_force_ratio": ("1", "peak force of the real contact's periodic orbit over the periodic solution's "
+                               "(method crosscheck)"),
+    "orbit_normal_stress_ratio": ("1", "largest normal stress on the real contact's periodic orbit over the periodic "
+                                  "solution's (method crosscheck)"),
+    "orbit_distance": ("1", "largest difference of the real contact's periodic orbit from the periodic solution's "
+                       "modal state, in units of c and Omega c (method crosscheck)"),
 }

@@ -109,3 +109,39 @@ def test_modal_impact_mass_is_half_the_span_mass(paper_inputs):
     M = scene.props["mass_per_length"]
     assert scene.equivalent_mass(10.0) == pytest.approx(M * 5.0)
     assert paper.equivalent_mass(10.0) == pytest.approx(2 * M * 10.0 / np.pi)
+
+
+def test_at_e_1_the_real_contact_has_an_unstable_orbit_near_the_periodic_solution(paper_one_wall):
+    # Measured: with the elastic contact the replay's scene is conservative, and shooting from the
+    # periodic solution's state finds a periodic orbit 0.024 (units of c, Omega c) away; it peaks at
+    # 0.79x Lee's force and is unstable (largest Floquet multiplier 1.57). Its periodicity is checked
+    # with an independent integrator (LSODA with events, study.solvers.timedomain "implicit").
+    from study.solvers import timedomain
+
+    inputs = {**paper_one_wall, "restitution": 1.0}
+    r = solve_point(inputs, "crosscheck")
+    assert r.values["max_floquet_multiplier"] > 1.1
+    assert r.values["orbit_peak_force_ratio"] < 0.9
+    assert r.values["orbit_normal_stress_ratio"] == pytest.approx(1.0, abs=0.05)
+    assert "periodic orbit nearest the periodic solution" in r.message and "is unstable" in r.message
+    scene, options = periodic.make_scene(inputs), periodic.options_from(inputs)
+    impact = periodic.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
+                                half_length=r.values["contact_half_length"])
+    run = crosscheck.replay(inputs, scene, impact, options)
+    found = crosscheck.real_orbit(inputs, run, scene, r.values)
+    assert found["status"] == "converged" and found["largest_multiplier"] == r.values["max_floquet_multiplier"]
+    model, n = run["model"], options.modes
+    check = timedomain.simulate({**run["inputs"], "initial_state": np.split(found["state"], 2),
+                                 "time_integrator": "implicit", "time_revolutions": 1, "time_check_periodic": False},
+                                model)
+    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    assert np.max(np.abs(check["states"][-1] - found["state"]) / scale) < 1e-4
+    assert r.values["periodicity_defect"] > 1e-2  # the periodic solution's own state is not the orbit
+
+
+def test_with_e_below_1_the_replay_has_no_orbit_to_find(paper_one_wall):
+    # Source: energy. The replay's scene has no drive and no mud damping; a Hunt-Crossley contact with
+    # e < 1 dissipates at every contact, so no motion with contact can repeat.
+    r = solve_point(paper_one_wall, "crosscheck")
+    assert np.isnan(r.values["max_floquet_multiplier"]) and np.isnan(r.values["orbit_peak_force_ratio"])
+    assert "no periodic orbit of the real contact" in r.message and "dissipates energy (e = 0.5)" in r.message
