@@ -69,7 +69,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, oscillator, section
-from study.solvers import event_driven, periodic, sdof, trajectory
+from study.solvers import event_driven, orbit, periodic, sdof, trajectory
 from study.solvers.periodic import given_span
 from study.solvers.result import PointResult, choice_input
 
@@ -529,6 +529,19 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     return out
 
 
+def settled_orbit(run: Mapping[str, Any]) -> orbit.Orbit | None:
+    """The periodic orbit through the run's settled state (:func:`study.solvers.orbit.find_orbit` from the
+    last revolution boundary over the run's period, q in units of c and q̇ in units of Ω c), which gives
+    its Floquet multipliers; None unless the run is periodic and used the event-driven integrator."""
+    if "system" not in run or not run["period"]:
+        return None
+    model = run["model"]
+    n = len(model.modes)
+    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    return orbit.find_orbit(run["system"], np.concatenate(run["final_state"]), run["end_time"],
+                            run["period"] * model.period, scale)
+
+
 def sample_after(run: Mapping[str, Any], revolutions: int | None = None) -> trajectory.Samples | None:
     """The motion over ``revolutions`` (default: the run's period, else 1) after the run's end,
     sampled (:func:`study.solvers.trajectory.sample_revolution`); None unless the run used the
@@ -581,7 +594,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     achieved_restitution (rebound/approach of the last impact), time_step, step_limit,
     revolutions_simulated, energy_drift (undamped, undriven runs only); with the event-driven integrator
     also max_deflection, max_bending_stress, max_normal_stress (with its x and t) and
-    alternating_bending_stress over one more period (:func:`stresses`; t from its start).
+    alternating_bending_stress over one more period (:func:`stresses`; t from its start), and for a
+    periodic run max_floquet_multiplier of its orbit (:func:`settled_orbit`).
     """
     start = time.perf_counter()
     result = PointResult(method=METHOD)
@@ -623,6 +637,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         vals["period_revolutions"] = float(n)
         messages.append(f"periodic: the modal state repeats every {n} revolution(s) (tolerance "
                         f"{inputs.get('time_tolerance', 1e-4)}) after {run['revolutions_simulated']} revolutions")
+        found = settled_orbit(run)
+        if found is not None and found.converged:
+            vals["max_floquet_multiplier"] = found.largest_multiplier
+            messages.append(f"{'stable' if found.stable else 'unstable'}: largest Floquet multiplier "
+                            f"{found.largest_multiplier:.4g} (shooting from the settled state)")
+        elif found is not None:
+            messages.append(f"stability unknown: shooting from the settled state gave {found.status} "
+                            f"({found.message})")
     else:
         result.status = "not_periodic"
         messages.append(f"not periodic within {run['revolutions_simulated']} revolutions"
