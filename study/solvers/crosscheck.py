@@ -29,7 +29,8 @@ half-sine (Lee's pulse is imposed on the span, not a contact: at its peak the pe
 midspan need not be into the wall by the Hertz approach its force needs, :func:`lee_peak_kinematics`;
 the equivalent mass alone on the same contact shows how much is the contact law), or the contact
 dissipates energy that the undamped periodic solution never loses (e < 1: its steady state needs an
-energy input, the damped periodic solution of MODEL.md §7). A point without a periodic solution keeps ``fast``'s status.
+energy input, the damped periodic solution of MODEL.md §7). A point without a periodic solution keeps
+``fast``'s status.
 """
 
 from __future__ import annotations
@@ -105,8 +106,7 @@ def compare(inputs: Mapping[str, Any], run: Mapping[str, Any]) -> dict[str, Any]
     force = np.abs(s.forces[inside, first[0]])
     mid = model.phi[0]
     td = timedomain.stresses(inputs, model, s)
-    scale = np.concatenate((np.full(len(model.modes), model.clearance),
-                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
+    scale = model.state_scale()
     end_state = np.concatenate((s.q[-1], s.v[-1]))
     i_on, i_off = np.flatnonzero(inside)[[0, -1]]
     approach, rebound = mid @ s.v[i_on], mid @ s.v[i_off]
@@ -207,8 +207,7 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodi
     if model.restitution < 1.0:
         return dict(status="no_orbit", message=f"the contact dissipates energy (e = {model.restitution:g}) and "
                     "nothing feeds it, so no motion with contact repeats")
-    n = len(model.modes)
-    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    scale = model.state_scale()
     found = orbit.find_orbit(run["system"], run["state"], 0.0, scene.impact_interval, scale,
                              mirror=scene.pattern != "one_wall")
     out = dict(status=found.status, message=found.message)
@@ -218,8 +217,8 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodi
     samples = trajectory.sample_revolution(run["system"], model.contact_forces, 0.0, model.period, found.state,
                                            active, chi, peak)
     stresses = timedomain.stresses(inputs, model, samples)
-    out.update(state=found.state, peak_force=found.peak_force, largest_multiplier=found.largest_multiplier, stable=found.stable,
-               distance=float(np.max(np.abs(found.state - run["state"]) / scale)),
+    out.update(state=found.state, peak_force=found.peak_force, largest_multiplier=found.largest_multiplier,
+               stable=found.stable, distance=float(np.max(np.abs(found.state - run["state"]) / scale)),
                peak_force_ratio=found.peak_force / periodic_values["peak_contact_force"],
                normal_stress_ratio=stresses["max_normal_stress"] / periodic_values["max_normal_stress"])
     return out
@@ -230,8 +229,8 @@ def lee_peak_kinematics(scene: periodic.Scene, impact: periodic.Impact, options:
     """(y − c, (F̂/K)^{2/3}) [m] at the peak of Lee's pulse, t = T_L/2: how far the periodic solution's
     midspan (the same ``options.modes`` modes as the replay, :func:`periodic_state`) is into the wall
     while the pulse peaks, and the Hertz approach its peak force F̂ [N] needs on the contact of stiffness
-    K [N m^-3/2] (F = K α^{3/2}, paper eq. 7–8, elastic). A contact would have the two equal; Lee's pulse is imposed, so they
-    need not be."""
+    K [N m^-3/2] (F = K α^{3/2}, paper eq. 7–8, elastic). A contact would have the two equal; Lee's
+    pulse is imposed, so they need not be."""
     q, _ = periodic_state(scene, impact, options, int(options.modes), 0.5 * impact.contact_duration)
     midspan = np.sin(0.5 * np.pi * np.arange(1, len(q) + 1))
     return float(midspan @ q - scene.clearance), float((peak_force / stiffness) ** (2.0 / 3.0))

@@ -148,6 +148,11 @@ class ModalModel:
             return calibrated_hysteresis(e) / v0
         return float(oscillator.hunt_crossley_damping(v0, e, self.contact_damping))
 
+    def state_scale(self) -> np.ndarray:
+        """(2N,) scale of the modal state: c for q [m], Ω c for q̇ [m/s]."""
+        n = len(self.modes)
+        return np.concatenate((np.full(n, self.clearance), np.full(n, self.rotary_speed * self.clearance)))
+
     def energy(self, q, v) -> float:
         """Mechanical energy Σ ½ m (q̇² + ω² q²) + Σ_p (2/5) K δ_p^{5/2} [J]."""
         q, v = np.asarray(q, float), np.asarray(v, float)
@@ -536,10 +541,8 @@ def settled_orbit(run: Mapping[str, Any]) -> orbit.Orbit | None:
     if "system" not in run or not run["period"]:
         return None
     model = run["model"]
-    n = len(model.modes)
-    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
     return orbit.find_orbit(run["system"], np.concatenate(run["final_state"]), run["end_time"],
-                            run["period"] * model.period, scale)
+                            run["period"] * model.period, model.state_scale())
 
 
 def sample_after(run: Mapping[str, Any], revolutions: int | None = None) -> trajectory.Samples | None:
@@ -737,8 +740,7 @@ def _converged_run(inputs: Mapping[str, Any], revolutions: int):
     """The inputs of a fixed-length run, the state scale (c, Ωc) and LSODA's final state at rtol 1e-12."""
     base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
     model = build_model(base)
-    scale = np.concatenate((np.full(len(model.modes), model.clearance),
-                            np.full(len(model.modes), model.rotary_speed * model.clearance)))
+    scale = model.state_scale()
     reference = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
                                          "time_atol": 1e-14})["final_state"])
     return base, scale, reference
