@@ -213,7 +213,8 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodi
     out = dict(status=found.status, message=found.message)
     if not found.converged:
         return out
-    active, chi, peak = np.zeros(1, bool), np.zeros(1), np.zeros(1)
+    points = len(model.points)
+    active, chi, peak = np.zeros(points, bool), np.zeros(points), np.zeros(points)
     samples = trajectory.sample_revolution(run["system"], model.contact_forces, 0.0, model.period, found.state,
                                            active, chi, peak)
     stresses = timedomain.stresses(inputs, model, samples)

@@ -130,11 +130,11 @@ def test_at_e_1_the_real_contact_has_an_unstable_orbit_near_the_periodic_solutio
     run = crosscheck.replay(inputs, scene, impact, options)
     found = crosscheck.real_orbit(inputs, run, scene, r.values)
     assert found["status"] == "converged" and found["largest_multiplier"] == r.values["max_floquet_multiplier"]
-    model, n = run["model"], options.modes
+    model = run["model"]
     check = timedomain.simulate({**run["inputs"], "initial_state": np.split(found["state"], 2),
                                  "time_integrator": "implicit", "time_revolutions": 1, "time_check_periodic": False},
                                 model)
-    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    scale = model.state_scale()
     assert np.max(np.abs(check["states"][-1] - found["state"]) / scale) < 1e-4
     assert r.values["periodicity_defect"] > 1e-2  # the periodic solution's own state is not the orbit
 

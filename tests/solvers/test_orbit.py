@@ -73,8 +73,7 @@ def test_where_the_time_domain_settles_shooting_finds_the_same_stable_orbit(sett
     # (study.solvers.timedomain) and Newton on the section map from an early, unsettled state.
     inputs, run = settled
     model = run["model"]
-    n = len(model.modes)
-    scale = np.concatenate((np.full(n, model.clearance), np.full(n, model.rotary_speed * model.clearance)))
+    scale = model.state_scale()
     early = run["states"][3]
     assert np.max(np.abs(early - run["states"][-1]) / scale) > 1e-2  # far from settled
     found = orbit.find_orbit(run["system"], early, 0.0, model.period, scale, tol=1e-9)
