@@ -256,3 +256,16 @@ def test_screen_config_is_the_default_grid_with_the_sdof_method():
     assert {k: v for k, v in screen.inputs.items() if k != "solver_method"} == \
         {k: v for k, v in default.inputs.items() if k != "solver_method"}
     assert all(np.array_equal(screen.axes[k], default.axes[k]) for k in default.axes)
+
+
+def test_crosscheck_config_is_the_paper_example_with_the_self_consistent_closure():
+    default = config.load(ROOT / "configs" / "default.toml")
+    check = config.load(ROOT / "configs" / "crosscheck.toml")
+    assert check.inputs["solver_method"] == "crosscheck" and check.inputs["closure"] == "self_consistent"
+    assert check.inputs["span_length"] is None  # the periodic solution finds its own span
+    changed = {"solver_method", "closure", "modes", "span_length"}
+    assert {k: v for k, v in check.inputs.items() if k not in changed | set(check.axes)} == \
+        {k: v for k, v in default.inputs.items() if k not in changed | set(check.axes)}
+    assert list(check.axes["impact_pattern"]) == ["one_wall", "alternating"]
+    assert list(check.axes["restitution"]) == [0.5, 1.0]
+    assert check.axes["rotary_speed"] * 60 / (2 * np.pi) == pytest.approx([50, 75, 100, 150, 200, 250, 300])

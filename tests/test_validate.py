@@ -24,3 +24,4 @@ def test_report_compares_with_the_printed_numbers(report):
     assert "| T_L/T_H | 0.855 | 0.8539 |" in report  # paper eq. 15-17, app. C
     assert "2.1869 m/s" in report  # textbook Example 8.2, printed 2.187 m/s
     assert "| alternating | prescribed |" in report  # the paper's 345 ft span, in every reading
+    assert "real-contact orbit found | stable |" in report  # the crosscheck over the design space (e = 1)

@@ -1,4 +1,5 @@
-"""Design charts of a results dataset: stresses, span, contact, natural frequencies, validity.
+"""Design charts of a results dataset: stresses, span, contact, natural frequencies, the crosscheck of the
+periodic solution against the real contact, validity.
 
 ``draw_all(dataset_path)`` draws every chart the dataset's variables and dimensions allow and
 returns the written paths; each chart function returns :class:`Chart` objects (name and
@@ -9,9 +10,11 @@ from study.charts.design import (
     CHARTS,
     Chart,
     contact_force_and_duration_vs_rpm,
+    crosscheck_maps,
     draw,
     draw_all,
     natural_frequencies_vs_rpm,
+    orbit_maps,
     save_figure,
     span_length_vs_rpm,
     stress_maps,
@@ -23,10 +26,12 @@ __all__ = [
     "CHARTS",
     "Chart",
     "contact_force_and_duration_vs_rpm",
+    "crosscheck_maps",
     "draw",
     "draw_all",
     "figure_labels",
     "natural_frequencies_vs_rpm",
+    "orbit_maps",
     "quantity",
     "save_figure",
     "span_length_vs_rpm",

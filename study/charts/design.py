@@ -33,7 +33,7 @@ from typing import Callable, Sequence
 import numpy as np
 import xarray as xr
 from matplotlib import colormaps, ticker
-from matplotlib.colors import ListedColormap
+from matplotlib.colors import ListedColormap, TwoSlopeNorm
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
@@ -49,6 +49,10 @@ LOAD = "axial_tension"
 PANEL_FIRST = ("restitution",)
 STRESSES = ("max_normal_stress", "alternating_bending_stress")
 CONTACT = ("peak_contact_force", "contact_duration")
+#: Method crosscheck: the real contact over the periodic solution, on the replayed revolution ...
+REPLAY_RATIOS = ("peak_force_ratio", "normal_stress_ratio", "deflection_ratio")
+#: ... and on the real contact's periodic orbit nearest the periodic solution, with its stability.
+ORBIT_RATIOS = ("orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floquet_multiplier")
 HARMONICS = (1, 2, 3)
 CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
@@ -244,7 +248,7 @@ def _grid(n_panels: int, max_columns: int = 4) -> tuple[int, int]:
 
 def _title(fig: Figure, title: str, context: Sequence[str], width_inches: float):
     width = max(40, int(width_inches * 13))
-    lines = [title] + textwrap.wrap("; ".join(context), width) if context else [title]
+    lines = textwrap.wrap(title, width) + (textwrap.wrap("; ".join(context), width) if context else [])
     fig.suptitle("\n".join(lines), fontsize=11)
 
 
@@ -375,8 +379,9 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
 
 
 def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x: str, y: str,
-                cmap: str = "YlOrRd") -> list[Chart]:
-    """Colour maps of ``names`` over ``x`` x ``y``: a row of panels per name, a colour bar per row."""
+                cmap: str = "YlOrRd", centre: float | None = None) -> list[Chart]:
+    """Colour maps of ``names`` over ``x`` x ``y``: a row of panels per name, a colour bar per row; with
+    ``centre`` the colour scale diverges from that value (e.g. 1 for a ratio)."""
     arrays = {n: _full(ds, n) for n in names}
     plan = _plan(ds, list(arrays.values()), x, y, collapse_series=False)
     xq, yq_axis = quantity(ds[x]), quantity(ds[y])
@@ -398,6 +403,11 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
             mesh = None
             block_axes = []
             vmin, vmax = ranges[name] or (0.0, 1.0)
+            norm = None
+            if centre is not None:
+                spread = max(vmax - centre, centre - vmin, 1e-3 * abs(centre) or 1e-3)
+                vmin, vmax = min(vmin, centre - 1e-3 * spread), max(vmax, centre + 1e-3 * spread)
+                norm = TwoSlopeNorm(centre, vmin, vmax)
             for p in range(n_panels):
                 r, c = b * rows_per + p // columns, p % columns
                 ax = axes[r, c]
@@ -408,7 +418,8 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
                 if masked.mask.any():
                     any_missing = True
                     _mark_missing(ax)
-                mesh = ax.pcolormesh(xedges, yedges, masked, cmap=cmap, vmin=vmin, vmax=vmax, shading="flat")
+                limits = {"norm": norm} if norm is not None else {"vmin": vmin, "vmax": vmax}
+                mesh = ax.pcolormesh(xedges, yedges, masked, cmap=cmap, shading="flat", **limits)
                 if contours and masked.count() >= 4 and np.ptp(masked.compressed()) > 0:
                     levels = ticker.MaxNLocator(9).tick_values(vmin, vmax)
                     lines = ax.contour(xpos, ypos, masked, levels=levels, colors="k", linewidths=0.5, alpha=0.6)
@@ -426,7 +437,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
         _outer_labels(axes, visible)
         context = _context(ds, plan, fi)
         if any_missing:
-            context.append("hatched: no result (the point failed)")
+            context.append("hatched: no result (the validity map says why)")
         _title(fig, title, context, width)
         charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig))
     return charts
@@ -465,14 +476,53 @@ def stress_maps(ds: xr.Dataset) -> list[Chart]:
     (else the load, else the first swept input), one line per value of the next swept input.
     """
     names = [n for n in STRESSES if n in ds.data_vars]
-    if not names or not ds.sizes or 0 in ds.sizes.values():
+    if not names:
         return []
-    title = "Pipe stresses: " + _join([quantity(ds[n]).short_name for n in names])
+    return _maps_or_lines(ds, "stress_maps", "Pipe stresses: " + _join([quantity(ds[n]).short_name for n in names]),
+                          names)
+
+
+def _maps_or_lines(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], cmap: str = "YlOrRd",
+                   centre: float | None = None) -> list[Chart]:
+    """Maps of ``names`` over rotary speed x axial load where both are swept, else lines against the
+    first swept input, one line per value of the next (see :func:`stress_maps`)."""
+    if not ds.sizes or 0 in ds.sizes.values():
+        return []
     dims = _map_or_line_dims(ds)
     if RPM in dims and LOAD in dims:
-        return _map_charts(ds, "stress_maps", title, names, RPM, LOAD)
+        return _map_charts(ds, chart, title, names, RPM, LOAD, cmap=cmap, centre=centre)
     x = dims[0] if dims else _preferred_dims(ds)[0]
-    return _line_charts(ds, "stress_maps", title, names, x, dims[1] if len(dims) > 1 else None)
+    return _line_charts(ds, chart, title, names, x, dims[1] if len(dims) > 1 else None)
+
+
+def crosscheck_maps(ds: xr.Dataset) -> list[Chart]:
+    """Method crosscheck: peak contact force, largest normal stress and largest deflection of the real
+    contact over the periodic solution's (1: they agree), laid out as :func:`stress_maps`."""
+    names = [n for n in REPLAY_RATIOS if n in ds.data_vars]
+    if not names:
+        return []
+    words = {"peak_force_ratio": "peak contact force", "normal_stress_ratio": "normal stress",
+             "deflection_ratio": "deflection"}
+    return _maps_or_lines(ds, "crosscheck", "Real contact over the periodic solution (1: they agree): "
+                          + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
+
+
+def orbit_maps(ds: xr.Dataset) -> list[Chart]:
+    """Method crosscheck: the real contact's periodic orbit nearest the periodic solution - its peak force
+    and largest normal stress over the periodic solution's, and its largest Floquet multiplier (above 1:
+    unstable). Drawn only where some point has such an orbit."""
+    names = [n for n in ORBIT_RATIOS if n in ds.data_vars]
+    if "orbit_distance" not in ds.data_vars or not names:
+        return []
+    found = np.isfinite(_full(ds, "orbit_distance"))
+    if not found.any():
+        return []
+    # keep only the values of each swept input where some point has an orbit (e = 1 alone, typically):
+    # the others would be empty panels, and "the same for every restitution" would not be true
+    keep = {d: found.any([o for o in found.dims if o != d]).values for d in found.dims}
+    ds = ds.isel({d: np.flatnonzero(k) for d, k in keep.items() if not k.all()})
+    return _maps_or_lines(ds, "orbit", "The real contact's orbit nearest the periodic solution: force and stress over "
+                          "the periodic solution's, and its stability (multiplier above 1: unstable)", names, cmap="coolwarm", centre=1.0)
 
 
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
@@ -689,7 +739,7 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
 
 #: Every chart, in the order :func:`draw_all` draws them.
 CHARTS = (stress_maps, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
-          validity_map)
+          crosscheck_maps, orbit_maps, validity_map)
 
 
 def draw(ds: xr.Dataset) -> list[Chart]:

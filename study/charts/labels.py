@@ -41,6 +41,12 @@ SHORT_NAMES = {
     "second_natural_frequency": "second natural frequency",
     "third_natural_frequency": "third natural frequency",
     "impact_velocity": "impact velocity",
+    "peak_force_ratio": "peak force, real / periodic",
+    "normal_stress_ratio": "normal stress, real / periodic",
+    "deflection_ratio": "deflection, real / periodic",
+    "orbit_peak_force_ratio": "orbit's peak force / periodic",
+    "orbit_normal_stress_ratio": "orbit's normal stress / periodic",
+    "max_floquet_multiplier": "largest Floquet multiplier",
 }
 
 _SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -28,8 +28,9 @@ closure's J (its mass m_e is not the mass the span strikes with), the contact's 
 half-sine (Lee's pulse is imposed on the span, not a contact: at its peak the periodic solution's
 midspan need not be into the wall by the Hertz approach its force needs, :func:`lee_peak_kinematics`;
 the equivalent mass alone on the same contact shows how much is the contact law), or the contact
-dissipates energy that the undamped periodic solution never loses (e < 1: its steady state needs an
-energy input, the damped periodic solution of MODEL.md §7). A point without a periodic solution keeps
+dissipates energy that the undamped periodic solution never loses (e < 1: Lee's pulse does no net work
+over a period of the undamped periodic response, a contact with e < 1 does; the paper's end moments,
+MODEL.md §7, feed only what the mud's damping takes). A point without a periodic solution keeps
 ``fast``'s status.
 """
 
@@ -168,8 +169,9 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
             reasons.append(f"no periodic orbit of the real contact near the periodic solution: {found['message']}")
         if td["energy_change"] < -tolerance:
             reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
-                           f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: its "
-                           "steady state needs an energy input (MODEL.md §7)")
+                           f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: "
+                           "Lee's pulse does no net work over a period of the undamped periodic response; the "
+                           "paper's energy input (end moments, MODEL.md §7) balances the mud's damping only")
     return reasons
 
 
@@ -218,7 +220,8 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodi
     samples = trajectory.sample_revolution(run["system"], model.contact_forces, 0.0, model.period, found.state,
                                            active, chi, peak)
     stresses = timedomain.stresses(inputs, model, samples)
-    out.update(state=found.state, peak_force=found.peak_force, largest_multiplier=found.largest_multiplier,
+    out.update(state=found.state, jacobian=found.jacobian, peak_force=found.peak_force,
+               largest_multiplier=found.largest_multiplier,
                stable=found.stable, distance=float(np.max(np.abs(found.state - run["state"]) / scale)),
                peak_force_ratio=found.peak_force / periodic_values["peak_contact_force"],
                normal_stress_ratio=stresses["max_normal_stress"] / periodic_values["max_normal_stress"])

@@ -54,6 +54,8 @@ class Orbit:
     multipliers: np.ndarray = field(default_factory=lambda: np.array([]))  #: Floquet μ over one revolution
     peak_force: float = np.nan  #: largest contact force on the orbit over P [N]
     contacts: int = 0  #: contacts (onsets) per time between impacts P
+    #: ∂(S z(t0 + P)/s)/∂(z/s) at the orbit (2N, 2N), whose eigenvalues give the multipliers (empty if none)
+    jacobian: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
 
     @property
     def converged(self) -> bool:
@@ -118,7 +120,7 @@ def find_orbit(system: event_driven.EventSystem, z0, t0: float, interval: float,
                 return Orbit("bad_section", "a finite-difference step of the converged orbit left the section's "
                              "flight", z, residual, iteration)
             mu = floquet_multipliers(jacobian, mirror)
-            orbit = Orbit("converged", "", z, residual, iteration, mu, peak, onsets)
+            orbit = Orbit("converged", "", z, residual, iteration, mu, peak, onsets, jacobian)
             orbit.message = (f"periodic orbit: residual {residual:.2g} after {iteration} Newton iteration(s); "
                              f"{'stable' if orbit.stable else 'unstable'} (largest Floquet multiplier "
                              f"{orbit.largest_multiplier:.4g}); {onsets} contact(s) per {interval:.4g} s")

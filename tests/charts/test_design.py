@@ -16,10 +16,12 @@ from matplotlib.collections import QuadMesh
 from study.charts import (
     CHARTS,
     contact_force_and_duration_vs_rpm,
+    crosscheck_maps,
     draw,
     draw_all,
     figure_labels,
     natural_frequencies_vs_rpm,
+    orbit_maps,
     save_figure,
     span_length_vs_rpm,
     stress_maps,
@@ -51,6 +53,10 @@ OUTPUT_UNITS = {
     "impact_velocity": "m s-1",
 }
 ALL_OUTPUTS = tuple(OUTPUT_UNITS)
+#: Outputs of method crosscheck (ratios, dimensionless); the orbit's only at e = 1.
+CROSSCHECK_OUTPUTS = ("peak_force_ratio", "normal_stress_ratio", "deflection_ratio", "orbit_distance",
+                      "orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floquet_multiplier")
+OUTPUT_UNITS.update({name: "1" for name in CROSSCHECK_OUTPUTS})
 FULL_AXES = {
     "rotary_speed": [60, 100, 140, 180, 220, 260, 300],
     "axial_tension": [-5000, 5000, 10000, 20000, 40000],
@@ -93,6 +99,13 @@ def make_dataset(axes, outputs=ALL_OUTPUTS, fixed=None, status=None):
         "peak_contact_force": LBF * 1e3 * n * (1 + e) * rho / 10,
         "contact_duration": 1e-3 * (1.3 - 0.001 * n) + 0 * e,
         "impact_velocity": 0.02 * n * RPM * (1 + 0 * t),
+        "peak_force_ratio": 0.8 + 0.002 * n * e + 0 * t,
+        "normal_stress_ratio": 0.97 + 1e-4 * n + 0 * e * t,
+        "deflection_ratio": 1.001 + 0 * n * e * t,
+        "orbit_distance": xr.where(e == 1, 0.01 + 1e-4 * n + 0 * t, np.nan),
+        "orbit_peak_force_ratio": xr.where(e == 1, 0.7 + 0.003 * n + 0 * t, np.nan),
+        "orbit_normal_stress_ratio": xr.where(e == 1, 0.98 + 0 * n * t, np.nan),
+        "max_floquet_multiplier": xr.where(e == 1, 0.5 + 0.01 * n + 0 * t, np.nan),
     }
     template = xr.DataArray(np.zeros(tuple(len(v) for v in axes.values())), {d: ds[d] for d in dims}, dims)
     for name in outputs:
@@ -187,6 +200,7 @@ def test_an_open_dataset_needs_an_out_dir(tmp_path, full):
      {"span_length", "contact_force_duration", "natural_frequencies", "validity_map"}),  # today's outputs
     (("alternating_bending_stress",), {"stress_maps", "validity_map"}),
     (("contact_duration",), {"contact_force_duration", "validity_map"}),
+    (CROSSCHECK_OUTPUTS[:3], {"crosscheck", "validity_map"}),  # no orbit at e = 0.5 alone: no orbit chart
     ((), {"validity_map"}),
 ])
 def test_charts_drawn_follow_the_variables_present(outputs, expected):
@@ -486,3 +500,31 @@ def test_a_panel_with_no_result_keeps_the_swept_range_and_says_why():
     empty = [ax for ax in chart.figure.axes if any("no result at these inputs" in t.get_text() for t in ax.texts)]
     assert len(empty) == 1 and "0.2" in empty[0].get_title()
     assert empty[0].get_xlim() == pytest.approx((60.0, 300.0))  # rpm, not matplotlib's default range
+
+
+def test_crosscheck_ratios_diverge_from_one_and_say_what_they_compare():
+    # method crosscheck: 1 is agreement, so the colour scale is centred there
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.5, 1.0]},
+                      outputs=CROSSCHECK_OUTPUTS)
+    chart, = crosscheck_maps(ds)
+    labels = figure_labels(chart.figure)
+    assert labels["titles"][-1].startswith("Real contact over the periodic solution (1: they agree)")
+    assert "peak force, real / periodic [-]" in labels["ylabels"]
+    norms = {type(mesh.norm).__name__: mesh.norm for mesh in meshes(chart.figure)}
+    assert set(norms) == {"TwoSlopeNorm"} and norms["TwoSlopeNorm"].vcenter == 1.0
+    assert len(meshes(chart.figure)) == 3 * 2  # three ratios, a panel per restitution
+
+
+def test_orbit_maps_keep_only_the_inputs_where_an_orbit_was_found():
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.5, 1.0]},
+                      outputs=CROSSCHECK_OUTPUTS)
+    chart, = orbit_maps(ds)
+    labels = figure_labels(chart.figure)
+    assert "restitution = 1" in labels["titles"][-1]  # e = 0.5 has no orbit: not an empty panel
+    assert "largest Floquet multiplier [-]" in labels["ylabels"]
+    assert len(meshes(chart.figure)) == 3
+    multiplier = meshes(chart.figure)[-1]
+    assert multiplier.get_array().min() == pytest.approx(0.5 + 0.01 * 60)  # made-up values, shown as made
+    no_orbit = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.5]},
+                            outputs=CROSSCHECK_OUTPUTS)
+    assert orbit_maps(no_orbit) == []
