@@ -6,6 +6,7 @@ source it names. ``make validate`` writes the report to ``docs/validation.md``.
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +15,11 @@ from study import __version__
 from study.config import load
 from study.physics import hertz, restitution
 from study.solvers import OUTPUTS, solve_point
+from study.solvers.orbit import STABILITY_TOL
 from study.units import convert, pint_unit
+from study.workflow.dataset import ChunkColumns
+from study.workflow.execute import run_grid
+from study.workflow.grid import Grid
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "default.toml"
 CROSSCHECK_CONFIG = DEFAULT_CONFIG.with_name("crosscheck.toml")
@@ -299,23 +304,24 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
     ]
 
 
+#: The outputs of method crosscheck the survey reads.
+SURVEY_COLUMNS = ("span_length", "peak_force_ratio", "normal_stress_ratio", "deflection_ratio", "orbit_distance",
+                  "orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floquet_multiplier")
+
+
 def crosscheck_survey(workers: int = 2) -> dict[str, np.ndarray]:
     """Method crosscheck at e = 1 over the grid of ``configs/crosscheck.toml`` without its 50-rpm and
     40 000-lbf rows (their shooting is the slowest, up to half a minute a point), solved in parallel by
-    the sweep's own runner; columns over the points in grid order, with the swept inputs."""
-    import tempfile
-
-    from study.workflow.execute import load_chunk, run_grid
-    from study.workflow.grid import Grid
-
+    the sweep's own runner; the columns :func:`survey_section` reads, over the points in grid order, with
+    the swept inputs."""
     study = load(CROSSCHECK_CONFIG)
     axes = dict(study.axes, restitution=np.array([1.0]))
     axes["rotary_speed"] = axes["rotary_speed"][axes["rotary_speed"] > convert(60.0, "rpm", "rad/s")]
     axes["axial_tension"] = axes["axial_tension"][axes["axial_tension"] < convert(30000.0, "lbf", "N")]
     grid = Grid(base=dict(study.inputs), axes=axes)
     with tempfile.TemporaryDirectory() as store:
-        chunks = [load_chunk(path) for path in run_grid(grid, Path(store), workers=workers, progress=False)]
-    columns = {key: np.concatenate([chunk[key] for chunk in chunks]) for key in chunks[0]}
+        stored = ChunkColumns(run_grid(grid, Path(store), workers=workers, progress=False))
+        columns = {name: stored[name] for name in SURVEY_COLUMNS}
     for name, column in zip(grid.dims, np.meshgrid(*grid.axes.values(), indexing="ij")):
         columns[name] = column.ravel()
     return columns
@@ -323,8 +329,6 @@ def crosscheck_survey(workers: int = 2) -> dict[str, np.ndarray]:
 
 def survey_section(workers: int = 2) -> list[str]:
     """Is there a stable real-contact orbit near a periodic solution anywhere? :func:`crosscheck_survey`."""
-    from study.solvers.orbit import STABILITY_TOL
-
     c = crosscheck_survey(workers)
     has_solution = np.isfinite(c["peak_force_ratio"])
     has_orbit = np.isfinite(c["orbit_distance"])
@@ -371,7 +375,8 @@ def survey_section(workers: int = 2) -> list[str]:
     stress_close = int((has_solution & (np.abs(c["normal_stress_ratio"] - 1) <= 0.02)
                         & (np.abs(c["deflection_ratio"] - 1) <= 0.02)).sum())
     return [
-        "## Over the design space: is the real contact's periodic state stable anywhere? (`configs/crosscheck.toml`)", "",
+        "## Over the design space: is the real contact's periodic state stable anywhere? "
+        "(`configs/crosscheck.toml`)", "",
         f"Method `crosscheck` at e = 1 (where the replay's scene is conservative and can have an orbit) over "
         f"{n_points} points: the grid of `configs/crosscheck.toml` (`make sweep CONFIG=configs/crosscheck.toml` "
         "runs all of it, e = 0.5 and the 50-rpm and 40 000-lbf rows included) without its 50-rpm and 40 000-lbf "

@@ -521,8 +521,9 @@ def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     # the others would be empty panels, and "the same for every restitution" would not be true
     keep = {d: found.any([o for o in found.dims if o != d]).values for d in found.dims}
     ds = ds.isel({d: np.flatnonzero(k) for d, k in keep.items() if not k.all()})
-    return _maps_or_lines(ds, "orbit", "The real contact's orbit nearest the periodic solution: force and stress over "
-                          "the periodic solution's, and its stability (multiplier above 1: unstable)", names, cmap="coolwarm", centre=1.0)
+    title = ("The real contact's orbit nearest the periodic solution: force and stress over the periodic "
+             "solution's, and its stability (multiplier above 1: unstable)")
+    return _maps_or_lines(ds, "orbit", title, names, cmap="coolwarm", centre=1.0)
 
 
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
