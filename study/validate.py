@@ -15,6 +15,7 @@ from study import __version__
 from study.config import load
 from study.physics import hertz, restitution
 from study.solvers import OUTPUTS, solve_point
+from study.solvers.crosscheck import DEFAULT_TOLERANCE
 from study.solvers.orbit import STABILITY_TOL
 from study.units import convert, pint_unit
 from study.workflow.dataset import ChunkColumns
@@ -276,7 +277,7 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
         "needs; the real-contact orbit is the periodic orbit of the replay's scene nearest the periodic "
         "solution, found by shooting (`study.solvers.orbit`), with its distance from the periodic "
         "solution's state, its peak force and largest normal stress over the periodic solution's, and its "
-        "largest Floquet multiplier. Tolerance 0.02.", "",
+        f"largest Floquet multiplier. Tolerance {DEFAULT_TOLERANCE:g}.", "",
         _row("pattern", "e", "span [ft]", "impulse", "peak contact force", "max normal stress", "max deflection",
              "periodicity defect", "one mass", "y - c at Lee's peak [µm]", "approach Lee's peak needs [µm]",
              "real-contact orbit", "verdict"), _row(*["---"] * 13), *rows, "",
@@ -330,6 +331,10 @@ def crosscheck_survey(workers: int = 2) -> dict[str, np.ndarray]:
 def survey_section(workers: int = 2) -> list[str]:
     """Is there a stable real-contact orbit near a periodic solution anywhere? :func:`crosscheck_survey`."""
     c = crosscheck_survey(workers)
+
+    def agrees(name):  # within the crosscheck's own tolerance of the periodic solution
+        return np.abs(c[name] - 1.0) <= DEFAULT_TOLERANCE
+
     has_solution = np.isfinite(c["peak_force_ratio"])
     has_orbit = np.isfinite(c["orbit_distance"])
     stable = has_orbit & (c["max_floquet_multiplier"] <= 1.0 + STABILITY_TOL)
@@ -354,10 +359,10 @@ def survey_section(workers: int = 2) -> list[str]:
         summary.append(_row(pattern, int(mine.sum()), int(solved.sum()), int(found.sum()), int((stable & mine).sum()),
                             _span_of(mu) if mu.size else "-",
                             _span_of(c["orbit_peak_force_ratio"][found]) if mu.size else "-",
-                            int((solved & (np.abs(c["normal_stress_ratio"] - 1) <= 0.02)).sum())))
+                            int((solved & agrees("normal_stress_ratio")).sum())))
     mu_all = c["max_floquet_multiplier"][has_orbit]
     force = c["orbit_peak_force_ratio"][has_orbit]
-    close = np.abs(force - 1) <= 0.02
+    close = agrees("orbit_peak_force_ratio")[has_orbit]
     if stable.any():
         finding = (f"{int(stable.sum())} of the {int(has_orbit.sum())} orbits found are stable: "
                    + "; ".join(f"{c['impact_pattern'][i]} at {convert(c['rotary_speed'][i], 'rad/s', 'rpm'):.0f} "
@@ -372,8 +377,7 @@ def survey_section(workers: int = 2) -> list[str]:
                    "is stable - is met nowhere in this survey, and every point is flagged `disagrees` with its "
                    "reasons.")
     n_points = int(has_solution.size)
-    stress_close = int((has_solution & (np.abs(c["normal_stress_ratio"] - 1) <= 0.02)
-                        & (np.abs(c["deflection_ratio"] - 1) <= 0.02)).sum())
+    stress_close = int((has_solution & agrees("normal_stress_ratio") & agrees("deflection_ratio")).sum())
     return [
         "## Over the design space: is the real contact's periodic state stable anywhere? "
         "(`configs/crosscheck.toml`)", "",
