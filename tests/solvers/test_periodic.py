@@ -325,7 +325,8 @@ def test_refinement_and_iteration_say_why_they_stopped(paper_inputs):
 
 def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
     # source: the definition - the regula falsi evaluates y1, v1, y1'' with F at every point; the state it
-    # keeps for a root is unit_state there with the screening pulse (the midspan screen's input), bit for bit.
+    # keeps for a root is unit_state there with the screening pulse (the midspan screen's input), to rounding
+    # (the compiled and the numpy paths may order a sum differently: 1e-16 absolute seen on one machine).
     scene = scene_of(paper_inputs, "one_wall", "self_consistent")
     options = periodic.Options(modes=21, max_span=60.0)
     search = periodic.find_roots(scene, options)
@@ -333,4 +334,4 @@ def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
     expected = np.array(periodic.unit_state(scene, search.roots, duration, half, options))
     known = ~np.isnan(search.states[0])
     assert search.states.shape == (3, search.roots.size) and np.mean(known) > 0.9
-    np.testing.assert_array_equal(search.states[:, known], expected[:, known])
+    np.testing.assert_allclose(search.states[:, known], expected[:, known], rtol=1e-12, atol=0)
