@@ -26,7 +26,8 @@ import numpy as np
 from study.physics.beam import LOAD_SHAPES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers import METHODS
-from study.solvers.periodic import IMPACT_MASSES
+from study.solvers.gate import DEFAULT_TOLERANCE
+from study.solvers.periodic import IMPACT_MASSES, MAX_POLES
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -117,6 +118,9 @@ FIELDS: tuple[Field, ...] = (
           **_POSITIVE),
     Field("solver.min_span", "min_span", "shortest span searched", "m", default=3.0, display_unit="ft",
           **_POSITIVE),
+    Field("solver.max_poles", "max_poles", "most resonance candidates (mode x harmonic pairs, about 16 bytes each) "
+          "the span search may enumerate: a memory guard, raise it on a larger machine", "", default=MAX_POLES,
+          integer=True, lower=1.0),
     Field("solver.modes", "modes", "highest mode number kept by the periodic methods", "", default=41,
           integer=True, lower=1.0),
     Field("solver.resonance_width", "resonance_width",
@@ -124,8 +128,9 @@ FIELDS: tuple[Field, ...] = (
           lower=0.0, upper=0.1),
     Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default="parabolic",
           choices=tuple(LOAD_SHAPES)),
-    Field("solver.tolerance", "tolerance", "relative accuracy asked of the max normal stress (method auto)", "",
-          default=1e-3, lower=0.0, lower_open=True),
+    Field("solver.tolerance", "tolerance", "relative accuracy asked of every method's answer (its error "
+          "estimate; the max normal stress for the periodic methods): a result above it is not_converged", "",
+          default=DEFAULT_TOLERANCE, lower=0.0, lower_open=True),
     Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "", default=400,
           integer=True, lower=1.0),
     Field("solver.series_tolerance", "series_tolerance", "relative change of the series method's maximum "
@@ -332,19 +337,16 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
         value = inputs.get(name)
         return (value, value) if isinstance(value, float) else (None, None)
 
-    od_lo, od_hi = span("outer_diameter")
-    id_lo, id_hi = span("inner_diameter")
-    hole_lo, hole_hi = span("hole_diameter")
-    if None not in (od_lo, id_hi) and id_hi >= od_lo:
-        problems.append(
-            f"pipe.inner_diameter = {id_hi:g} m: must be < pipe.outer_diameter = {od_lo:g} m"
-            " (a pipe wall needs thickness)"
-        )
-    if None not in (od_hi, hole_lo) and hole_lo <= od_hi:
-        problems.append(
-            f"hole.diameter = {hole_lo:g} m: must be > pipe.outer_diameter = {od_hi:g} m"
-            " (the pipe must fit in the hole with a clearance)"
-        )
+    def below(small: str, large: str, why: str):
+        """The largest value of field ``small`` must be below the smallest of field ``large``."""
+        high, low = span(small)[1], span(large)[0]
+        if None not in (high, low) and high >= low:
+            problems.append(f"{FIELDS_BY_NAME[small].path} = {high:g} m: must be < {FIELDS_BY_NAME[large].path} = "
+                            f"{low:g} m ({why})")
+
+    below("inner_diameter", "outer_diameter", "a pipe wall needs thickness")
+    below("outer_diameter", "hole_diameter", "the pipe must fit in the hole with a clearance")
+    below("min_span", "max_span", "the span search needs a range")
 
 
 def load_text(text: str, source: str = "config", overrides: dict[str, Any] | None = None) -> Study:

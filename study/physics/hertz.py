@@ -388,7 +388,16 @@ LEE_TO_HERTZ_DURATION_RATIO = float(lee_duration(1.0, 1.0, 1.0) / hertz_impact(1
 
 
 # --- validity ---------------------------------------------------------------------------------
-def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1):
+#: Longest contact along the pipe [-, times the pipe's outer diameter] for which the half-space solution is
+#: taken: beyond it the tube's ovalisation, not local indentation, carries the load (our choice: a contact no
+#: longer than the pipe is wide; docs/model.md §3).
+MAX_LENGTH_TO_DIAMETER = 1.0
+#: Most elongated ellipse [-, major over minor semi-axis] reported as a point contact: beyond it the ellipse is a
+#: line contact in all but name (our choice: 1/limit² with the default limit 0.1; docs/model.md §3).
+MAX_ASPECT_RATIO = 100.0
+
+
+def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1, pipe_diameter=None):
     """Is Hertz theory applicable to this contact? Returns Validity(ok, criterion, message).
 
     half_length, half_width [m] (as from :func:`contact_ellipse`), A ≤ B [1/m], span_length [m]
@@ -397,7 +406,9 @@ def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1)
     direction of A (the major one) is compared with 1/(2A), the other with 1/(2B); in the usual
     case κ < k_c that is the half-length with the axial radius. Criteria, in order:
     ``line_contact`` (A ≤ 0 or non-finite/zero semi-axis), ``half_length_vs_axial_radius``,
-    ``half_width_vs_circumferential_radius``, ``half_length_vs_span`` (half_length > limit·span).
+    ``half_width_vs_circumferential_radius``, ``half_length_vs_span`` (half_length > limit·span),
+    ``length_vs_pipe_diameter`` (2 half_length > :data:`MAX_LENGTH_TO_DIAMETER` · pipe_diameter [m], when
+    given) and ``aspect_ratio`` (major/minor semi-axis > :data:`MAX_ASPECT_RATIO`: a degenerate ellipse).
     Note a·2A → 0 as κ → 0 (a grows only like A^(−1/3), up to a logarithm), so a nearly
     straight pipe passes criterion (b) and is caught by the span check only. For arrays ``ok``
     is elementwise; criterion/message give the first criterion (in the order above) failed by
@@ -406,7 +417,10 @@ def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1)
     hl, hw, A, B = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (half_length, half_width, A, B)))
     along_a = hl >= hw  # the half-length is the major axis, lying along the direction of A
     span = np.broadcast_to(np.inf if span_length is None else np.asarray(span_length, dtype=float), hl.shape)
+    diameter = np.broadcast_to(np.inf if pipe_diameter is None else np.asarray(pipe_diameter, dtype=float),
+                               hl.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
+        aspect = np.maximum(hl, hw) / np.minimum(hl, hw)
         r_ax = 1.0 / (2.0 * np.where(along_a, A, B))  # relative radius of curvature along the pipe
         r_circ = 1.0 / (2.0 * np.where(along_a, B, A))  # ... round the circumference
         line = (A <= 0) | ~np.isfinite(hl) | ~np.isfinite(hw) | ((hl > 0) != (hw > 0))
@@ -422,6 +436,13 @@ def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1)
             ("half_length_vs_span", hl > limit * span, ("half-length", hl), ("span", span),
              "the contact is not short beside the pipe span, so the pipe is not a half-space "
              "there (its bending, not local indentation, governs the approach)"),
+            ("length_vs_pipe_diameter", 2.0 * hl > MAX_LENGTH_TO_DIAMETER * diameter, ("length", 2.0 * hl),
+             ("pipe diameter", diameter),
+             "the contact is longer than the pipe is wide, so the tube's ovalisation, not local "
+             "indentation of a half-space, carries the load"),
+            ("aspect_ratio", aspect > MAX_ASPECT_RATIO, ("major/minor semi-axis", aspect),
+             ("largest aspect ratio", np.full(hl.shape, MAX_ASPECT_RATIO)),
+             "the ellipse is degenerate: a line contact in all but name"),
         ]
     fails = line.copy()
     for _, bad, *_ in checks:
@@ -432,10 +453,13 @@ def contact_validity(half_length, half_width, A, B, span_length=None, limit=0.1)
             f"line_contact: A = {A.flat[i]:.4g} 1/m, half-length = {hl.flat[i]:.4g} m, half-width = "
             f"{hw.flat[i]:.4g} m; the contact is a line, not a finite ellipse, so Hertz's "
             "point-contact solution does not apply."))
+    factors = {"length_vs_pipe_diameter": MAX_LENGTH_TO_DIAMETER, "aspect_ratio": 1.0}
     for name, bad, (vl, v), (rl, r), why in checks:
         if bad.any():
             i = np.flatnonzero(bad)[0]
-            return Validity(~fails, name, (f"{name}: {vl} {v.flat[i]:.4g} m > {limit:g} x {rl} "
-                                           f"{r.flat[i]:.4g} m; {why}."))
+            unit = "" if name == "aspect_ratio" else " m"
+            return Validity(~fails, name, (f"{name}: {vl} {v.flat[i]:.4g}{unit} > {factors.get(name, limit):g} x "
+                                           f"{rl} {r.flat[i]:.4g}{unit}; {why}."))
     return Validity(~fails, "ok", "ok: the contact is small beside the relative radii of curvature"
-                    + (" and the span." if span_length is not None else "."))
+                    + (" and the span" if span_length is not None else "")
+                    + (" and no longer than the pipe is wide" if pipe_diameter is not None else "") + ".")

@@ -725,16 +725,26 @@ def periodic_orbits(params: ImpactParams, n: int = 1, *, n_scan: int = 400,
     P = n * T
     e = p.restitution
     f11, f12, f21, f22 = (float(q) for q in _transition(P, p))
-    if abs(f12) < 1e-14 * max(P, 1.0):
-        return []  # x(τ + nT) does not depend on u: degenerate (nT a multiple of π/ω_d)
+    # x(τ + nT) = xp1 + f11 (gap − xp0) + f12 (u − vp0) and ẋ(τ + nT) = vp1 + f21 (gap − xp0) + f22 (u − vp0).
+    # Generic case: the position condition gives u, the velocity condition is the equation in τ.
+    # Degenerate case, nT a multiple of π/ω_d (f12 = 0): x(τ + nT) does not depend on u, so the position
+    # condition is the equation in τ and the velocity condition e ẋ(τ + nT) + u = 0 gives u.
+    degenerate = abs(f12) < 1e-12 * max(P, 1.0)
+    if degenerate and abs(1.0 + e * f22) < 1e-12:
+        return []  # e = 1 with ẋ(τ + nT) = −u: a continuous family, no isolated orbit
 
     def u_of(tau):
         xp0, vp0, _ = _particular(tau, p, tau)
         xp1, vp1, _ = _particular(tau + P, p, tau)
-        return (p.gap - xp1 - f11 * (p.gap - xp0)) / f12 + vp0, (xp0, vp0, vp1)
+        if degenerate:
+            u = -e * (vp1 + f21 * (p.gap - xp0) - f22 * vp0) / (1.0 + e * f22)
+            return u, (xp0, vp0, xp1, vp1)
+        return (p.gap - xp1 - f11 * (p.gap - xp0)) / f12 + vp0, (xp0, vp0, xp1, vp1)
 
     def resid(tau):
-        u, (xp0, vp0, vp1) = u_of(tau)
+        u, (xp0, vp0, xp1, vp1) = u_of(tau)
+        if degenerate:
+            return xp1 + f11 * (p.gap - xp0) - p.gap
         v_next = vp1 + f21 * (p.gap - xp0) + f22 * (u - vp0)
         return e * v_next + u
 

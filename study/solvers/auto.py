@@ -15,9 +15,8 @@ import time
 from typing import Any, Callable, Mapping
 
 from study.solvers import fast, series
+from study.solvers.gate import DEFAULT_TOLERANCE
 from study.solvers.result import PointResult
-
-DEFAULT_TOLERANCE = 1e-3
 
 #: The candidates, cheapest first: name -> solve function.
 CANDIDATES: dict[str, Callable[[Mapping[str, Any]], PointResult]] = {"fast": fast.solve, "series": series.solve}

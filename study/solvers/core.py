@@ -2,7 +2,7 @@
 
 Section and mud properties, effective tension and buckling, and — when the span is known —
 its natural frequency, the equivalent mass and the Hertz/Lee impact of the midspan on the wall
-with the velocity of the prescribed closure V_p = Ω c (``../shared/MODEL.md`` §2–4). The periodic
+with the velocity of the prescribed closure V_p = Ω c (docs/model.md §2–4). The periodic
 methods build on :func:`scene`; the ``core`` method reports it as it is.
 """
 
@@ -50,18 +50,24 @@ def scene(inputs: Mapping[str, Any]) -> dict[str, float]:
     }
 
 
+def contact_compliance(inputs: Mapping[str, Any]) -> float:
+    """K1 + K2 [1/Pa] of pipe steel and rock, K = (1 − ν²)/(π E) (docs/model.md §3, Hertz)."""
+    return float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
+                 + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+
+
 def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: float,
-           impact_velocity: float, axial_curvature: float) -> tuple[dict[str, float], hertz.Validity]:
+           impact_velocity: float, axial_curvature: float) -> dict[str, float]:
     """Hertz impact of the equivalent mass and Lee's pulse for a span and impact velocity.
 
     span_length L [m], impact_velocity V_p [m/s], axial_curvature κ of the pipe at the contact
-    [1/m]. Returns the impact quantities (SI) and the Hertz validity verdict. The contact ellipse
-    is evaluated at the pulse's peak force (paper §IV C: the ellipse is sized by the maximum force).
+    [1/m]. Returns the impact quantities (SI). The contact ellipse is evaluated at the pulse's peak
+    force (paper §IV C: the ellipse is sized by the maximum force); whether it is a Hertz contact is
+    decided by the gate every result passes (:mod:`study.solvers.gate`).
     """
     r_o = inputs["outer_diameter"] / 2.0
     hole_r = inputs["hole_diameter"] / 2.0
-    compliance = float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
-                       + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+    compliance = contact_compliance(inputs)
     m_e = float(section.equivalent_mass(props["mass_per_length"], span_length))
     a_sum, b_sum = hertz.curvature_sums(r_o, hole_r, axial_curvature)
     stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, compliance))
@@ -70,7 +76,6 @@ def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: f
     impulse = float(hertz.impact_impulse(m_e, impact_velocity, inputs["restitution"]))
     peak = float(hertz.lee_peak_force(impulse, duration))
     ellipse = hertz.contact_ellipse(peak, r_o, hole_r, axial_curvature, compliance)
-    validity = hertz.contact_validity(ellipse.contact_half_length, ellipse.contact_half_width, ellipse.A, ellipse.B, span_length)
     values = {
         "equivalent_mass": m_e,
         "impact_velocity": float(impact_velocity),
@@ -84,7 +89,7 @@ def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: f
         "contact_half_length": float(ellipse.contact_half_length),
         "contact_half_width": float(ellipse.contact_half_width),
     }
-    return values, validity
+    return values
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -126,11 +131,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
             clearance = props["clearance"]
             velocity = inputs["rotary_speed"] * clearance
             curvature = clearance * (np.pi / span) ** 2
-            values, validity = impact(inputs, props, span, velocity, curvature)
-            result.values.update(values)
-            if not validity.ok:
-                result.status = "hertz_invalid"
-                messages.append(validity.message)
+            result.values.update(impact(inputs, props, span, velocity, curvature))
     result.message = "; ".join(messages) if messages else "physics core evaluated at the given span"
     result.wall_time = time.perf_counter() - start
     return result

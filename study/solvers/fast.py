@@ -12,7 +12,6 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 
-from study.physics import beam
 from study.solvers import periodic, series
 from study.solvers.result import PointResult
 
@@ -20,15 +19,9 @@ from study.solvers.result import PointResult
 def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period (MODEL.md §5, paper eq. 37–38) from
-    the closed-form fields with the quasi-static correction (see :func:`periodic.stresses_from_fields`)."""
-    p = scene.props
-    x = periodic.space_grid(impact.span_length, impact.contact_half_length, options)
-    t = periodic.time_grid(scene, impact.contact_duration, options)
-    args = (impact.span_length, p["bending_stiffness"], p["effective_tension"], p["mass_per_length"],
-            -impact.impulse, impact.contact_duration, scene.period, scene.pattern,
-            impact.contact_half_length, options.load_shape, options.modes)
-    f = beam.periodic_fields(x, t, ["deflection", "moment", "shear"], *args)
-    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+    the closed-form fields with the quasi-static correction, located (:func:`series.stresses` with no
+    harmonics)."""
+    return series.stresses(scene, impact, inputs, options)
 
 
 def finish(scene: periodic.Scene, chosen: periodic.Impact, inputs: Mapping[str, Any],
@@ -37,7 +30,8 @@ def finish(scene: periodic.Scene, chosen: periodic.Impact, inputs: Mapping[str, 
     paper's term-ratio check."""
     values = stresses(scene, chosen, inputs, options)
     result.values.update(values)
-    result.error_estimate = periodic.truncation_bound(scene, chosen, inputs, options) / values["max_normal_stress"]
+    result.error_estimate = (periodic.truncation_bound(scene, chosen, inputs, options) / values["max_normal_stress"]
+                             + values["location_residual"])
     series.add_term_ratios(scene, chosen, inputs, options, result)
 
 

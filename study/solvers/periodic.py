@@ -41,7 +41,8 @@ import numpy as np
 from study.physics import beam, hertz, section
 from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
-from study.solvers.core import scene as section_scene
+from study.solvers import extremes
+from study.solvers.core import contact_compliance, scene as section_scene
 from study.solvers.result import PointResult, choice_input
 
 #: The mass of the closure's impulse (Scene.equivalent_mass).
@@ -119,8 +120,7 @@ class Scene:
 
 def make_scene(inputs: Mapping[str, Any]) -> Scene:
     props = section_scene(inputs)
-    compliance = float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
-                       + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+    compliance = contact_compliance(inputs)
     return Scene(props=props, outer_radius=inputs["outer_diameter"] / 2.0, hole_radius=inputs["hole_diameter"] / 2.0,
                  compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
                  restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
@@ -166,6 +166,19 @@ def natural_frequencies(scene: Scene, span_length, modes) -> np.ndarray:
 def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
     """Harmonic numbers of the rotation present in the pulse train: all (one_wall) or odd (alternating)."""
     return np.arange(1, highest + 1, scene.impacts_per_revolution, dtype=float)
+
+
+#: Default of config ``solver.max_poles``: resonance candidates the span search may enumerate (memory guard).
+MAX_POLES = 20_000_000
+
+
+def resonance_candidates(scene: Scene, modes, min_span: float) -> int:
+    """How many (mode, harmonic) pairs :func:`resonances` enumerates: modes × the harmonics up to the highest
+    mode's ω_n at the shortest span over Ω. Each costs about 16 bytes in the search, so a very slow rotary
+    speed or a very short ``min_span`` [m] costs memory without bound."""
+    modes = np.asarray(modes, dtype=float)
+    omega_max = float(np.nanmax(natural_frequencies(scene, min_span, modes[-1:])))
+    return int(modes.size * (np.ceil(omega_max / scene.rotary_speed) + 1))
 
 
 def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:
@@ -930,7 +943,8 @@ def options_from(inputs: Mapping[str, Any]) -> Options:
 
 
 def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
-                         shear=None, mirrored: bool | None = None) -> dict[str, float]:
+                         shear=None, mirrored: bool | None = None, field_at=None,
+                         tolerance: float | None = None) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period from the fields (MODEL.md §5, paper
     eq. 37–38) — the same for every method, whatever made the fields.
 
@@ -940,6 +954,10 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     pattern of ``scene``). Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b|
     (the larger of T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the
     range of σ_b over the period at the worst section (σ(t + τ/2) = −σ(t) when mirrored).
+
+    With ``field_at(kind, x, t)`` (the fields anywhere, shape t × x) each maximum found on the grid is
+    located to ``tolerance`` (relative) by :mod:`study.solvers.extremes`, and ``location_residual`` is
+    the largest relative change of the last refinement round — what is left of the sampling error.
     """
     p = scene.props
     mirrored = scene.pattern == "alternating" if mirrored is None else mirrored
@@ -967,6 +985,27 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
         i_s = _field_extremes(shear)[0]
         out.update(max_shear_stress=float(2.0 * np.abs(shear[i_s]) / area), max_shear_stress_x=float(x[i_s[1]]),
                    max_shear_stress_t=float(t[i_s[0]]))
+    if field_at is None:
+        return out
+    tol = 0.1 * _tolerance({"tolerance": tolerance})
+    y = extremes.locate(field_at, "deflection", x, t, *i_y, tol)
+    m = extremes.locate(field_at, "moment", x, t, *i_b, tol)
+    out.update(max_deflection=max(out["max_deflection"], abs(y.value)),
+               max_bending_stress=abs(m.value) * scale, max_normal_stress=axial + abs(m.value) * scale,
+               max_normal_stress_x=m.x, max_normal_stress_t=m.t)
+    residuals = [y.residual, m.residual]
+    if mirrored:
+        out["alternating_bending_stress"] = max(out["alternating_bending_stress"], out["max_bending_stress"])
+    else:
+        a = extremes.locate_half_range(field_at, "moment", x, t, moment, tol)
+        out["alternating_bending_stress"] = max(out["alternating_bending_stress"], a.value * scale)
+        residuals.append(a.residual)
+    if shear is not None:
+        v = extremes.locate(field_at, "shear", x, t, *i_s, tol)
+        out.update(max_shear_stress=max(out["max_shear_stress"], 2.0 * abs(v.value) / area),
+                   max_shear_stress_x=v.x, max_shear_stress_t=v.t)
+        residuals.append(v.residual)
+    out["location_residual"] = float(max(residuals))
     return out
 
 
@@ -1046,10 +1085,53 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
             candidates.append(impact)
         else:
             reasons.setdefault(_reason(problem), []).append(root)
+    candidates = distinct_spans(candidates)
     summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count - search.narrow_count} poles "
                f"in [{options.min_span:.4g}, {options.max_span:.4g}] m ({search.narrow_count} resonances narrower "
                f"than {options.resonance_width:.2g} L not searched); {survivors.size} pass the midspan screen")
     return SpanChoice(search, survivors, candidates, reasons, summary, options)
+
+
+#: Relative distance below which two refined spans are one root (reached from two brackets' screening roots).
+SAME_SPAN_RTOL = 1e-9
+
+
+def distinct_spans(impacts: list) -> list:
+    """The impacts in ascending span with each root once: a span within :data:`SAME_SPAN_RTOL` of the one
+    kept before it is the same root, refined from two screening roots."""
+    out = []
+    for impact in sorted(impacts, key=lambda i: i.span_length):
+        if not out or impact.span_length > out[-1].span_length * (1.0 + SAME_SPAN_RTOL):
+            out.append(impact)
+    return out
+
+
+def _tolerance(inputs: Mapping[str, Any]) -> float:
+    from study.solvers.gate import DEFAULT_TOLERANCE
+
+    return DEFAULT_TOLERANCE if inputs.get("tolerance") is None else float(inputs["tolerance"])
+
+
+def doubled(options: Options) -> Options:
+    """The same settings with the modes doubled (41 -> 81: every odd mode up to twice the highest)."""
+    return Options(**{**options.__dict__, "modes": 2 * options.modes - 1})
+
+
+def span_survives_doubling(scene: Scene, options: Options, span_length: float, tolerance: float) -> str | None:
+    """None when a span satisfying every constraint lies within ``tolerance`` (relative) of ``span_length`` [m]
+    with the modes doubled (:func:`doubled`); otherwise why not. A span that is an artefact of the
+    truncation — a root pinned by a mode just below it, or one whose condition 1 a higher mode breaks —
+    does not survive (docs/model.md §9: a span must converge with the modes like every other output)."""
+    finer = doubled(options)
+    window = Options(**{**finer.__dict__, "min_span": span_length * (1.0 - 2.0 * tolerance),
+                        "max_span": span_length * (1.0 + 2.0 * tolerance)})
+    found = find_span(scene, window)
+    near = [c.span_length for c in found.candidates if abs(c.span_length - span_length) <= tolerance * span_length]
+    if near:
+        return None
+    why = "; ".join(f"{len(v)} x {k}" for k, v in found.reasons.items()) or "no root of condition 2 near it"
+    return (f"the span {span_length:.6g} m does not survive doubling the modes to {finer.modes}: no valid span "
+            f"within {tolerance:.2g} of it ({why})")
 
 
 def _reason(problem: str) -> str:
@@ -1082,6 +1164,16 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.wall_time = time.perf_counter() - start
         return result
     options = Options(**{**options.__dict__, "max_span": max_span})
+    budget = int(inputs.get("max_poles") or MAX_POLES)
+    candidates = resonance_candidates(scene, odd_modes(options.modes), options.min_span)
+    if candidates > budget:
+        result.status = "failed"
+        result.message = (f"the span search would enumerate {candidates:.3g} resonance candidates (about "
+                          f"{candidates * 16 / 2**30:.3g} GiB) at {scene.rotary_speed * 30 / np.pi:.4g} rpm down to a "
+                          f"{options.min_span:.4g}-m span, above solver.max_poles = {budget:.3g}: raise the "
+                          "rotary speed or solver.min_span, or solver.max_poles on a larger machine")
+        result.wall_time = time.perf_counter() - start
+        return result
     choice = find_span(scene, options)
     result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
                          narrow_count=float(choice.search.narrow_count), candidate_count=float(len(choice.candidates)))
@@ -1095,6 +1187,10 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.wall_time = time.perf_counter() - start
         return result
     chosen = choice.candidates[0]
+    survives = span_survives_doubling(scene, options, chosen.span_length, _tolerance(inputs))
+    if survives is not None:
+        result.status = "not_converged"
+        choice.summary += f"; {survives}"
     result.values.update(
         span_length=chosen.span_length, equivalent_mass=chosen.equivalent_mass,
         impact_velocity=chosen.impact_velocity, impulse=chosen.impulse, axial_curvature=chosen.axial_curvature,
@@ -1106,6 +1202,10 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
     omega = natural_frequencies(scene, chosen.span_length, [1.0])
     result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
     result.message = f"{choice.summary}; {len(choice.candidates)} satisfy the constraints; the smallest is reported"
+    if survives is not None:
+        result.message = (f"{choice.summary.split('; the span ')[0]}; {len(choice.candidates)} satisfy the "
+                          f"constraints; the smallest, {chosen.span_length:.6g} m, is not converged: "
+                          f"the span {survives.split('the span ', 1)[1]}")
     finish(scene, chosen, inputs, options, result)
     result.wall_time = time.perf_counter() - start
     return result

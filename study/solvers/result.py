@@ -27,6 +27,8 @@ STATUS = {
     "sticking": (13, "the pipe comes to rest against the wall"),
     "not_periodic": (14, "no periodic motion found"),
     "disagrees": (15, "the time domain with real contact disagrees with the periodic solution (see message)"),
+    "unphysical": (16, "a computed value breaks a physical bound: deflection past the wall, inconsistent "
+                       "stresses (see message)"),
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
@@ -107,6 +109,8 @@ OUTPUTS = {
     "max_shear_stress_x": ("m", "position along the span of the largest shear stress"),
     "max_shear_stress_t": ("s", "time after contact of the largest shear stress"),
     "alternating_bending_stress": ("Pa", "half the range of the bending stress over the period, worst section"),
+    "location_residual": ("1", "relative change of the located stress maxima in their last refinement round "
+                          "(part of the error estimate)"),
     "sdof_stiffness": ("N m-1", "stiffness m omega_1^2 of the one-degree-of-freedom model"),
     "sdof_damping": ("N s m-1", "linearised mud damping of the first mode"),
     "drive_amplitude": ("N", "amplitude of the harmonic generalised force on the first mode at the rotary speed"),

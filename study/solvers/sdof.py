@@ -192,20 +192,27 @@ def symmetric_orbits(p: oscillator.ImpactParams, n_scan: int = 400) -> list[dict
     h = 0.5 * T
     c, e = p.gap, p.restitution
     Phi = _transition(h, p)
-    if abs(Phi[0, 1]) < 1e-14 * h:
-        return []
+    # generic: the position at +c gives u, the rebound u = e v1 is the equation in τ; degenerate (T/2 a
+    # multiple of π/ω_d, Φ01 = 0): the position does not depend on u and is the equation in τ, the rebound
+    # gives u (as oscillator.periodic_orbits)
+    degenerate = abs(Phi[0, 1]) < 1e-12 * h
+    if degenerate and abs(1.0 - e * Phi[1, 1]) < 1e-12:
+        return []  # a continuous family, no isolated orbit
 
     def launch(tau):  # w leaves −c at s0 = τ + T/2 with u = e v, hits +c at s1 = τ + T
         tau = np.asarray(tau, float)
         xp0, vp0 = _particular(tau + h, p)
         xp1, vp1 = _particular(tau + T, p)
-        u = (c - xp1 - Phi[0, 0] * (-c - xp0)) / Phi[0, 1] + vp0
+        if degenerate:
+            u = e * (vp1 + Phi[1, 0] * (-c - xp0) - Phi[1, 1] * vp0) / (1.0 - e * Phi[1, 1])
+        else:
+            u = (c - xp1 - Phi[0, 0] * (-c - xp0)) / Phi[0, 1] + vp0
         v1 = vp1 + Phi[1, 0] * (-c - xp0) + Phi[1, 1] * (u - vp0)
-        return u, v1
+        return u, v1, xp0, xp1
 
     def resid(tau):
-        u, v1 = launch(tau)
-        return e * v1 - u
+        u, v1, xp0, xp1 = launch(tau)
+        return xp1 + Phi[0, 0] * (-c - xp0) - c if degenerate else e * v1 - u
 
     taus = np.linspace(0.0, T, int(n_scan) + 1)
     r = resid(taus)
@@ -216,7 +223,7 @@ def symmetric_orbits(p: oscillator.ImpactParams, n_scan: int = 400) -> list[dict
         tau = taus[i] if r[i] == 0 else brentq(lambda s: float(resid(s)), taus[i], taus[i + 1], xtol=1e-15)
         if abs(float(resid(tau))) > 1e-8 * (1 + np.max(np.abs(r))):
             continue
-        u, v1 = (float(q) for q in launch(tau))
+        u, v1 = (float(q) for q in launch(tau)[:2])
         if u <= 0 or v1 <= 0:
             continue
         v = v1

@@ -107,11 +107,17 @@ def fields(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Opt
 
 def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
-    """Stress maxima (keys of ``fast.stresses``) from the fast fields (harmonics None — identical to
-    ``fast.stresses``) or from the double series with options.modes × harmonics terms."""
+    """Stress maxima (MODEL.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
+    or from the double series with options.modes × harmonics terms, sampled on :func:`stress_grid` and
+    located to a tenth of the study's tolerance (:func:`periodic.stresses_from_fields`)."""
     x, t = stress_grid(scene, impact, options)
     f = fields(scene, impact, options, harmonics, STRESS_KINDS, x, t)
-    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"])
+
+    def field_at(kind, xs, ts):
+        return fields(scene, impact, options, harmonics, (kind,), xs, ts)[kind]
+
+    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"],
+                                         field_at=field_at, tolerance=inputs.get("tolerance"))
 
 
 @dataclass
@@ -263,7 +269,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.values.update(s.values)
         # The change with the harmonics says nothing of the modes left out: add their bound.
         modes_bound = periodic.truncation_bound(scene, chosen, inputs, options) / s.values["max_normal_stress"]
-        result.error_estimate = max(s.change, modes_bound)
+        result.error_estimate = max(s.change, modes_bound) + s.values["location_residual"]
         result.extras.update(series_modes=int(options.modes), series_harmonics=int(s.harmonics),
                              series_history=[list(h) for h in s.history])
         if not s.converged:

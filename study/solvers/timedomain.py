@@ -572,6 +572,35 @@ def stresses(inputs: Mapping[str, Any], model: ModalModel, samples: trajectory.S
                                          f["deflection"], f["moment"], mirrored=False)
 
 
+#: The quasi-static correction carries the modes above N statically; that holds only for modes whose
+#: half-period is shorter than the contact: ω_{N+1} T_c ≥ π (docs/model.md §9). Below it the modes between
+#: are neither integrated nor static, and the fields are not resolved.
+QUASI_STATIC_LIMIT = np.pi
+
+
+def contact_resolution(model: ModalModel, samples: trajectory.Samples) -> str | None:
+    """None when the model's first mode left out is quasi-static over the shortest contact of the samples
+    (ω_{N+1} T_c ≥ :data:`QUASI_STATIC_LIMIT`, or no contact); otherwise what fails, with the number of
+    modes that would resolve it."""
+    durations = [end - begin for _, begin, end in samples.contacts if end > begin]
+    if not durations:
+        return None
+    shortest = min(durations)
+    props = model.scene.props
+    modes = np.arange(1, trajectory.STATIC_TAIL_MODES + 1)
+    omega = np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"], props["effective_tension"],
+                                                 props["mass_per_length"], modes))
+    first_left_out = omega[len(model.modes)]
+    if first_left_out * shortest >= QUASI_STATIC_LIMIT:
+        return None
+    enough = np.flatnonzero(omega * shortest >= QUASI_STATIC_LIMIT)
+    need = f"about {int(modes[enough[0]]) - 1} modes (solver.time_modes)" if enough.size else \
+        f"more than {trajectory.STATIC_TAIL_MODES} modes"
+    return (f"the {len(model.modes)} modes do not resolve the {shortest * 1e3:.3g}-ms contact: the first mode left "
+            f"out has omega T_c = {first_left_out * shortest:.3g} < pi, so it is not quasi-static and the "
+            f"fields' correction does not hold; the stresses need {need}")
+
+
 def _period(states, scale, tol):
     """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier."""
     S = np.asarray(states) / scale
@@ -671,6 +700,10 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         messages.append("no stresses: they are sampled from the event-driven integrator only")
     elif samples.outcome != event_driven.OK:
         messages.append("no stresses: the revolution sampled after the run stopped (blow-up or chatter)")
+    elif (unresolved := contact_resolution(model, samples)) is not None:
+        messages.append(f"no stresses: {unresolved}")
+        if result.status == "ok":
+            result.status = "not_converged"
     else:
         vals.update(stresses(inputs, model, samples))
         messages.append(f"stresses over the {'period' if run['verdict'] == 'periodic' else 'next revolution'} "

@@ -359,9 +359,29 @@ def test_nearly_straight_pipe_message_and_scaling():
     c = _pipe_case(1e-9)
     v = h.contact_validity(c.contact_half_length, c.contact_half_width, c.A, c.B, span_length=9.0)
     assert f"{float(c.contact_half_length):.4g} m" in v.message and "9 m" in v.message
-    # without a span the axial-radius criterion alone does not catch it: a·2A → 0 as κ → 0
+    # without a span the axial-radius criterion alone does not catch it: a·2A → 0 as κ → 0; the ellipse's
+    # aspect ratio does (a degenerate ellipse, a line contact in all but name)
     assert c.contact_half_length * 2 * c.A < 1e-7
-    assert h.contact_validity(c.contact_half_length, c.contact_half_width, c.A, c.B).criterion == "ok"
+    v = h.contact_validity(c.contact_half_length, c.contact_half_width, c.A, c.B)
+    assert v.criterion == "aspect_ratio" and not v.ok
+    assert c.contact_half_length / c.contact_half_width > h.MAX_ASPECT_RATIO
+
+
+@pytest.mark.parametrize("force, kappa, span, criterion", [
+    # source: the report of `core` at the default config (345-ft span, kappa = c (pi/L)^2 =
+    # 4.82e-5 1/m, Lee's peak 1.59e7 N): a 4.2-m half-length on a 4.5-in pipe, well inside 0.1 x span
+    pytest.param(1.59e7, 4.82e-5, 105.156, "length_vs_pipe_diameter", id="core-default-345ft"),
+    # the fast method's 22-ft span at the paper's point (kappa 0.0368 1/m, Lee's peak 25.6 kN): 86 mm long
+    pytest.param(2.56e4, 0.0368, 6.7126, "ok", id="fast-paper-22ft"),
+])
+def test_validity_against_pipe_diameter(force, kappa, span, criterion):
+    c = h.contact_ellipse(force, 2.25 * 0.0254, 4.375 * 0.0254, kappa,
+                          h.compliance(30e6 * 6894.757, 0.3) + h.compliance(5e6 * 6894.757, 0.2))
+    v = h.contact_validity(c.contact_half_length, c.contact_half_width, c.A, c.B, span_length=span,
+                           pipe_diameter=4.5 * 0.0254)
+    assert v.criterion == criterion and bool(v.ok) == (criterion == "ok")
+    if criterion != "ok":  # the message names the length and the diameter it is compared with
+        assert f"{2 * float(c.contact_half_length):.4g} m" in v.message and "0.1143 m" in v.message
 
 
 @pytest.mark.parametrize("hl, hw, a_, b_, criterion", [

@@ -101,7 +101,11 @@ def test_explicit_step_above_the_contact_limit_fails(point):
 def test_driven_damped_span_settles_to_the_sdof_orbit(point, integrator):
     inputs = _driven(point, time_integrator=integrator)
     r = td.solve(inputs)
-    assert r.status == "ok", r.message
+    # one mode cannot carry the stresses of a 0.9-ms contact (the first mode left out is not quasi-static
+    # over it): the event-driven run, which samples them, says so and is not ok; the orbit is still compared
+    assert r.status == ("not_converged" if integrator == "event" else "ok"), r.message
+    if integrator == "event":
+        assert "no stresses: the 1 modes do not resolve the 0.9" in r.message and "max_normal_stress" not in r.values
     assert r.values["period_revolutions"] == 1 and r.values["impacts_per_revolution"] == 2
     ref = sdof.solve(inputs)
     assert ref.status == "ok"

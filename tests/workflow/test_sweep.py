@@ -48,7 +48,9 @@ def test_failing_points_are_flagged_and_the_sweep_goes_on(reference):
     buckled = reference.status.sel(axial_tension=reference.axial_tension.values[0])
     assert np.all(buckled == 1)
     assert "Euler load" in str(reference.message.sel(axial_tension=reference.axial_tension.values[0]).values.flat[0])
-    assert np.all(reference.status.sel(axial_tension=reference.axial_tension.values[1:]) == 0)
+    # the rest are solved, and none is called ok: at the printed 345-ft span the prescribed closure's contact is
+    # metres long on a 4.5-in pipe, not a Hertz contact (the gate, study.solvers.gate)
+    assert np.all(reference.status.sel(axial_tension=reference.axial_tension.values[1:]) == 2)
     assert np.all(np.isnan(reference.peak_contact_force.sel(axial_tension=reference.axial_tension.values[0])))
 
 
