@@ -13,12 +13,13 @@ Two estimates, drawn side by side:
   load: with f₁ = (π/2L²)√(EI/m), I/A = (D² + d²)/16 and m = ρA, rpm = 60 f₁ =
   (15π/2)·√(E/ρ)·√(D² + d²)/L² (√(E/ρ) in in/s), and E = 30·10⁶ psi with ρ = 490 lb/ft³ gives
   4.762·10⁶.
-- **The span's own natural frequencies** (docs/model.md §2, :func:`study.physics.section.natural_frequencies`):
-  ω_n² = [EI (nπ/L)⁴ + T_eff (nπ/L)²]/M with the effective tension and the mass of pipe, internal mud
-  and annular added mass. The span whirls synchronously — the out-of-balance or bent pipe forces
-  it once per revolution — so a critical rotary speed is where the rotation frequency equals a
-  natural frequency: Ω = ω_n, rpm = 60 f_n. An excitation of order k (k forcing cycles per
-  revolution, e.g. impacts against both walls) is critical at Ω = ω_n/k.
+- **The span's own natural frequencies** (:func:`study.physics.section.natural_frequencies`, the
+  source paper's beam-column, eq. 1–4): ω_n² = [EI (nπ/L)⁴ + T_eff (nπ/L)²]/M with the effective
+  tension and the mass of pipe, internal mud and annular added mass. The span whirls synchronously
+  — an out-of-balance or bent pipe forces it once per revolution — so a critical rotary speed is
+  where the rotation frequency equals a natural frequency: Ω = ω_n, rpm = 60 f_n. An excitation of
+  order k (k forcing cycles per revolution, e.g. impacts against both walls) is critical at
+  Ω = ω_n/k.
 
 The rule of thumb has no tension and no mud: for a bare joint the two estimates agree to the
 rounding of its constant; tension raises and mud lowers the span's critical speeds.

@@ -5,21 +5,24 @@ rad/s, damage rate in 1/s, life in s; a chart shows them per hour and in hours).
 
 - **S-N curves**: the two-slope design curves in air of DNV-RP-C203 (DNV GL, *Fatigue design of
   offshore steel structures*, April 2016, Table 2-1): log₁₀ N = log₁₀ ā₁ − m₁ log₁₀ Δσ up to
-  N = 10⁷ cycles, log₁₀ ā₂ − m₂ log₁₀ Δσ beyond, with Δσ the stress *range* in MPa. Curve B1 is
-  the one DNV-RP-C203 (Appendix A, Table A-1) gives for non-welded base material of rolled or
-  extruded products and seamless pipe — the pipe body of a drill pipe; it is the default. They are
-  design curves (mean minus two standard deviations of log N).
+  N = 10⁷ cycles, log₁₀ ā₂ − m₂ log₁₀ Δσ beyond, with Δσ the stress *range* in MPa. Curve B1, the
+  highest class, is DNV-RP-C203's curve for non-welded base material (its Appendix A classifies
+  details); we take it for the seamless, unwelded pipe body, and it is the default. The lower
+  classes B2, C and D are offered for a rougher or notched detail. They are design curves (mean
+  minus two standard deviations of log N).
 - **Endurance limit**: the stress range at 10⁷ cycles that Table 2-1 prints as each curve's
   fatigue limit; as an amplitude, half of it. Below it the curve continues on the shallower slope
   m₂ (DNV-RP-C203 gives no cut-off for variable amplitude), so a point under the endurance limit
   still accumulates a little damage: the limit is a flag, not a switch.
 - **Mean stress**: the axial (mean) stress enters through an equivalent fully reversed amplitude
   σ_ar, on Goodman's line (default), Gerber's parabola or Soderberg's line (Dowling, *Mechanical
-  Behavior of Materials*, 4th ed., 2013, §10.2; Shigley's *Mechanical Engineering Design*, §6-12). A
-  compressive mean is given no credit (σ_m taken as 0), as is usual for these rules.
+  Behavior of Materials*, 4th ed., 2013, ch. 9, mean-stress effects; Budynas & Nisbett, *Shigley's
+  Mechanical Engineering Design*, ch. 6, fluctuating stresses). A compressive mean is given no
+  credit (σ_m taken as 0), the conservative choice for these rules.
 - **Stress concentration**: the tool joint and its upset raise the local alternating bending stress
   above the pipe body's nominal value by a factor K_t ≥ 1 (an input); it multiplies the alternating
-  stress, not the mean, as DNV-RP-C203 §2.3 applies a stress concentration factor to the range.
+  stress, not the mean, as DNV-RP-C203 applies its stress concentration factors (Section 3) to the
+  stress range.
 - **Damage**: Miner's rule (Miner 1945, J. Appl. Mech. 12, A159, doi:10.1115/1.4009458) at a
   constant amplitude: each stress cycle does damage 1/N(Δσ); a fibre of a rotating bent pipe sees
   ``cycles_per_revolution`` cycles per turn (one for rotating bending: Hansford & Lubinski 1966,
@@ -52,7 +55,7 @@ class SNCurve:
 #: DNV-RP-C203 (April 2016) Table 2-1, S-N curves in air: name -> curve.
 SN_CURVES = {
     "B1": SNCurve(4.0, 15.117, 5.0, 17.146, 106.97,
-                  "DNV-RP-C203 B1 in air: non-welded base material, seamless pipe (the pipe body)"),
+                  "DNV-RP-C203 B1 in air: non-welded base material (taken for the pipe body)"),
     "B2": SNCurve(4.0, 14.885, 5.0, 16.856, 93.59, "DNV-RP-C203 B2 in air"),
     "C": SNCurve(3.0, 12.592, 5.0, 16.320, 73.10, "DNV-RP-C203 C in air"),
     "D": SNCurve(3.0, 12.164, 5.0, 15.606, 52.63, "DNV-RP-C203 D in air"),

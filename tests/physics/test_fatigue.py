@@ -55,8 +55,9 @@ SU, SY, SE = 724e6, 517e6, 60e6  # S-135-like tensile and yield strengths, an en
 
 @pytest.mark.parametrize("correction, strength", [("goodman", SU), ("soderberg", SY)])
 def test_points_on_the_straight_lines_are_equivalent_to_the_endurance_amplitude(correction, strength):
-    # Goodman: sigma_a/S_e + sigma_m/S_u = 1; Soderberg: the same with S_y (Shigley §6-12). Every point
-    # on the line from (0, S_e) to (S, 0) has the fully reversed equivalent S_e.
+    # Goodman: sigma_a/S_e + sigma_m/S_u = 1; Soderberg: the same with S_y (Shigley's Mechanical
+    # Engineering Design, ch. 6). Every point on the line from (0, S_e) to (S, 0) has the fully reversed
+    # equivalent S_e.
     mean = np.linspace(0.0, 0.9 * strength, 7)
     amplitude = SE * (1.0 - mean / strength)
     result = fatigue.equivalent_alternating_stress(amplitude, mean, SU, SY, correction)
@@ -64,7 +65,7 @@ def test_points_on_the_straight_lines_are_equivalent_to_the_endurance_amplitude(
 
 
 def test_points_on_gerbers_parabola_are_equivalent_to_the_endurance_amplitude():
-    # Gerber: sigma_a/S_e + (sigma_m/S_u)^2 = 1 (Shigley §6-12).
+    # Gerber: sigma_a/S_e + (sigma_m/S_u)^2 = 1 (Shigley's Mechanical Engineering Design, ch. 6).
     mean = np.linspace(0.0, 0.9 * SU, 7)
     amplitude = SE * (1.0 - (mean / SU) ** 2)
     np.testing.assert_allclose(fatigue.equivalent_alternating_stress(amplitude, mean, SU, SY, "gerber"), SE,
