@@ -347,3 +347,13 @@ def test_grade_sweeps_check_each_grade_against_the_given_strengths():
     # ... but a given tensile strength of 120 ksi is below S-135's minimum yield (135 ksi)
     with pytest.raises(ConfigError, match="grade S-135's minimum"):
         load_text(with_lines('[pipe] tensile_strength = "120 ksi"', '[sweep.axes] pipe.grade = ["E-75", "S-135"]'))
+
+
+def test_every_limit_option_is_a_config_field():
+    # study.physics.limits.design_limits takes the config's fields by name: a point's inputs feed it.
+    from study.physics.limits import LIMIT_INPUTS, design_limits
+
+    inputs = load_text(MINIMAL).inputs
+    assert set(LIMIT_INPUTS) <= set(config.FIELDS_BY_NAME)
+    result = design_limits(100e6, 20e6, 50e6, inputs["rotary_speed"], **{k: inputs[k] for k in LIMIT_INPUTS})
+    assert result.yield_utilisation == pytest.approx(100e6 / (75_000 * PSI))
