@@ -1,7 +1,7 @@
 """Study configuration: TOML with units in, validated SI inputs and sweep axes out.
 
 A config has optional top-level ``name`` and ``title`` and the sections ``pipe``, ``hole``,
-``rock``, ``mud``, ``load``, ``impact``, ``solver`` and ``sweep``. A value is a number (SI)
+``rock``, ``mud``, ``load``, ``impact``, ``solver``, ``fatigue`` and ``sweep``. A value is a number (SI)
 or a string with units as users write them ("4.5 in", "16.6 lb/ft", "10 ppg", "300 rpm").
 Any scalar input can become a sweep axis under ``[sweep.axes]``: a list of values, or a range
 ``{start, stop, num}`` or ``{start, stop, step}``.
@@ -24,6 +24,8 @@ from typing import Any
 import numpy as np
 
 from study.physics.beam import LOAD_SHAPES
+from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
+from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers import METHODS
 from study.solvers.gate import DEFAULT_TOLERANCE
@@ -89,6 +91,16 @@ FIELDS: tuple[Field, ...] = (
     Field("pipe.youngs_modulus", "pipe_youngs_modulus", "pipe Young's modulus", "Pa", default=206.84e9,
           display_unit="psi", **_POSITIVE),
     Field("pipe.poisson_ratio", "pipe_poisson_ratio", "pipe Poisson's ratio", "", default=0.30, **_POISSON),
+    Field("pipe.grade", "pipe_grade", "API drill-pipe grade (its minimum yield and tensile strengths)", None,
+          default="E-75", choices=tuple(GRADES)),
+    Field("pipe.yield_strength", "yield_strength", "pipe yield strength (default: the grade's minimum)", "Pa",
+          default=None, display_unit="psi", **_POSITIVE),
+    Field("pipe.tensile_strength", "tensile_strength", "pipe tensile strength (default: the grade's minimum)",
+          "Pa", default=None, display_unit="psi", **_POSITIVE),
+    Field("pipe.stress_concentration", "stress_concentration", "stress concentration factor of the tool joint "
+          "and upset on the alternating bending stress (1: the pipe body)", "", default=1.0, lower=1.0),
+    Field("pipe.joint_length", "joint_length", "length of one joint between tool joints (API Range 2: 27-30 ft)",
+          "m", default=9.144, display_unit="ft", **_POSITIVE),
     Field("hole.diameter", "hole_diameter", "bore-hole diameter", "m", display_unit="in", **_POSITIVE),
     Field("rock.youngs_modulus", "rock_youngs_modulus", "rock Young's modulus", "Pa", display_unit="psi",
           **_POSITIVE),
@@ -158,6 +170,12 @@ FIELDS: tuple[Field, ...] = (
           choices=("modal", "momentum")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default="mud", choices=("mud", "none")),
+    Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "
+          "material, the pipe body)", None, default="B1", choices=tuple(SN_CURVES)),
+    Field("fatigue.mean_stress", "mean_stress_correction", "mean-stress correction for the axial stress", None,
+          default="goodman", choices=tuple(MEAN_STRESS_CORRECTIONS)),
+    Field("fatigue.cycles_per_revolution", "cycles_per_revolution", "stress cycles a fibre of the pipe sees per "
+          "revolution (1: rotating bending)", "", default=1.0, **_POSITIVE),
 )
 
 FIELDS_BY_PATH = {f.path: f for f in FIELDS}
@@ -171,7 +189,7 @@ SWEEP_KEYS = {
     "workers": "local worker processes (0: one per core)",
 }
 ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
-SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "solver", "sweep")
+SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "solver", "fatigue", "sweep")
 SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0}
 
 
@@ -347,6 +365,19 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
     below("inner_diameter", "outer_diameter", "a pipe wall needs thickness")
     below("outer_diameter", "hole_diameter", "the pipe must fit in the hole with a clearance")
     below("min_span", "max_span", "the span search needs a range")
+    yield_hi = span("yield_strength")[1]
+    tensile_lo = span("tensile_strength")[0]
+    for grade in axes.get("pipe_grade", [inputs.get("pipe_grade")]):
+        if grade not in GRADES:
+            continue
+        yield_strength = GRADES[grade].min_yield if yield_hi is None else yield_hi
+        tensile_strength = GRADES[grade].min_tensile if tensile_lo is None else tensile_lo
+        if yield_strength >= tensile_strength:
+            problems.append(
+                f"pipe.yield_strength = {yield_strength:g} Pa: must be < pipe.tensile_strength = "
+                f"{tensile_strength:g} Pa (given, or grade {grade}'s minimum; steel yields before it breaks)"
+            )
+            break
 
 
 def load_text(text: str, source: str = "config", overrides: dict[str, Any] | None = None) -> Study:

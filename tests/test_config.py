@@ -269,3 +269,91 @@ def test_crosscheck_config_is_the_paper_example_with_the_self_consistent_closure
     assert list(check.axes["impact_pattern"]) == ["one_wall", "alternating"]
     assert list(check.axes["restitution"]) == [0.5, 1.0]
     assert check.axes["rotary_speed"] * 60 / (2 * np.pi) == pytest.approx([50, 75, 100, 150, 200, 250, 300])
+
+
+# --- limits a drilling engineer decides with: pipe grade, strengths, tool joint, fatigue ------------
+KSI = 1000 * PSI
+
+
+def test_limit_fields_default_to_stated_values():
+    inputs = load_text(MINIMAL).inputs
+    # E-75: the lowest-strength API grade, so a point under its yield is under every grade's.
+    assert inputs["pipe_grade"] == "E-75"
+    assert inputs["yield_strength"] is None and inputs["tensile_strength"] is None  # from the grade
+    assert inputs["stress_concentration"] == 1.0  # the pipe body's nominal stress
+    assert inputs["joint_length"] == pytest.approx(30 * 0.3048)  # API Range 2: 27-30 ft
+    assert inputs["sn_curve"] == "B1"  # DNV-RP-C203 Table 2-1: non-welded base material
+    assert inputs["mean_stress_correction"] == "goodman"
+    assert inputs["cycles_per_revolution"] == 1.0  # rotating bending (Hansford & Lubinski 1966)
+
+
+@pytest.mark.parametrize(
+    "line, name, expected",
+    [
+        ('[pipe] yield_strength = "95 ksi"', "yield_strength", 95 * KSI),  # below E-75's 100 ksi tensile
+        ('[pipe] yield_strength = "95000 psi"', "yield_strength", 95 * KSI),
+        ('[pipe] yield_strength = "655 MPa"', "yield_strength", 655e6),
+        ("[pipe] yield_strength = 6.55e8", "yield_strength", 6.55e8),
+        ('[pipe] tensile_strength = "145 ksi"', "tensile_strength", 145 * KSI),
+        ('[pipe] grade = "S-135"', "pipe_grade", "S-135"),
+        ("[pipe] stress_concentration = 1.6", "stress_concentration", 1.6),
+        ('[pipe] joint_length = "31 ft"', "joint_length", 31 * 0.3048),
+        ('[fatigue] sn_curve = "D"', "sn_curve", "D"),
+        ('[fatigue] mean_stress = "gerber"', "mean_stress_correction", "gerber"),
+        ("[fatigue] cycles_per_revolution = 2", "cycles_per_revolution", 2.0),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "=" in v else None,
+)
+def test_limit_fields_are_read_in_the_units_users_write(line, name, expected):
+    value = load_text(with_lines(line)).inputs[name]
+    assert value == (pytest.approx(expected, rel=1e-12) if isinstance(expected, float) else expected)
+
+
+BAD_LIMITS = [
+    ('[pipe] grade = "P-110"', "pipe.grade = 'P-110': must be one of 'E-75', 'X-95', 'G-105', 'S-135'"),
+    ("[pipe] grade = 105", "pipe.grade = 105: must be one of 'E-75'"),
+    ('[pipe] yield_strength = "-5 ksi"', "pipe.yield_strength = '-5 ksi' (= -3.44738e+07 Pa): must be a finite "
+                                          "number [Pa] > 0"),
+    ('[pipe] yield_strength = "135 ksi/in"', "pipe.yield_strength = '135 ksi/in': "),
+    ('[pipe] yield_strength = "135"', "pipe.yield_strength = '135': '135' has no units"),
+    # a given yield above E-75's minimum tensile strength (100 ksi)
+    ('[pipe] yield_strength = "120 ksi"', "pipe.yield_strength = 8.27371e+08 Pa: must be < pipe.tensile_strength"
+                                          " = 6.89476e+08 Pa (given, or grade E-75's minimum"),
+    ('[pipe] tensile_strength = "70 ksi"', "must be < pipe.tensile_strength = 4.82633e+08 Pa"),
+    ("[pipe] stress_concentration = 0.8", "pipe.stress_concentration = 0.8: must be a finite number >= 1"),
+    ('[pipe] joint_length = "0 ft"', "pipe.joint_length = '0 ft'"),
+    ('[fatigue] sn_curve = "F"', "fatigue.sn_curve = 'F': must be one of 'B1', 'B2', 'C', 'D'"),
+    ('[fatigue] mean_stress = "walker"', "fatigue.mean_stress = 'walker': must be one of 'goodman', 'gerber', "
+                                         "'soderberg', 'none'"),
+    ("[fatigue] cycles_per_revolution = 0", "fatigue.cycles_per_revolution = 0: must be a finite number > 0"),
+    ('[fatigue] curve = "B1"', "fatigue.curve: unknown key (did you mean 'sn_curve'?)"),
+]
+
+
+@pytest.mark.parametrize("line, fragment", BAD_LIMITS, ids=[b[0] for b in BAD_LIMITS])
+def test_bad_limit_fields_are_refused_with_field_value_and_rule(line, fragment):
+    with pytest.raises(ConfigError) as info:
+        load_text(with_lines(line))
+    assert fragment in str(info.value)
+
+
+def test_grade_sweeps_check_each_grade_against_the_given_strengths():
+    # a given yield strength between S-135's minimum yield and minimum tensile strength is accepted
+    assert load_text(with_lines('[pipe] grade = "S-135"', '[pipe] yield_strength = "140 ksi"')).inputs[
+        "yield_strength"] == pytest.approx(140 * KSI)
+    # each swept grade pairs its own minima: E-75 and S-135 together are fine ...
+    study = load_text(with_lines('[sweep.axes] pipe.grade = ["S-135", "E-75"]'))
+    assert list(study.axes["pipe_grade"]) == ["S-135", "E-75"]
+    # ... but a given tensile strength of 120 ksi is below S-135's minimum yield (135 ksi)
+    with pytest.raises(ConfigError, match="grade S-135's minimum"):
+        load_text(with_lines('[pipe] tensile_strength = "120 ksi"', '[sweep.axes] pipe.grade = ["E-75", "S-135"]'))
+
+
+def test_every_limit_option_is_a_config_field():
+    # study.physics.limits.design_limits takes the config's fields by name: a point's inputs feed it.
+    from study.physics.limits import LIMIT_INPUTS, design_limits
+
+    inputs = load_text(MINIMAL).inputs
+    assert set(LIMIT_INPUTS) <= set(config.FIELDS_BY_NAME)
+    result = design_limits(100e6, 20e6, 50e6, inputs["rotary_speed"], **{k: inputs[k] for k in LIMIT_INPUTS})
+    assert result.yield_utilisation == pytest.approx(100e6 / (75_000 * PSI))

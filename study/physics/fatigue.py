@@ -1,0 +1,169 @@
+"""Fatigue of the rotating pipe: S-N curves, mean-stress correction, Miner's damage rate and life.
+
+Pure functions of numpy arrays (broadcasting), SI units inside (stresses in Pa, rotary speed in
+rad/s, damage rate in 1/s, life in s; a chart shows them per hour and in hours).
+
+- **S-N curves**: the two-slope design curves in air of DNV-RP-C203 (DNV GL, *Fatigue design of
+  offshore steel structures*, April 2016, Table 2-1): log₁₀ N = log₁₀ ā₁ − m₁ log₁₀ Δσ up to
+  N = 10⁷ cycles, log₁₀ ā₂ − m₂ log₁₀ Δσ beyond, with Δσ the stress *range* in MPa. Curve B1, the
+  highest class, is DNV-RP-C203's curve for non-welded base material (its Appendix A classifies
+  details); we take it for the seamless, unwelded pipe body, and it is the default. The lower
+  classes B2, C and D are offered for a rougher or notched detail. They are design curves (mean
+  minus two standard deviations of log N).
+- **Endurance limit**: the stress range at 10⁷ cycles that Table 2-1 prints as each curve's
+  fatigue limit; as an amplitude, half of it. Below it the curve continues on the shallower slope
+  m₂ (DNV-RP-C203 gives no cut-off for variable amplitude), so a point under the endurance limit
+  still accumulates a little damage: the limit is a flag, not a switch.
+- **Mean stress**: the axial (mean) stress enters through an equivalent fully reversed amplitude
+  σ_ar, on Goodman's line (default), Gerber's parabola or Soderberg's line (Dowling, *Mechanical
+  Behavior of Materials*, 4th ed., 2013, ch. 9, mean-stress effects; Budynas & Nisbett, *Shigley's
+  Mechanical Engineering Design*, ch. 6, fluctuating stresses). A compressive mean is given no
+  credit (σ_m taken as 0), the conservative choice for these rules.
+- **Stress concentration**: the tool joint and its upset raise the local alternating bending stress
+  above the pipe body's nominal value by a factor K_t ≥ 1 (an input); it multiplies the alternating
+  stress, not the mean, as DNV-RP-C203 applies its stress concentration factors (Section 3) to the
+  stress range.
+- **Damage**: Miner's rule (Miner 1945, J. Appl. Mech. 12, A159, doi:10.1115/1.4009458) at a
+  constant amplitude: each stress cycle does damage 1/N(Δσ); a fibre of a rotating bent pipe sees
+  ``cycles_per_revolution`` cycles per turn (one for rotating bending: Hansford & Lubinski 1966,
+  *Cumulative fatigue damage of drill pipe in dog-legs*, JPT 18(3), 359, doi:10.2118/1258-PA).
+  Failure at D = 1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+MPA = 1e6  # Pa
+
+
+@dataclass(frozen=True)
+class SNCurve:
+    """A two-slope S-N curve of DNV-RP-C203 Table 2-1 (stress range in MPa)."""
+
+    m1: float
+    log_a1: float
+    m2: float
+    log_a2: float
+    printed_fatigue_limit: float  # stress range at the knee as printed [MPa]
+    description: str
+    knee_cycles: float = 1e7
+
+
+#: DNV-RP-C203 (April 2016) Table 2-1, S-N curves in air: name -> curve.
+SN_CURVES = {
+    "B1": SNCurve(4.0, 15.117, 5.0, 17.146, 106.97,
+                  "DNV-RP-C203 B1 in air: non-welded base material (taken for the pipe body)"),
+    "B2": SNCurve(4.0, 14.885, 5.0, 16.856, 93.59, "DNV-RP-C203 B2 in air"),
+    "C": SNCurve(3.0, 12.592, 5.0, 16.320, 73.10, "DNV-RP-C203 C in air"),
+    "D": SNCurve(3.0, 12.164, 5.0, 15.606, 52.63, "DNV-RP-C203 D in air"),
+}
+
+#: Mean-stress corrections: name -> the rule it applies.
+MEAN_STRESS_CORRECTIONS = {
+    "goodman": "Goodman's line: sigma_a/sigma_ar + sigma_m/sigma_u = 1",
+    "gerber": "Gerber's parabola: sigma_a/sigma_ar + (sigma_m/sigma_u)^2 = 1",
+    "soderberg": "Soderberg's line: sigma_a/sigma_ar + sigma_m/sigma_y = 1",
+    "none": "no correction: sigma_ar = sigma_a",
+}
+
+
+def _curve(curve: str) -> SNCurve:
+    if curve not in SN_CURVES:
+        raise ValueError(f"fatigue S-N curve = {curve!r}; allowed: {', '.join(SN_CURVES)}")
+    return SN_CURVES[curve]
+
+
+def fatigue_limit(curve: str = "B1") -> float:
+    """Stress *range* Δσ at the curve's knee (10⁷ cycles) [Pa], from its first segment."""
+    c = _curve(curve)
+    return MPA * 10.0 ** ((c.log_a1 - np.log10(c.knee_cycles)) / c.m1)
+
+
+def endurance_limit(curve: str = "B1") -> float:
+    """Endurance limit as a stress *amplitude* [Pa]: half the curve's fatigue-limit range."""
+    return 0.5 * fatigue_limit(curve)
+
+
+def cycles_to_failure(stress_range, curve: str = "B1"):
+    """Cycles to failure N at a constant stress range Δσ [Pa] on a DNV-RP-C203 curve [-].
+
+    Above the knee's stress range the first segment (slope m₁) applies, below it the second (m₂).
+    A zero range never fails (N = inf); an infinite range fails at once (N = 0).
+    """
+    c = _curve(curve)
+    s = np.asarray(stress_range, dtype=float) / MPA
+    knee = fatigue_limit(curve) / MPA
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        log_s = np.log10(s)
+        log_n = np.where(s >= knee, c.log_a1 - c.m1 * log_s, c.log_a2 - c.m2 * log_s)
+        return 10.0**log_n
+
+
+def equivalent_alternating_stress(alternating_stress, mean_stress, tensile_strength, yield_strength=None,
+                                  correction: str = "goodman"):
+    """Fully reversed amplitude σ_ar [Pa] with the same life as amplitude σ_a about mean σ_m.
+
+    alternating_stress σ_a [Pa] (its magnitude is used), mean_stress σ_m [Pa] (a compressive mean is
+    given no credit: σ_m < 0 counts as 0), tensile_strength σ_u [Pa], yield_strength σ_y [Pa] (for
+    Soderberg only); correction one of :data:`MEAN_STRESS_CORRECTIONS`. Where the mean reaches the
+    strength the rule allows no alternating stress at all and σ_ar is infinite.
+    """
+    if correction not in MEAN_STRESS_CORRECTIONS:
+        raise ValueError(f"fatigue mean-stress correction = {correction!r}; "
+                         f"allowed: {', '.join(MEAN_STRESS_CORRECTIONS)}")
+    amplitude = np.abs(np.asarray(alternating_stress, dtype=float))
+    mean = np.maximum(np.asarray(mean_stress, dtype=float), 0.0)
+    if correction == "none":
+        return amplitude * np.ones_like(mean)
+    if correction == "soderberg":
+        if yield_strength is None:
+            raise ValueError("the Soderberg correction needs the yield strength")
+        remaining = 1.0 - mean / np.asarray(yield_strength, dtype=float)
+    elif correction == "gerber":
+        remaining = 1.0 - (mean / np.asarray(tensile_strength, dtype=float)) ** 2
+    else:
+        remaining = 1.0 - mean / np.asarray(tensile_strength, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(remaining > 0.0, amplitude / np.where(remaining > 0.0, remaining, 1.0), np.inf)
+
+
+def local_equivalent_amplitude(alternating_stress, mean_stress, tensile_strength, yield_strength=None, *,
+                               stress_concentration=1.0, correction: str = "goodman"):
+    """σ_ar [Pa] at the tool joint: K_t times the nominal alternating stress, corrected for the mean.
+
+    stress_concentration K_t [-] multiplies the alternating (bending) stress only; the rest as
+    :func:`equivalent_alternating_stress`.
+    """
+    local = np.asarray(stress_concentration, dtype=float) * np.asarray(alternating_stress, dtype=float)
+    return equivalent_alternating_stress(local, mean_stress, tensile_strength, yield_strength, correction)
+
+
+def endurance_utilisation(equivalent_amplitude, curve: str = "B1"):
+    """σ_ar / endurance limit [-]: above 1 the alternating stress exceeds the endurance limit (a flag).
+
+    equivalent_amplitude σ_ar [Pa] from :func:`local_equivalent_amplitude`.
+    """
+    return np.asarray(equivalent_amplitude, dtype=float) / endurance_limit(curve)
+
+
+def damage_rate(equivalent_amplitude, rotary_speed, cycles_per_revolution=1.0, curve: str = "B1"):
+    """Miner's damage per second of rotation [1/s] at a constant equivalent amplitude.
+
+    equivalent_amplitude σ_ar [Pa] (fully reversed, so the range is 2 σ_ar), rotary_speed Ω [rad/s],
+    cycles_per_revolution [-]: stress cycles a fibre sees per turn. Rate = (Ω/2π)·cycles/N(2 σ_ar);
+    times 3600 for damage per hour.
+    """
+    cycles_per_second = np.asarray(cycles_per_revolution, dtype=float) * np.asarray(rotary_speed) / (2.0 * np.pi)
+    n = cycles_to_failure(2.0 * np.asarray(equivalent_amplitude, dtype=float), curve)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(n > 0.0, cycles_per_second / np.where(n > 0.0, n, 1.0), np.inf)
+
+
+def fatigue_life(damage_rate_per_second):
+    """Time of rotation to failure, Miner's D = 1 [s]: 1/rate, infinite where no damage accrues."""
+    rate = np.asarray(damage_rate_per_second, dtype=float)
+    with np.errstate(divide="ignore"):
+        return np.where(rate > 0.0, 1.0 / np.where(rate > 0.0, rate, 1.0), np.inf)
