@@ -101,6 +101,8 @@ OUTPUT_UNITS_BY_NAME = {
     "span_length": ("ft", "ft"),
     "buckling_length": ("ft", "ft"),
     "wall_time": ("s", "s"),
+    "fatigue_life": ("hour", "h"),
+    "damage_rate": ("1/hour", "1/h"),
 }
 
 UDUNITS_TOKEN = re.compile(r"([A-Za-z_]+)(-?\d+)?")

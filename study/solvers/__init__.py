@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import auto, core, crosscheck, fast, gate, sdof, series, timedomain
+from study.solvers import auto, core, crosscheck, fast, gate, sdof, series, timedomain, utilisation
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
@@ -38,7 +38,8 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     """Solve one design point with ``method`` (default: ``inputs['solver_method']``, config solver.method).
 
     Every result passes :func:`study.solvers.gate.admit`, the one place that decides whether an answer
-    the method calls ``ok`` is physical. An unexpected exception inside a method is caught and returned
+    the method calls ``ok`` is physical, and gets the design limits of its stresses
+    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An unexpected exception inside a method is caught and returned
     as status ``failed`` with its message, so that one bad point never sinks a sweep.
     """
     name = method or inputs.get("solver_method") or "core"
@@ -46,7 +47,7 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
         raise ValueError(f"method = {name!r}; allowed: {', '.join(METHODS)}")
     start = time.perf_counter()
     try:
-        return gate.admit(METHODS[name][0](inputs), inputs)
+        return utilisation.add_limits(gate.admit(METHODS[name][0](inputs), inputs), inputs)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         return PointResult(method=name, status="failed",

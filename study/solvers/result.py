@@ -109,6 +109,13 @@ OUTPUTS = {
     "max_shear_stress_x": ("m", "position along the span of the largest shear stress"),
     "max_shear_stress_t": ("s", "time after contact of the largest shear stress"),
     "alternating_bending_stress": ("Pa", "half the range of the bending stress over the period, worst section"),
+    "yield_utilisation": ("1", "largest normal stress over the grade's minimum yield strength (over 1: yields)"),
+    "endurance_utilisation": ("1", "equivalent alternating stress at the tool joint over the S-N curve's endurance "
+                              "limit (over 1: finite fatigue life)"),
+    "equivalent_alternating_stress": ("Pa", "alternating bending stress x stress concentration, corrected for the "
+                                      "axial mean stress"),
+    "damage_rate": ("s-1", "Miner's fatigue damage per second of rotation"),
+    "fatigue_life": ("s", "time of rotation to fatigue failure (Miner's sum 1)"),
     "location_residual": ("1", "relative change of the located stress maxima in their last refinement round "
                           "(part of the error estimate)"),
     "sdof_stiffness": ("N m-1", "stiffness m omega_1^2 of the one-degree-of-freedom model"),
