@@ -25,7 +25,7 @@ from study.solvers import METHODS, periodic, series, solve_point, timedomain
 from study.workflow.execute import load_chunk, run_grid, warm_up
 from study.workflow.grid import Grid
 
-DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "default.toml"
+DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
 SCREEN_CONFIG = DEFAULT_CONFIG.with_name("screen.toml")
 
 
@@ -72,7 +72,7 @@ def bench_span_search(study, count: int = 24, full_count: int = 6) -> tuple[list
     part = seconds[:full_count]
     lines = [
         "### The fast method over the default study's grid (span search included)", "",
-        f"{count} points spread evenly over the {grid.size}-point grid of `configs/default.toml` (rpm "
+        f"{count} points spread evenly over the {grid.size}-point grid of `configs/paper.toml` (rpm "
         "50-300, every tension, restitution and mud density), `solver.method = fast`, 41 modes, spans "
         f"3 m to 1000 ft; outcomes: {', '.join(f'{n} {k}' for k, n in sorted(statuses.items()))}.", "",
         "| search | points | median [ms] | 90th percentile [ms] | largest [ms] | speed-up of the median |",

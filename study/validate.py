@@ -22,7 +22,7 @@ from study.workflow.dataset import ChunkColumns
 from study.workflow.execute import run_grid
 from study.workflow.grid import Grid
 
-DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "default.toml"
+DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
 CROSSCHECK_CONFIG = DEFAULT_CONFIG.with_name("crosscheck.toml")
 
 #: Paper appendix D ("taken from reference 3", Timoshenko & Goodier): θ [deg] -> (m, n) as printed.
@@ -120,8 +120,8 @@ def paper_example_section() -> list[str]:
          + show("contact_half_width", "in")),
     ]
     return [
-        "## The paper's example (configs/default.toml), physics core at the printed span", "",
-        "Inputs as read and reconstructed in `configs/default.toml` (its header says which were "
+        "## The paper's example (configs/paper.toml), physics core at the printed span", "",
+        "Inputs as read and reconstructed in `configs/paper.toml` (its header says which were "
         "reconstructed and how). Here the span is the paper's printed 345 ft, given: the physics core "
         "evaluates the section, the mud and the impact there. The periodic methods that search for the "
         "span and compute the stresses are compared with the printed span (345 ft; 337 ft without "

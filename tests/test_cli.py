@@ -10,7 +10,7 @@ import pytest
 from study.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
-DEFAULT = str(ROOT / "configs" / "default.toml")
+DEFAULT = str(ROOT / "configs" / "paper.toml")
 
 CORE_KEYS = {
     "inputs", "bending_stiffness", "mass_per_length", "added_mass", "effective_tension",
@@ -40,7 +40,7 @@ def test_point_set_overrides_and_table(capsys):
 
 def test_bad_config_exits_2_without_traceback(tmp_path):
     bad = tmp_path / "bad.toml"
-    bad.write_text((ROOT / "configs" / "default.toml").read_text().replace("restitution = 0.5", "restitution = 7"))
+    bad.write_text((ROOT / "configs" / "paper.toml").read_text().replace("restitution = 0.5", "restitution = 7"))
     proc = subprocess.run([sys.executable, "-m", "study", "point", str(bad), "--set", "pipe.colour=1"],
                           capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 2
@@ -55,7 +55,7 @@ def test_missing_config_exits_2(capsys):
 
 def test_sweep_writes_results_and_charts_then_charts_redraws(tmp_path, capsys):
     config = tmp_path / "tiny.toml"
-    text = (ROOT / "configs" / "default.toml").read_text().split("[sweep]")[0]
+    text = (ROOT / "configs" / "paper.toml").read_text().split("[sweep]")[0]
     config.write_text(text + '[sweep.axes]\nload.rotary_speed = ["100 rpm", "200 rpm", "300 rpm"]\n'
                       'load.axial_tension = ["10000 lbf", "20000 lbf"]\n')
     out = tmp_path / "out"

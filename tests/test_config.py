@@ -197,7 +197,7 @@ def test_overrides_from_the_command_line():
 
 
 def test_default_config_is_the_papers_example():
-    study = config.load(ROOT / "configs" / "default.toml")
+    study = config.load(ROOT / "configs" / "paper.toml")
     point = study.point()
     # Paper §VI: 4 1/2-in pipe, E 30e6 psi, nu 0.30, rock 5e6 psi / 0.20, mud 0.0433 lb/in^3, T0 = 10 000 lb, 300 rpm.
     assert point["outer_diameter"] == pytest.approx(4.5 * 0.0254)
@@ -250,7 +250,7 @@ def test_fuzzed_text_is_refused_cleanly(text):
 
 
 def test_screen_config_is_the_default_grid_with_the_sdof_method():
-    default = config.load(ROOT / "configs" / "default.toml")
+    default = config.load(ROOT / "configs" / "paper.toml")
     screen = config.load(ROOT / "configs" / "screen.toml")
     assert screen.inputs["solver_method"] == "sdof" and screen.name == "screen"
     assert {k: v for k, v in screen.inputs.items() if k != "solver_method"} == \
@@ -259,7 +259,7 @@ def test_screen_config_is_the_default_grid_with_the_sdof_method():
 
 
 def test_crosscheck_config_is_the_paper_example_with_the_self_consistent_closure():
-    default = config.load(ROOT / "configs" / "default.toml")
+    default = config.load(ROOT / "configs" / "paper.toml")
     check = config.load(ROOT / "configs" / "crosscheck.toml")
     assert check.inputs["solver_method"] == "crosscheck" and check.inputs["closure"] == "self_consistent"
     assert check.inputs["span_length"] is None  # the periodic solution finds its own span

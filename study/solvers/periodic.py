@@ -1188,6 +1188,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         return result
     chosen = choice.candidates[0]
     survives = span_survives_doubling(scene, options, chosen.span_length, _tolerance(inputs))
+    result.extras["span_converged"] = survives is None
     if survives is not None:
         result.status = "not_converged"
         choice.summary += f"; {survives}"

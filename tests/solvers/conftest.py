@@ -13,8 +13,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 @pytest.fixture(scope="session")
 def paper_inputs():
-    """The SI inputs of the paper's example (configs/default.toml, its fixed values)."""
-    return config.load(ROOT / "configs" / "default.toml").point()
+    """The SI inputs of the paper's example (configs/paper.toml, its fixed values)."""
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 @pytest.fixture(scope="session")

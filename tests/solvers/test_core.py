@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 @pytest.fixture(scope="module")
 def paper_point():
-    return config.load(ROOT / "configs" / "default.toml").point()
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 def test_paper_example_is_consistent_and_not_a_hertz_contact(paper_point):

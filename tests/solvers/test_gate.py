@@ -17,7 +17,7 @@ RPM = np.pi / 30.0
 
 @pytest.fixture(scope="module")
 def default():
-    return config.load(ROOT / "configs" / "default.toml").point()
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 @pytest.fixture(scope="module")
@@ -165,7 +165,7 @@ def test_the_symmetric_orbit_is_continuous_through_the_degenerate_frequency():
 
 
 def test_min_span_above_max_span_is_refused():
-    text = (ROOT / "configs" / "default.toml").read_text().replace('max_span = "1000 ft"',
+    text = (ROOT / "configs" / "paper.toml").read_text().replace('max_span = "1000 ft"',
                                                                    'max_span = "100 ft"\nmin_span = "200 ft"')
     with pytest.raises(config.ConfigError) as err:
         config.load_text(text, "bad.toml")

@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 @pytest.fixture(scope="module")
 def point():
-    return config.load(ROOT / "configs" / "default.toml").point()
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 def test_equivalent_parameters_of_the_span(point):

@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 @pytest.fixture(scope="module")
 def point():
-    return config.load(ROOT / "configs" / "default.toml").point()
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 def _single_impact(point, integrator, v0=1.0, e=1.0, **kw):

@@ -14,7 +14,7 @@ PSI = 6894.757293168
 
 @pytest.fixture(scope="module")
 def paper_one_wall():
-    inputs = config.load(ROOT / "configs" / "default.toml").point()
+    inputs = config.load(ROOT / "configs" / "paper.toml").point()
     return {**inputs, "impact_pattern": "one_wall", "closure": "self_consistent", "span_length": None}
 
 

@@ -13,7 +13,7 @@ from study.solvers import METHODS, STATUS
 from study.workflow.sweep import run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
-BASE = (ROOT / "configs" / "default.toml").read_text().split("[impact]")[0]
+BASE = (ROOT / "configs" / "paper.toml").read_text().split("[impact]")[0]
 #: the periodic methods search the span in the reading where they find some (one wall, self-consistent); the
 #: methods that take a span get a 3-m span with the prescribed closure (where `core`'s contact is a Hertz one at
 #: 50 rpm)

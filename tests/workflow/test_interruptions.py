@@ -17,7 +17,7 @@ from study.config import load_text
 from study.workflow.sweep import PARTIAL, run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
-BASE = (ROOT / "configs" / "default.toml").read_text().split("[sweep]")[0]
+BASE = (ROOT / "configs" / "paper.toml").read_text().split("[sweep]")[0]
 AXES = """[sweep]
 chunk_size = 40
 [sweep.axes]

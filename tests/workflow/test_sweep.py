@@ -10,7 +10,7 @@ from study.config import load_text
 from study.workflow.sweep import PARTIAL, run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
-TEXT = (ROOT / "configs" / "default.toml").read_text()
+TEXT = (ROOT / "configs" / "paper.toml").read_text()
 SMALL_AXES = """[sweep.axes]
 load.rotary_speed = { start = "100 rpm", stop = "300 rpm", num = 5 }
 load.axial_tension = ["-20000 lbf", "10000 lbf", "20000 lbf"]
