@@ -945,7 +945,7 @@ shear_force.__doc__ = ("Shear force [N] (MODEL.md §5, paper eq. 38): by default
 _SERIES_CHUNK = 4_000_000
 
 
-def _harmonic_numbers(harmonics, pattern):
+def harmonic_numbers(harmonics, pattern):
     """Harmonic numbers m kept, |m| ≤ M: 0, 1, …, M (one_wall) or 1, 3, …, ≤ M (alternating; the
     train is anti-periodic over τ/2, so even harmonics vanish and there is no mean)."""
     mmax = int(harmonics)
@@ -1011,7 +1011,7 @@ def modal_fourier_response(t, omega_n, pulse_duration, period, pattern="one_wall
     t, om, tl, tau = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (t, omega_n, pulse_duration, period)))
     shape = t.shape
     t, om, tl, tau = (v.ravel() for v in (t, om, tl, tau))
-    m = _harmonic_numbers(harmonics, pattern)
+    m = harmonic_numbers(harmonics, pattern)
     bad = _invalid_modes(om, tl, tau, pattern, resonance_tol)
     oms = np.where(bad, 1.0, om)
     tm = t - np.floor(t / tau) * tau  # one period [0, τ): keeps the phases mΩt small
@@ -1088,7 +1088,7 @@ def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, im
     oms = np.where(bad, 1.0, omega)
     kx = np.outer(k, x.ravel())
     kc = k[:, None]
-    m = _harmonic_numbers(harmonics, pattern)
+    m = harmonic_numbers(harmonics, pattern)
     wm = m * (2.0 * np.pi / tau)
     c0 = _train_coefficients(m, tl, tau, pattern)
     hstep = max(1, _SERIES_CHUNK // max(1, n.size))

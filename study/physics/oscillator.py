@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from study.physics.restitution import _check_range, _check_restitution
+from study.physics.restitution import check_range, check_restitution
 
 __all__ = [
     "natural_frequency",
@@ -68,8 +68,8 @@ def natural_frequency(mass, stiffness):
     Parameters: mass m [kg] > 0, stiffness k [N/m] ≥ 0.
     Textbook: eq. 9.4 (seed lines 2257–2335).
     """
-    m = _check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
-    k = _check_range(stiffness, "stiffness", 0.0, np.inf, high_open=True)
+    m = check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
+    k = check_range(stiffness, "stiffness", 0.0, np.inf, high_open=True)
     return np.sqrt(k / m)
 
 
@@ -79,9 +79,9 @@ def damping_ratio(mass, stiffness, damping):
     Parameters: mass m [kg] > 0, stiffness k [N/m] > 0, damping c [N s/m] ≥ 0.
     Textbook: eq. 9.21–9.22 (seed lines 2975–3072).
     """
-    m = _check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
-    k = _check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True)
-    c = _check_range(damping, "damping", 0.0, np.inf, high_open=True)
+    m = check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
+    k = check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True)
+    c = check_range(damping, "damping", 0.0, np.inf, high_open=True)
     return c / (2.0 * np.sqrt(k * m))
 
 
@@ -90,8 +90,8 @@ def damped_frequency(natural_freq, zeta):
 
     Textbook: eq. 9.23 (seed lines 3083–3103).
     """
-    wn = _check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
-    z = _check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
+    wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
+    z = check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
     return wn * np.sqrt(1.0 - z**2)
 
 
@@ -153,9 +153,9 @@ def free_response(t, natural_freq, zeta, x0, v0=0.0) -> State:
 
     Textbook: eq. 9.7 (ζ = 0), 9.18–9.20, 9.26 (x0, v0 = 0; seed lines 3155–3224).
     """
-    t = _check_range(t, "t", 0.0, np.inf, high_open=True)
-    wn = _check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
-    z = _check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
+    t = check_range(t, "t", 0.0, np.inf, high_open=True)
+    wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
+    z = check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
     x0 = np.asarray(x0, float)
     v0 = np.asarray(v0, float)
     C, S = _cs(t, wn, z)
@@ -170,7 +170,7 @@ def logarithmic_decrement(zeta):
 
     Textbook: eq. 9.27–9.28 (seed lines 3095–3190).
     """
-    z = _check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
+    z = check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
     return 2.0 * np.pi * z / np.sqrt(1.0 - z**2)
 
 
@@ -200,10 +200,10 @@ def coulomb_free_response(t, natural_freq, friction_displacement, x0) -> State:
 
     Textbook: eq. 9.30 and the text after it (seed lines 3280–3320, 3384–3433).
     """
-    t = _check_range(t, "t", 0.0, np.inf, high_open=True)
-    wn = float(_check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True,
+    t = check_range(t, "t", 0.0, np.inf, high_open=True)
+    wn = float(check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True,
                             high_open=True))
-    d = float(_check_range(friction_displacement, "friction_displacement", 0.0, np.inf,
+    d = float(check_range(friction_displacement, "friction_displacement", 0.0, np.inf,
                            high_open=True))
     x0 = float(x0)
     s0 = 1.0 if x0 >= 0 else -1.0
@@ -244,7 +244,7 @@ def ramp_response(t, natural_freq, zeta) -> State:
 
     Textbook: eq. 9.36 (seed lines 3571–3811).
     """
-    wn = _check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True, high_open=True)
+    wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True, high_open=True)
     z = np.asarray(zeta, float)
     r = free_response(t, wn, z, 2.0 * z / wn, -1.0)
     return State(x=np.asarray(t, float) - 2.0 * z / wn + r.x, v=1.0 + r.v)
@@ -256,8 +256,8 @@ def dynamic_magnifier(frequency_ratio, zeta):
     Parameters: frequency_ratio r = Ω/ω_n [-] ≥ 0; zeta ζ [-] ≥ 0 (β = inf at r = 1, ζ = 0).
     Textbook: eq. 9.46, 9.50 (seed lines 4258–4301).
     """
-    r = _check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
-    z = _check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
+    r = check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
+    z = check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
     with np.errstate(divide="ignore"):
         return 1.0 / np.hypot(1.0 - r**2, 2.0 * z * r)
 
@@ -267,8 +267,8 @@ def phase_angle(frequency_ratio, zeta):
 
     Textbook: eq. 9.47 (seed lines 4302–4321).
     """
-    r = _check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
-    z = _check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
+    r = check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
+    z = check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
     return np.arctan2(2.0 * z * r, 1.0 - r**2)
 
 
@@ -297,13 +297,13 @@ class ImpactEvent(NamedTuple):
 
 def _validated(params: ImpactParams) -> ImpactParams:
     p = ImpactParams(*params)
-    _check_range(p.mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
-    _check_range(p.stiffness, "stiffness", 0.0, np.inf, high_open=True)
-    _check_range(p.damping, "damping", 0.0, np.inf, high_open=True)
-    _check_range(p.forcing_frequency, "forcing_frequency", 0.0, np.inf, high_open=True)
-    _check_restitution(p.restitution)
+    check_range(p.mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
+    check_range(p.stiffness, "stiffness", 0.0, np.inf, high_open=True)
+    check_range(p.damping, "damping", 0.0, np.inf, high_open=True)
+    check_range(p.forcing_frequency, "forcing_frequency", 0.0, np.inf, high_open=True)
+    check_restitution(p.restitution)
     for name in ("force_amplitude", "constant_force", "gap"):
-        _check_range(getattr(p, name), name, -np.inf, np.inf, low_open=True, high_open=True)
+        check_range(getattr(p, name), name, -np.inf, np.inf, low_open=True, high_open=True)
     return p
 
 
@@ -817,9 +817,9 @@ def hunt_crossley_damping(impact_velocity, restitution, model: str = "lankarani_
     restitution : array_like
         e [-], 0 ≤ e ≤ 1.
     """
-    v0 = _check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
+    v0 = check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
                       high_open=True)
-    e = _check_restitution(restitution)
+    e = check_restitution(restitution)
     if model == "lankarani_nikravesh":
         return 3.0 * (1.0 - e**2) / (4.0 * v0)
     if model == "hunt_crossley":
@@ -854,11 +854,11 @@ def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWall
 
     from study.physics.hertz import hertz_impact
 
-    m = float(_check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True))
-    K = float(_check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True))
-    v0 = float(_check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
+    m = float(check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True))
+    K = float(check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True))
+    v0 = float(check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
                             high_open=True))
-    chi = float(_check_range(hysteresis, "hysteresis", 0.0, np.inf, high_open=True))
+    chi = float(check_range(hysteresis, "hysteresis", 0.0, np.inf, high_open=True))
     ref = hertz_impact(m, v0, K)
     T_H, a_max = float(ref.duration), float(ref.max_approach)
 

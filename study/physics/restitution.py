@@ -50,6 +50,8 @@ __all__ = [
     "collision_chain",
     "impact_sequence",
     "periodic_impact_steady_state",
+    "check_range",
+    "check_restitution",
 ]
 
 STANDARD_GRAVITY = 9.81  # [m/s^2] value used throughout the textbook chapter
@@ -89,7 +91,7 @@ def _describe(values: np.ndarray) -> str:
     return f"[{shown}{more}]"
 
 
-def _check_range(value, name: str, low: float, high: float, *, low_open: bool = False,
+def check_range(value, name: str, low: float, high: float, *, low_open: bool = False,
                  high_open: bool = False) -> np.ndarray:
     """Return ``value`` as a float array; raise ValueError naming it if outside the range.
 
@@ -108,8 +110,9 @@ def _check_range(value, name: str, low: float, high: float, *, low_open: bool = 
     return arr
 
 
-def _check_restitution(restitution, name: str = "restitution") -> np.ndarray:
-    return _check_range(restitution, name, 0.0, 1.0)
+def check_restitution(restitution, name: str = "restitution") -> np.ndarray:
+    """``restitution`` as a float array, checked to lie in [0, 1] (ValueError naming it otherwise)."""
+    return check_range(restitution, name, 0.0, 1.0)
 
 
 def _mass_fractions(m1: np.ndarray, m2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -135,7 +138,7 @@ def _approach(v1, v2) -> np.ndarray:
     """Approach velocity v1 − v2 [m/s], which must be ≥ 0 for an impact to occur."""
     v1 = np.asarray(v1, dtype=float)
     v2 = np.asarray(v2, dtype=float)
-    return _check_range(v1 - v2, "approach velocity v1 - v2", 0.0, np.inf, high_open=True)
+    return check_range(v1 - v2, "approach velocity v1 - v2", 0.0, np.inf, high_open=True)
 
 
 # --- bouncing on a rigid floor --------------------------------------------------------------
@@ -159,8 +162,8 @@ def restitution_from_rebound(drop_height, rebound_height):
 
     Textbook: ch. 8, Problem 8.1 (seed line 1598): dropped from 2 m, rebounds 1.5 m.
     """
-    hd = _check_range(drop_height, "drop_height", 0.0, np.inf, low_open=True, high_open=True)
-    hr = _check_range(rebound_height, "rebound_height", 0.0, np.inf, high_open=True)
+    hd = check_range(drop_height, "drop_height", 0.0, np.inf, low_open=True, high_open=True)
+    hr = check_range(rebound_height, "rebound_height", 0.0, np.inf, high_open=True)
     ratio = hr / hd
     if np.any(ratio > 1.0):
         bad = np.broadcast_to(hr, ratio.shape)[ratio > 1.0]
@@ -186,8 +189,8 @@ def rebound_height(drop_height, restitution):
 
     Textbook: ch. 8, Problem 8.1 (seed line 1598).
     """
-    hd = _check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
-    e = _check_restitution(restitution)
+    hd = check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
+    e = check_restitution(restitution)
     return e**2 * hd
 
 
@@ -212,8 +215,8 @@ def bounce_heights(drop_height, restitution, n_bounces: int):
     """
     if int(n_bounces) != n_bounces or n_bounces < 0:
         raise ValueError(f"n_bounces = {n_bounces!r} is outside the allowed range: integers >= 0")
-    hd = _check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
-    e = _check_restitution(restitution)
+    hd = check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
+    e = check_restitution(restitution)
     k = np.arange(1, int(n_bounces) + 1)
     return (hd[..., None] * e[..., None] ** (2 * k))
 
@@ -244,9 +247,9 @@ def bounce_to_rest(drop_height, restitution, g=STANDARD_GRAVITY):
 
     Textbook: extension of Problem 8.1 (seed line 1598); not a printed result.
     """
-    hd = _check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
-    e = _check_restitution(restitution)
-    g = _check_range(g, "g", 0.0, np.inf, low_open=True, high_open=True)
+    hd = check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
+    e = check_restitution(restitution)
+    g = check_range(g, "g", 0.0, np.inf, low_open=True, high_open=True)
     t_fall = np.sqrt(2.0 * hd / g)
     with np.errstate(divide="ignore", invalid="ignore"):
         time = np.where(e == 1.0, np.where(hd > 0, np.inf, 0.0), t_fall * (1 + e) / (1 - e))
@@ -281,7 +284,7 @@ def restitution_from_velocities(v1_before, v2_before, v1_after, v2_after):
     """
     v1b = np.asarray(v1_before, dtype=float)
     v2b = np.asarray(v2_before, dtype=float)
-    approach = _check_range(v1b - v2b, "approach velocity v1_before - v2_before", 0.0, np.inf,
+    approach = check_range(v1b - v2b, "approach velocity v1_before - v2_before", 0.0, np.inf,
                             low_open=True, high_open=True)
     recession = np.asarray(v2_after, dtype=float) - np.asarray(v1_after, dtype=float)
     return recession / approach
@@ -314,9 +317,9 @@ def collision(m1, v1, m2, v2, restitution) -> CollisionResult:
     Textbook: ch. 8; common velocity (e = 0) eq. (iii) of the clutch example (seed line 206),
     conveyor impulsive ratio 6/7 (Example 8.2, seed line 402), Example 8.7 (seed line 1289-1304).
     """
-    m1 = _check_range(m1, "m1", 0.0, np.inf, low_open=True)
-    m2 = _check_range(m2, "m2", 0.0, np.inf, low_open=True)
-    e = _check_restitution(restitution)
+    m1 = check_range(m1, "m1", 0.0, np.inf, low_open=True)
+    m2 = check_range(m2, "m2", 0.0, np.inf, low_open=True)
+    e = check_restitution(restitution)
     v1 = np.asarray(v1, dtype=float)
     v2 = np.asarray(v2, dtype=float)
     approach = _approach(v1, v2)
@@ -339,9 +342,9 @@ def energy_loss(m1, v1, m2, v2, restitution):
     Textbook: for e = 0 this is the clutch result "energy lost = ½ I1 I2/(I1+I2)(ω1 − ω2)²"
     (seed lines 22-27, 62).
     """
-    m1 = _check_range(m1, "m1", 0.0, np.inf, low_open=True)
-    m2 = _check_range(m2, "m2", 0.0, np.inf, low_open=True)
-    e = _check_restitution(restitution)
+    m1 = check_range(m1, "m1", 0.0, np.inf, low_open=True)
+    m2 = check_range(m2, "m2", 0.0, np.inf, low_open=True)
+    e = check_restitution(restitution)
     approach = _approach(v1, v2)
     return 0.5 * _reduced_mass(m1, m2) * (1.0 - e**2) * approach**2
 
@@ -356,9 +359,9 @@ def collision_impulse(m1, v1, m2, v2, restitution):
 
     Textbook: ch. 8, impulse = change of momentum.
     """
-    m1 = _check_range(m1, "m1", 0.0, np.inf, low_open=True)
-    m2 = _check_range(m2, "m2", 0.0, np.inf, low_open=True)
-    e = _check_restitution(restitution)
+    m1 = check_range(m1, "m1", 0.0, np.inf, low_open=True)
+    m2 = check_range(m2, "m2", 0.0, np.inf, low_open=True)
+    e = check_restitution(restitution)
     approach = _approach(v1, v2)
     return _reduced_mass(m1, m2) * (1.0 + e) * approach
 
@@ -382,9 +385,9 @@ def impulse_on_wall(mass, approach_velocity, restitution):
 
     Textbook: ch. 8, impulse = change of momentum with Newton's law of restitution.
     """
-    m = _check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
-    v = _check_range(approach_velocity, "approach_velocity", 0.0, np.inf, high_open=True)
-    e = _check_restitution(restitution)
+    m = check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
+    v = check_range(approach_velocity, "approach_velocity", 0.0, np.inf, high_open=True)
+    e = check_restitution(restitution)
     return m * (1.0 + e) * v
 
 
@@ -422,7 +425,7 @@ def collision_chain(masses, velocities, restitution, *, max_impacts: int = 100_0
 
     Textbook: ch. 8, Problem 8.2 (Newton's cradle, seed lines 1701-1737).
     """
-    m = _check_range(masses, "masses", 0.0, np.inf, low_open=True, high_open=True)
+    m = check_range(masses, "masses", 0.0, np.inf, low_open=True, high_open=True)
     v = np.array(velocities, dtype=float)
     if m.ndim != 1 or v.shape != m.shape:
         raise ValueError(f"masses and velocities must be 1-D of equal length; got shapes "
@@ -430,7 +433,7 @@ def collision_chain(masses, velocities, restitution, *, max_impacts: int = 100_0
     if not np.all(np.isfinite(v)):
         raise ValueError(f"velocities = {_describe(v[~np.isfinite(v)])} is outside the allowed "
                          "range (-inf, inf)")
-    e = float(_check_restitution(restitution))
+    e = float(check_restitution(restitution))
     tol = rtol * float(np.max(np.abs(v), initial=0.0))
     impacts = 0
     while True:
@@ -476,9 +479,9 @@ def impact_sequence(initial_speed, velocity_ratio, speed_squared_gain, n_impacts
     """
     if int(n_impacts) != n_impacts or n_impacts < 1:
         raise ValueError(f"n_impacts = {n_impacts!r} is outside the allowed range: integers >= 1")
-    v = _check_range(initial_speed, "initial_speed", 0.0, np.inf, high_open=True)
-    r = _check_range(velocity_ratio, "velocity_ratio", 0.0, 1.0)
-    d = _check_range(speed_squared_gain, "speed_squared_gain", 0.0, np.inf, high_open=True)
+    v = check_range(initial_speed, "initial_speed", 0.0, np.inf, high_open=True)
+    r = check_range(velocity_ratio, "velocity_ratio", 0.0, 1.0)
+    d = check_range(speed_squared_gain, "speed_squared_gain", 0.0, np.inf, high_open=True)
     v, r, d = np.broadcast_arrays(v, r, d)
     before = np.empty(v.shape + (int(n_impacts),))
     after = np.empty_like(before)
@@ -516,8 +519,8 @@ def periodic_impact_steady_state(velocity_ratio, speed_squared_gain) -> ImpactCy
     Textbook: Example 8.2(b), roller conveyor (seed lines 447-493): 2.3551 m/s before,
     2.0187 m/s after, mean 2.1869 m/s (printed 2.187 m/s in the statement, line 157).
     """
-    r = _check_range(velocity_ratio, "velocity_ratio", 0.0, 1.0, high_open=True)
-    d = _check_range(speed_squared_gain, "speed_squared_gain", 0.0, np.inf, high_open=True)
+    r = check_range(velocity_ratio, "velocity_ratio", 0.0, 1.0, high_open=True)
+    d = check_range(speed_squared_gain, "speed_squared_gain", 0.0, np.inf, high_open=True)
     before = np.sqrt(d / (1.0 - r**2))
     after = r * before
     return ImpactCycle(before=before, after=after, mean=0.5 * (before + after))

@@ -49,13 +49,13 @@ Floquet multipliers of the period-τ orbit are the squares of R's eigenvalues (b
 from __future__ import annotations
 
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import hertz, oscillator
-from study.solvers.periodic import given_span, make_scene, natural_frequencies
+from study.solvers.periodic import Scene, given_span, make_scene, natural_frequencies
 from study.solvers.result import PointResult, choice_input
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
@@ -73,13 +73,33 @@ MASS_CHOICES = ("modal", "momentum")
 DAMPING_CHOICES = ("mud", "none")
 
 
-def equivalent_parameters(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    """The SDOF parameters of the design point's span (SI floats; see the module docstring).
+@dataclass(frozen=True)
+class EquivalentSdof:
+    """The one-degree-of-freedom model of a design point's span (SI; see the module docstring)."""
 
-    Needs ``inputs['span_length']``. Returns m [kg], k [N/m], omega1 [rad/s], clearance [m],
-    rotary_speed Ω [rad/s], restitution, damping [N s/m], drive_amplitude F0 [N],
-    drive_source, hertz_stiffness K [N m^-3/2] (at the assumed-mode curvature κ = c (π/L)²),
-    axial_curvature [1/m], pattern, mass_model, damping_model, and the scene.
+    span_length: float  #: L [m]
+    mass: float  #: m [kg] (modal M L/2 or momentum 2 M L/π, ``mass_model``)
+    stiffness: float  #: k = m ω₁² [N/m]
+    omega1: float  #: ω₁ [rad/s]
+    clearance: float  #: c [m]
+    rotary_speed: float  #: Ω [rad/s]
+    restitution: float  #: e [-]
+    damping: float  #: linearised mud damping of the first mode [N s/m]
+    drive_amplitude: float  #: F0 [N] of F0 cos Ωt
+    drive_source: str  #: where F0 comes from
+    hertz_stiffness: float  #: K [N m^-3/2] at the assumed-mode curvature
+    axial_curvature: float  #: κ = c (π/L)² [1/m]
+    pattern: str  #: impact pattern
+    mass_model: str
+    damping_model: str
+    side_force: float  #: constant side force towards +c [N]
+    scene: Scene  #: the point's scene (section properties)
+
+
+def equivalent_parameters(inputs: Mapping[str, Any]) -> EquivalentSdof:
+    """The SDOF model of the design point's span (see the module docstring and :class:`EquivalentSdof`).
+
+    Needs ``inputs['span_length']``. The Hertz stiffness is at the assumed-mode curvature κ = c (π/L)².
     """
     scene = make_scene(inputs)
     span = float(inputs["span_length"])
@@ -104,20 +124,20 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> dict[str, Any]:
     kappa = c * (np.pi / span) ** 2
     a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, kappa)
     K = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
-    side = float(inputs.get("side_force") or 0.0)
-    return dict(side_force=side, m=m, k=m * omega1**2, omega1=omega1, clearance=c, rotary_speed=Om, restitution=e,
-                damping=damping, drive_amplitude=F0, drive_source=source, hertz_stiffness=K,
-                axial_curvature=kappa, pattern=scene.pattern, mass_model=mass_model,
-                damping_model=damping_model, span_length=span, scene=scene)
+    return EquivalentSdof(span_length=span, mass=m, stiffness=m * omega1**2, omega1=omega1, clearance=c,
+                          rotary_speed=Om, restitution=e, damping=damping, drive_amplitude=F0, drive_source=source,
+                          hertz_stiffness=K, axial_curvature=kappa, pattern=scene.pattern, mass_model=mass_model,
+                          damping_model=damping_model, side_force=float(inputs.get("side_force") or 0.0),
+                          scene=scene)
 
 
-def impact_params(par: Mapping[str, Any]) -> oscillator.ImpactParams:
+def impact_params(par: EquivalentSdof) -> oscillator.ImpactParams:
     """The :class:`oscillator.ImpactParams` of the SDOF (wall at +c)."""
-    return oscillator.ImpactParams(mass=par["m"], stiffness=par["k"], damping=par["damping"],
-                                   force_amplitude=par["drive_amplitude"],
-                                   forcing_frequency=par["rotary_speed"], gap=par["clearance"],
-                                   constant_force=par.get("side_force", 0.0),
-                                   restitution=par["restitution"])
+    return oscillator.ImpactParams(mass=par.mass, stiffness=par.stiffness, damping=par.damping,
+                                   force_amplitude=par.drive_amplitude,
+                                   forcing_frequency=par.rotary_speed, gap=par.clearance,
+                                   constant_force=par.side_force,
+                                   restitution=par.restitution)
 
 
 # --- closed-form pieces (public oscillator API only) ----------------------------------------------
@@ -284,11 +304,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     par = equivalent_parameters(inputs)
     p = impact_params(par)
     v = result.values
-    v.update(span_length=par["span_length"], first_natural_frequency=par["omega1"] / (2 * np.pi),
-             equivalent_mass=par["m"], sdof_stiffness=par["k"], sdof_damping=par["damping"],
-             drive_amplitude=par["drive_amplitude"], clearance=par["clearance"])
-    result.extras.update(drive_source=par["drive_source"], sdof_mass_model=par["mass_model"],
-                         sdof_damping_model=par["damping_model"], impact_pattern=par["pattern"])
+    v.update(span_length=par.span_length, first_natural_frequency=par.omega1 / (2 * np.pi),
+             equivalent_mass=par.mass, sdof_stiffness=par.stiffness, sdof_damping=par.damping,
+             drive_amplitude=par.drive_amplitude, clearance=par.clearance)
+    result.extras.update(drive_source=par.drive_source, sdof_mass_model=par.mass_model,
+                         sdof_damping_model=par.damping_model, impact_pattern=par.pattern)
     X = free_amplitude(p)
     v["free_amplitude"] = X
     if p.stiffness > 0:  # the static offset of the side force adds to the excursion
@@ -298,22 +318,22 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = "undamped drive at the first natural frequency: the free amplitude is unbounded"
         result.wall_time = time.perf_counter() - start
         return result
-    if par["pattern"] == "alternating" and par["side_force"] != 0:
+    if par.pattern == "alternating" and par.side_force != 0:
         result.status = "incomplete"
         result.message = "a side force breaks the symmetry: no alternating orbit (use impact_pattern one_wall)"
         result.wall_time = time.perf_counter() - start
         return result
     n_scan = int(inputs.get("sdof_scan", 400))
-    orbits = symmetric_orbits(p, n_scan) if par["pattern"] == "alternating" else one_wall_orbit(p, n_scan)
+    orbits = symmetric_orbits(p, n_scan) if par.pattern == "alternating" else one_wall_orbit(p, n_scan)
     result.extras["orbits_found"] = len(orbits)
     stable = [o for o in orbits if o["verdict"] == "stable"]
     orbit = stable[0] if stable else (orbits[0] if orbits else None)
     messages = []
     if orbit is None:
-        if X < par["clearance"]:
+        if X < par.clearance:
             verdict = "no_impact"
             messages.append(f"no impact: no period-1 impacting orbit, and the drive alone moves the mass "
-                            f"{X / par['clearance']:.3g} c (< c) in steady state")
+                            f"{X / par.clearance:.3g} c (< c) in steady state")
             v.update(impacts_per_revolution=0.0, impact_velocity=0.0, impulse=0.0)
         else:
             verdict, msg = _without_orbit(p, par)
@@ -322,18 +342,18 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         verdict = orbit["verdict"]
         messages.append(orbit["message"])
         vel = orbit["velocity"]
-        elastic = hertz.hertz_impact(par["m"], vel, par["hertz_stiffness"])
-        v.update(impact_velocity=vel, impulse=par["m"] * (1 + par["restitution"]) * vel,
-                 impacts_per_revolution=2.0 if par["pattern"] == "alternating" else 1.0,
+        elastic = hertz.hertz_impact(par.mass, vel, par.hertz_stiffness)
+        v.update(impact_velocity=vel, impulse=par.mass * (1 + par.restitution) * vel,
+                 impacts_per_revolution=2.0 if par.pattern == "alternating" else 1.0,
                  max_approach=float(elastic.max_approach), hertz_duration=float(elastic.duration),
-                 peak_contact_force=float(elastic.max_force), axial_curvature=par["axial_curvature"],
+                 peak_contact_force=float(elastic.max_force), axial_curvature=par.axial_curvature,
                  max_floquet_multiplier=float(np.max(np.abs(orbit["multipliers"]))))
         result.extras.update(floquet_multipliers=[complex(z) for z in orbit["multipliers"]],
                              orbit_phase=orbit["phase"])
         if orbit["half_multipliers"] is not None:
             result.extras["half_period_multipliers"] = [complex(z) for z in orbit["half_multipliers"]]
-        if X < par["clearance"]:
-            messages.append(f"a non-impacting steady state (amplitude {X / par['clearance']:.3g} c) coexists")
+        if X < par.clearance:
+            messages.append(f"a non-impacting steady state (amplitude {X / par.clearance:.3g} c) coexists")
     result.extras["stability"] = verdict
     result.status = VERDICT_STATUS[verdict]
     result.message = "; ".join(messages)

@@ -237,7 +237,7 @@ def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Ma
             raise ValueError(f"method = {method!r}; allowed: fast, series")
         values, y, wall = evaluate(n, m)
         n_odd = (n + 1) // 2
-        m_kept = None if m is None else beam._harmonic_numbers(m, scene.pattern).size
+        m_kept = None if m is None else beam.harmonic_numbers(m, scene.pattern).size
         rows.append({
             "method": method, "modes": n, "harmonics": m, "terms": n_odd if m is None else n_odd * m_kept,
             "wall_time": wall,

@@ -187,9 +187,9 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
     """The modal model of ``inputs`` (needs ``span_length``)."""
     par = sdof.equivalent_parameters({**inputs, "sdof_mass": "modal",
                                       "sdof_damping": "none" if inputs.get("time_damping") == "none" else "mud"})
-    scene = par["scene"]
+    scene = par.scene
     props = scene.props
-    L = par["span_length"]
+    L = par.span_length
     N = int(inputs.get("time_modes", 5))
     if N < 1:
         raise ValueError(f"time_modes = {N}: at least 1")
@@ -201,11 +201,11 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
         raise ValueError("contact_points are fractions of the span in (0, 1)")
     damping_model = choice_input(inputs, "time_damping", "linearised", DAMPING_CHOICES)
     contact_damping = choice_input(inputs, "contact_damping", "calibrated", CONTACT_DAMPING_CHOICES)
-    model = ModalModel(span=L, mass=par["m"], modes=modes, omega=omega, clearance=par["clearance"],
-                       stiffness=par["hertz_stiffness"], curvature=par["axial_curvature"], points=points,
-                       phi=np.sin(np.pi * np.outer(points, modes)), rotary_speed=par["rotary_speed"],
-                       drive=par["drive_amplitude"], drive_source=par["drive_source"],
-                       restitution=par["restitution"], contact_damping=contact_damping,
+    model = ModalModel(span=L, mass=par.mass, modes=modes, omega=omega, clearance=par.clearance,
+                       stiffness=par.hertz_stiffness, curvature=par.axial_curvature, points=points,
+                       phi=np.sin(np.pi * np.outer(points, modes)), rotary_speed=par.rotary_speed,
+                       drive=par.drive_amplitude, drive_source=par.drive_source,
+                       restitution=par.restitution, contact_damping=contact_damping,
                        damping_model=damping_model, scene=scene)
     D = props["drag_coefficient_per_length"]
     if damping_model == "linearised":

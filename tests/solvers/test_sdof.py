@@ -19,23 +19,23 @@ def point():
 
 def test_equivalent_parameters_of_the_span(point):
     par = sdof.equivalent_parameters(point)
-    props = par["scene"].props
+    props = par.scene.props
     L, M = point["span_length"], props["mass_per_length"]
     w1 = float(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M)[0])
-    assert par["m"] == pytest.approx(M * L / 2)  # modal mass of sin(pi x / L)
-    assert par["omega1"] == pytest.approx(w1) and par["k"] == pytest.approx(M * L / 2 * w1**2)
-    assert par["clearance"] == pytest.approx((8.75 - 4.5) / 2 * 0.0254)
+    assert par.mass == pytest.approx(M * L / 2)  # modal mass of sin(pi x / L)
+    assert par.omega1 == pytest.approx(w1) and par.stiffness == pytest.approx(M * L / 2 * w1**2)
+    assert par.clearance == pytest.approx((8.75 - 4.5) / 2 * 0.0254)
     # linearised drag 8 D Omega c/(3 pi) per length, projected on sin(pi x/L): x 4L/(3 pi)
-    D, Om, c = props["drag_coefficient_per_length"], point["rotary_speed"], par["clearance"]
-    assert par["damping"] == pytest.approx(8 * D * Om * c / (3 * np.pi) * 4 * L / (3 * np.pi))
+    D, Om, c = props["drag_coefficient_per_length"], point["rotary_speed"], par.clearance
+    assert par.damping == pytest.approx(8 * D * Om * c / (3 * np.pi) * 4 * L / (3 * np.pi))
     # default drive: mean impact force of the prescribed closure, two impacts per revolution
     tau = 2 * np.pi / Om
-    assert par["drive_amplitude"] == pytest.approx(2 * par["m"] * 1.5 * Om * c / tau)
+    assert par.drive_amplitude == pytest.approx(2 * par.mass * 1.5 * Om * c / tau)
     other = sdof.equivalent_parameters({**point, "sdof_mass": "momentum", "sdof_damping": "none",
                                         "drive_amplitude": 123.0, "span_length": 40.0})
-    assert other["m"] == pytest.approx(2 * M * 40.0 / np.pi) and other["damping"] == 0.0
-    assert other["drive_amplitude"] == 123.0
-    assert other["k"] / other["m"] == pytest.approx(
+    assert other.mass == pytest.approx(2 * M * 40.0 / np.pi) and other.damping == 0.0
+    assert other.drive_amplitude == 123.0
+    assert other.stiffness / other.mass == pytest.approx(
         float(section.natural_frequencies(40.0, props["bending_stiffness"], props["effective_tension"], M)[0]) ** 2)
 
 
