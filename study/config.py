@@ -27,9 +27,7 @@ from study.physics.beam import LOAD_SHAPES
 from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
-from study.solvers import METHODS
-from study.solvers.gate import DEFAULT_TOLERANCE
-from study.solvers.periodic import IMPACT_MASSES, MAX_POLES
+from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, Options
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -123,22 +121,24 @@ FIELDS: tuple[Field, ...] = (
           choices=("prescribed", "self_consistent")),
     Field("impact.mass", "impact_mass", "mass of the closure's impulse m_e (1 + e) V_p: 'momentum' 2ML/pi (the "
           "paper's), 'modal' ML/2", None, default="momentum", choices=IMPACT_MASSES),
-    Field("solver.method", "solver_method", "solution method", None, default="core", choices=tuple(METHODS)),
+    Field("solver.method", "solver_method", "solution method", None, default="core",
+          choices=tuple(METHOD_DESCRIPTIONS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
           "m", default=None, display_unit="ft", **_POSITIVE),
-    Field("solver.max_span", "max_span", "longest span searched", "m", default=304.8, display_unit="ft",
+    Field("solver.max_span", "max_span", "longest span searched", "m", default=Options.max_span, display_unit="ft",
           **_POSITIVE),
-    Field("solver.min_span", "min_span", "shortest span searched", "m", default=3.0, display_unit="ft",
+    Field("solver.min_span", "min_span", "shortest span searched", "m", default=Options.min_span, display_unit="ft",
           **_POSITIVE),
     Field("solver.max_poles", "max_poles", "most resonance candidates (mode x harmonic pairs, about 16 bytes each) "
           "the span search may enumerate: a memory guard, raise it on a larger machine", "", default=MAX_POLES,
           integer=True, lower=1.0),
-    Field("solver.modes", "modes", "highest mode number kept by the periodic methods", "", default=41,
+    Field("solver.modes", "modes", "highest mode number kept by the periodic methods", "", default=Options.modes,
           integer=True, lower=1.0),
     Field("solver.resonance_width", "resonance_width",
-          "resonances narrower than this relative span width are not searched for spans", "", default=1e-6,
+          "resonances narrower than this relative span width are not searched for spans", "",
+          default=Options.resonance_width,
           lower=0.0, upper=0.1),
-    Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default="parabolic",
+    Field("solver.load_shape", "load_shape", "spatial shape of the contact load", None, default=Options.load_shape,
           choices=tuple(LOAD_SHAPES)),
     Field("solver.tolerance", "tolerance", "relative accuracy asked of every method's answer (its error "
           "estimate; the max normal stress for the periodic methods): a result above it is not_converged", "",

@@ -1,7 +1,8 @@
 """Methods for one design point, behind one interface.
 
 ``METHODS`` is the registry (as scipy.integrate's solver table): name -> (solve function, one-line
-description). Every solve function takes the SI inputs of one point and returns a
+description), built on first use from :data:`METHOD_MODULES` and the descriptions declared with the options
+(:mod:`study.solvers.options`). Every solve function takes the SI inputs of one point and returns a
 :class:`~study.solvers.result.PointResult` whose status and message say what happened; none raises
 for a numerical or physical failure of the point.
 """
@@ -12,24 +13,28 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import auto, core, crosscheck, fast, gate, sdof, series, timedomain, utilisation
+import importlib
+
+from study.solvers.options import METHOD_DESCRIPTIONS
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
-METHODS = {
-    "core": (core.solve, "physics core: section, mud, tension, and the Hertz/Lee impact at a given span"),
-    "fast": (fast.solve, "periodic impact solution: span search, closed-form modal response with a "
-             "quasi-static correction, stresses"),
-    "series": (series.solve, "the paper's double Fourier series (modes x harmonics) with the same span search "
-               "as fast: the reproduction, and the slow reference"),
-    "auto": (auto.solve, "the cheapest periodic method (fast, then series) whose error estimate meets "
-             "solver.tolerance"),
-    "time-domain": (timedomain.solve, "modal span integrated through Hertz contact with both walls (explicit "
-                    "Verlet or implicit LSODA) until periodic: the check on the periodic assumption"),
-    "crosscheck": (crosscheck.solve, "the fast periodic solution replayed through one revolution of real Hertz "
-                   "contact in the time domain: agrees within solver.check_tolerance, or flagged with the reasons"),
-    "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "
-             "exact period-1 orbit and Floquet stability at a given span"),
-}
+#: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
+#: package, its options or its result type (as the config does) loads no solver.
+METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
+                  "crosscheck": "crosscheck", "sdof": "sdof"}
+
+
+def _registry() -> dict:
+    return {name: (importlib.import_module(f"study.solvers.{module}").solve, METHOD_DESCRIPTIONS[name])
+            for name, module in METHOD_MODULES.items()}
+
+
+def __getattr__(name: str):
+    if name == "METHODS":  # the registry, built once on first access (PEP 562)
+        globals()["METHODS"] = methods = _registry()
+        return methods
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve_point"]
 
@@ -39,15 +44,19 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
 
     Every result passes :func:`study.solvers.gate.admit`, the one place that decides whether an answer
     the method calls ``ok`` is physical, and gets the design limits of its stresses
-    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An unexpected exception inside a method is caught and returned
-    as status ``failed`` with its message, so that one bad point never sinks a sweep.
+    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An
+    unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
+    that one bad point never sinks a sweep.
     """
+    from study.solvers import gate, utilisation
+
+    methods = globals().get("METHODS") or __getattr__("METHODS")
     name = method or inputs.get("solver_method") or "core"
-    if name not in METHODS:
-        raise ValueError(f"method = {name!r}; allowed: {', '.join(METHODS)}")
+    if name not in methods:
+        raise ValueError(f"method = {name!r}; allowed: {', '.join(methods)}")
     start = time.perf_counter()
     try:
-        return utilisation.add_limits(gate.admit(METHODS[name][0](inputs), inputs), inputs)
+        return utilisation.add_limits(gate.admit(methods[name][0](inputs), inputs), inputs)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         return PointResult(method=name, status="failed",

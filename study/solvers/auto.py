@@ -20,7 +20,7 @@ import time
 from typing import Any, Callable, Mapping
 
 from study.solvers import fast, gate, series
-from study.solvers.gate import DEFAULT_TOLERANCE
+from study.solvers.options import DEFAULT_TOLERANCE
 from study.solvers.result import PointResult
 
 Solve = Callable[[Mapping[str, Any]], PointResult]

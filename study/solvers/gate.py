@@ -32,11 +32,9 @@ import numpy as np
 
 from study.physics import hertz
 from study.solvers.core import contact_compliance
+from study.solvers.options import DEFAULT_TOLERANCE
 from study.solvers.result import PointResult
 
-#: Default relative tolerance (config ``solver.tolerance``): 1 % of the answer, the accuracy a design
-#: decision needs.
-DEFAULT_TOLERANCE = 1e-2
 
 #: Outputs that an ``ok`` result may not report as NaN or infinite (absent is fine: a method fills what it
 #: computes).

@@ -43,10 +43,8 @@ from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
 from study.solvers import extremes
 from study.solvers.core import contact_compliance, scene as section_scene
+from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, Options
 from study.solvers.result import PointResult, choice_input
-
-#: The mass of the closure's impulse (Scene.equivalent_mass).
-IMPACT_MASSES = ("momentum", "modal")
 
 #: Relative width at which the span search stops shrinking a bracket of the screening residual with no
 #: pole within :data:`POLE_FREE_WINDOW` bracket widths (F is continuous there, so its sign change is a
@@ -56,23 +54,6 @@ IMPACT_MASSES = ("momentum", "modal")
 #: from there.
 ROOT_RTOL = 1e-6
 POLE_FREE_WINDOW = 10.0
-
-
-@dataclass(frozen=True)
-class Options:
-    """Resolution and search settings of the periodic methods."""
-
-    modes: int = 41  #: highest (odd) mode number kept
-    min_span: float = 3.0  #: shortest span searched [m]
-    max_span: float = 304.8  #: longest span searched [m] (1000 ft)
-    load_shape: str = "parabolic"  #: spatial shape of the contact load (beam.LOAD_SHAPES)
-    samples: int = 4  #: samples of F inside each interval between (wide) poles
-    resonance_width: float = 1e-6  #: resonances narrower than this (relative span) are not searched
-    time_points: int = 480  #: points over one (half) period outside the pulse, for condition 1
-    pulse_points: int = 64  #: points across the pulse
-    space_points: int = 48  #: points over half the span
-    tolerance: float = 1e-6  #: relative slack of condition 1, |y| <= c (1 + tolerance)
-    fixed_point_tol: float = 1e-9  #: relative change of T_L that ends the T_L-κ iteration
 
 
 @dataclass(frozen=True)
@@ -166,10 +147,6 @@ def natural_frequencies(scene: Scene, span_length, modes) -> np.ndarray:
 def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
     """Harmonic numbers of the rotation present in the pulse train: all (one_wall) or odd (alternating)."""
     return np.arange(1, highest + 1, scene.impacts_per_revolution, dtype=float)
-
-
-#: Default of config ``solver.max_poles``: resonance candidates the span search may enumerate (memory guard).
-MAX_POLES = 20_000_000
 
 
 def resonance_candidates(scene: Scene, modes, min_span: float) -> int:
@@ -930,16 +907,8 @@ def _excess(scene: Scene, impact: Impact, options: Options, x, t) -> str | None:
 
 # --- the design-point pipeline shared by the periodic methods ------------------------------------
 def options_from(inputs: Mapping[str, Any]) -> Options:
-    """Solver settings from the point's inputs (defaults where the config leaves them out)."""
-    defaults = Options()
-    return Options(
-        modes=int(inputs.get("modes") or defaults.modes),
-        min_span=float(inputs.get("min_span") or defaults.min_span),
-        max_span=float(inputs.get("max_span") or defaults.max_span),
-        load_shape=inputs.get("load_shape") or defaults.load_shape,
-        resonance_width=float(defaults.resonance_width if inputs.get("resonance_width") is None
-                              else inputs["resonance_width"]),
-    )
+    """Solver settings from the point's inputs (the declared defaults where the config leaves them out)."""
+    return Options.from_inputs(inputs)
 
 
 def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
@@ -1107,8 +1076,6 @@ def distinct_spans(impacts: list) -> list:
 
 
 def _tolerance(inputs: Mapping[str, Any]) -> float:
-    from study.solvers.gate import DEFAULT_TOLERANCE
-
     return DEFAULT_TOLERANCE if inputs.get("tolerance") is None else float(inputs["tolerance"])
 
 
