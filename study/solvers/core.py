@@ -2,8 +2,9 @@
 
 Section and mud properties, effective tension and buckling, and — when the span is known —
 its natural frequency, the equivalent mass and the Hertz/Lee impact of the midspan on the wall
-with the velocity of the prescribed closure V_p = Ω c (docs/model.md §2–4). The periodic
-methods build on :func:`scene`; the ``core`` method reports it as it is.
+with the velocity of the prescribed closure V_p = Ω c (docs/model.md §2–4). The scene of
+the point (:mod:`study.solvers.scene`) is what every method builds on; the ``core`` method reports it as
+it is.
 """
 
 from __future__ import annotations
@@ -15,45 +16,10 @@ import numpy as np
 
 from study.physics import hertz, section
 from study.solvers.result import PointResult
+from study.solvers.scene import contact_compliance, section_properties
 
 # Modes reported for the natural frequencies of a given span.
 FREQUENCY_MODES = (1, 3, 5)
-
-
-def scene(inputs: Mapping[str, Any]) -> dict[str, float]:
-    """Span-independent properties of the design point (SI floats).
-
-    inputs: the SI inputs of one point, keyed as in :data:`study.config.FIELDS` names.
-    """
-    r_o = inputs["outer_diameter"] / 2.0
-    r_i = inputs["inner_diameter"] / 2.0
-    hole_r = inputs["hole_diameter"] / 2.0
-    area = float(section.steel_area(r_o, r_i))
-    pipe_mass = inputs.get("pipe_linear_mass") or inputs.get("pipe_density", 7850.0) * area
-    m_i = float(section.internal_mud_mass(inputs["mud_density"], r_i))
-    m_a = float(section.added_mass(inputs["mud_density"], r_o, hole_r, inputs.get("added_mass_model", "potential_flow")))
-    ei = float(section.bending_stiffness(inputs["pipe_youngs_modulus"], r_o, r_i))
-    tension = float(section.effective_tension(inputs["axial_tension"], m_i, inputs.get("mud_flow_velocity", 0.0)))
-    return {
-        "bending_stiffness": ei,
-        "steel_area": area,
-        "pipe_mass": float(pipe_mass),
-        "internal_mud_mass": m_i,
-        "added_mass": m_a,
-        "mass_per_length": float(section.mass_per_length(pipe_mass, m_i, m_a)),
-        "drag_coefficient_per_length": float(
-            section.drag_coefficient_per_length(inputs["mud_density"], r_o, hole_r, inputs.get("drag_coefficient", 0.5))
-        ),
-        "effective_tension": tension,
-        "clearance": float(section.mean_gap(r_o, hole_r)),
-        "buckling_length": float(section.buckling_length(ei, tension)),
-    }
-
-
-def contact_compliance(inputs: Mapping[str, Any]) -> float:
-    """K1 + K2 [1/Pa] of pipe steel and rock, K = (1 − ν²)/(π E) (docs/model.md §3, Hertz)."""
-    return float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
-                 + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
 
 
 def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: float,
@@ -102,7 +68,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """
     start = time.perf_counter()
     result = PointResult(method="core")
-    props = scene(inputs)
+    props = section_properties(inputs)
     result.values.update(props)
     span = inputs.get("span_length")
     messages = []

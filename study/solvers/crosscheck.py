@@ -44,6 +44,7 @@ import numpy as np
 from study.physics import beam, hertz, oscillator
 from study.solvers import event_driven, fast, orbit, periodic, timedomain, trajectory
 from study.solvers.result import PointResult
+from study.solvers.scene import Scene, make_scene
 
 METHOD = "crosscheck"
 DEFAULT_TOLERANCE = 0.02
@@ -56,7 +57,7 @@ COMPARED = {
 }
 
 
-def periodic_state(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options, modes: int,
+def periodic_state(scene: Scene, impact: periodic.Impact, options: periodic.Options, modes: int,
                    t: float) -> tuple[np.ndarray, np.ndarray]:
     """Modal coordinates q_n [m] and velocities q̇_n [m/s] of modes n = 1 … ``modes`` at time t [s] of the
     periodic solution (t = 0: a pulse starts at the wall y = +c); even modes are at rest (symmetric load).
@@ -75,7 +76,7 @@ def periodic_state(scene: periodic.Scene, impact: periodic.Impact, options: peri
     return q, v
 
 
-def replay(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact,
+def replay(inputs: Mapping[str, Any], scene: Scene, impact: periodic.Impact,
            options: periodic.Options) -> dict[str, Any]:
     """The periodic solution's state run through one revolution of the real contact (module docstring,
     step 2–3). Returns the time-domain model, its inputs and event system, the samples (or None with
@@ -126,7 +127,7 @@ def ratios(periodic_values: Mapping[str, float], td: Mapping[str, Any]) -> dict[
     return {output: td[name] / periodic_values[name] for name, (output, _) in COMPARED.items()}
 
 
-def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: periodic.Scene,
+def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: Scene,
             impact: periodic.Impact, tolerance: float) -> list[str]:
     """The reasons the time domain disagrees with the periodic solution (empty: it agrees)."""
     reasons = []
@@ -175,7 +176,7 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
     return reasons
 
 
-def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options,
+def check(inputs: Mapping[str, Any], scene: Scene, impact: periodic.Impact, options: periodic.Options,
           periodic_values: Mapping[str, float], tolerance: float = DEFAULT_TOLERANCE) -> tuple[dict | None, list[str]]:
     """Replay and compare one periodic solution (``impact`` at a root of condition 2, with its
     ``periodic_values``: impulse, peak_contact_force, max_normal_stress, max_deflection). Returns the
@@ -197,7 +198,7 @@ def check(inputs: Mapping[str, Any], scene: periodic.Scene, impact: periodic.Imp
     return td, verdict(periodic_values, td, scene, impact, tolerance)
 
 
-def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodic.Scene,
+def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: Scene,
                periodic_values: Mapping[str, float]) -> dict[str, Any]:
     """The real contact's periodic orbit nearest the periodic solution (:func:`study.solvers.orbit.find_orbit`
     from the replay's start state, section at that time, one time between impacts, mirrored for the
@@ -228,7 +229,7 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: periodi
     return out
 
 
-def lee_peak_kinematics(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options,
+def lee_peak_kinematics(scene: Scene, impact: periodic.Impact, options: periodic.Options,
                         stiffness: float, peak_force: float) -> tuple[float, float]:
     """(y − c, (F̂/K)^{2/3}) [m] at the peak of Lee's pulse, t = T_L/2: how far the periodic solution's
     midspan (the same ``options.modes`` modes as the replay, :func:`periodic_state`) is into the wall
@@ -258,7 +259,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.wall_time = time.perf_counter() - start
         return result
     options = periodic.options_from(inputs)
-    scene = periodic.make_scene(inputs)
+    scene = make_scene(inputs)
     v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
     impact = periodic.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
                                 half_length=v["contact_half_length"])

@@ -14,9 +14,10 @@ from typing import Any, Mapping
 
 from study.solvers import periodic, series
 from study.solvers.result import PointResult
+from study.solvers.scene import Scene
 
 
-def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period (MODEL.md §5, paper eq. 37–38) from
     the closed-form fields with the quasi-static correction, located (:func:`series.stresses` with no
@@ -24,7 +25,7 @@ def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str
     return series.stresses(scene, impact, inputs, options)
 
 
-def finish(scene: periodic.Scene, chosen: periodic.Impact, inputs: Mapping[str, Any],
+def finish(scene: Scene, chosen: periodic.Impact, inputs: Mapping[str, Any],
            options: periodic.Options, result: PointResult) -> None:
     """The fast method's part of the pipeline: stresses, the truncation bound as error estimate, and the
     paper's term-ratio check."""

@@ -31,7 +31,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.physics import hertz
-from study.solvers.core import contact_compliance
+from study.solvers.scene import contact_compliance
 from study.solvers.options import DEFAULT_TOLERANCE
 from study.solvers.result import PointResult
 

@@ -42,9 +42,9 @@ from study.physics import beam, hertz, section
 from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
 from study.solvers import extremes
-from study.solvers.core import contact_compliance, scene as section_scene
 from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, Options
-from study.solvers.result import PointResult, choice_input
+from study.solvers.result import PointResult
+from study.solvers.scene import Scene, make_scene
 
 #: Relative width at which the span search stops shrinking a bracket of the screening residual with no
 #: pole within :data:`POLE_FREE_WINDOW` bracket widths (F is continuous there, so its sign change is a
@@ -54,82 +54,6 @@ from study.solvers.result import PointResult, choice_input
 #: from there.
 ROOT_RTOL = 1e-6
 POLE_FREE_WINDOW = 10.0
-
-
-@dataclass(frozen=True)
-class Scene:
-    """Span-independent data of the design point (SI)."""
-
-    props: Mapping[str, float]
-    outer_radius: float
-    hole_radius: float
-    compliance_sum: float
-    rotary_speed: float
-    restitution: float
-    pattern: str
-    closure: str
-    impact_mass: str = "momentum"  #: IMPACT_MASSES
-
-    def equivalent_mass(self, span_length):
-        """m_e [kg] of the closure's impulse J = m_e (1 + e) V_p: 2ML/π (``momentum``, the paper's
-        equivalent mass) or ML/2 (``modal``, the modal mass of sin(πx/L) referred to midspan — the mass a
-        one-mode model strikes the wall with; MODEL.md §4, §8)."""
-        mass = self.props["mass_per_length"]
-        if self.impact_mass == "modal":
-            return 0.5 * mass * np.asarray(span_length, dtype=float)
-        return section.equivalent_mass(mass, span_length)
-
-    @property
-    def clearance(self) -> float:
-        return self.props["clearance"]
-
-    @property
-    def period(self) -> float:
-        """Period of the motion τ = 2π/Ω [s] (one revolution)."""
-        return 2.0 * np.pi / self.rotary_speed
-
-    @property
-    def impacts_per_revolution(self) -> int:
-        """Impacts per revolution: 2 (alternating walls) or 1 (one wall)."""
-        return 2 if self.pattern == "alternating" else 1
-
-    @property
-    def impact_interval(self) -> float:
-        """Time from one impact to the next [s]: τ/2 (alternating walls) or τ (one wall)."""
-        return self.period / self.impacts_per_revolution
-
-
-def make_scene(inputs: Mapping[str, Any]) -> Scene:
-    props = section_scene(inputs)
-    compliance = contact_compliance(inputs)
-    return Scene(props=props, outer_radius=inputs["outer_diameter"] / 2.0, hole_radius=inputs["hole_diameter"] / 2.0,
-                 compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
-                 restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
-                 closure=inputs.get("closure", "prescribed"),
-                 impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES))
-
-
-def given_span(inputs: Mapping[str, Any], result: PointResult, start: float, method: str,
-               buckled: str) -> float | None:
-    """The span of a method that is given one (``solver.span_length``) rather than searching for it.
-
-    Returns the span [m], or None after recording on ``result`` the status ``incomplete`` (no span
-    given) or ``buckled`` (``buckled``: the message, formatted with ``tension`` [N] and ``span`` [m]),
-    with its wall time since ``start``. ``method``: how the messages name the method.
-    """
-    span = inputs.get("span_length")
-    if span is None:
-        result.status = "incomplete"
-        result.message = f"{method} needs a span (solver.span_length): it does not search for one"
-    else:
-        props = make_scene(inputs).props
-        if not section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
-            return float(span)
-        result.status = "buckled"
-        result.values["span_length"] = float(span)
-        result.message = buckled.format(tension=props["effective_tension"], span=float(span))
-    result.wall_time = time.perf_counter() - start
-    return None
 
 
 def odd_modes(n_modes: int) -> np.ndarray:

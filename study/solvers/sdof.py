@@ -55,8 +55,9 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, oscillator
-from study.solvers.periodic import Scene, given_span, make_scene, natural_frequencies
+from study.solvers.periodic import natural_frequencies
 from study.solvers.result import PointResult, choice_input
+from study.solvers.scene import Scene, given_span, make_scene
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
 VERDICT_STATUS = {

@@ -40,6 +40,7 @@ import numpy as np
 from study.physics import beam
 from study.solvers import checks, periodic
 from study.solvers.result import PointResult
+from study.solvers.scene import Scene
 
 #: Highest harmonic number M of the series when neither ``harmonics`` nor a tolerance is given.
 DEFAULT_HARMONICS = 400
@@ -67,7 +68,7 @@ def truncation_from(inputs: Mapping[str, Any]) -> Truncation:
 
 
 # --- fields and stresses -----------------------------------------------------------------------
-def _beam_args(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options) -> dict[str, Any]:
+def _beam_args(scene: Scene, impact: periodic.Impact, options: periodic.Options) -> dict[str, Any]:
     """Keyword arguments of the beam field functions for this span and impact (the real load pushes
     the pipe off the wall: impulse −J, as in ``fast.stresses``)."""
     p = scene.props
@@ -77,13 +78,13 @@ def _beam_args(scene: periodic.Scene, impact: periodic.Impact, options: periodic
             "half_length": impact.contact_half_length, "shape": options.load_shape, "n_modes": options.modes}
 
 
-def stress_grid(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options):
+def stress_grid(scene: Scene, impact: periodic.Impact, options: periodic.Options):
     """(x, t): the solver's grids over the half span and the (half) period (as ``fast.stresses``)."""
     return (periodic.space_grid(impact.span_length, impact.contact_half_length, options),
             periodic.time_grid(scene, impact.contact_duration, options))
 
 
-def fields(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Options, harmonics: int | None = None,
+def fields(scene: Scene, impact: periodic.Impact, options: periodic.Options, harmonics: int | None = None,
            kinds: Iterable[str] = STRESS_KINDS, x=None, t=None) -> dict[str, np.ndarray]:
     """Fields of the periodic solution at this span and impact, shape t.shape + x.shape.
 
@@ -105,7 +106,7 @@ def fields(scene: periodic.Scene, impact: periodic.Impact, options: periodic.Opt
     return beam.series_fields(x, t, list(kinds), harmonics=int(harmonics), **args)
 
 
-def stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
     """Stress maxima (MODEL.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
     or from the double series with options.modes × harmonics terms, sampled on :func:`stress_grid` and
@@ -131,7 +132,7 @@ class SeriesStresses:
     history: list[tuple[int, float]] = field(default_factory=list)  #: (M, max normal stress)
 
 
-def converged_stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def converged_stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                        options: periodic.Options, truncation: Truncation) -> SeriesStresses:
     """Series stresses with the time truncation of ``truncation``.
 
@@ -157,7 +158,7 @@ def converged_stresses(scene: periodic.Scene, impact: periodic.Impact, inputs: M
 
 
 # --- the paper's §VI term ratios -----------------------------------------------------------------
-def term_grid(scene: periodic.Scene, impact: periodic.Impact, points_per_pulse: int = 8, max_times: int = 2048,
+def term_grid(scene: Scene, impact: periodic.Impact, points_per_pulse: int = 8, max_times: int = 2048,
               space_points: int = 49):
     """(x, t) for the term ratios: UNIFORM grids over the half span [0, L/2] and the (half) period,
     so that the averages (B) are the paper's time and location averages (the solver's grid is dense
@@ -168,7 +169,7 @@ def term_grid(scene: periodic.Scene, impact: periodic.Impact, points_per_pulse: 
             np.linspace(0.0, span_t, nt, endpoint=False))
 
 
-def term_ratio_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def term_ratio_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                      options: periodic.Options, harmonics: int = DEFAULT_HARMONICS) -> dict[str, Any]:
     """The paper's §VI table for this span and impact (MODEL.md §6) and its verdict.
 
@@ -197,7 +198,7 @@ def term_ratio_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Map
 
 
 # --- work-precision data -------------------------------------------------------------------------
-def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def convergence_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                       resolutions: Iterable[tuple[str, Any]], reference: tuple[int, int] = (961, 25_600),
                       options: periodic.Options | None = None) -> list[dict[str, Any]]:
     """Work-precision rows of each method and resolution at a fixed span and impact (MODEL.md §9).
@@ -249,7 +250,7 @@ def convergence_table(scene: periodic.Scene, impact: periodic.Impact, inputs: Ma
     return rows
 
 
-def add_term_ratios(scene: periodic.Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def add_term_ratios(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                     options: periodic.Options, result: PointResult, harmonics: int = DEFAULT_HARMONICS) -> None:
     """Store :func:`term_ratio_table` in ``result.extras["term_ratios"]``; an otherwise "ok" point whose
     dropped drag is not small becomes "terms_not_small" (either periodic method may call this)."""

@@ -70,8 +70,8 @@ import numpy as np
 
 from study.physics import hertz, oscillator, section
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
-from study.solvers.periodic import given_span
 from study.solvers.result import PointResult, choice_input
+from study.solvers.scene import given_span
 
 METHOD = "time-domain"
 INTEGRATORS = ("event", "explicit", "implicit")
@@ -133,7 +133,7 @@ class ModalModel:
     drag_shapes: np.ndarray | None = None  #: (G, N) sin(nπx_g/L)
     drag_weights: np.ndarray | None = None  #: (G,) Gauss weights on [0, L] [m]
     extras: dict = field(default_factory=dict)
-    scene: Any = None  #: the point's periodic.Scene (section properties, for the stresses)
+    scene: Any = None  #: the point's Scene (section properties, for the stresses)
 
     @property
     def period(self) -> float:
