@@ -52,9 +52,11 @@ CASES = [
                  id="no_span-fast-paper-point-searched"),
     # found here: sdof.solve's resonance check - undamped first mode driven exactly at omega_1 (8.38 rpm; free amplitude
     # F0 / |k - m Omega^2| unbounded); with the mud's damping the amplitude stays finite, so "none" is needed
-    pytest.param("resonance", "sdof", _resonant, "free amplitude is unbounded", id="resonance-sdof-undamped-at-omega1"),
+    pytest.param("resonance", "sdof", _resonant, "free amplitude is unbounded",
+                 id="resonance-sdof-undamped-at-omega1"),
     # found here: mud drag coefficient 20 (the default 0.5) on the series' valid point: inertia is only 4.76x the
-    # dropped drag on average, 2.79x at the maxima (paper section VI: >= 10x, checks.dropped_terms_small); tolerance 2.5 % (its error estimate is 2.4 %) so that only the terms fail
+    # dropped drag on average, 2.79x at the maxima (paper section VI: >= 10x,
+    # checks.dropped_terms_small); tolerance 2.5 % (its error estimate is 2.4 %) so that only the terms fail
     pytest.param("terms_not_small", "series", {**SERIES_150, "drag_coefficient": 20.0, "tolerance": 0.025},
                  "dropped term drag is NOT small", id="terms_not_small-series-thick-mud"),
     # source: tests/solvers/test_series.py point - the series' error estimate 0.024 against the 1 % tolerance
