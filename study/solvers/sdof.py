@@ -378,7 +378,9 @@ def _without_orbit(p: oscillator.ImpactParams, par, revolutions: int = 60) -> tu
     speeds = np.array([i[2] for i in imp])
     if len(imp) >= 3 and speeds[-1] < 1e-6 * speeds.max():
         wall = imp[-1][1]
-        force = wall * (p.force_amplitude * np.cos(p.forcing_frequency * imp[-1][0])) - p.stiffness * p.gap
+        # net force towards that wall at rest on it: drive and side force (towards +c), less the spring k c
+        force = wall * (p.force_amplitude * np.cos(p.forcing_frequency * imp[-1][0]) + p.constant_force) \
+            - p.stiffness * p.gap
         kind = "sticking" if force > 0 else "chattering"
         return kind, f"no period-1 orbit; simulated from rest the impact speeds collapse to zero ({kind})"
     times = np.array([i[0] for i in imp])

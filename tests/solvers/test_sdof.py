@@ -101,3 +101,15 @@ def test_strong_drive_is_unstable_and_no_span_is_incomplete(point):
     assert r.status == "unstable" and r.extras["stability"] == "unstable"
     assert "symmetry-breaking" in r.message
     assert sdof.solve({**point, "span_length": None}).status == "incomplete"
+
+
+def test_a_side_force_holding_the_span_on_the_wall_is_sticking(point):
+    # a 20-m span, one wall: the 1-kN side force exceeds the spring's k c = 864 N plus the 100-N drive, so at
+    # rest on the wall the net force pushes into it at every phase: sticking (was "chattering" while the side
+    # force was left out of the net force)
+    inputs = {**point, "impact_pattern": "one_wall", "span_length": 20.0, "drive_amplitude": 100.0,
+              "side_force": 1e3}
+    par = sdof.equivalent_parameters(inputs)
+    assert par["side_force"] - par["drive_amplitude"] > par["k"] * par["clearance"]
+    r = sdof.solve(inputs)
+    assert r.status == "sticking" and "(sticking)" in r.message
