@@ -110,6 +110,6 @@ def test_a_side_force_holding_the_span_on_the_wall_is_sticking(point):
     inputs = {**point, "impact_pattern": "one_wall", "span_length": 20.0, "drive_amplitude": 100.0,
               "side_force": 1e3}
     par = sdof.equivalent_parameters(inputs)
-    assert par["side_force"] - par["drive_amplitude"] > par["k"] * par["clearance"]
+    assert par.side_force - par.drive_amplitude > par.stiffness * par.clearance
     r = sdof.solve(inputs)
     assert r.status == "sticking" and "(sticking)" in r.message

@@ -1,7 +1,7 @@
 """Every status of study.solvers.result.STATUS, each from a real design point (issue 18: "a test builds, for
 each status, a point that triggers it").
 
-Each case is the default config's inputs (configs/default.toml) with a few overrides, solved through
+Each case is the default config's inputs (configs/paper.toml) with a few overrides, solved through
 study.solvers.solve_point, i.e. through the gate (study.solvers.gate); the source of each trigger is named in
 its id and comment. A status no real point reaches is listed in UNREACHABLE with the reason, not faked.
 """
@@ -28,7 +28,7 @@ SERIES_150 = {"rotary_speed": 150 * RPM, "restitution": 0.2, "impact_pattern": "
 def _resonant(default):
     """The 345-ft span undamped, turned at its own first natural frequency (the speed found from the span)."""
     undamped = {**default, "sdof_damping": "none"}
-    return {**undamped, "rotary_speed": sdof.equivalent_parameters(undamped)["omega1"]}
+    return {**undamped, "rotary_speed": sdof.equivalent_parameters(undamped).omega1}
 
 
 def _liar(inputs):
@@ -112,7 +112,7 @@ UNREACHABLE = {
 
 @pytest.fixture(scope="module")
 def default():
-    return config.load(ROOT / "configs" / "default.toml").point()
+    return config.load(ROOT / "configs" / "paper.toml").point()
 
 
 @pytest.mark.parametrize("status, method, overrides, words", CASES)
