@@ -27,7 +27,8 @@ from study.physics.beam import LOAD_SHAPES
 from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
-from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, Options
+from study.solvers.options import (DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
+                                   Options, SdofOptions, SeriesOptions, TimeDomainOptions)
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -143,33 +144,38 @@ FIELDS: tuple[Field, ...] = (
     Field("solver.tolerance", "tolerance", "relative accuracy asked of every method's answer (its error "
           "estimate; the max normal stress for the periodic methods): a result above it is not_converged", "",
           default=DEFAULT_TOLERANCE, lower=0.0, lower_open=True),
-    Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "", default=400,
+    Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "",
+          default=SeriesOptions.default("harmonics"),
           integer=True, lower=1.0),
     Field("solver.series_tolerance", "series_tolerance", "relative change of the series method's maximum "
           "normal stress at which it stops doubling the harmonics (unset: fixed harmonics)", "", default=None,
           lower=0.0, lower_open=True),
     Field("solver.series_max_harmonics", "series_max_harmonics", "cap on the series method's harmonics", "",
-          default=25_600, integer=True, lower=1.0),
+          default=SeriesOptions.default("series_max_harmonics"), integer=True, lower=1.0),
     Field("solver.time_integrator", "time_integrator", "integrator of the time-domain method", None,
-          default="auto", choices=("auto", "event", "explicit", "implicit")),
-    Field("solver.time_modes", "time_modes", "modes of the time-domain model", "", default=5, integer=True,
+          default=TimeDomainOptions.default("time_integrator"), choices=TimeDomainOptions.choices("time_integrator")),
+    Field("solver.time_modes", "time_modes", "modes of the time-domain model", "",
+          default=TimeDomainOptions.default("time_modes"), integer=True,
           lower=1.0),
     Field("solver.time_revolutions", "time_revolutions", "most revolutions the time-domain method integrates",
-          "", default=60, integer=True, lower=1.0),
-    Field("solver.time_damping", "time_damping", "mud damping in the time domain", None, default="linearised",
-          choices=("linearised", "drag", "none")),
+          "", default=TimeDomainOptions.default("time_revolutions"), integer=True, lower=1.0),
+    Field("solver.time_damping", "time_damping", "mud damping in the time domain", None,
+          default=TimeDomainOptions.default("time_damping"), choices=TimeDomainOptions.choices("time_damping")),
     Field("solver.time_initial", "time_initial", "initial state of the time-domain run", None,
-          default="prescribed", choices=("prescribed", "rest")),
+          default=TimeDomainOptions.default("time_initial"), choices=TimeDomainOptions.choices("time_initial")),
     Field("solver.drive_amplitude", "drive_amplitude", "harmonic force on the first mode (sdof; default: the "
-          "mean impact force of the prescribed closure)", "N", default=None, display_unit="lbf", **_NON_NEGATIVE),
-    Field("solver.side_force", "side_force", "constant side force towards one wall (sdof)", "N", default=0.0,
+          "mean impact force of the prescribed closure)", "N", default=SdofOptions.default("drive_amplitude"),
+          display_unit="lbf", **_NON_NEGATIVE),
+    Field("solver.side_force", "side_force", "constant side force towards one wall (sdof)", "N",
+          default=SdofOptions.default("side_force"),
           display_unit="lbf"),
     Field("solver.check_tolerance", "check_tolerance", "relative difference the crosscheck method accepts "
-          "between the time domain and the periodic solution", "", default=0.02, lower=0.0, lower_open=True),
-    Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None, default="modal",
-          choices=("modal", "momentum")),
+          "between the time domain and the periodic solution", "", default=CrosscheckOptions.default("check_tolerance"),
+          lower=0.0, lower_open=True),
+    Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None,
+          default=SdofOptions.default("sdof_mass"), choices=SdofOptions.choices("sdof_mass")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
-          default="mud", choices=("mud", "none")),
+          default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "
           "material, the pipe body)", None, default="B1", choices=tuple(SN_CURVES)),
     Field("fatigue.mean_stress", "mean_stress_correction", "mean-stress correction for the axial stress", None,

@@ -43,11 +43,12 @@ import numpy as np
 
 from study.physics import beam, hertz, oscillator
 from study.solvers import event_driven, fast, orbit, periodic, timedomain, trajectory
+from study.solvers.options import CrosscheckOptions
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene, make_scene
 
 METHOD = "crosscheck"
-DEFAULT_TOLERANCE = 0.02
+DEFAULT_TOLERANCE = CrosscheckOptions.default("check_tolerance")
 #: Compared quantities: name -> (output of the check, what it is).
 COMPARED = {
     "impulse": ("impulse_ratio", "impulse of the first contact"),
@@ -263,7 +264,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
     impact = periodic.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
                                 half_length=v["contact_half_length"])
-    tolerance = float(inputs.get("check_tolerance") or DEFAULT_TOLERANCE)
+    tolerance = float(CrosscheckOptions.from_inputs(inputs).check_tolerance)
     td, reasons = check(inputs, scene, impact, options, v, tolerance)
     if td is not None:
         v.update(ratios(v, td))

@@ -7,7 +7,7 @@ declarations, so a default is written in one place. Loading this module loads no
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from typing import Any, Mapping
 
 #: The methods behind :func:`study.solvers.solve_point`, name -> what it computes (the registry of solve
@@ -66,3 +66,95 @@ class Options:
         types = {f.name: f.type for f in fields(cls)}
         return cls(**{name: (int(v) if types[name] == "int" else v if types[name] == "str" else float(v))
                       for name, v in given.items()})
+
+
+def option(default, choices: tuple[str, ...] | None = None):
+    """A declared option: its default and, for a choice, the allowed values."""
+    return field(default=default, metadata={"choices": choices} if choices else {})
+
+
+@dataclass(frozen=True)
+class MethodOptions:
+    """Base of a method's options: a frozen dataclass whose fields are the option names (as in the point's
+    inputs and the config's ``solver.*`` fields) with their defaults."""
+
+    @classmethod
+    def from_inputs(cls, inputs: Mapping[str, Any]):
+        """The options of a point: its inputs where set (not None), the declared defaults elsewhere. A choice
+        outside its declared values raises ValueError naming the option, the value and what is allowed."""
+        values = {}
+        for spec in fields(cls):
+            value = inputs.get(spec.name)
+            if value is None:
+                continue
+            allowed = spec.metadata.get("choices")
+            if allowed is not None and value not in allowed:
+                raise ValueError(f"{spec.name} = {value!r}; allowed: {', '.join(allowed)}")
+            values[spec.name] = value
+        return cls(**values)
+
+    @classmethod
+    def default(cls, name: str):
+        """The declared default of option ``name``."""
+        return next(spec.default for spec in fields(cls) if spec.name == name)
+
+    @classmethod
+    def choices(cls, name: str) -> tuple[str, ...]:
+        """The declared values of choice option ``name``."""
+        return next(spec.metadata["choices"] for spec in fields(cls) if spec.name == name)
+
+
+#: Time-domain integrators; "auto": the event-driven one where the damping is linear, the explicit one with
+#: the quadratic drag.
+INTEGRATORS = ("event", "explicit", "implicit")
+
+
+@dataclass(frozen=True)
+class TimeDomainOptions(MethodOptions):
+    """Options of the ``time-domain`` method (docs/model.md §10)."""
+
+    time_integrator: str = option("auto", ("auto",) + INTEGRATORS)
+    time_modes: int = 5  #: modes of the span
+    time_revolutions: int = 60  #: most revolutions integrated
+    time_damping: str = option("linearised", ("linearised", "drag", "none"))
+    time_initial: str = option("prescribed", ("prescribed", "rest"))
+    contact_damping: str = option("calibrated", ("calibrated", "lankarani_nikravesh", "hunt_crossley"))
+    time_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
+    time_check_periodic: bool = True
+    time_step: float | None = None  #: explicit step [s] (None: time_step_fraction of the stability limit)
+    time_step_fraction: float = 0.1
+    contact_steps: int = 100  #: RK4 steps per elastic Hertz contact (event-driven)
+    time_ode_method: str = "LSODA"  #: solve_ivp method of the implicit integrator
+    time_rtol: float = 1e-8
+    time_atol: float = 1e-10
+    drag_points: int = 8  #: Gauss points of the quadratic drag
+    contact_points: tuple = (0.5,)  #: contact points as fractions of the span
+    initial_state: tuple | None = None  #: (q, q̇) arrays, overriding time_initial
+
+
+@dataclass(frozen=True)
+class SdofOptions(MethodOptions):
+    """Options of the ``sdof`` screen (docs/model.md §8.2); ``drive_amplitude`` and ``side_force`` also drive the
+    time domain."""
+
+    sdof_mass: str = option("modal", ("modal", "momentum"))
+    sdof_damping: str = option("mud", ("mud", "none"))
+    drive_amplitude: float | None = None  #: F0 [N] (None: the mean impact force of the prescribed closure)
+    side_force: float = 0.0  #: constant side force towards +c [N]
+    sdof_scan: int = 400  #: phases scanned for period-1 orbits
+
+
+@dataclass(frozen=True)
+class SeriesOptions(MethodOptions):
+    """Options of the ``series`` method (docs/model.md §9)."""
+
+    harmonics: int = 400  #: highest time harmonic kept
+    series_tolerance: float | None = None  #: relative change at which the harmonics stop doubling (None: fixed)
+    series_max_harmonics: int = 25_600  #: cap on the doubling
+
+
+@dataclass(frozen=True)
+class CrosscheckOptions(MethodOptions):
+    """Options of the ``crosscheck`` method (docs/model.md §11)."""
+
+    check_tolerance: float = 0.02  #: relative difference accepted between the real contact and the periodic solution

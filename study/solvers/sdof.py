@@ -56,7 +56,8 @@ import numpy as np
 
 from study.physics import hertz, oscillator
 from study.solvers.periodic import natural_frequencies
-from study.solvers.result import PointResult, choice_input
+from study.solvers.options import SdofOptions
+from study.solvers.result import PointResult
 from study.solvers.scene import Scene, given_span, make_scene
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
@@ -70,8 +71,6 @@ VERDICT_STATUS = {
     "not_periodic": "not_periodic",
 }
 
-MASS_CHOICES = ("modal", "momentum")
-DAMPING_CHOICES = ("mud", "none")
 
 
 @dataclass(frozen=True)
@@ -105,8 +104,8 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> EquivalentSdof:
     scene = make_scene(inputs)
     span = float(inputs["span_length"])
     props = scene.props
-    mass_model = choice_input(inputs, "sdof_mass", "modal", MASS_CHOICES)
-    damping_model = choice_input(inputs, "sdof_damping", "mud", DAMPING_CHOICES)
+    option = SdofOptions.from_inputs(inputs)
+    mass_model, damping_model = option.sdof_mass, option.sdof_damping
     m = float(replace(scene, impact_mass=mass_model).equivalent_mass(span))
     omega1 = float(natural_frequencies(scene, span, [1])[0])
     c = scene.clearance
@@ -117,8 +116,8 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> EquivalentSdof:
     else:
         damping = 0.0
     impacts = scene.impacts_per_revolution
-    if inputs.get("drive_amplitude") is not None:
-        F0, source = float(inputs["drive_amplitude"]), "input drive_amplitude"
+    if option.drive_amplitude is not None:
+        F0, source = float(option.drive_amplitude), "input drive_amplitude"
     else:
         F0 = impacts * m * (1.0 + e) * Om * c / scene.period
         source = (f"default: mean impact force of the prescribed closure, {impacts} x m (1 + e) Omega c / tau")
@@ -128,7 +127,7 @@ def equivalent_parameters(inputs: Mapping[str, Any]) -> EquivalentSdof:
     return EquivalentSdof(span_length=span, mass=m, stiffness=m * omega1**2, omega1=omega1, clearance=c,
                           rotary_speed=Om, restitution=e, damping=damping, drive_amplitude=F0, drive_source=source,
                           hertz_stiffness=K, axial_curvature=kappa, pattern=scene.pattern, mass_model=mass_model,
-                          damping_model=damping_model, side_force=float(inputs.get("side_force") or 0.0),
+                          damping_model=damping_model, side_force=float(option.side_force),
                           scene=scene)
 
 
@@ -324,7 +323,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = "a side force breaks the symmetry: no alternating orbit (use impact_pattern one_wall)"
         result.wall_time = time.perf_counter() - start
         return result
-    n_scan = int(inputs.get("sdof_scan", 400))
+    n_scan = int(SdofOptions.from_inputs(inputs).sdof_scan)
     orbits = symmetric_orbits(p, n_scan) if par.pattern == "alternating" else one_wall_orbit(p, n_scan)
     result.extras["orbits_found"] = len(orbits)
     stable = [o for o in orbits if o["verdict"] == "stable"]

@@ -39,13 +39,14 @@ import numpy as np
 
 from study.physics import beam
 from study.solvers import checks, periodic
+from study.solvers.options import SeriesOptions
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene
 
 #: Highest harmonic number M of the series when neither ``harmonics`` nor a tolerance is given.
-DEFAULT_HARMONICS = 400
+DEFAULT_HARMONICS = SeriesOptions.default("harmonics")
 #: Cap on M when doubling to meet ``series_tolerance``.
-MAX_HARMONICS = 25_600
+MAX_HARMONICS = SeriesOptions.default("series_max_harmonics")
 #: Kinds of field the stresses need (keys of :func:`fields`).
 STRESS_KINDS = ("deflection", "moment", "shear")
 
@@ -61,10 +62,10 @@ class Truncation:
 
 def truncation_from(inputs: Mapping[str, Any]) -> Truncation:
     """``harmonics``, ``series_tolerance``, ``series_max_harmonics`` of the inputs (None → default)."""
-    tol = inputs.get("series_tolerance")
-    return Truncation(harmonics=int(inputs.get("harmonics") or DEFAULT_HARMONICS),
-                      tolerance=None if tol is None else float(tol),
-                      cap=int(inputs.get("series_max_harmonics") or MAX_HARMONICS))
+    option = SeriesOptions.from_inputs(inputs)
+    return Truncation(harmonics=int(option.harmonics),
+                      tolerance=None if option.series_tolerance is None else float(option.series_tolerance),
+                      cap=int(option.series_max_harmonics))
 
 
 # --- fields and stresses -----------------------------------------------------------------------

@@ -70,16 +70,11 @@ import numpy as np
 
 from study.physics import hertz, oscillator, section
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
-from study.solvers.result import PointResult, choice_input
+from study.solvers.options import INTEGRATORS, TimeDomainOptions
+from study.solvers.result import PointResult
 from study.solvers.scene import given_span
 
 METHOD = "time-domain"
-INTEGRATORS = ("event", "explicit", "implicit")
-#: "auto": the event-driven integrator where the damping is linear, the explicit one with quadratic drag.
-INTEGRATOR_CHOICES = ("auto",) + INTEGRATORS
-DAMPING_CHOICES = ("linearised", "drag", "none")
-CONTACT_DAMPING_CHOICES = ("calibrated", "lankarani_nikravesh", "hunt_crossley")
-INITIAL_CHOICES = ("prescribed", "rest")
 MAX_PERIOD = 8
 STEP_FAILURE = "explicit step above the contact stability limit"
 
@@ -185,22 +180,23 @@ class ModalModel:
 
 def build_model(inputs: Mapping[str, Any]) -> ModalModel:
     """The modal model of ``inputs`` (needs ``span_length``)."""
+    option = TimeDomainOptions.from_inputs(inputs)
     par = sdof.equivalent_parameters({**inputs, "sdof_mass": "modal",
-                                      "sdof_damping": "none" if inputs.get("time_damping") == "none" else "mud"})
+                                      "sdof_damping": "none" if option.time_damping == "none" else "mud"})
     scene = par.scene
     props = scene.props
     L = par.span_length
-    N = int(inputs.get("time_modes", 5))
+    N = int(option.time_modes)
     if N < 1:
         raise ValueError(f"time_modes = {N}: at least 1")
     modes = np.arange(1, N + 1)
     omega = np.asarray(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"],
                                                    props["mass_per_length"], modes), float).ravel()
-    points = np.atleast_1d(np.asarray(inputs.get("contact_points") or (0.5,), float))
+    points = np.atleast_1d(np.asarray(option.contact_points, float))
     if np.any((points <= 0) | (points >= 1)):
         raise ValueError("contact_points are fractions of the span in (0, 1)")
-    damping_model = choice_input(inputs, "time_damping", "linearised", DAMPING_CHOICES)
-    contact_damping = choice_input(inputs, "contact_damping", "calibrated", CONTACT_DAMPING_CHOICES)
+    damping_model = option.time_damping
+    contact_damping = option.contact_damping
     model = ModalModel(span=L, mass=par.mass, modes=modes, omega=omega, clearance=par.clearance,
                        stiffness=par.hertz_stiffness, curvature=par.axial_curvature, points=points,
                        phi=np.sin(np.pi * np.outer(points, modes)), rotary_speed=par.rotary_speed,
@@ -215,7 +211,7 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
         ceq = 8.0 * D * model.rotary_speed * model.clearance / (3 * np.pi) * np.sin(np.pi * x / L)
         model.damping_matrix = (S * (w * ceq)[:, None]).T @ S
     elif damping_model == "drag":
-        G = int(inputs.get("drag_points", 8))
+        G = int(option.drag_points)
         x, w = np.polynomial.legendre.leggauss(G)
         model.drag, model.drag_weights = D, 0.5 * L * w
         model.drag_shapes = np.sin(np.pi * np.outer(0.5 * L * (x + 1), modes) / L)
@@ -224,10 +220,11 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
 
 def initial_state(model: ModalModel, inputs: Mapping[str, Any]):
     N = len(model.modes)
-    if inputs.get("initial_state") is not None:
-        q0, v0 = (np.asarray(a, float).reshape(N) for a in inputs["initial_state"])
+    option = TimeDomainOptions.from_inputs(inputs)
+    if option.initial_state is not None:
+        q0, v0 = (np.asarray(a, float).reshape(N) for a in option.initial_state)
         return q0.copy(), v0.copy()
-    kind = choice_input(inputs, "time_initial", "prescribed", INITIAL_CHOICES)
+    kind = option.time_initial
     q0, v0 = np.zeros(N), np.zeros(N)
     if kind == "prescribed":
         v0[0] = model.rotary_speed * model.clearance
@@ -450,13 +447,14 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     or None), impacts (contact records: point, start, approach, peak, duration, rebound,
     hysteresis), boundary states, times, energies at the boundaries, step data, model.
     """
+    option = TimeDomainOptions.from_inputs(inputs)
     model = model or build_model(inputs)
-    integrator = choice_input(inputs, "time_integrator", "auto", INTEGRATOR_CHOICES)
+    integrator = option.time_integrator
     if integrator == "auto":
         integrator = "explicit" if model.drag_shapes is not None else "event"
-    revolutions = int(inputs.get("time_revolutions", 60))
-    tol = float(inputs.get("time_tolerance", 1e-4))
-    check = bool(inputs.get("time_check_periodic", True))
+    revolutions = int(option.time_revolutions)
+    tol = float(option.time_tolerance)
+    check = bool(option.time_check_periodic)
     tau = model.period
     q, v = initial_state(model, inputs)
     v_scale = max(model.rotary_speed * model.clearance, float(np.max(np.abs(model.phi @ v))))
@@ -468,9 +466,9 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     contacts.active[:] = d0 > 0
     failure = None  # a set-up failure skips the integration
     if integrator == "explicit":
-        dt_req = inputs.get("time_step")
+        dt_req = option.time_step
         if dt_req is None:
-            dt_req = float(inputs.get("time_step_fraction", 0.1)) * lim["step_limit"]
+            dt_req = float(option.time_step_fraction) * lim["step_limit"]
         n_steps = max(int(np.ceil(tau / float(dt_req) - 1e-9)), 1)
         dt = tau / n_steps
         out.update(time_step=dt, steps_per_revolution=n_steps)
@@ -488,15 +486,16 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
                 system = event_driven.prepare(model.omega, damping, model.drive / model.mass, model.rotary_speed,
                                               model.phi, model.mass, model.stiffness, model.clearance,
                                               model.hysteresis(1.0), v_scale,
-                                              int(inputs.get("contact_steps", 100)))
+                                              int(option.contact_steps))
             except ValueError as exc:
                 failure = str(exc)
             else:
                 out.update(contact_step=system.contact_step, flight_step=system.flight_step)
                 peak = np.zeros(len(model.points))
     else:
-        opts = dict(method=inputs.get("time_ode_method", "LSODA"), rtol=float(inputs.get("time_rtol", 1e-8)),
-                    atol=float(inputs.get("time_atol", 1e-10)) * np.concatenate(
+        opts = dict(method=option.time_ode_method,
+                    rtol=float(option.time_rtol),
+                    atol=float(option.time_atol) * np.concatenate(
                         (np.full(len(model.modes), model.clearance), np.full(len(model.modes), v_scale))))
         out.update(time_step=None)
     scale = np.concatenate((np.full(len(model.modes), model.clearance), np.full(len(model.modes), v_scale)))
@@ -629,6 +628,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     alternating_bending_stress over one more period (:func:`stresses`; t from its start), and for a
     periodic run max_floquet_multiplier of its orbit (:func:`settled_orbit`).
     """
+    option = TimeDomainOptions.from_inputs(inputs)
     start = time.perf_counter()
     result = PointResult(method=METHOD)
     if given_span(inputs, result, start, "the time-domain method",
@@ -668,7 +668,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "ok"
         vals["period_revolutions"] = float(n)
         messages.append(f"periodic: the modal state repeats every {n} revolution(s) (tolerance "
-                        f"{inputs.get('time_tolerance', 1e-4)}) after {run['revolutions_simulated']} revolutions")
+                        f"{option.time_tolerance}) after {run['revolutions_simulated']} revolutions")
         found = settled_orbit(run)
         if found is not None and found.converged:
             vals["max_floquet_multiplier"] = found.largest_multiplier
@@ -680,7 +680,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     else:
         result.status = "not_periodic"
         messages.append(f"not periodic within {run['revolutions_simulated']} revolutions"
-                        if inputs.get("time_check_periodic", True) else
+                        if option.time_check_periodic else
                         f"periodicity not checked; {run['revolutions_simulated']} revolutions simulated")
     if run["impacts"]:
         rec = run["impacts"][-1]
@@ -752,7 +752,7 @@ def penalty_reference(inputs: Mapping[str, Any], revolutions: float | None = Non
         f = np.where(d > 0, -s * np.maximum(kp * d + cp * s * yd, 0.0), 0.0)
         return np.concatenate((v, a + model.phi.T @ f / model.mass))
 
-    revs = float(revolutions if revolutions is not None else inputs.get("time_revolutions", 60))
+    revs = float(revolutions if revolutions is not None else TimeDomainOptions.from_inputs(inputs).time_revolutions)
     start = time.perf_counter()
     sol = solve_ivp(rhs, (0.0, revs * model.period), np.concatenate((q0, v0)), method=method, rtol=rtol, atol=atol)
     wall = time.perf_counter() - start

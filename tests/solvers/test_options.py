@@ -1,0 +1,44 @@
+"""Every method's options declared once (study.solvers.options): the config takes its defaults from them, a bad
+choice is refused naming it, and loading the config loads no solver."""
+
+import subprocess
+import sys
+from dataclasses import fields
+
+import pytest
+
+from study import config
+from study.solvers import options
+
+
+@pytest.mark.parametrize("declared", [options.Options, options.TimeDomainOptions, options.SdofOptions,
+                                      options.SeriesOptions, options.CrosscheckOptions])
+def test_the_config_defaults_are_the_declared_ones(declared):
+    names = getattr(declared, "CONFIG_FIELDS", None) or [f.name for f in fields(declared)]
+    configured = [name for name in names if name in config.FIELDS_BY_NAME]
+    assert configured, declared
+    for name in configured:
+        assert config.FIELDS_BY_NAME[name].default == getattr(declared(), name), name
+
+
+def test_the_config_choices_are_the_declared_ones():
+    for name in ("time_integrator", "time_damping", "time_initial"):
+        assert config.FIELDS_BY_NAME[name].choices == options.TimeDomainOptions.choices(name)
+    for name in ("sdof_mass", "sdof_damping"):
+        assert config.FIELDS_BY_NAME[name].choices == options.SdofOptions.choices(name)
+
+
+def test_a_choice_outside_the_declared_values_is_refused_by_name():
+    with pytest.raises(ValueError, match="time_damping = 'viscous'; allowed: linearised, drag, none"):
+        options.TimeDomainOptions.from_inputs({"time_damping": "viscous"})
+
+
+def test_unset_inputs_take_the_declared_defaults():
+    chosen = options.TimeDomainOptions.from_inputs({"time_modes": 9, "time_step": None, "outer_diameter": 0.1})
+    assert chosen.time_modes == 9 and chosen.time_step is None and chosen.time_revolutions == 60
+
+
+def test_loading_the_config_loads_no_solver():
+    code = ("import sys, study.config; print(sorted(m for m in sys.modules if m.startswith('study.solvers.')))")
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert loaded.strip() == "['study.solvers.options', 'study.solvers.result']"
