@@ -88,7 +88,18 @@ FIELDS: tuple[Field, ...] = (
     Field("pipe.youngs_modulus", "pipe_youngs_modulus", "pipe Young's modulus", "Pa", default=206.84e9,
           display_unit="psi", **_POSITIVE),
     Field("pipe.poisson_ratio", "pipe_poisson_ratio", "pipe Poisson's ratio", "", default=0.30, **_POISSON),
+    Field("pipe.eccentricity", "eccentricity", "mass eccentricity of the pipe, whose centrifugal force turns with it "
+          "(method reference; default 0.1 in: below the 0.13-in offset of a 4 1/2-in body's mass centre that the "
+          "-12.5 % wall-thickness tolerance allows; see docs/reference_model.md)", "m", default=0.00254,
+          display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
+          default=0.15875, display_unit="in", **_POSITIVE),
+    Field("pipe.joint_length", "joint_length", "length of one joint of pipe, tool joint to tool joint (method "
+          "reference)", "m", default=9.4488, display_unit="ft", **_POSITIVE),
     Field("hole.diameter", "hole_diameter", "bore-hole diameter", "m", display_unit="in", **_POSITIVE),
+    Field("hole.inclination", "inclination", "hole inclination from vertical: the buoyed weight's side component "
+          "pushes the pipe to the low side (method reference)", "rad", default=0.0, display_unit="deg",
+          lower=0.0, upper=1.5707963267948966),
     Field("rock.youngs_modulus", "rock_youngs_modulus", "rock Young's modulus", "Pa", display_unit="psi",
           **_POSITIVE),
     Field("rock.poisson_ratio", "rock_poisson_ratio", "rock Poisson's ratio", "", **_POISSON),
@@ -110,6 +121,10 @@ FIELDS: tuple[Field, ...] = (
           choices=("prescribed", "self_consistent")),
     Field("impact.mass", "impact_mass", "mass of the closure's impulse m_e (1 + e) V_p: 'momentum' 2ML/pi (the "
           "paper's), 'modal' ML/2", None, default="momentum", choices=IMPACT_MASSES),
+    Field("contact.friction", "friction", "Coulomb friction coefficient of pipe on wall (method reference; default "
+          "0.3: water-base mud, 0.25-0.40 in Johancsik, Friesen & Dawson 1984)", "", default=0.3, **_NON_NEGATIVE),
+    Field("contact.section_length", "section_length", "length of the pinned pipe section of the reference model "
+          "(default three 31-ft joints)", "m", default=28.3464, display_unit="ft", **_POSITIVE),
     Field("solver.method", "solver_method", "solution method", None, default="core", choices=tuple(METHODS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
           "m", default=None, display_unit="ft", **_POSITIVE),
@@ -149,6 +164,14 @@ FIELDS: tuple[Field, ...] = (
           display_unit="lbf"),
     Field("solver.check_tolerance", "check_tolerance", "relative difference the crosscheck method accepts "
           "between the time domain and the periodic solution", "", default=0.02, lower=0.0, lower_open=True),
+    Field("solver.reference_modes", "reference_modes", "modes per lateral direction of the reference model", "",
+          default=16, integer=True, lower=1.0),
+    Field("solver.reference_revolutions", "reference_revolutions", "most revolutions of the reference model's "
+          "transient", "", default=40, integer=True, lower=1.0),
+    Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",
+          default=6, integer=True, lower=1.0),
+    Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
+          default="drag", choices=("drag", "viscous", "none")),
     Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None, default="modal",
           choices=("modal", "momentum")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
@@ -166,7 +189,7 @@ SWEEP_KEYS = {
     "workers": "local worker processes (0: one per core)",
 }
 ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
-SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "solver", "sweep")
+SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "contact", "solver", "sweep")
 SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0}
 
 

@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import auto, core, crosscheck, fast, sdof, series, timedomain
+from study.solvers import auto, core, crosscheck, fast, reference, sdof, series, timedomain
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
@@ -27,6 +27,9 @@ METHODS = {
                     "Verlet or implicit LSODA) until periodic: the check on the periodic assumption"),
     "crosscheck": (crosscheck.solve, "the fast periodic solution replayed through one revolution of real Hertz "
                    "contact in the time domain: agrees within solver.check_tolerance, or flagged with the reasons"),
+    "reference": (reference.solve, "the reference model: the pipe section in both lateral directions, driven by its "
+                  "mass eccentricity, Hertz wall contact with friction at tool joints and body, mud drag; whirl, "
+                  "contact and stresses after the transient"),
     "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "
              "exact period-1 orbit and Floquet stability at a given span"),
 }
