@@ -354,12 +354,30 @@ def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
     return dict(whirl_frequency_ratio=ratio, whirl=verdict, whirl_point=where)
 
 
+def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
+    """Whether the modes left out respond statically to the contacts: the first of them, ω_{N+1}, has a
+    period no longer than the shortest mean contact (contact time over onsets per touching point; the whole
+    window for a contact that never opens). False without contact."""
+    touching = (window.contact_time > 0)
+    if not np.any(touching):
+        return False
+    durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
+    props = model.props
+    first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
+                                                            props["effective_tension"], props["mass_per_length"],
+                                                            [model.n_modes + 1]))[0])
+    return bool(first_left * np.min(durations) >= 2.0 * np.pi)
+
+
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
-             fibres: int = 16) -> dict[str, float]:
+             fibres: int = 16, correction: bool = True) -> dict[str, float]:
     """Bending, normal and shear stresses over the window (MODEL.md §5 in two directions).
 
     Moments M_y, M_z (−EI y'', −EI z'') from :func:`study.solvers.trajectory.fields` in each direction
-    (modes plus the quasi-static correction for the contact forces); bending stress |M| r_o/I; the
+    (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
+    only when the modes left out are fast beside the contacts, :func:`quasi_static_applies`: for an
+    impact shorter than their periods they respond to its impulse, not statically, and the
+    correction would put the static moment of the peak force into the pipe); bending stress |M| r_o/I; the
     alternating stress is half the range, over the window, of the stress of one fibre of the turning
     pipe, (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I, at the worst fibre ψ and section; shear force
     dM/dx (the −EI y''' part, by differences of the corrected moment), shear stress 2|V|/A_s.
@@ -371,7 +389,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     out = {}
     fields = []
     for j in range(2):
-        samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=window.forces[:, :, j])
+        forces = window.forces[:, :, j] if correction else np.zeros_like(window.forces[:, :, j])
+        samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=forces)
         fields.append(trajectory.fields(samples, x, model.modes, model.points / L, L, ei, tn))
     my, mz = fields[0]["moment"], fields[1]["moment"]
     uy, uz = fields[0]["deflection"], fields[1]["deflection"]
@@ -467,19 +486,21 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 whirl_class=float(WHIRL_CLASSES[measure["whirl"]]))
     spacing, touching = contact_spacing(model, window)
     vals["contact_spacing"] = spacing
-    vals.update(stresses(inputs, model, window))
+    correction = quasi_static_applies(model, window)
+    vals.update(stresses(inputs, model, window, correction=correction))
     half = window.times < 0.5 * (window.start + window.end)
     peaks = [np.max(window.forces[m, :, 2]) if np.any(m) else 0.0 for m in (half, ~half)]
     vals["window_spread"] = float(abs(peaks[0] - peaks[1]) / max(peaks)) if max(peaks) > 0 else 0.0
     budget = energy_balance(model, window)
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
-                         energy_budget=budget, steps=run["integrator"].steps)
+                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction)
     messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
                 (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if run["period"] else
                  f"not periodic within {run['revolutions']} revolutions"),
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
                 f"{float(inputs.get('reference_rtol', 1e-6)):g}; upper-half modes carry "
-                f"{vals['modal_tail_fraction']:.2%} of the largest moment; peak force differs by "
+                f"{vals['modal_tail_fraction']:.2%} of the largest moment"
+                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}; peak force differs by "
                 f"{vals['window_spread']:.2%} between the window's halves"]
     result.status = "no_impact" if measure["whirl"] == "no_contact" else "ok"
     result.message = "; ".join(messages)
