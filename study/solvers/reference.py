@@ -32,7 +32,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
-Run: from the centred pipe at rest, revolution by revolution (the compiled Dormand–Prince integrator of
+Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
+"rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
 :mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6) until the state at the revolution
 boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain._period`) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
@@ -61,6 +62,9 @@ CONTACT_LAWS = ("hertz", "penalty")
 #: Default regularisation velocity of the Coulomb friction [m/s]: 1/250 of the 4½-in body's surface
 #: speed at 100 rpm; tested not to change the outputs beyond 2 % when divided by ten.
 SLIP_VELOCITY = 0.01
+#: Largest step times the highest natural frequency (Dormand–Prince 5(4) is stable on the imaginary axis
+#: up to about 3.3; Hairer & Wanner, Solving ODEs II, §IV.2).
+STABLE_STEP = 2.5
 #: Whirl verdicts -> integer code (output ``whirl_class``).
 WHIRL_CLASSES = {"no_contact": 0, "forward": 1, "backward": 2, "bouncing": 3, "sliding": 4}
 #: |whirl rate/Ω| below which a pipe in contact at least SLIDING_CONTACT of the time lies on the wall, sliding.
@@ -255,9 +259,12 @@ class Integrator:
         self.active = np.zeros(P, bool)
         self.chi = np.zeros(P)
         self.rtol = float(rtol)
-        self.scale = model.state_scale()
+        # error scale weighted by 1/n^2: the bending moment weighs mode n by k_n^2, so its error is kept even
+        self.scale = model.state_scale() * np.tile(1.0 / model.modes.astype(float) ** 2, 4)
         self.h = model.period / 1000.0
-        self.h_max = model.period / 64.0
+        # and within the stability interval of Dormand-Prince on the imaginary axis (about 3.3/omega): the error
+        # estimate alone lets an undamped high mode ring at the edge of it
+        self.h_max = min(model.period / 64.0, STABLE_STEP / float(np.max(model.omega)))
         self.steps = 0
         self.outcome = whirl_kernel.OK
 
@@ -282,6 +289,33 @@ class Integrator:
                       contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
 
 
+INITIAL_CHOICES = ("forced", "rest")
+
+
+def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
+    """The state the run starts from (4N + 4,): ``"rest"`` the centred pipe at rest; ``"forced"`` (default)
+    the synchronous forward whirl of the section without walls, Q_n e^{iΩt} with
+    Q_n = ε_n/(ω_n² − Ω² + iΩ d_n) (the modal Jeffcott response; linear damping only), plus the static
+    sag under the side load, scaled down as a whole until every contact point is clear of its wall. It
+    removes the start-up ringing of the low modes, which the quadratic drag damps slowly at small
+    amplitude; with no drive it is the centred pipe at rest too."""
+    N = model.n_modes
+    z = np.zeros(4 * N + 4)
+    if kind == "rest":
+        return z
+    om = model.rotary_speed
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Q = model.eccentric / (model.omega**2 - om**2 + 1j * om * model.damping)
+    Q = np.where(np.isfinite(Q), Q, 0.0) + model.side / model.omega**2
+    z[:N], z[N:2 * N] = Q.real, Q.imag
+    velocity = 1j * om * (Q - model.side / model.omega**2)
+    z[2 * N:3 * N], z[3 * N:4 * N] = velocity.real, velocity.imag
+    reach = np.hypot(model.phi @ z[:N], model.phi @ z[N:2 * N])
+    if np.any(reach > 0):
+        z[:4 * N] *= min(1.0, 0.99 * float(np.min(model.clearance / np.maximum(reach, 1e-300))))
+    return z
+
+
 def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
     """Transient until periodic (or ``reference_revolutions``), then the recorded window.
 
@@ -289,7 +323,8 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     None), revolutions (of the transient), window (:class:`Window` or None), failure (text or None).
     """
     model = model or build_model(inputs)
-    run = Integrator(model, float(inputs.get("reference_rtol", 1e-6)))
+    start = initial_state(model, choice_input(inputs, "reference_initial", "forced", INITIAL_CHOICES))
+    run = Integrator(model, float(inputs.get("reference_rtol", 1e-6)), start)
     tau = model.period
     revolutions = int(inputs.get("reference_revolutions", 40))
     tol = float(inputs.get("reference_tolerance", 1e-4))

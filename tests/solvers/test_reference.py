@@ -117,9 +117,13 @@ def test_first_contact_at_the_closed_form_speed(base, factor, touches):
 
 
 def _rolling(base, kind, **extra):
-    """A section lying on the low side of a 30-degree hole, touching at midspan only, high friction."""
+    """A section dropped from rest onto the low side of a 30-degree hole, touching at midspan only, high friction.
+
+    Dropped: the impact sets it whirling. Laid on the wall at rest (the default start) it stays there, sliding
+    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger."""
     return {**base, "contact_points": [0.5], "contact_kinds": [kind], "friction": 1.0, "inclination": np.pi / 6,
-            "reference_modes": 3, "reference_revolutions": 20, "reference_window": 4, **extra}
+            "reference_modes": 3, "reference_revolutions": 20, "reference_window": 4, "reference_initial": "rest",
+            **extra}
 
 
 @pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)], ids=["body -1.06", "tool joint -2.5"])
@@ -129,6 +133,13 @@ def test_high_friction_reaches_backward_rolling_whirl(base, kind, expected):
     assert result.extras["whirl"] == "backward"
     assert result.values["contact_fraction"] == pytest.approx(1.0)
     assert result.values["whirl_frequency_ratio"] == pytest.approx(expected, rel=3e-3)
+
+
+def test_laid_on_the_wall_it_slides(base):
+    result = solve_point(_rolling(base, 0, reference_initial="forced"), "reference")
+    assert result.extras["whirl"] == "sliding"
+    assert abs(result.values["whirl_frequency_ratio"]) < reference.SLIDING_RATE
+    assert result.values["contact_fraction"] == pytest.approx(1.0)
 
 
 def test_slip_velocity_does_not_change_the_answers(base):
@@ -167,7 +178,8 @@ def test_planar_motion_without_friction_matches_the_time_domain(base):
 
 @pytest.mark.parametrize("case", [
     dict(reference_modes=6, rotary_speed=2 * np.pi, eccentricity=0.0254),  # forward whirl with impacts, 60 rpm
-    dict(contact_points=[0.5], contact_kinds=[0], friction=1.0, inclination=np.pi / 6, reference_modes=3),  # backward
+    dict(contact_points=[0.5], contact_kinds=[0], friction=1.0, inclination=np.pi / 6, reference_modes=3,
+         reference_initial="rest"),  # backward whirl
 ], ids=["impacts", "backward whirl"])
 def test_energy_balance_over_the_window(base, case):
     # work of the eccentric (and side) load and of friction = drag + contact losses + change of energy
@@ -189,3 +201,13 @@ def test_compiled_integrator_solves_the_penalty_equations_as_solve_ivp(base):
     n = 4 * model.n_modes
     assert np.max(np.abs(ours["final_state"][:n] - scipy_run["final_state"][:n]) / scale) < 1e-6
     assert np.max(np.abs(scipy_run["final_state"][:n]) / scale) > 0.1  # it moved
+
+
+def test_synchronous_whirl_bends_the_turning_pipe_without_alternation(base):
+    # forward synchronous whirl is a steady bend in the pipe's own frame (Vance 1988 ch. 2): one fibre stays in
+    # tension, so the alternating bending stress vanishes beside the bending stress, with 32 modes as with 8
+    for modes in (8, 32):
+        result = solve_point({**base, "reference_modes": modes, "reference_damping": "none",
+                              "reference_revolutions": 4, "reference_window": 2}, "reference")
+        assert result.extras["whirl"] == "no_contact" and result.values["whirl_frequency_ratio"] == pytest.approx(1.0)
+        assert result.values["alternating_bending_stress"] < 1e-3 * result.values["max_bending_stress"]
