@@ -89,7 +89,7 @@ FIELDS: tuple[Field, ...] = (
           display_unit="psi", **_POSITIVE),
     Field("pipe.poisson_ratio", "pipe_poisson_ratio", "pipe Poisson's ratio", "", default=0.30, **_POISSON),
     Field("pipe.eccentricity", "eccentricity", "mass eccentricity of the pipe, whose centrifugal force turns with it "
-          "(method reference; default 0.1 in: below the 0.13-in offset of a 4 1/2-in body's mass centre that the "
+          "(method reference; default 0.1 in: just below the 0.11-in offset of a 4 1/2-in body's mass centre that the "
           "-12.5 % wall-thickness tolerance allows; see docs/reference_model.md)", "m", default=0.00254,
           display_unit="in", **_NON_NEGATIVE),
     Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
