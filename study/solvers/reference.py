@@ -455,7 +455,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
                max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(window.times[it] - window.start),
                alternating_bending_stress=float(np.max(half) * scale),
                alternating_bending_stress_x=float(x[int(np.argmax(half))]),
-               max_shear_stress=float(2.0 * shear[js] / area), max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
+               max_shear_stress=float(2.0 * shear[js] / area),
+               max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
                max_shear_stress_t=float(window.times[js[0]] - window.start),
                modal_tail_fraction=float(tail / full) if full > 0 else 0.0)
     return out
@@ -535,7 +536,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
                 f"{float(inputs.get('reference_rtol', 1e-6)):g}; upper-half modes carry "
                 f"{vals['modal_tail_fraction']:.2%} of the largest moment"
-                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}; peak force differs by "
+                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}; "
+                f"peak force differs by "
                 f"{vals['window_spread']:.2%} between the window's halves"]
     result.status = "no_impact" if measure["whirl"] == "no_contact" else "ok"
     result.message = "; ".join(messages)

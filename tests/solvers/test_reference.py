@@ -108,7 +108,8 @@ def test_first_contact_at_the_closed_form_speed(base, factor, touches):
     result = solve_point({**one, "rotary_speed": factor * speed}, "reference")
     assert (result.values["contact_fraction"] > 0) is touches, result.message
     if not touches:
-        amplitude = whirl.jeffcott_response(factor * speed / model.omega[0], 0.05)[0] * _effective_eccentricity(model, 1)
+        ratio = factor * speed / model.omega[0]
+        amplitude = whirl.jeffcott_response(ratio, 0.05)[0] * _effective_eccentricity(model, 1)
         assert result.values["max_deflection"] == pytest.approx(amplitude, rel=1e-3)
         assert amplitude / model.clearance[0] > 0.85  # close to the wall, yet clear of it
 
@@ -126,7 +127,8 @@ def _rolling(base, kind, **extra):
             **extra}
 
 
-@pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)], ids=["body -1.06", "tool joint -2.5"])
+@pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)],
+                         ids=["body -1.06", "tool joint -2.5"])
 def test_high_friction_reaches_backward_rolling_whirl(base, kind, expected):
     # issue 20 / Jansen 1991: rolling without slip on the wall whirls backwards at -(r_contact/c) Omega
     result = solve_point(_rolling(base, kind), "reference")
@@ -211,3 +213,17 @@ def test_synchronous_whirl_bends_the_turning_pipe_without_alternation(base):
                               "reference_revolutions": 4, "reference_window": 2}, "reference")
         assert result.extras["whirl"] == "no_contact" and result.values["whirl_frequency_ratio"] == pytest.approx(1.0)
         assert result.values["alternating_bending_stress"] < 1e-3 * result.values["max_bending_stress"]
+
+
+def test_a_buckled_section_is_flagged_not_run(base):
+    # Euler: a pinned section buckles when T_eff <= -EI (pi/L)^2
+    from study.physics import section
+
+    model = reference.build_model(base)
+    euler = float(section.euler_buckling_tension(model.span, model.props["bending_stiffness"]))
+    below = solve_point({**base, "axial_tension": base["axial_tension"] - model.props["effective_tension"] + 1.01 * euler},
+                        "reference")
+    assert below.status == "buckled" and "buckles" in below.message
+    above = solve_point({**base, "axial_tension": base["axial_tension"] - model.props["effective_tension"] + 0.9 * euler,
+                         "reference_modes": 4, "reference_revolutions": 2, "reference_window": 1}, "reference")
+    assert above.status != "buckled"
