@@ -221,9 +221,9 @@ def test_a_buckled_section_is_flagged_not_run(base):
 
     model = reference.build_model(base)
     euler = float(section.euler_buckling_tension(model.span, model.props["bending_stiffness"]))
-    below = solve_point({**base, "axial_tension": base["axial_tension"] - model.props["effective_tension"] + 1.01 * euler},
-                        "reference")
+    mud_flow = base["axial_tension"] - model.props["effective_tension"]  # T0 - T_eff
+    below = solve_point({**base, "axial_tension": mud_flow + 1.01 * euler}, "reference")
     assert below.status == "buckled" and "buckles" in below.message
-    above = solve_point({**base, "axial_tension": base["axial_tension"] - model.props["effective_tension"] + 0.9 * euler,
-                         "reference_modes": 4, "reference_revolutions": 2, "reference_window": 1}, "reference")
+    above = solve_point({**base, "axial_tension": mud_flow + 0.9 * euler, "reference_modes": 4,
+                         "reference_revolutions": 2, "reference_window": 1}, "reference")
     assert above.status != "buckled"
