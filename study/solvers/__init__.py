@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Mapping
 
-from study.solvers import auto, core, crosscheck, fast, reference, sdof, series, timedomain
+from study.solvers import auto, core, crosscheck, fast, reference, refcheck, sdof, series, timedomain
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 METHODS = {
@@ -30,6 +30,8 @@ METHODS = {
     "reference": (reference.solve, "the reference model: the pipe section in both lateral directions, driven by its "
                   "mass eccentricity, Hertz wall contact with friction at tool joints and body, mud drag; whirl, "
                   "contact and stresses after the transient"),
+    "reference-check": (refcheck.solve, "the periodic solution (fast) against the reference model on the same point: "
+                        "contact or not, peak force, max normal and alternating stress within solver.check_tolerance"),
     "sdof": (sdof.solve, "one-degree-of-freedom screen: first-mode impact oscillator between the walls, "
              "exact period-1 orbit and Floquet stability at a given span"),
 }

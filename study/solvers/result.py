@@ -142,6 +142,12 @@ OUTPUTS = {
                             "(method reference: a truncation indicator)"),
     "window_spread": ("1", "relative difference of the peak contact force between the two halves of the output "
                       "window (method reference: a settling indicator)"),
+    "reference_peak_force_ratio": ("1", "peak contact force, periodic solution over the reference model (method "
+                                   "reference-check)"),
+    "reference_normal_stress_ratio": ("1", "largest normal stress, periodic solution over the reference model (method "
+                                      "reference-check)"),
+    "reference_alternating_stress_ratio": ("1", "alternating bending stress, periodic solution over the reference "
+                                           "model (method reference-check)"),
     "orbit_distance": ("1", "largest difference of the real contact's periodic orbit from the periodic solution's "
                        "modal state, in units of c and Omega c (method crosscheck)"),
 }
