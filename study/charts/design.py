@@ -53,6 +53,8 @@ CONTACT = ("peak_contact_force", "contact_duration")
 REPLAY_RATIOS = ("peak_force_ratio", "normal_stress_ratio", "deflection_ratio")
 #: ... and on the real contact's periodic orbit nearest the periodic solution, with its stability.
 ORBIT_RATIOS = ("orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floquet_multiplier")
+#: Method reference-check: the periodic solution over the reference model.
+REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio", "reference_alternating_stress_ratio")
 HARMONICS = (1, 2, 3)
 CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
@@ -526,6 +528,19 @@ def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     return _maps_or_lines(ds, "orbit", title, names, cmap="coolwarm", centre=1.0)
 
 
+def reference_maps(ds: xr.Dataset) -> list[Chart]:
+    """Method reference-check: peak contact force, largest normal stress and alternating bending stress of the
+    periodic solution over the reference model's (1: the paper's model may be trusted there; blank where
+    either does not strike the wall), laid out as :func:`stress_maps`."""
+    names = [n for n in REFERENCE_RATIOS if n in ds.data_vars]
+    if not names:
+        return []
+    words = {"reference_peak_force_ratio": "peak contact force", "reference_normal_stress_ratio": "normal stress",
+             "reference_alternating_stress_ratio": "alternating stress"}
+    return _maps_or_lines(ds, "reference_check", "Periodic solution over the reference model (1: they agree): "
+                          + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
+
+
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     """Span length between nodes against rotary speed, one line per axial load."""
     if "span_length" not in ds.data_vars or RPM not in ds.sizes or ds.sizes[RPM] == 0:
@@ -740,7 +755,7 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
 
 #: Every chart, in the order :func:`draw_all` draws them.
 CHARTS = (stress_maps, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
-          crosscheck_maps, orbit_maps, validity_map)
+          crosscheck_maps, orbit_maps, reference_maps, validity_map)
 
 
 def draw(ds: xr.Dataset) -> list[Chart]:
