@@ -406,7 +406,8 @@ def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
 
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
              fibres: int = 16, correction: bool = True) -> dict[str, float]:
-    """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions; docs/reference_model.md §3).
+    """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
+    docs/reference_model.md §3).
 
     Moments M_y, M_z (−EI y'', −EI z'') from :func:`study.solvers.trajectory.fields` in each direction
     (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
