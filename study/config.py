@@ -28,7 +28,7 @@ from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers.options import (DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
-                                   Options, SdofOptions, SeriesOptions, TimeDomainOptions)
+                                   Options, ReferenceOptions, SdofOptions, SeriesOptions, TimeDomainOptions)
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -98,9 +98,20 @@ FIELDS: tuple[Field, ...] = (
           "Pa", default=None, display_unit="psi", **_POSITIVE),
     Field("pipe.stress_concentration", "stress_concentration", "stress concentration factor of the tool joint "
           "and upset on the alternating bending stress (1: the pipe body)", "", default=1.0, lower=1.0),
-    Field("pipe.joint_length", "joint_length", "length of one joint between tool joints (API Range 2: 27-30 ft)",
-          "m", default=9.144, display_unit="ft", **_POSITIVE),
+    Field("pipe.eccentricity", "eccentricity", "mass eccentricity of the pipe, whose centrifugal force turns with it "
+          "(method reference; default 0.1 in: just below the 0.11-in offset of a 4 1/2-in body's mass centre that the "
+          "-12.5 % wall-thickness tolerance allows; see docs/reference_model.md)", "m",
+          default=ReferenceOptions.default("eccentricity"),
+          display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
+          default=ReferenceOptions.default("tool_joint_diameter"), display_unit="in", **_POSITIVE),
+    Field("pipe.joint_length", "joint_length", "length of one joint of pipe, tool joint to tool joint (API Range 2: "
+          "about 31 ft; the reference model's contact stations and the critical speeds of a joint)", "m",
+          default=ReferenceOptions.default("joint_length"), display_unit="ft", **_POSITIVE),
     Field("hole.diameter", "hole_diameter", "bore-hole diameter", "m", display_unit="in", **_POSITIVE),
+    Field("hole.inclination", "inclination", "hole inclination from vertical: the buoyed weight's side component "
+          "pushes the pipe to the low side (method reference)", "rad", default=0.0, display_unit="deg",
+          lower=0.0, upper=1.5707963267948966),
     Field("rock.youngs_modulus", "rock_youngs_modulus", "rock Young's modulus", "Pa", display_unit="psi",
           **_POSITIVE),
     Field("rock.poisson_ratio", "rock_poisson_ratio", "rock Poisson's ratio", "", **_POISSON),
@@ -122,6 +133,12 @@ FIELDS: tuple[Field, ...] = (
           choices=("prescribed", "self_consistent")),
     Field("impact.mass", "impact_mass", "mass of the closure's impulse m_e (1 + e) V_p: 'momentum' 2ML/pi (the "
           "paper's), 'modal' ML/2", None, default="momentum", choices=IMPACT_MASSES),
+    Field("contact.friction", "friction", "Coulomb friction coefficient of pipe on wall (method reference; default "
+          "0.3: water-base mud, 0.25-0.40 in Johancsik, Friesen & Dawson 1984)", "",
+          default=ReferenceOptions.default("friction"), **_NON_NEGATIVE),
+    Field("contact.section_length", "section_length", "length of the pinned pipe section of the reference model "
+          "(default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
+          **_POSITIVE),
     Field("solver.method", "solver_method", "solution method", None, default="core",
           choices=tuple(METHOD_DESCRIPTIONS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",
@@ -174,6 +191,14 @@ FIELDS: tuple[Field, ...] = (
           lower=0.0, lower_open=True),
     Field("solver.sdof_mass", "sdof_mass", "mass of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_mass"), choices=SdofOptions.choices("sdof_mass")),
+    Field("solver.reference_modes", "reference_modes", "modes per lateral direction of the reference model", "",
+          default=ReferenceOptions.default("reference_modes"), integer=True, lower=1.0),
+    Field("solver.reference_revolutions", "reference_revolutions", "most revolutions of the reference model's "
+          "transient", "", default=ReferenceOptions.default("reference_revolutions"), integer=True, lower=1.0),
+    Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",
+          default=ReferenceOptions.default("reference_window"), integer=True, lower=1.0),
+    Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
+          default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "
@@ -195,7 +220,7 @@ SWEEP_KEYS = {
     "workers": "local worker processes (0: one per core)",
 }
 ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
-SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "solver", "fatigue", "sweep")
+SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "contact", "solver", "fatigue", "sweep")
 SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0}
 
 

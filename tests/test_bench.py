@@ -1,5 +1,7 @@
 """study bench (study.bench): the benchmark's pieces run and report every method (no timing asserted)."""
 
+import numpy as np
+
 from study.bench import DEFAULT_CONFIG, bench_hertz_coefficients, bench_methods, bench_span_search
 from study.config import load
 from study.solvers import METHODS
@@ -19,3 +21,15 @@ def test_span_search_bench_reports_both_searches_on_the_same_points():
     table = [line for line in lines if line.startswith("| ")]
     assert len(table) == 4 and "every pole searched" in table[1] and table[2].endswith("x |")
     assert stats["median"] > 0
+
+
+def test_reference_bench_compares_the_compiled_integrator_with_rk45_on_the_same_equations():
+    from study.bench import bench_reference
+
+    case = {"reference_modes": 2, "rotary_speed": 6.283185307179586, "eccentricity": 0.0254}
+    rows, lines = bench_reference(load(DEFAULT_CONFIG).point(), revolutions=0.5, repeat=1, compiled_rtols=(1e-6, 1e-9),
+                                  penalty_rtols=(1e-5,), case=case)
+    assert [r["name"] for r in rows] == ["compiled", "compiled", "penalty_rk45"]
+    assert all(r["wall_time"] > 0 and np.isfinite(r["error"]) for r in rows)
+    assert rows[1]["error"] < rows[0]["error"]  # a tighter tolerance is more accurate
+    assert any(line.startswith("- RK45 at rtol 1e-05") for line in lines)

@@ -281,7 +281,7 @@ def test_limit_fields_default_to_stated_values():
     assert inputs["pipe_grade"] == "E-75"
     assert inputs["yield_strength"] is None and inputs["tensile_strength"] is None  # from the grade
     assert inputs["stress_concentration"] == 1.0  # the pipe body's nominal stress
-    assert inputs["joint_length"] == pytest.approx(30 * 0.3048)  # API Range 2: 27-30 ft
+    assert inputs["joint_length"] == pytest.approx(31 * 0.3048)  # API Range 2, the typical 31-ft joint
     assert inputs["sn_curve"] == "B1"  # DNV-RP-C203 Table 2-1: non-welded base material
     assert inputs["mean_stress_correction"] == "goodman"
     assert inputs["cycles_per_revolution"] == 1.0  # rotating bending (Hansford & Lubinski 1966)

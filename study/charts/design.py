@@ -53,6 +53,8 @@ CONTACT = ("peak_contact_force", "contact_duration")
 REPLAY_RATIOS = ("peak_force_ratio", "normal_stress_ratio", "deflection_ratio")
 #: ... and on the real contact's periodic orbit nearest the periodic solution, with its stability.
 ORBIT_RATIOS = ("orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floquet_multiplier")
+#: Method reference-check: the periodic solution over the reference model.
+REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio", "reference_alternating_stress_ratio")
 HARMONICS = (1, 2, 3)
 CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
@@ -507,6 +509,14 @@ def crosscheck_maps(ds: xr.Dataset) -> list[Chart]:
                           + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
 
 
+def _where_found(ds: xr.Dataset, found: xr.DataArray) -> xr.Dataset:
+    """``ds`` at only the values of each swept input where ``found`` holds at some point: the others would be
+    empty panels, and "the same for every ..." (a dimension whose values agree where present) would not be
+    true."""
+    keep = {d: found.any([o for o in found.dims if o != d]).values for d in found.dims}
+    return ds.isel({d: np.flatnonzero(k) for d, k in keep.items() if not k.all()})
+
+
 def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     """Method crosscheck: the real contact's periodic orbit nearest the periodic solution - its peak force
     and largest normal stress over the periodic solution's, and its largest Floquet multiplier (above 1:
@@ -517,13 +527,26 @@ def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     found = np.isfinite(_full(ds, "orbit_distance"))
     if not found.any():
         return []
-    # keep only the values of each swept input where some point has an orbit (e = 1 alone, typically):
-    # the others would be empty panels, and "the same for every restitution" would not be true
-    keep = {d: found.any([o for o in found.dims if o != d]).values for d in found.dims}
-    ds = ds.isel({d: np.flatnonzero(k) for d, k in keep.items() if not k.all()})
+    ds = _where_found(ds, found)  # e = 1 alone, typically
     title = ("The real contact's orbit nearest the periodic solution: force and stress over the periodic "
              "solution's, and its stability (multiplier above 1: unstable)")
     return _maps_or_lines(ds, "orbit", title, names, cmap="coolwarm", centre=1.0)
+
+
+def reference_maps(ds: xr.Dataset) -> list[Chart]:
+    """Method reference-check: peak contact force, largest normal stress and alternating bending stress of the
+    periodic solution over the reference model's (1: the paper's model may be trusted there; blank where
+    either does not strike the wall), laid out as :func:`stress_maps`, at the values of the swept inputs
+    where some point has a ratio."""
+    names = [n for n in REFERENCE_RATIOS if n in ds.data_vars]
+    found = np.isfinite(_full(ds, names[0])) if names else None
+    if found is None or not found.any():
+        return []
+    ds = _where_found(ds, found)  # where both strike the wall
+    words = {"reference_peak_force_ratio": "peak contact force", "reference_normal_stress_ratio": "normal stress",
+             "reference_alternating_stress_ratio": "alternating stress"}
+    return _maps_or_lines(ds, "reference_check", "Periodic solution over the reference model (1: they agree): "
+                          + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
 
 
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
@@ -740,7 +763,7 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
 
 #: Every chart, in the order :func:`draw_all` draws them.
 CHARTS = (stress_maps, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
-          crosscheck_maps, orbit_maps, validity_map)
+          crosscheck_maps, orbit_maps, reference_maps, validity_map)
 
 
 def draw(ds: xr.Dataset) -> list[Chart]:

@@ -21,7 +21,8 @@ from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 #: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
 #: package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
-                  "crosscheck": "crosscheck", "sdof": "sdof"}
+                  "crosscheck": "crosscheck", "reference": "reference", "reference-check": "refcheck",
+                  "sdof": "sdof"}
 
 
 def _registry() -> dict:

@@ -24,6 +24,11 @@ METHOD_DESCRIPTIONS = {
                    "or implicit LSODA) until periodic: the check on the periodic assumption",
     "crosscheck": "the fast periodic solution replayed through one revolution of real Hertz contact in the time "
                   "domain: agrees within solver.check_tolerance, or flagged with the reasons",
+    "reference": "the reference model: the pipe section in both lateral directions, driven by its mass "
+                 "eccentricity, Hertz wall contact with friction at tool joints and body, mud drag; whirl, contact "
+                 "and stresses after the transient",
+    "reference-check": "the periodic solution (fast) against the reference model on the same point: contact or "
+                       "not, peak force, max normal and alternating stress within solver.check_tolerance",
     "sdof": "one-degree-of-freedom screen: first-mode impact oscillator between the walls, exact period-1 orbit "
             "and Floquet stability at a given span",
 }
@@ -158,3 +163,24 @@ class CrosscheckOptions(MethodOptions):
     """Options of the ``crosscheck`` method (docs/model.md §11)."""
 
     check_tolerance: float = 0.02  #: relative difference accepted between the real contact and the periodic solution
+
+
+@dataclass(frozen=True)
+class ReferenceOptions(MethodOptions):
+    """Options of the ``reference`` method (docs/reference_model.md)."""
+
+    eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
+    tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
+    joint_length: float = 31 * 0.3048  #: tool joint to tool joint [m]
+    section_length: float = 93 * 0.3048  #: the pinned section, three joints [m]
+    friction: float = 0.3  #: Coulomb coefficient of pipe on wall
+    reference_modes: int = 16  #: modes per lateral direction
+    reference_revolutions: int = 40  #: most revolutions of the transient
+    reference_window: int = 6  #: revolutions of the output window
+    reference_damping: str = option("drag", ("drag", "viscous", "none"))
+    reference_initial: str = option("forced", ("forced", "rest"))
+    contact_law: str = option("hertz", ("hertz", "penalty"))
+    reference_rtol: float = 1e-6  #: relative tolerance of the compiled integrator
+    reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
+    damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
+    slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]

@@ -140,6 +140,25 @@ OUTPUTS = {
                                "(method crosscheck)"),
     "orbit_normal_stress_ratio": ("1", "largest normal stress on the real contact's periodic orbit over the periodic "
                                   "solution's (method crosscheck)"),
+    "eccentricity": ("m", "mass eccentricity of the pipe (method reference)"),
+    "contact_fraction": ("1", "fraction of the window's time with any wall contact (method reference)"),
+    "whirl_frequency_ratio": ("1", "whirl rate of the most-touching point over the rotary speed, negative backwards "
+                              "(method reference)"),
+    "whirl_class": ("1", "whirl verdict (method reference): 0 no contact, 1 forward, 2 backward, 3 bouncing, "
+                    "4 sliding on the wall"),
+    "contact_spacing": ("m", "largest distance between neighbouring touching points, the pinned ends counted "
+                        "(method reference)"),
+    "alternating_bending_stress_x": ("m", "position along the section of the largest alternating bending stress"),
+    "modal_tail_fraction": ("1", "share of the largest bending moment carried by the upper half of the modes "
+                            "(method reference: a truncation indicator)"),
+    "window_spread": ("1", "relative difference of the peak contact force between the two halves of the output "
+                      "window (method reference: a settling indicator)"),
+    "reference_peak_force_ratio": ("1", "peak contact force, periodic solution over the reference model (method "
+                                   "reference-check)"),
+    "reference_normal_stress_ratio": ("1", "largest normal stress, periodic solution over the reference model (method "
+                                      "reference-check)"),
+    "reference_alternating_stress_ratio": ("1", "alternating bending stress, periodic solution over the reference "
+                                           "model (method reference-check)"),
     "orbit_distance": ("1", "largest difference of the real contact's periodic orbit from the periodic solution's "
                        "modal state, in units of c and Omega c (method crosscheck)"),
 }

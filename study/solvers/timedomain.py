@@ -519,7 +519,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
         states.append(np.concatenate((q, v)))
         energies.append(model.energy(q, v))
         if check:
-            period = _period(states, scale, tol)
+            period = settled_period(states, scale, tol)
             if period is not None:
                 verdict = "periodic"
                 break
@@ -600,7 +600,7 @@ def contact_resolution(model: ModalModel, samples: trajectory.Samples) -> str | 
             f"fields' correction does not hold; the stresses need {need}")
 
 
-def _period(states, scale, tol):
+def settled_period(states, scale, tol):
     """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier."""
     S = np.asarray(states) / scale
     diff = {}

@@ -528,3 +528,19 @@ def test_orbit_maps_keep_only_the_inputs_where_an_orbit_was_found():
     no_orbit = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.5]},
                             outputs=CROSSCHECK_OUTPUTS)
     assert orbit_maps(no_orbit) == []
+
+
+def test_reference_check_ratios_are_centred_on_agreement():
+    # method reference-check: periodic solution over the reference model, 1 is agreement
+    from study.charts import reference_maps
+    from study.charts.design import REFERENCE_RATIOS
+
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000]},
+                      outputs=CROSSCHECK_OUTPUTS[:3]).rename(dict(zip(CROSSCHECK_OUTPUTS[:3], REFERENCE_RATIOS)))
+    chart, = reference_maps(ds)
+    labels = figure_labels(chart.figure)
+    assert labels["titles"][-1].startswith("Periodic solution over the reference model (1: they agree)")
+    assert "alternating stress, periodic / reference [-]" in labels["ylabels"]
+    norms = {type(mesh.norm).__name__: mesh.norm for mesh in meshes(chart.figure)}
+    assert set(norms) == {"TwoSlopeNorm"} and norms["TwoSlopeNorm"].vcenter == 1.0
+    assert reference_maps(make_dataset({"rotary_speed": [60, 120]}, outputs=())) == []

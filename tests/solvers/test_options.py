@@ -12,7 +12,7 @@ from study.solvers import options
 
 
 @pytest.mark.parametrize("declared", [options.Options, options.TimeDomainOptions, options.SdofOptions,
-                                      options.SeriesOptions, options.CrosscheckOptions])
+                                      options.SeriesOptions, options.CrosscheckOptions, options.ReferenceOptions])
 def test_the_config_defaults_are_the_declared_ones(declared):
     names = getattr(declared, "CONFIG_FIELDS", None) or [f.name for f in fields(declared)]
     configured = [name for name in names if name in config.FIELDS_BY_NAME]

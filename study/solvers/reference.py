@@ -1,0 +1,611 @@
+"""The reference model (method ``reference``; ``docs/reference_model.md``): the rotating pipe section in
+the hole, in both lateral directions, driven by what drives it.
+
+Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
+
+- **section** pinned and centred at both ends, length L = ``section_length`` (config
+  ``contact.section_length``, default 93 ft: three 31-ft joints), under the effective tension
+  T0 − m_i V_m², mass M = m_p + m_i + m_a per unit length (:func:`study.solvers.scene.section_properties`);
+  deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) sin(nπx/L), n = 1 … N (``reference_modes``, default 16),
+  modal mass M L/2 and ω_n from :func:`study.physics.section.natural_frequencies`.
+- **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), uniform
+  along the section, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
+  (:func:`study.physics.whirl.eccentric_load`); and in an inclined hole (``inclination``, config
+  ``hole.inclination``, default 0) the buoyed weight's side component (:func:`study.physics.whirl.side_load`;
+  ``side_load`` [N/m] sets it directly in code). Nothing else: with ε = 0 and a centred pipe
+  nothing moves.
+- **mud**: added mass in M; quadratic drag −D |u̇| u̇ per unit length with the velocity's magnitude in
+  both directions (``reference_damping = "drag"``, default; D from
+  :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
+  Gauss–Legendre quadrature with 2N + 8 points. For validation ``"viscous"`` (modal damping ratio
+  ``damping_ratio`` in every mode) and ``"none"``.
+- **contact points**: the tool joints inside the section, at every multiple of ``joint_length`` (the
+  ends are joints: pinned), radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe
+  body halfway between adjacent joints (and between a joint and an end), radius r_o, clearance R − r_o.
+  ``contact_points`` (fractions of L) and ``contact_kinds`` (0 body, 1 joint) replace them in code.
+- **wall**: Hertz normal force K_p δ^{3/2}(1 + χ δ̇)₊ with K_p from
+  :func:`study.physics.hertz.hertz_stiffness` for the point's radius in the hole at the curvature of the
+  assumed mode c_p (π/L)² (as :mod:`study.solvers.timedomain`), χ = h(e)/v0 set at each onset with the
+  calibrated h(e) of :func:`study.solvers.timedomain.calibrated_hysteresis` (exact restitution for one
+  mass); Coulomb friction μ (``friction``, config ``contact.friction``, default 0.3) on the sliding
+  velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`).
+- **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
+  gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
+
+Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
+"rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
+:mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6) until the state at the revolution
+boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`) or
+``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
+(default 6; the period's multiple when periodic) is recorded and the outputs are taken over it.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import hertz, section, whirl
+from study.solvers import trajectory, whirl_kernel
+from study.solvers.options import ReferenceOptions
+from study.solvers.result import PointResult
+from study.solvers.scene import make_scene, section_properties
+from study.solvers.timedomain import calibrated_hysteresis, settled_period
+
+METHOD = "reference"
+DAMPING_CHOICES = ReferenceOptions.choices("reference_damping")
+CONTACT_LAWS = ReferenceOptions.choices("contact_law")
+#: Default regularisation velocity of the Coulomb friction [m/s]: 1/250 of the 4½-in body's surface
+#: speed at 100 rpm; tested not to change the outputs beyond 2 % when divided by ten.
+SLIP_VELOCITY = ReferenceOptions.default("slip_velocity")
+#: Largest step times the highest natural frequency (Dormand–Prince 5(4) is stable on the imaginary axis
+#: up to about 3.3; Hairer & Wanner, Solving ODEs II, §IV.2).
+STABLE_STEP = 2.5
+#: Whirl verdicts -> integer code (output ``whirl_class``).
+WHIRL_CLASSES = {"no_contact": 0, "forward": 1, "backward": 2, "bouncing": 3, "sliding": 4}
+#: |whirl rate/Ω| below which a pipe in contact at least SLIDING_CONTACT of the time lies on the wall, sliding.
+SLIDING_RATE, SLIDING_CONTACT = 0.05, 0.99
+
+
+@dataclass
+class WhirlModel:
+    """The section's modal model in both directions (SI)."""
+
+    span: float  #: section length L [m]
+    modes: np.ndarray  #: mode numbers n (N,)
+    omega: np.ndarray  #: ω_n [rad/s]
+    mass: float  #: modal mass M L/2 [kg]
+    rotary_speed: float
+    points: np.ndarray  #: contact positions x_p [m]
+    kinds: np.ndarray  #: 0 body, 1 tool joint
+    clearance: np.ndarray  #: c_p [m]
+    radius: np.ndarray  #: r_p [m]
+    stiffness: np.ndarray  #: Hertz K_p [N m^-3/2]
+    phi: np.ndarray  #: (P, N) sin(k_n x_p)
+    eccentric: np.ndarray  #: (N,) generalised eccentric force per modal mass [m/s²]
+    side: np.ndarray  #: (N,) generalised side load per modal mass [m/s²]
+    damping: np.ndarray  #: (N,) linear modal damping per mass 2ζω_n [1/s]
+    drag: float  #: D [kg/m²]
+    drag_shapes: np.ndarray  #: (G, N)
+    drag_weights: np.ndarray  #: (G,) [m]
+    friction: float
+    slip_velocity: float
+    restitution: float
+    hysteresis: float  #: calibrated h(e) = χ v0 [-]
+    law: int  #: 0 Hertz, 1 linear penalty
+    penalty_stiffness: np.ndarray  #: (P,) [N/m]
+    penalty_damping: np.ndarray  #: (P,) [N s/m]
+    props: Mapping[str, float] = field(default_factory=dict)
+    eccentricity: float = 0.0
+
+    @property
+    def period(self) -> float:
+        return 2.0 * np.pi / self.rotary_speed
+
+    @property
+    def n_modes(self) -> int:
+        return int(self.modes.size)
+
+    def state_scale(self) -> np.ndarray:
+        """(4N,) scale of the state: the body clearance c for q, Ω c for q̇."""
+        c = float(np.max(self.clearance))
+        N = self.n_modes
+        return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
+
+    def system(self) -> tuple:
+        """The tuple the compiled right-hand side takes (:func:`whirl_kernel.rhs`)."""
+        fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
+                         float(self.law), self.hysteresis])
+        return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
+                self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
+                fpar)
+
+    def energy(self, z) -> float:
+        """Σ ½ m (q̇² + ω² q²) over both directions plus the contacts' elastic energy [J]."""
+        N = self.n_modes
+        z = np.asarray(z, float)
+        q, v = z[:2 * N], z[2 * N:4 * N]
+        w2 = np.concatenate((self.omega, self.omega)) ** 2
+        y, w = self.phi @ z[:N], self.phi @ z[N:2 * N]
+        d = np.maximum(np.hypot(y, w) - self.clearance, 0.0)
+        contact = 0.4 * self.stiffness * d**2.5 if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
+        return float(0.5 * self.mass * np.sum(v**2 + w2 * q**2) + np.sum(contact))
+
+
+def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Contact positions x_p [m] and kinds (0 body, 1 tool joint): the joints at multiples of the joint
+    length strictly inside the section, the body halfway between neighbouring joints or ends."""
+    joints = np.arange(1, int(np.ceil(span / joint_length)) + 1) * joint_length
+    joints = joints[joints < span * (1 - 1e-9)]
+    stations = np.concatenate(([0.0], joints, [span]))
+    body = 0.5 * (stations[:-1] + stations[1:])
+    x = np.concatenate((joints, body))
+    kinds = np.concatenate((np.ones(joints.size, int), np.zeros(body.size, int)))
+    order = np.argsort(x)
+    return x[order], kinds[order]
+
+
+def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
+    """The reference model of one design point (see the module docstring). Raises ValueError naming the
+    field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
+    option = ReferenceOptions.from_inputs(inputs)
+    props = section_properties(inputs)
+    scene = make_scene(inputs)
+    r_o, hole_r = inputs["outer_diameter"] / 2.0, inputs["hole_diameter"] / 2.0
+    if r_o >= hole_r:
+        raise ValueError(f"pipe.outer_diameter = {2 * r_o:.6g} m: must be smaller than hole.diameter = "
+                         f"{2 * hole_r:.6g} m")
+    tj = float(option.tool_joint_diameter) / 2.0
+    if not r_o <= tj < hole_r:
+        raise ValueError(f"pipe.tool_joint_diameter = {2 * tj:.6g} m: must be at least pipe.outer_diameter "
+                         f"({2 * r_o:.6g} m) and smaller than hole.diameter ({2 * hole_r:.6g} m)")
+    L = float(option.section_length)
+    joint = float(option.joint_length)
+    if L <= 0 or joint <= 0:
+        raise ValueError(f"contact.section_length = {L:.6g} m, pipe.joint_length = {joint:.6g} m: both must be > 0")
+    mu = float(option.friction)
+    if mu < 0:
+        raise ValueError(f"contact.friction = {mu}: must be >= 0")
+    N = int(option.reference_modes)
+    if N < 1:
+        raise ValueError(f"reference_modes = {N}: at least 1")
+    modes = np.arange(1, N + 1)
+    M = props["mass_per_length"]
+    omega = np.asarray(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M,
+                                                   modes), float).ravel()
+    k = modes * np.pi / L
+    if inputs.get("contact_points") is not None:
+        x = np.atleast_1d(np.asarray(inputs["contact_points"], float)) * L
+        kinds = np.atleast_1d(np.asarray(inputs.get("contact_kinds", np.zeros(x.size)), int))
+    else:
+        x, kinds = contact_layout(L, joint)
+    radius = np.where(kinds == 1, tj, r_o)
+    clearance = hole_r - radius
+    kappa = clearance * (np.pi / L) ** 2
+    a_sum, b_sum = hertz.curvature_sums(radius, hole_r, kappa)
+    K = np.asarray(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum), float)
+    phi = np.sin(np.outer(x, k))
+    mass = 0.5 * M * L
+    Om = float(inputs["rotary_speed"])
+    eps = float(option.eccentricity)
+    factors = whirl.uniform_load_modal_factors(modes, L)
+    eccentric = whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors / mass
+    if inputs.get("side_load") is not None:
+        w_side = float(inputs["side_load"])
+    else:
+        w_side = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
+                                       float(inputs.get("inclination") or 0.0)))
+    side = w_side * factors / mass
+    damping_model = option.reference_damping
+    damping = np.zeros(N)
+    if damping_model == "viscous":
+        damping = 2.0 * float(option.damping_ratio) * omega
+    G = 2 * N + 8
+    gx, gw = np.polynomial.legendre.leggauss(G)
+    shapes = np.sin(np.outer(0.5 * L * (gx + 1), k))
+    drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
+    e = float(inputs["restitution"])
+    law = CONTACT_LAWS.index(option.contact_law)
+    # the linear penalty: Hertz linearised at the elastic approach of the point's effective mass at Ω c_p
+    m_eff = mass / np.maximum(np.sum(phi**2, axis=1), 1e-12)
+    alpha = hertz.hertz_impact(m_eff, np.maximum(Om * clearance, 1e-6), K).max_approach
+    kp = 1.5 * K * np.sqrt(alpha)
+    le = np.log(max(e, 1e-12))
+    cp = 2.0 * (-le / np.sqrt(np.pi**2 + le**2)) * np.sqrt(kp * m_eff)
+    return WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
+                      clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
+                      damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
+                      friction=mu, slip_velocity=float(option.slip_velocity),
+                      restitution=e, hysteresis=calibrated_hysteresis(e) if e > 0 else 0.0, law=law,
+                      penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
+                      eccentricity=eps)
+
+
+@dataclass
+class Window:
+    """The motion recorded over the output window."""
+
+    times: np.ndarray  #: (R,) [s]
+    states: np.ndarray  #: (R, 4N + 4)
+    forces: np.ndarray  #: (R, P, 3) F_y, F_z, F_n on the pipe [N]
+    peak: np.ndarray  #: (P,) largest F_n [N]
+    onsets: np.ndarray  #: (P,) contact onsets
+    contact_time: np.ndarray  #: (P,) [s]
+    any_contact_time: float  #: [s]
+    start: float
+    end: float
+
+
+class Integrator:
+    """Runs the compiled kernel on a model, keeping the contact state between calls."""
+
+    def __init__(self, model: WhirlModel, rtol: float = 1e-6, state=None):
+        self.model = model
+        self.sy = model.system()
+        N, P = model.n_modes, model.points.size
+        self.z = np.zeros(4 * N + 4) if state is None else np.array(state, float)
+        self.t = 0.0
+        self.active = np.zeros(P, bool)
+        self.chi = np.zeros(P)
+        self.rtol = float(rtol)
+        # error scale weighted by 1/n^2: the bending moment weighs mode n by k_n^2, so its error is kept even
+        self.scale = model.state_scale() * np.tile(1.0 / model.modes.astype(float) ** 2, 4)
+        self.h = model.period / 1000.0
+        # and within the stability interval of Dormand-Prince on the imaginary axis (about 3.3/omega): the error
+        # estimate alone lets an undamped high mode ring at the edge of it
+        self.h_max = min(model.period / 64.0, STABLE_STEP / float(np.max(model.omega)))
+        self.steps = 0
+        self.outcome = whirl_kernel.OK
+
+    def run(self, t_end: float, record: bool = False, rows_per_revolution: int = 256,
+            max_steps: int = 2_000_000) -> Window:
+        P = self.model.points.size
+        stats, peak, onsets, ctime = np.zeros(1), np.zeros(P), np.zeros(P, np.int64), np.zeros(P)
+        tau = self.model.period
+        revs = max((t_end - self.t) / tau, 1e-9)
+        cap = int(rows_per_revolution * 16 * revs) + 16 if record else 1
+        rec_t = np.zeros(cap)
+        rec_z = np.zeros((cap, self.z.size))
+        rec_f = np.zeros((cap, P, 3))
+        rec_dt = np.array([tau / rows_per_revolution, tau / (16 * rows_per_revolution)])
+        start = self.t
+        t, h, outcome, n_rec, steps = whirl_kernel.advance(
+            self.t, t_end, self.z, self.active, self.chi, self.h, self.sy, self.rtol, self.scale, self.h_max,
+            max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0)
+        self.t, self.h, self.outcome = t, h, outcome
+        self.steps += steps
+        return Window(times=rec_t[:n_rec], states=rec_z[:n_rec], forces=rec_f[:n_rec], peak=peak, onsets=onsets,
+                      contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
+
+
+INITIAL_CHOICES = ReferenceOptions.choices("reference_initial")
+
+
+def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
+    """The state the run starts from (4N + 4,): ``"rest"`` the centred pipe at rest; ``"forced"`` (default)
+    the synchronous forward whirl of the section without walls, Q_n e^{iΩt} with
+    Q_n = ε_n/(ω_n² − Ω² + iΩ d_n) (the modal Jeffcott response; linear damping only), plus the static
+    sag under the side load, scaled down as a whole until every contact point is clear of its wall. It
+    removes the start-up ringing of the low modes, which the quadratic drag damps slowly at small
+    amplitude; with no drive it is the centred pipe at rest too."""
+    N = model.n_modes
+    z = np.zeros(4 * N + 4)
+    if kind == "rest":
+        return z
+    om = model.rotary_speed
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Q = model.eccentric / (model.omega**2 - om**2 + 1j * om * model.damping)
+    Q = np.where(np.isfinite(Q), Q, 0.0) + model.side / model.omega**2
+    z[:N], z[N:2 * N] = Q.real, Q.imag
+    velocity = 1j * om * (Q - model.side / model.omega**2)
+    z[2 * N:3 * N], z[3 * N:4 * N] = velocity.real, velocity.imag
+    reach = np.hypot(model.phi @ z[:N], model.phi @ z[N:2 * N])
+    if np.any(reach > 0):
+        z[:4 * N] *= min(1.0, 0.99 * float(np.min(model.clearance / np.maximum(reach, 1e-300))))
+    return z
+
+
+def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
+    """Transient until periodic (or ``reference_revolutions``), then the recorded window.
+
+    Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or
+    None), revolutions (of the transient), window (:class:`Window` or None), failure (text or None).
+    """
+    option = ReferenceOptions.from_inputs(inputs)
+    model = model or build_model(inputs)
+    start = initial_state(model, option.reference_initial)
+    run = Integrator(model, float(option.reference_rtol), start)
+    tau = model.period
+    revolutions = int(option.reference_revolutions)
+    tol = float(option.reference_tolerance)
+    N = model.n_modes
+    scale = model.state_scale()
+    states = [run.z[:4 * N].copy()]
+    period = None
+    for k in range(1, revolutions + 1):
+        run.run(k * tau)
+        if run.outcome != whirl_kernel.OK:
+            return dict(model=model, integrator=run, verdict="failed", period=None, revolutions=k, window=None,
+                        failure=f"{whirl_kernel.OUTCOMES[run.outcome]} in revolution {k}")
+        states.append(run.z[:4 * N].copy())
+        if np.max(np.abs(states[-1]) / scale) == 0.0:  # nothing moves
+            period = 1 if k >= 2 else None
+        else:
+            period = settled_period(states, scale, tol)
+        if period is not None:
+            break
+    n_window = int(option.reference_window)
+    if period:
+        n_window = period * max(1, int(np.ceil(n_window / period)))
+    window = run.run(run.t + n_window * tau, record=True)
+    failure = None
+    verdict = "periodic" if period else "not_periodic"
+    if run.outcome != whirl_kernel.OK:
+        verdict, failure = "failed", f"{whirl_kernel.OUTCOMES[run.outcome]} in the output window"
+    return dict(model=model, integrator=run, verdict=verdict, period=period, revolutions=len(states) - 1,
+                window=window, failure=failure)
+
+
+# --- outputs -----------------------------------------------------------------------------------------
+
+
+def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
+    """Whirl rate over Ω of the most-touching contact point (midspan without contact) and its verdict:
+    no_contact; sliding (in contact nearly all the time, |rate| < 0.05 Ω: lying on the wall); forward
+    (rate > 0.5 Ω); backward (rate < −0.5 Ω); otherwise bouncing (impacts without a settled whirl)."""
+    N = model.n_modes
+    if np.any(window.contact_time > 0):
+        p = int(np.argmax(window.contact_time))
+        shape = model.phi[p]
+        where = float(model.points[p])
+    else:
+        p, where = -1, 0.5 * model.span
+        shape = np.sin(model.modes * np.pi * 0.5)
+    y = window.states[:, :N] @ shape
+    w = window.states[:, N:2 * N] @ shape
+    angle = np.unwrap(np.arctan2(w, y))
+    duration = window.times[-1] - window.times[0]
+    ratio = float((angle[-1] - angle[0]) / (model.rotary_speed * duration)) if duration > 0 else float("nan")
+    if not np.any(window.onsets > 0) and not np.any(window.contact_time > 0):
+        verdict = "no_contact"
+    elif abs(ratio) < SLIDING_RATE and window.any_contact_time >= SLIDING_CONTACT * duration:
+        verdict = "sliding"
+    elif ratio > 0.5:
+        verdict = "forward"
+    elif ratio < -0.5:
+        verdict = "backward"
+    else:
+        verdict = "bouncing"
+    return dict(whirl_frequency_ratio=ratio, whirl=verdict, whirl_point=where)
+
+
+def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
+    """Whether the modes left out respond statically to the contacts: the first of them, ω_{N+1}, has a
+    period no longer than the shortest mean contact (contact time over onsets per touching point; the whole
+    window for a contact that never opens). False without contact."""
+    touching = (window.contact_time > 0)
+    if not np.any(touching):
+        return False
+    durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
+    props = model.props
+    first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
+                                                            props["effective_tension"], props["mass_per_length"],
+                                                            [model.n_modes + 1]))[0])
+    return bool(first_left * np.min(durations) >= 2.0 * np.pi)
+
+
+def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
+             fibres: int = 16, correction: bool = True) -> dict[str, float]:
+    """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
+    docs/reference_model.md §3).
+
+    Moments M_y, M_z (−EI y'', −EI z'') from :func:`study.solvers.trajectory.fields` in each direction
+    (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
+    only when the modes left out are fast beside the contacts, :func:`quasi_static_applies`: for an
+    impact shorter than their periods they respond to its impulse, not statically, and the
+    correction would put the static moment of the peak force into the pipe); bending stress |M| r_o/I; the
+    alternating stress is half the range, over the window, of the stress of one fibre of the turning
+    pipe, (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I, at the worst fibre ψ and section; shear force
+    dM/dx (the −EI y''' part, by differences of the corrected moment), shear stress 2|V|/A_s.
+    """
+    N = model.n_modes
+    L = model.span
+    x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    out = {}
+    fields = []
+    for j in range(2):
+        forces = window.forces[:, :, j] if correction else np.zeros_like(window.forces[:, :, j])
+        samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=forces)
+        fields.append(trajectory.fields(samples, x, model.modes, model.points / L, L, ei, tn))
+    my, mz = fields[0]["moment"], fields[1]["moment"]
+    uy, uz = fields[0]["deflection"], fields[1]["deflection"]
+    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    scale = r_o / float(section.second_moment_of_area(r_o, r_i))
+    area = model.props["steel_area"]
+    moment = np.hypot(my, mz)
+    it, ix = np.unravel_index(np.argmax(moment), moment.shape)
+    turn = model.rotary_speed * window.times
+    half = np.zeros(x.size)
+    for psi in np.linspace(0.0, np.pi, fibres, endpoint=False):  # ψ and ψ + π have the same half range
+        fibre = my * np.cos(turn + psi)[:, None] + mz * np.sin(turn + psi)[:, None]
+        half = np.maximum(half, 0.5 * (fibre.max(axis=0) - fibre.min(axis=0)))
+    dx = np.diff(x)
+    shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / dx
+    js = np.unravel_index(np.argmax(shear), shear.shape)
+    # modal truncation indicator: the upper half of the modes' share of the largest modal moment
+    k = model.modes * np.pi / L
+    upper = model.modes > N // 2
+    shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
+    qy, qz = window.states[it, :N], window.states[it, N:2 * N]
+    full = np.hypot(qy @ shapes, qz @ shapes)
+    tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
+    out.update(max_deflection=float(np.max(np.hypot(uy, uz))),
+               max_bending_stress=float(moment[it, ix] * scale),
+               max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
+               max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(window.times[it] - window.start),
+               alternating_bending_stress=float(np.max(half) * scale),
+               alternating_bending_stress_x=float(x[int(np.argmax(half))]),
+               max_shear_stress=float(2.0 * shear[js] / area),
+               max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
+               max_shear_stress_t=float(window.times[js[0]] - window.start),
+               modal_tail_fraction=float(tail / full) if full > 0 else 0.0)
+    return out
+
+
+def contact_spacing(model: WhirlModel, window: Window) -> tuple[float, list[float]]:
+    """Largest distance between neighbouring touching points, the pinned ends counted as held [m]; and
+    the touching positions [m]."""
+    touching = np.sort(model.points[(window.contact_time > 0) | (window.onsets > 0)])
+    if touching.size == 0:
+        return float("nan"), []
+    stations = np.concatenate(([0.0], touching, [model.span]))
+    return float(np.max(np.diff(stations))), [float(v) for v in touching]
+
+
+def energy_balance(model: WhirlModel, window: Window) -> dict[str, float]:
+    """Energy budget over the window [J]: change of the mechanical energy, work of the loads and of the
+    friction, drag and contact losses, and the residual relative to the largest term."""
+    N = model.n_modes
+    a, b = window.states[0], window.states[-1]
+    dW = b[4 * N:] - a[4 * N:]
+    dE = model.energy(b) - model.energy(a)
+    residual = dW[0] + dW[1] - dW[2] - dW[3] - dE
+    size = max(abs(dW[0]), abs(dW[1]), abs(dW[2]), abs(dW[3]), abs(dE), 1e-300)
+    return dict(energy_change=dE, load_work=dW[0], friction_work=dW[1], drag_loss=dW[2], contact_loss=dW[3],
+                residual=float(residual / size))
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The ``reference`` method (module docstring). Values (SI) are listed in ``docs/reference_model.md``."""
+    start = time.perf_counter()
+    result = PointResult(method=METHOD)
+    model = build_model(inputs)
+    vals = result.values
+    vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi)
+                if np.isfinite(model.omega[0]) else np.nan, clearance=float(np.max(model.clearance)))
+    if not np.all(np.isfinite(model.omega)):
+        result.status = "buckled"
+        result.message = (f"effective tension {model.props['effective_tension']:.4g} N buckles the "
+                          f"{model.span:.4g} m section")
+        result.wall_time = time.perf_counter() - start
+        return result
+    run = simulate(inputs, model)
+    result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
+                         reference_modes=model.n_modes)
+    if run["verdict"] == "failed":
+        result.status = "failed"
+        result.message = f"integration failed: {run['failure']}"
+        result.wall_time = time.perf_counter() - start
+        return result
+    window = run["window"]
+    tau = model.period
+    revs = (window.end - window.start) / tau
+    vals.update(revolutions_simulated=float(run["revolutions"] + revs),
+                peak_contact_force=float(np.max(window.peak)),
+                impacts_per_revolution=float(np.sum(window.onsets) / revs),
+                contact_fraction=float(window.any_contact_time / (window.end - window.start)),
+                eccentricity=model.eccentricity)
+    if run["period"]:
+        vals["period_revolutions"] = float(run["period"])
+    measure = whirl_measure(model, window)
+    vals.update(whirl_frequency_ratio=measure["whirl_frequency_ratio"],
+                whirl_class=float(WHIRL_CLASSES[measure["whirl"]]))
+    spacing, touching = contact_spacing(model, window)
+    vals["contact_spacing"] = spacing
+    correction = quasi_static_applies(model, window)
+    vals.update(stresses(inputs, model, window, correction=correction))
+    half = window.times < 0.5 * (window.start + window.end)
+    peaks = [np.max(window.forces[m, :, 2]) if np.any(m) else 0.0 for m in (half, ~half)]
+    vals["window_spread"] = float(abs(peaks[0] - peaks[1]) / max(peaks)) if max(peaks) > 0 else 0.0
+    budget = energy_balance(model, window)
+    result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
+                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction)
+    messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
+                (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if run["period"] else
+                 f"not periodic within {run['revolutions']} revolutions"),
+                f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
+                f"{float(ReferenceOptions.from_inputs(inputs).reference_rtol):g}; upper-half modes carry "
+                f"{vals['modal_tail_fraction']:.2%} of the largest moment"
+                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}; "
+                f"peak force differs by "
+                f"{vals['window_spread']:.2%} between the window's halves"]
+    result.status = "no_impact" if measure["whirl"] == "no_contact" else "ok"
+    result.message = "; ".join(messages)
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+# --- the plain reference: scipy's solve_ivp with a penalty contact --------------------------------------
+
+
+def penalty_rhs(model: WhirlModel):
+    """The same equations written in numpy, as a user would for solve_ivp, with the linear penalty
+    contact (law 1 of :mod:`study.solvers.whirl_kernel`): returns f(t, z)."""
+    N = model.n_modes
+    w2 = model.omega**2
+    Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
+    S, wts, D = model.drag_shapes, model.drag_weights, model.drag
+    phi = model.phi
+
+    def f(t, z):
+        qy, qz, vy, vz = z[:N], z[N:2 * N], z[2 * N:3 * N], z[3 * N:4 * N]
+        fy = model.eccentric * np.cos(Om * t) + model.side
+        fz = model.eccentric * np.sin(Om * t)
+        ay = -w2 * qy - model.damping * vy + fy
+        az = -w2 * qz - model.damping * vz + fz
+        uy, uz = S @ vy, S @ vz
+        sp = np.hypot(uy, uz)
+        ay -= S.T @ (D * sp * uy * wts) / m
+        az -= S.T @ (D * sp * uz * wts) / m
+        y, w, yd, wd = phi @ qy, phi @ qz, phi @ vy, phi @ vz
+        r = np.hypot(y, w)
+        d = r - model.clearance
+        on = d > 0
+        Fy, Fz = np.zeros_like(y), np.zeros_like(y)
+        pf = pl = 0.0
+        if np.any(on):
+            ny, nz = y[on] / r[on], w[on] / r[on]
+            dd = yd[on] * ny + wd[on] * nz
+            vt = -yd[on] * nz + wd[on] * ny
+            elastic = model.penalty_stiffness[on] * d[on]
+            fn = np.maximum(elastic + model.penalty_damping[on] * dd, 0.0)
+            vs = vt + Om * model.radius[on]
+            ft = -mu * fn * vs / np.sqrt(vs**2 + vreg**2)
+            Fy[on], Fz[on] = -fn * ny - ft * nz, -fn * nz + ft * ny
+            pf, pl = float(np.sum(ft * vt)), float(np.sum((fn - elastic) * dd))
+        ay += phi.T @ Fy / m
+        az += phi.T @ Fz / m
+        power = [m * float(np.sum(fy * vy + fz * vz)), pf, float(np.sum(D * sp**3 * wts)), pl]
+        return np.concatenate((vy, vz, ay, az, power))
+
+    return f
+
+
+def penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: float = 1e-6, atol: float | None = None,
+                      method: str = "RK45") -> dict[str, Any]:
+    """solve_ivp on the penalty-contact equations from the centred pipe at rest over ``revolutions``:
+    wall_time [s], status, nfev, final_state (4N + 4,)."""
+    from scipy.integrate import solve_ivp
+
+    model = build_model({**inputs, "contact_law": "penalty"})
+    N = model.n_modes
+    scale = np.concatenate((model.state_scale(), np.full(4, 1.0)))
+    start = time.perf_counter()
+    sol = solve_ivp(penalty_rhs(model), (0.0, revolutions * model.period), np.zeros(4 * N + 4), method=method,
+                    rtol=rtol, atol=(rtol if atol is None else atol) * scale)
+    return dict(wall_time=time.perf_counter() - start, status=sol.status, nfev=sol.nfev, final_state=sol.y[:, -1])
+
+
+def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
+    """The compiled integrator over ``revolutions`` from the centred pipe at rest: wall_time [s],
+    outcome, steps, final_state."""
+    model = build_model(inputs)
+    run = Integrator(model, rtol)
+    start = time.perf_counter()
+    run.run(revolutions * model.period)
+    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy())

@@ -1,0 +1,229 @@
+"""Tests of the reference model (study.solvers.reference): checked against closed forms no one here wrote."""
+
+import numpy as np
+import pytest
+
+from study.physics import whirl
+from study.solvers import METHODS, reference, solve_point
+
+
+@pytest.fixture(scope="module")
+def base(paper_inputs):
+    return dict(paper_inputs)
+
+
+def test_nothing_moves_without_a_drive(base):
+    # issue 20: zero eccentricity, a vertical hole and a centred pipe -> nothing moves
+    inputs = {**base, "eccentricity": 0.0, "inclination": 0.0, "reference_modes": 6, "reference_revolutions": 3}
+    run = reference.simulate(inputs)
+    assert run["verdict"] == "periodic"
+    assert np.all(run["integrator"].z == 0.0)
+    assert np.all(run["window"].states == 0.0)
+    result = solve_point(inputs, "reference")
+    assert result.status == "no_impact"
+    assert result.values["max_deflection"] == 0.0 and result.values["peak_contact_force"] == 0.0
+
+
+def test_contact_layout_of_three_joints():
+    # 93-ft section of 31-ft joints: joints at 31 and 62 ft, the body halfway between stations
+    x, kinds = reference.contact_layout(93 * 0.3048, 31 * 0.3048)
+    assert np.allclose(x / 0.3048, [15.5, 31, 46.5, 62, 77.5])
+    assert list(kinds) == [0, 1, 0, 1, 0]
+
+
+@pytest.mark.parametrize("field, value", [("tool_joint_diameter", 9.0 * 0.0254), ("tool_joint_diameter", 4.0 * 0.0254)])
+def test_bad_tool_joint_is_refused_naming_the_field(base, field, value):
+    with pytest.raises(ValueError, match="pipe.tool_joint_diameter"):
+        reference.build_model({**base, field: value})
+
+
+def test_registered_as_a_method():
+    assert "reference" in METHODS
+
+
+def test_every_value_is_a_registered_output(base):
+    from study.solvers.result import OUTPUTS
+
+    result = solve_point({**base, "inclination": np.pi / 6, "reference_modes": 4, "reference_revolutions": 4,
+                          "reference_window": 2}, "reference")
+    assert result.status == "ok", result.message
+    assert set(result.values) <= set(OUTPUTS)
+
+
+# --- no contact: the Jeffcott rotor ----------------------------------------------------------------------
+
+
+def _wide(base, **extra):
+    """One point whose walls are out of reach (a 20-in hole), with linear modal damping."""
+    return {**base, "hole_diameter": 20 * 0.0254, "reference_damping": "viscous", "damping_ratio": 0.1,
+            "reference_revolutions": 80, "reference_tolerance": 1e-7, **extra}
+
+
+def _effective_eccentricity(model, n):
+    """ε of mode n's Jeffcott rotor: (m_p/M) ε ∫ sin / ∫ sin² = (m_p/M) ε 4/(nπ) for odd n."""
+    return model.props["pipe_mass"] / model.props["mass_per_length"] * model.eccentricity * \
+        whirl.uniform_load_modal_factors([n], model.span)[0] / (0.5 * model.span)
+
+
+@pytest.mark.parametrize("ratio", [0.5, 1.0, 2.0])
+def test_unbalance_response_of_one_mode_is_jeffcotts(base, ratio):
+    # Vance 1988 eq. 2.11-2.12 / Childs 1993 ch. 1 / Genta 2005 §4.2: amplitude e r^2/sqrt((1-r^2)^2+(2 zeta r)^2),
+    # lag atan2(2 zeta r, 1 - r^2)
+    one = _wide(base, reference_modes=1)
+    w1 = reference.build_model(one).omega[0]
+    run = reference.simulate({**one, "rotary_speed": ratio * w1})
+    model, window = run["model"], run["window"]
+    relative = (window.states[:, 0] + 1j * window.states[:, 1]) * np.exp(-1j * model.rotary_speed * window.times)
+    amplitude, lag = whirl.jeffcott_response(ratio, 0.1)
+    expected = amplitude * _effective_eccentricity(model, 1)
+    assert np.abs(relative) == pytest.approx(expected, rel=2e-4)
+    assert -np.angle(relative) == pytest.approx(lag, abs=2e-4)
+
+
+def test_forward_synchronous_whirl_of_the_section(base):
+    # every mode is a Jeffcott rotor; the midspan whirls forward at Omega on a circle whose radius is the
+    # sum of the modes' closed-form responses (Genta 2005 §4.2, modal superposition)
+    five = _wide(base, reference_modes=5)
+    model = reference.build_model(five)
+    om = 1.4 * model.omega[0]
+    run = reference.simulate({**five, "rotary_speed": om})
+    model, window = run["model"], run["window"]
+    mid = np.sin(model.modes * np.pi / 2)
+    u = window.states[:, :5] @ mid + 1j * window.states[:, 5:10] @ mid
+    expected = sum(_effective_eccentricity(model, n) * np.exp(-1j * whirl.jeffcott_response(om / w, 0.1)[1])
+                   * whirl.jeffcott_response(om / w, 0.1)[0] * s for n, w, s in zip(model.modes, model.omega, mid))
+    assert np.abs(u) == pytest.approx(abs(expected), rel=5e-4)  # a circle of the closed-form radius
+    measure = reference.whirl_measure(model, window)
+    assert measure["whirl"] == "no_contact"
+    assert measure["whirl_frequency_ratio"] == pytest.approx(1.0, abs=1e-4)
+
+
+@pytest.mark.parametrize("factor, touches", [(0.99, False), (1.01, True)])
+def test_first_contact_at_the_closed_form_speed(base, factor, touches):
+    # the speed where the Jeffcott response first reaches the clearance: r^4 = (c/e)^2 ((1-r^2)^2 + 4 zeta^2 r^2)
+    one = {**base, "reference_modes": 1, "reference_damping": "viscous", "damping_ratio": 0.05,
+           "contact_points": [0.5], "contact_kinds": [0], "eccentricity": 0.5 * 0.0254, "reference_revolutions": 80}
+    model = reference.build_model(one)
+    speed = whirl.speed_reaching_clearance(model.omega[0], 0.05, _effective_eccentricity(model, 1), model.clearance[0])
+    result = solve_point({**one, "rotary_speed": factor * speed}, "reference")
+    assert (result.values["contact_fraction"] > 0) is touches, result.message
+    if not touches:
+        ratio = factor * speed / model.omega[0]
+        amplitude = whirl.jeffcott_response(ratio, 0.05)[0] * _effective_eccentricity(model, 1)
+        assert result.values["max_deflection"] == pytest.approx(amplitude, rel=1e-3)
+        assert amplitude / model.clearance[0] > 0.85  # close to the wall, yet clear of it
+
+
+# --- contact ----------------------------------------------------------------------------------------------
+
+
+def _rolling(base, kind, **extra):
+    """A section dropped from rest onto the low side of a 30-degree hole, touching at midspan only, high friction.
+
+    Dropped: the impact sets it whirling. Laid on the wall at rest (the default start) it stays there, sliding
+    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger."""
+    return {**base, "contact_points": [0.5], "contact_kinds": [kind], "friction": 1.0, "inclination": np.pi / 6,
+            "reference_modes": 3, "reference_revolutions": 20, "reference_window": 4, "reference_initial": "rest",
+            **extra}
+
+
+@pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)],
+                         ids=["body -1.06", "tool joint -2.5"])
+def test_high_friction_reaches_backward_rolling_whirl(base, kind, expected):
+    # issue 20 / Jansen 1991: rolling without slip on the wall whirls backwards at -(r_contact/c) Omega
+    result = solve_point(_rolling(base, kind), "reference")
+    assert result.extras["whirl"] == "backward"
+    assert result.values["contact_fraction"] == pytest.approx(1.0)
+    assert result.values["whirl_frequency_ratio"] == pytest.approx(expected, rel=3e-3)
+
+
+def test_laid_on_the_wall_it_slides(base):
+    result = solve_point(_rolling(base, 0, reference_initial="forced"), "reference")
+    assert result.extras["whirl"] == "sliding"
+    assert abs(result.values["whirl_frequency_ratio"]) < reference.SLIDING_RATE
+    assert result.values["contact_fraction"] == pytest.approx(1.0)
+
+
+def test_slip_velocity_does_not_change_the_answers(base):
+    # the regularisation velocity 0.01 m/s against ten times less: whirl within 0.2 %, force and stress within 1 %
+    coarse = solve_point(_rolling(base, 0), "reference").values
+    fine = solve_point(_rolling(base, 0, slip_velocity=reference.SLIP_VELOCITY / 10), "reference").values
+    assert coarse["whirl_frequency_ratio"] == pytest.approx(fine["whirl_frequency_ratio"], rel=2e-3)
+    for name in ("peak_contact_force", "max_bending_stress", "alternating_bending_stress"):
+        assert coarse[name] == pytest.approx(fine[name], rel=1e-2), name
+
+
+def test_planar_motion_without_friction_matches_the_time_domain(base):
+    # no eccentricity, no friction, no drag: free motion in y alone with midspan contact, against the
+    # project's one-direction event-driven time domain (exact flights) from the same modal state
+    from study.solvers import timedomain
+
+    N = 3
+    ours = {**base, "reference_modes": N, "contact_points": [0.5], "contact_kinds": [0], "friction": 0.0,
+            "eccentricity": 0.0, "reference_damping": "none"}
+    model = reference.build_model(ours)
+    c, om = model.clearance[0], model.rotary_speed
+    q0, v0 = np.array([0.5 * c, 0.0, 0.1 * c]), np.array([3 * om * c, 0.0, -0.5 * om * c])
+    theirs = timedomain.simulate({**base, "span_length": model.span, "time_modes": N, "contact_points": [0.5],
+                                  "time_damping": "none", "drive_amplitude": 0.0, "initial_state": (q0, v0),
+                                  "time_integrator": "event", "time_revolutions": 2, "time_check_periodic": False})
+    z0 = np.zeros(4 * N + 4)
+    z0[:N], z0[2 * N:3 * N] = q0, v0
+    run = reference.Integrator(model, 1e-9, z0)
+    window = run.run(2 * model.period)
+    q, v = theirs["final_state"]
+    assert int(window.onsets[0]) == len(theirs["impacts"]) >= 4
+    assert np.max(np.abs(run.z[:N] - q)) / c < 1e-5
+    assert np.max(np.abs(run.z[2 * N:3 * N] - v)) / (om * c) < 1e-5
+    assert np.all(run.z[N:2 * N] == 0.0)  # it stays in its plane
+
+
+@pytest.mark.parametrize("case", [
+    dict(reference_modes=6, rotary_speed=2 * np.pi, eccentricity=0.0254),  # forward whirl with impacts, 60 rpm
+    dict(contact_points=[0.5], contact_kinds=[0], friction=1.0, inclination=np.pi / 6, reference_modes=3,
+         reference_initial="rest"),  # backward whirl
+], ids=["impacts", "backward whirl"])
+def test_energy_balance_over_the_window(base, case):
+    # work of the eccentric (and side) load and of friction = drag + contact losses + change of energy
+    inputs = {**base, **case, "reference_revolutions": 10, "reference_window": 2}
+    loose = solve_point({**inputs, "reference_rtol": 1e-6}, "reference").extras["energy_budget"]
+    tight = solve_point({**inputs, "reference_rtol": 1e-8}, "reference").extras["energy_budget"]
+    assert abs(loose["residual"]) < 1e-3
+    assert abs(tight["residual"]) < 1e-5
+    assert tight["drag_loss"] > 0 and tight["contact_loss"] > -1e-3 * abs(tight["drag_loss"])
+
+
+def test_compiled_integrator_solves_the_penalty_equations_as_solve_ivp(base):
+    # the same equations (linear penalty contact) by the compiled Dormand-Prince and by scipy's DOP853
+    inputs = {**base, "reference_modes": 3, "rotary_speed": 2 * np.pi, "eccentricity": 0.0254}
+    model = reference.build_model({**inputs, "contact_law": "penalty"})
+    scipy_run = reference.penalty_reference(inputs, 1.0, rtol=1e-10, method="DOP853")
+    ours = reference.compiled_run({**inputs, "contact_law": "penalty"}, 1.0, rtol=1e-10)
+    scale = model.state_scale()
+    n = 4 * model.n_modes
+    assert np.max(np.abs(ours["final_state"][:n] - scipy_run["final_state"][:n]) / scale) < 1e-6
+    assert np.max(np.abs(scipy_run["final_state"][:n]) / scale) > 0.1  # it moved
+
+
+def test_synchronous_whirl_bends_the_turning_pipe_without_alternation(base):
+    # forward synchronous whirl is a steady bend in the pipe's own frame (Vance 1988 ch. 2): one fibre stays in
+    # tension, so the alternating bending stress vanishes beside the bending stress, with 32 modes as with 8
+    for modes in (8, 32):
+        result = solve_point({**base, "reference_modes": modes, "reference_damping": "none",
+                              "reference_revolutions": 4, "reference_window": 2}, "reference")
+        assert result.extras["whirl"] == "no_contact" and result.values["whirl_frequency_ratio"] == pytest.approx(1.0)
+        assert result.values["alternating_bending_stress"] < 1e-3 * result.values["max_bending_stress"]
+
+
+def test_a_buckled_section_is_flagged_not_run(base):
+    # Euler: a pinned section buckles when T_eff <= -EI (pi/L)^2
+    from study.physics import section
+
+    model = reference.build_model(base)
+    euler = float(section.euler_buckling_tension(model.span, model.props["bending_stiffness"]))
+    mud_flow = base["axial_tension"] - model.props["effective_tension"]  # T0 - T_eff
+    below = solve_point({**base, "axial_tension": mud_flow + 1.01 * euler}, "reference")
+    assert below.status == "buckled" and "buckles" in below.message
+    above = solve_point({**base, "axial_tension": mud_flow + 0.9 * euler, "reference_modes": 4,
+                         "reference_revolutions": 2, "reference_window": 1}, "reference")
+    assert above.status != "buckled"
