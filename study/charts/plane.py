@@ -29,6 +29,8 @@ from study.solvers.result import STATUS_CODES
 
 BAND_STYLE = {"facecolor": (0.25, 0.35, 0.9, 0.22), "edgecolor": (0.15, 0.25, 0.75, 0.9), "linewidth": 0.8}
 BAND_LABEL = "critical speed ±15 % (rpm to avoid)"
+PARTIAL_STYLE = {"facecolor": "none", "edgecolor": "0.3", "hatch": "..", "linewidth": 0}
+PARTIAL_LABEL = "worst of the ok points; some points there failed"
 
 
 @dataclass
@@ -120,6 +122,16 @@ def draw_boundary(ax, over: np.ndarray, p: Plane, **style) -> LineCollection:
     return lines
 
 
+def draw_cells(ax, mask: np.ndarray, p: Plane, **style) -> PolyCollection:
+    """Overlay the cells where ``mask`` (load × speed) holds, e.g. hatched (``style``: PolyCollection keywords)."""
+    rows, columns = np.nonzero(mask)
+    x, y = p.xedges, p.yedges
+    cells = [[(x[j], y[i]), (x[j + 1], y[i]), (x[j + 1], y[i + 1]), (x[j], y[i + 1])] for i, j in zip(rows, columns)]
+    collection = PolyCollection(cells, **style, zorder=2)
+    ax.add_collection(collection)
+    return collection
+
+
 def band_polygons(bands: Sequence[Sequence[tuple[float, float]]], yedges: np.ndarray) -> list:
     """Rectangles, one per interval (lo, hi) [display rpm] of each load row's bands."""
     return [[(lo, yedges[i]), (hi, yedges[i]), (hi, yedges[i + 1]), (lo, yedges[i + 1])]
@@ -169,11 +181,16 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
     axes = fig.subplots(1, columns, squeeze=False)[0]
     handles: dict[str, object] = {}
     missing = False
+    some_failed = p.reduce(~ok_points(p.ds), "any")
     for ax, panel in zip(axes, panels):
         masked = np.ma.masked_invalid(np.asarray(panel.values, dtype=float))
         if masked.mask.any():
             missing = True
             _mark_missing(ax)
+        partial = some_failed & ~masked.mask
+        if partial.any():  # the worst of the ok points only: a failed point there might be worse
+            draw_cells(ax, partial, p, **PARTIAL_STYLE)
+            handles[PARTIAL_LABEL] = Patch(**PARTIAL_STYLE, label=PARTIAL_LABEL)
         norm = panel.norm
         if norm is None:
             finite = masked.compressed()

@@ -18,7 +18,7 @@ from matplotlib.patches import Patch
 
 from study.charts.critical import avoid_bands
 from study.charts.design import DPI, Chart, _full, _mark_missing, _title
-from study.charts.plane import BAND_LABEL, BAND_STYLE, draw_bands, plane, plane_axes
+from study.charts.plane import BAND_LABEL, BAND_STYLE, draw_bands, draw_cells, plane, plane_axes
 from study.solvers.result import REGIMES, STATUS_CODES
 
 #: The regime a status implies, for points without a ``regime`` output.
@@ -73,6 +73,11 @@ def regime_map(ds: xr.Dataset) -> list[Chart]:
     if np.isnan(index).any():
         handles.append(Patch(facecolor="white", edgecolor="0.75", hatch="////",
                              label=f"undetermined: no answer ({int(np.isnan(index).sum())} cells)"))
+    partial = p.reduce(codes.isnull(), "any") & np.isfinite(index)
+    if partial.any():  # the most severe regime of the points that have one; others might be worse
+        draw_cells(fig.axes[0], partial, p, facecolor="none", edgecolor="0.35", hatch="\\\\", linewidth=0)
+        handles.append(Patch(facecolor="white", edgecolor="0.35", hatch="\\\\",
+                             label=f"some points undetermined ({int(partial.sum())} cells)"))
     bands = avoid_bands(p)
     if bands is not None and draw_bands(fig.axes[0], bands, p) is not None:
         handles.append(Patch(**BAND_STYLE, label=BAND_LABEL))

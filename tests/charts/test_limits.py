@@ -84,3 +84,16 @@ def test_without_the_plane_the_stresses_are_lines(study):
     charts = stress_limit_maps(line)
     assert charts and not [c for ax in charts[0].figure.axes for c in ax.collections if isinstance(c, QuadMesh)]
     assert fatigue_life_map(line) == [] and contact_force_map(line) == []
+
+
+def test_cells_where_only_some_points_are_ok_are_marked(study):
+    from matplotlib.collections import PolyCollection
+
+    (chart,) = stress_limit_maps(study)
+    ax = panels(chart.figure)[0]
+    marked = [c for c in ax.collections if isinstance(c, PolyCollection) and c.get_hatch() == ".."]
+    (cells,) = marked
+    # 5,000 lbf above 200 rpm: no span at e = 0.8 -> the five cells 220-300 rpm show the worst of e = 0.2
+    lefts = sorted(round(float(p.vertices[:, 0].min())) for p in cells.get_paths())
+    assert lefts == [210, 230, 250, 270, 290]
+    assert "worst of the ok points; some points there failed" in figure_labels(chart.figure)["legend"]

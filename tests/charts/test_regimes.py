@@ -25,7 +25,7 @@ def test_regimes_are_read_from_the_status_where_no_method_gives_one(build_study)
     (chart,) = regime_map(ds)
     (mesh,) = [c for ax in chart.figure.axes for c in ax.collections if isinstance(c, QuadMesh)]
     labels = figure_labels(chart.figure)
-    present = [t.split(" (")[0] for t in labels["legend"][1:] if "cells)" in t and not t.startswith("undetermined")]
+    present = [t.split(" (")[0] for t in labels["legend"][1:] if "cells)" in t and "undetermined" not in t]
     index = np.ma.masked_invalid(mesh.get_array()).reshape(4, 13)
     # 200 rpm: unstable at e = 0.8 outranks the periodic impacts at e = 0.2 in every load row
     assert {present[int(v)] for v in index[:, speeds.index(200)]} == {"unstable"}
