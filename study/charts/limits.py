@@ -74,11 +74,11 @@ def stress_limit_maps(ds: xr.Dataset) -> list[Chart]:
             panel.limits.append((_over(ds, p, "yield_utilisation"), f"over the yield strength ({yields})",
                                  YIELD_STYLE))
             panel.marks = [float(q.convert(s)) for _, s in strengths]
-            panel.title += "\noutline: over yield; bar: yield strength"
+            panel.title += "\nhatched: over yield; bar line: yield strength"
         if name == "alternating_bending_stress" and "endurance_utilisation" in ds.data_vars:
             panel.limits.append((_over(ds, p, "endurance_utilisation"), "over the endurance limit "
                                  "(tool joint, mean-stress corrected)", ENDURANCE_STYLE))
-            panel.title += "\noutline: over the endurance limit"
+            panel.title += "\nhatched: over the endurance limit"
         panels.append(panel)
     context = p.context("worst case (highest stress)") + [_fatigue_text(ds)]
     caption = ("The highest stress the pipe sees at each rotary speed and load over the other swept inputs; cells "
@@ -132,10 +132,10 @@ def fatigue_life_map(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_H
                   norm=LogNorm(low, high), marks=[target_hours])
     short = p.reduce(ok_values(ds, "fatigue_life") < target_hours * HOUR, "any")
     panel.limits.append((short, f"life under the target {format_value(target_hours)} h", LIFE_STYLE))
-    panel.title += f"\noutline and bar line: target {format_value(target_hours)} h"
+    panel.title += f"\nhatched: under the target; bar line: target {format_value(target_hours)} h"
     context = p.context("shortest life") + [_fatigue_text(ds), "Miner's rule at constant amplitude"]
     caption = (f"How many hours the pipe can rotate at each speed and load before fatigue cracks it (worst case over "
                f"the other swept inputs, log scale); inside the outline the life is under {format_value(target_hours)} "
-               "h; shaded bands are speeds to avoid.")
+               "h (hatched); shaded bands are speeds to avoid.")
     return [plane_chart(p, "fatigue_life", "Fatigue: hours to failure", [panel], context, caption,
                         bands=avoid_bands(p))]

@@ -19,7 +19,6 @@ import xarray as xr
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from study.charts.design import (DPI, LOAD, RPM, Chart, _edges, _format_axis, _full, _mark_missing, _names,
@@ -31,6 +30,7 @@ BAND_STYLE = {"facecolor": (0.25, 0.35, 0.9, 0.22), "edgecolor": (0.15, 0.25, 0.
 BAND_LABEL = "critical speed ±15 % (rpm to avoid)"
 PARTIAL_STYLE = {"facecolor": "none", "edgecolor": "0.3", "hatch": "..", "linewidth": 0}
 PARTIAL_LABEL = "worst of the ok points; some points there failed"
+LIMIT_HATCH = "\\\\"  # inside a limit's outline
 
 
 @dataclass
@@ -204,10 +204,12 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
             if norm.vmin <= value <= norm.vmax:
                 bar.ax.axhline(value, color="k", lw=2.0)
         for mask, label, style in panel.limits:
-            if np.any(mask):
+            if np.any(mask):  # outlined, and hatched inside so the side over the limit reads at a glance
                 draw_boundary(ax, mask, p, **style)
-                handles[label] = Line2D([], [], color=style.get("colors", "k"), lw=style.get("linewidths", 2.0),
-                                        ls=style.get("linestyles", "-"), label=label)
+                colour = style.get("colors", "k")
+                draw_cells(ax, mask, p, facecolor="none", edgecolor=colour, hatch=LIMIT_HATCH, linewidth=0)
+                handles[label] = Patch(facecolor="none", edgecolor=colour, hatch=LIMIT_HATCH,
+                                       lw=style.get("linewidths", 2.0), ls=style.get("linestyles", "-"), label=label)
         if bands is not None and draw_bands(ax, bands, p) is not None:
             handles[BAND_LABEL] = Patch(**BAND_STYLE, label=BAND_LABEL)
         plane_axes(ax, p)
@@ -220,7 +222,8 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
         handles["no ok point"] = Patch(facecolor="white", edgecolor="0.75", hatch="////", label="no ok point "
                                        "(see the validity map)")
     if handles:
-        fig.legend(handles=list(handles.values()), loc="outside lower center", ncols=min(4, len(handles)),
+        columns_of_legend = max(1, min(len(handles), int(width // 5)))
+        fig.legend(handles=list(handles.values()), loc="outside lower center", ncols=columns_of_legend,
                    fontsize=8, frameon=False)
     _title(fig, title, context, width)
     return Chart(name, fig, caption)
