@@ -533,3 +533,20 @@ def test_a_span_line_is_broken_where_it_jumps_to_another_branch(full):
     # a smooth change of 15 % is not a jump; NaN stays NaN without a break added
     x2, y2 = branch_breaks(np.arange(3.0), np.array([1.0, 1.15, np.nan]), 0.2)
     assert x2.size == 3 and np.isnan(y2[2])
+
+
+def test_iso_lines_only_on_filled_maps():
+    from matplotlib.contour import ContourSet
+
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000, 20000]},
+                      outputs=CROSSCHECK_OUTPUTS[:1])
+
+    def contour_sets(data):
+        figure = crosscheck_maps(data)[0].figure
+        return [c for ax in data_axes(figure) for c in ax.collections if isinstance(c, ContourSet)] + \
+            [c for ax in data_axes(figure) for c in getattr(ax, "containers", []) if isinstance(c, ContourSet)]
+
+    filled = contour_sets(ds)
+    holed = ds.copy(deep=True)
+    holed["peak_force_ratio"][dict(rotary_speed=1, axial_tension=1)] = np.nan
+    assert filled and not contour_sets(holed)  # no scribbles drawn around a hole in the data
