@@ -101,13 +101,18 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
         for j, speed in enumerate(xq.convert(ds[p.x].values)):
             limited = [r for r in REASONS if reduced[r][i, j]]
             rows.append({
-                xq.label: float(speed), yq.label: float(load), "safe": not limited,
+                xq.label: _round(speed), yq.label: _round(load), "safe": not limited,
                 "limited by": "; ".join(limited), "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
-                "max yield utilisation [-]": float(worst["yield_utilisation"][i, j]),
-                "max endurance utilisation [-]": float(worst["endurance_utilisation"][i, j]),
-                "min fatigue life [h]": float(worst["fatigue_life"][i, j]),
+                "max yield utilisation [-]": _round(worst["yield_utilisation"][i, j], 4),
+                "max endurance utilisation [-]": _round(worst["endurance_utilisation"][i, j], 4),
+                "min fatigue life [h]": _round(worst["fatigue_life"][i, j], 4),
             })
     return rows
+
+
+def _round(value, digits: int = 10) -> float:
+    """``value`` to ``digits`` significant digits (unit conversion leaves 5000.000000000001)."""
+    return float(f"{float(value):.{digits}g}")
 
 
 def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
