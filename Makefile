@@ -5,7 +5,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
 
-.PHONY: help setup test sweep charts bench validate clean
+.PHONY: help setup test sweep charts bench validate clean chromium
 
 help:
 	@echo "make test      install (first time) and run the whole test suite"
@@ -22,8 +22,12 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	touch $(STAMP)
 
-test: $(STAMP)
+test: $(STAMP) chromium
 	$(BIN)/python -m pytest -q
+
+# The report test opens outputs in a headless browser: Debian's chromium, installed once if absent.
+chromium:
+	@test -x /usr/bin/chromium || { apt-get update -qq && apt-get install -y -qq chromium >/dev/null; }
 
 sweep: $(STAMP)
 	$(BIN)/study sweep $(CONFIG)

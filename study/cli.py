@@ -77,17 +77,17 @@ def cmd_sweep(args) -> int:
                      progress=not args.quiet)
     print(f"results: {path}")
     if not args.no_charts:
-        from study.charts import draw_all
+        from study.charts.report import write_report
 
-        for figure in draw_all(path):
+        for figure in write_report(path):
             print(f"chart:   {figure}")
     return 0
 
 
 def cmd_charts(args) -> int:
-    from study.charts import draw_all
+    from study.charts.report import write_report
 
-    for figure in draw_all(args.dataset, out_dir=args.out, fmt=args.format):
+    for figure in write_report(args.dataset, out_dir=args.out, fmt=args.format):
         print(figure)
     return 0
 

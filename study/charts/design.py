@@ -33,14 +33,12 @@ from typing import Callable, Sequence
 import numpy as np
 import xarray as xr
 from matplotlib import colormaps, ticker
-from matplotlib.colors import ListedColormap, TwoSlopeNorm
+from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 
 from study.atomic import atomic_path
 from study.charts.labels import Quantity, TickFormatter, format_value, quantity, tick_format
-from study.solvers.result import STATUS
 
 DPI = 150
 RPM = "rotary_speed"
@@ -56,22 +54,10 @@ ORBIT_RATIOS = ("orbit_peak_force_ratio", "orbit_normal_stress_ratio", "max_floq
 #: Method reference-check: the periodic solution over the reference model.
 REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio", "reference_alternating_stress_ratio")
 HARMONICS = (1, 2, 3)
+#: Relative change of the span between neighbouring rotary speeds taken as a jump to another branch.
+SPAN_BRANCH_JUMP = 0.2
 CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
-
-#: Colours of the status flags: green for ok, warm for physical limits, cool/grey for numerics.
-STATUS_COLOURS = {
-    "ok": "#74c476",
-    "buckled": "#d7301f",
-    "hertz_invalid": "#fd8d3c",
-    "no_span": "#6a51a3",
-    "resonance": "#e7298a",
-    "terms_not_small": "#fed976",
-    "not_converged": "#6baed6",
-    "failed": "#252525",
-    "incomplete": "#969696",
-}
-
 
 @dataclass
 class Chart:
@@ -79,6 +65,8 @@ class Chart:
 
     name: str
     figure: Figure
+    caption: str = ""  # one sentence: what the chart shows (the report prints it under the chart)
+    title: str = ""  # the figure's title, kept once the figure is saved and cleared
 
 
 # ---------------------------------------------------------------------------------------------
@@ -296,9 +284,11 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                  y_quantities: dict[str, Quantity] | None = None,
                  decorate: Callable | None = None, extra_handles: Sequence = (),
                  scales: tuple[str, str] = ("linear", "linear"),
-                 xlim=None, ylim=None, extra_context: Callable | None = None) -> list[Chart]:
+                 xlim=None, ylim=None, extra_context: Callable | None = None, break_jump: float | None = None,
+                 caption: str = "") -> list[Chart]:
     """Lines of ``names`` against ``x``, one per value of ``series``; one row of panels per name,
-    or all names in the same panels (line styles) when ``overlay`` gives their common y label."""
+    or all names in the same panels (line styles) when ``overlay`` gives their common y label; with
+    ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`)."""
     arrays = {n: _full(ds, n) for n in names}
     plan = _plan(ds, list(arrays.values()), x, series, collapse_series=True)
     xq = x_quantity or quantity(ds[x])
@@ -333,8 +323,10 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                     drawn |= np.isfinite(values).any(axis=0)
                     panel_has_data |= bool(np.isfinite(values).any())
                     for s in range(values.shape[1]):
-                        ax.plot(xpos, values[:, s], color=colours[s], ls=styles[k % len(styles)], lw=1.6,
-                                marker="o", ms=3 if xpos.size <= 40 else 0)
+                        xs, ys = (xpos, values[:, s]) if break_jump is None else branch_breaks(xpos, values[:, s],
+                                                                                                break_jump)
+                        ax.plot(xs, ys, color=colours[s], ls=styles[k % len(styles)], lw=1.6,
+                                marker="o", ms=3 if xpos.size <= 40 or break_jump is not None else 0)
                 ax.set_xscale(scales[0])
                 ax.set_yscale(scales[1])
                 if not panel_has_data:  # keep the panel's axis on the swept range and say why it is empty
@@ -376,12 +368,23 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
         if extra_context is not None:
             context += extra_context(plan, fi)
         _title(fig, title, context, width)
-        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig))
+        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig, caption))
     return charts
 
 
+def branch_breaks(x: np.ndarray, y: np.ndarray, jump: float) -> tuple[np.ndarray, np.ndarray]:
+    """``x`` and ``y`` with a NaN point inserted midway wherever ``y`` changes by more than ``jump`` (relative to
+    the smaller of the two neighbours): a line drawn through them is broken there, so two solution branches
+    are never joined."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        change = np.abs(np.diff(y)) / np.minimum(np.abs(y[:-1]), np.abs(y[1:]))
+    cut = np.flatnonzero(change > jump) + 1
+    return np.insert(x, cut, 0.5 * (x[cut - 1] + x[cut])), np.insert(y, cut, np.nan)
+
+
 def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x: str, y: str,
-                cmap: str = "YlOrRd", centre: float | None = None) -> list[Chart]:
+                cmap: str = "YlOrRd", centre: float | None = None, caption: str = "") -> list[Chart]:
     """Colour maps of ``names`` over ``x`` x ``y``: a row of panels per name, a colour bar per row; with
     ``centre`` the colour scale diverges from that value (e.g. 1 for a ratio)."""
     arrays = {n: _full(ds, n) for n in names}
@@ -422,7 +425,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
                     _mark_missing(ax)
                 limits = {"norm": norm} if norm is not None else {"vmin": vmin, "vmax": vmax}
                 mesh = ax.pcolormesh(xedges, yedges, masked, cmap=cmap, shading="flat", **limits)
-                if contours and masked.count() >= 4 and np.ptp(masked.compressed()) > 0:
+                if contours and not masked.mask.any() and np.ptp(masked.compressed()) > 0:  # filled data only
                     levels = ticker.MaxNLocator(9).tick_values(vmin, vmax)
                     lines = ax.contour(xpos, ypos, masked, levels=levels, colors="k", linewidths=0.5, alpha=0.6)
                     ax.clabel(lines, fmt=tick_format, fontsize=7, inline=True)
@@ -441,7 +444,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
         if any_missing:
             context.append("hatched: no result (the validity map says why)")
         _title(fig, title, context, width)
-        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig))
+        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig, caption))
     return charts
 
 
@@ -481,20 +484,21 @@ def stress_maps(ds: xr.Dataset) -> list[Chart]:
     if not names:
         return []
     return _maps_or_lines(ds, "stress_maps", "Pipe stresses: " + _join([quantity(ds[n]).short_name for n in names]),
-                          names)
+                          names, caption="The largest normal stress and the alternating bending stress of the pipe "
+                                         "over the swept inputs.")
 
 
 def _maps_or_lines(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], cmap: str = "YlOrRd",
-                   centre: float | None = None) -> list[Chart]:
+                   centre: float | None = None, caption: str = "") -> list[Chart]:
     """Maps of ``names`` over rotary speed x axial load where both are swept, else lines against the
     first swept input, one line per value of the next (see :func:`stress_maps`)."""
     if not ds.sizes or 0 in ds.sizes.values():
         return []
     dims = _map_or_line_dims(ds)
     if RPM in dims and LOAD in dims:
-        return _map_charts(ds, chart, title, names, RPM, LOAD, cmap=cmap, centre=centre)
+        return _map_charts(ds, chart, title, names, RPM, LOAD, cmap=cmap, centre=centre, caption=caption)
     x = dims[0] if dims else _preferred_dims(ds)[0]
-    return _line_charts(ds, chart, title, names, x, dims[1] if len(dims) > 1 else None)
+    return _line_charts(ds, chart, title, names, x, dims[1] if len(dims) > 1 else None, caption=caption)
 
 
 def crosscheck_maps(ds: xr.Dataset) -> list[Chart]:
@@ -506,7 +510,9 @@ def crosscheck_maps(ds: xr.Dataset) -> list[Chart]:
     words = {"peak_force_ratio": "peak contact force", "normal_stress_ratio": "normal stress",
              "deflection_ratio": "deflection"}
     return _maps_or_lines(ds, "crosscheck", "Real contact over the periodic solution (1: they agree): "
-                          + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
+                          + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0,
+                          caption="How far the periodic solution is from a replay with real contact: 1 means the "
+                                  "two methods agree.")
 
 
 def _where_found(ds: xr.Dataset, found: xr.DataArray) -> xr.Dataset:
@@ -530,7 +536,9 @@ def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     ds = _where_found(ds, found)  # e = 1 alone, typically
     title = ("The real contact's orbit nearest the periodic solution: force and stress over the periodic "
              "solution's, and its stability (multiplier above 1: unstable)")
-    return _maps_or_lines(ds, "orbit", title, names, cmap="coolwarm", centre=1.0)
+    return _maps_or_lines(ds, "orbit", title, names, cmap="coolwarm", centre=1.0,
+                          caption="The real contact's own periodic orbit against the periodic solution, and whether "
+                                  "it is stable (multiplier under 1).")
 
 
 def reference_maps(ds: xr.Dataset) -> list[Chart]:
@@ -554,7 +562,12 @@ def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     if "span_length" not in ds.data_vars or RPM not in ds.sizes or ds.sizes[RPM] == 0:
         return []
     return _line_charts(ds, "span_length", "Span length against rotary speed", ["span_length"], RPM,
-                        _line_series(ds, RPM))
+                        _line_series(ds, RPM), break_jump=SPAN_BRANCH_JUMP,
+                        extra_context=lambda plan, fi: [f"a line is broken where the span changes by more than "
+                                                        f"{SPAN_BRANCH_JUMP:.0%} between neighbouring speeds "
+                                                        "(another solution branch)"],
+                        caption="The length between nodes of the vibrating span the periodic solution finds at each "
+                                "speed; a break in a line is a jump to another solution branch, not a trend.")
 
 
 def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
@@ -563,7 +576,8 @@ def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     if not names or RPM not in ds.sizes or ds.sizes[RPM] == 0:
         return []
     title = _join([quantity(ds[n]).short_name for n in names]).capitalize() + " against rotary speed"
-    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM))
+    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM),
+                        caption="How hard and how long the pipe strikes the wall at each speed, one line per load.")
 
 
 def _mode_names(ds: xr.Dataset) -> list[str]:
@@ -681,97 +695,10 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     return _line_charts(ds, "natural_frequencies", title, names, RPM, _line_series(ds, RPM), overlay=overlay,
                         x_quantity=xq, y_quantities=fq, decorate=decorate, extra_handles=handles,
                         scales=(scale, scale),
-                        xlim=xlim, ylim=ylim, extra_context=extra_context)
-
-
-def _flags(status: xr.DataArray) -> dict[int, str]:
-    values = status.attrs.get("flag_values")
-    meanings = status.attrs.get("flag_meanings")
-    if values is not None and meanings:
-        names = str(meanings).split()
-        values = np.atleast_1d(values)
-        if len(names) == len(values):
-            return {int(v): n for v, n in zip(values, names)}
-    return {code: name for name, (code, _) in STATUS.items()}
-
-
-def validity_map(ds: xr.Dataset) -> list[Chart]:
-    """The status flag of each design point over rotary speed x axial load, in categorical colours.
-
-    Other swept inputs are reduced to the worst status (the highest non-zero code) and the title
-    says so. With one swept input the map is a single strip.
-    """
-    if "status" not in ds.data_vars or not ds.sizes or 0 in ds.sizes.values():
-        return []
-    status = _full(ds, "status")
-    dims = _map_or_line_dims(ds)
-    x = dims[0] if dims else _preferred_dims(ds)[0]
-    y = dims[1] if len(dims) > 1 else None
-    fixed = [d for d in ds.sizes if ds.sizes[d] == 1 and d not in (x, y)]
-    worst = [d for d in ds.sizes if d not in (x, y) and d not in fixed]
-    data = status.isel({d: 0 for d in fixed})
-    if worst:
-        data = data.max(dim=worst)
-    data = data.transpose(*[d for d in (x, y) if d is not None]).values.astype(int)
-    if y is None:
-        data = data[:, None]
-    flags = _flags(ds["status"])
-    present = sorted(int(v) for v in np.unique(data))
-    colours = []
-    for i, code in enumerate(present):
-        name = flags.get(code, f"code {code}")
-        colours.append(STATUS_COLOURS.get(name, colormaps["tab10"](i % 10)))
-    index = np.searchsorted(present, data)
-
-    xq = quantity(ds[x])
-    xpos, xticks = _positions(ds, x, xq)
-    xedges = _edges(xpos)
-    if y is not None:
-        yq = quantity(ds[y])
-        ypos, yticks = _positions(ds, y, yq)
-        yedges = _edges(ypos)
-        size = (8.0, 5.0)
-    else:
-        yedges = np.array([0.0, 1.0])
-        size = (8.0, 2.6)
-    fig = Figure(figsize=size, dpi=DPI, layout="constrained")
-    ax = fig.subplots()
-    cells = data.shape[0] * data.shape[1]
-    ax.pcolormesh(xedges, yedges, index.T, cmap=ListedColormap(colours), vmin=-0.5, vmax=len(present) - 0.5,
-                  shading="flat", edgecolors="white" if cells <= 2500 else "none", linewidth=0.4)
-    ax.set_xlim(xedges[0], xedges[-1])
-    ax.set_ylim(yedges[0], yedges[-1])
-    _format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
-    ax.set_xlabel(xq.label)
-    if y is not None:
-        _format_axis(ax.yaxis, yticks, ypos, grid_values=ypos)
-        ax.set_ylabel(yq.label)
-    else:
-        ax.set_yticks([])
-    counts = {code: int(np.sum(data == code)) for code in present}
-    handles = [Patch(facecolor=colours[i], edgecolor="0.5", lw=0.5,
-                     label=f"{flags.get(code, f'code {code}')} ({counts[code]})")
-               for i, code in enumerate(present)]
-    fig.legend(handles=handles, loc="outside right center", fontsize=8, title="status (cells of the map)",
-               title_fontsize=8, frameon=False)
-    context = [quantity(ds[d]).describe(ds[d].values[0]) for d in fixed]
-    if worst:
-        context.append(f"worst status over {_names(ds, worst)} (the highest non-zero code)")
-    _title(fig, "Validity of the design points", context, size[0])
-    return [Chart("validity_map", fig)]
-
-
-#: Every chart, in the order :func:`draw_all` draws them.
-CHARTS = (stress_maps, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
-          crosscheck_maps, orbit_maps, reference_maps, validity_map)
-
-
-def draw(ds: xr.Dataset) -> list[Chart]:
-    """Every chart the dataset's variables and dimensions allow (none for a dataset without dimensions)."""
-    charts = []
-    for function in CHARTS:
-        charts += function(ds)
-    return charts
+                        xlim=xlim, ylim=ylim, extra_context=extra_context,
+                        caption="Natural frequencies of the span the periodic solution finds, against the rotation "
+                                "harmonics; the span is itself an output, so its critical speeds are not an input "
+                                "check (the Campbell diagram of the joint is).")
 
 
 def save_figure(figure: Figure, path: Path, fmt: str = "png") -> Path:
@@ -780,29 +707,3 @@ def save_figure(figure: Figure, path: Path, fmt: str = "png") -> Path:
         figure.savefig(tmp, format=fmt, dpi=DPI)
     return Path(path)
 
-
-def draw_all(dataset_path, out_dir=None, fmt: str = "png") -> list[Path]:
-    """Draw every chart the dataset allows into ``out_dir`` and return the written paths.
-
-    dataset_path : the results netCDF (or an open :class:`xarray.Dataset`, then ``out_dir`` is needed).
-    out_dir : default ``charts/`` beside the dataset; created only when a chart is drawn.
-    fmt : file format, e.g. "png", "pdf", "svg".
-    """
-    if isinstance(dataset_path, xr.Dataset):
-        if out_dir is None:
-            raise ValueError("out_dir is needed when drawing an in-memory dataset")
-        ds = dataset_path
-    else:
-        dataset_path = Path(dataset_path)
-        with xr.open_dataset(dataset_path) as opened:
-            ds = opened.load()
-        if out_dir is None:
-            out_dir = dataset_path.parent / "charts"
-    out_dir = Path(out_dir)
-    written = []
-    for chart in draw(ds):
-        try:
-            written.append(save_figure(chart.figure, out_dir / f"{chart.name}.{fmt}", fmt))
-        finally:
-            chart.figure.clear()
-    return written

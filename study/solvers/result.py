@@ -32,6 +32,13 @@ STATUS = {
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
+#: Regimes of the pipe's motion (the output ``regime``, with these codes as its ``flag_values``): no contact
+#: with the wall; forward / backward whirl (rolling or sliding round the wall with or against the rotation);
+#: bouncing (impacts that do not settle into a periodic motion, chattering included); periodic impacts (the
+#: source paper's state); unstable (the periodic impacting motion exists but is unstable).
+REGIMES = {"no_contact": 0, "forward_whirl": 1, "backward_whirl": 2, "bouncing": 3, "periodic_impacts": 4,
+           "unstable": 5}
+
 
 @dataclass
 class PointResult:
@@ -116,6 +123,7 @@ OUTPUTS = {
                                       "axial mean stress"),
     "damage_rate": ("s-1", "Miner's fatigue damage per second of rotation"),
     "fatigue_life": ("s", "time of rotation to fatigue failure (Miner's sum 1)"),
+    "regime": ("1", "regime of the motion, a code of study.solvers.result.REGIMES (see flag_meanings)"),
     "location_residual": ("1", "relative change of the located stress maxima in their last refinement round "
                           "(part of the error estimate)"),
     "sdof_stiffness": ("N m-1", "stiffness m omega_1^2 of the one-degree-of-freedom model"),

@@ -18,6 +18,7 @@ from study import __version__
 from study.atomic import atomic_path
 from study.config import FIELDS_BY_NAME, Study
 from study.solvers import OUTPUTS, STATUS
+from study.solvers.result import REGIMES
 from study.workflow.grid import Grid
 
 CONVENTIONS = "CF-1.10"
@@ -69,7 +70,9 @@ def _data_variables(grid: Grid, columns, order: np.ndarray) -> Iterator[tuple[st
         values = grid_array(name)
         if name in OUTPUTS and np.all(np.isnan(values)):
             continue
-        yield name, xr.Variable(dims, values, {"units": unit, "long_name": long_name})
+        flags = {"flag_values": np.array(list(REGIMES.values()), dtype=float),
+                 "flag_meanings": " ".join(REGIMES)} if name == "regime" else {}
+        yield name, xr.Variable(dims, values, {"units": unit, "long_name": long_name, **flags})
     codes = [code for code, _ in STATUS.values()]
     yield "status", xr.Variable(dims, grid_array("status").astype(np.int8), {
         "long_name": "status of the design point",

@@ -167,7 +167,7 @@ def test_draw_all_writes_every_chart_beside_the_dataset(tmp_path, full):
     written = draw_all(path)
     assert all(p.parent == tmp_path / "charts" and p.suffix == ".png" for p in written)
     assert sorted(p.stem for p in written) == sorted([
-        "stress_maps__mud_density_9_ppg", "stress_maps__mud_density_10_ppg", "stress_maps__mud_density_12_ppg",
+        "stress_limits", "contact_force", "regime_map",  # decisions: one figure, worst case over the others
         "span_length",  # the span does not depend on restitution or mud density: one figure
         "contact_force_duration__mud_density_9_ppg", "contact_force_duration__mud_density_10_ppg",
         "contact_force_duration__mud_density_12_ppg",
@@ -195,13 +195,15 @@ def test_an_open_dataset_needs_an_out_dir(tmp_path, full):
 
 
 @pytest.mark.parametrize("outputs, expected", [
-    (ALL_OUTPUTS, {"stress_maps", "span_length", "contact_force_duration", "natural_frequencies", "validity_map"}),
+    (ALL_OUTPUTS, {"stress_limits", "contact_force", "span_length", "contact_force_duration", "natural_frequencies",
+                   "regime_map", "validity_map"}),
     (("span_length", "first_natural_frequency", "peak_contact_force", "contact_duration", "impact_velocity"),
-     {"span_length", "contact_force_duration", "natural_frequencies", "validity_map"}),  # today's outputs
-    (("alternating_bending_stress",), {"stress_maps", "validity_map"}),
-    (("contact_duration",), {"contact_force_duration", "validity_map"}),
-    (CROSSCHECK_OUTPUTS[:3], {"crosscheck", "validity_map"}),  # no orbit at e = 0.5 alone: no orbit chart
-    ((), {"validity_map"}),
+     {"contact_force", "span_length", "contact_force_duration", "natural_frequencies", "regime_map",
+      "validity_map"}),
+    (("alternating_bending_stress",), {"stress_limits", "regime_map", "validity_map"}),
+    (("contact_duration",), {"contact_force_duration", "regime_map", "validity_map"}),
+    (CROSSCHECK_OUTPUTS[:3], {"crosscheck", "regime_map", "validity_map"}),  # no orbit at e = 0.5 alone
+    ((), {"regime_map", "validity_map"}),
 ])
 def test_charts_drawn_follow_the_variables_present(outputs, expected):
     ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000]}, outputs=outputs)
@@ -325,19 +327,6 @@ def test_natural_frequencies_with_harmonics_and_the_classical_critical_speed(ful
     assert "classical critical speed N = 60 f1" in labels["titles"][-1]
 
 
-def test_validity_map_shows_the_worst_status_and_names_the_flags(full):
-    figure = validity_map(full)[0].figure
-    labels = figure_labels(figure)
-    names = [re.sub(r" \(\d+\)$", "", t) for t in labels["legend"][1:]]
-    assert names == ["ok", "buckled", "resonance"]
-    assert "worst status over restitution and mud density" in labels["titles"][-1]
-    assert labels["xlabels"] == ["rotary speed [rpm]"] and labels["ylabels"] == ["axial tension [lbf]"]
-    index = meshes(figure)[0].get_array().reshape(5, 7)  # colour index into the flags present
-    assert index[0, 0] == 1  # compression: buckled
-    assert index[2, 2] == 2  # 140 rpm at restitution 0.8 only: resonance is the worst
-    assert index[2, 3] == 0
-
-
 def test_legends_sit_outside_the_data_and_the_title(full_charts):
     for chart in full_charts:
         figure = chart.figure
@@ -412,14 +401,14 @@ def test_failed_points_do_not_hide_that_the_results_agree(full):
 def test_one_swept_input_gives_lines_instead_of_maps(tmp_path):
     ds = make_dataset({"rotary_speed": [60, 120, 180, 240]})
     charts = draw(ds)
-    assert names_of(charts) == ["stress_maps", "span_length", "contact_force_duration", "natural_frequencies",
-                                "validity_map"]
+    assert names_of(charts) == ["stress_maps", "validity_map", "span_length", "contact_force_duration",
+                                "natural_frequencies"]
     stress = charts[0].figure
     assert not meshes(stress) and len(data_axes(stress)) == 2
     assert {"maximum normal stress [psi]", "alternating bending stress [psi]"} \
         <= set(figure_labels(stress)["ylabels"])
-    strip = charts[-1].figure
-    assert meshes(strip)[0].get_array().size == 4
+    strip = charts[1].figure
+    assert len(strip.axes[0].collections[0].get_paths()) == 4  # one all-ok bar per speed
     assert figure_labels(strip)["ylabels"] == []
     path = tmp_path / "results.nc"
     ds.to_netcdf(path)
@@ -451,10 +440,10 @@ def test_a_single_rotary_speed_still_draws_points():
 def test_string_dimensions_become_panels_and_file_names(tmp_path):
     ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000],
                        "added_mass_model": ["potential_flow", "gap_flow"]})
-    charts = draw(ds)
-    stress = charts[0].figure
+    stress = stress_maps(ds)[0].figure
     titles = figure_labels(stress)["titles"]
     assert any("added-mass model = gap_flow" in t for t in titles)
+    assert "worst case (highest stress) over added-mass model" in figure_labels(draw(ds)[0].figure)["titles"][-1]
     ds2 = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.2, 0.8],
                         "added_mass_model": ["potential_flow", "gap_flow"]})
     assert "stress_maps__added-mass_model_gap_flow" in names_of(stress_maps(ds2))
@@ -544,3 +533,36 @@ def test_reference_check_ratios_are_centred_on_agreement():
     norms = {type(mesh.norm).__name__: mesh.norm for mesh in meshes(chart.figure)}
     assert set(norms) == {"TwoSlopeNorm"} and norms["TwoSlopeNorm"].vcenter == 1.0
     assert reference_maps(make_dataset({"rotary_speed": [60, 120]}, outputs=())) == []
+
+
+def test_a_span_line_is_broken_where_it_jumps_to_another_branch(full):
+    from study.charts.design import SPAN_BRANCH_JUMP, branch_breaks
+
+    ds = full.copy(deep=True)
+    ds["span_length"][dict(rotary_speed=slice(4, None))] *= 1.5  # from 220 rpm on: another solution branch
+    chart = span_length_vs_rpm(ds)[0]
+    line = [ln for ln in data_axes(chart.figure)[0].get_lines() if len(ln.get_xdata()) == 8][0]
+    x, y = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+    assert np.isnan(y[4]) and x[4] == pytest.approx(200) and np.isfinite(np.delete(y, 4)).all()
+    assert "more than 20% between neighbouring speeds" in figure_labels(chart.figure)["titles"][-1].replace("\n", " ")
+    assert SPAN_BRANCH_JUMP == 0.2
+    # a smooth change of 15 % is not a jump; NaN stays NaN without a break added
+    x2, y2 = branch_breaks(np.arange(3.0), np.array([1.0, 1.15, np.nan]), 0.2)
+    assert x2.size == 3 and np.isnan(y2[2])
+
+
+def test_iso_lines_only_on_filled_maps():
+    from matplotlib.contour import ContourSet
+
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000, 20000]},
+                      outputs=CROSSCHECK_OUTPUTS[:1])
+
+    def contour_sets(data):
+        figure = crosscheck_maps(data)[0].figure
+        return [c for ax in data_axes(figure) for c in ax.collections if isinstance(c, ContourSet)] + \
+            [c for ax in data_axes(figure) for c in getattr(ax, "containers", []) if isinstance(c, ContourSet)]
+
+    filled = contour_sets(ds)
+    holed = ds.copy(deep=True)
+    holed["peak_force_ratio"][dict(rotary_speed=1, axial_tension=1)] = np.nan
+    assert filled and not contour_sets(holed)  # no scribbles drawn around a hole in the data

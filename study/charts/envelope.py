@@ -1,0 +1,191 @@
+"""The safe operating envelope: the rotary speed × axial load cells where every limit holds.
+
+A cell is safe when every point in it (over every other swept input) is
+
+- solved: status ``ok`` (a point without a valid answer is not known to be safe);
+- below yield: ``yield_utilisation`` ≤ 1;
+- long-lived: ``fatigue_life`` ≥ the target (default :data:`~study.charts.limits.DEFAULT_TARGET_LIFE_HOURS`
+  = 1000 h of rotation), or with ``criterion="endurance"`` below the endurance limit,
+  ``endurance_utilisation`` ≤ 1 (an infinite-life design);
+- away from resonance: outside ±15 % of every critical speed of the joint (:mod:`study.charts.critical`),
+  where the dataset allows computing them (the chart says when it does not).
+
+:func:`envelope_table` gives one row per cell (the CSV written beside the charts), :func:`safe_ranges` the
+safe rotary speeds per load (the report's table), :func:`envelope_chart` the map.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+from matplotlib.lines import Line2D
+
+from study.atomic import atomic_path
+from study.charts.critical import in_band
+from study.charts.design import DPI, Chart, _full, _title
+from study.charts.labels import format_value, quantity
+from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
+from study.charts.plane import draw_boundary, ok_points, plane, plane_axes
+
+#: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
+REASONS = ("no valid answer", "over yield", "fatigue", "critical speed")
+COLOURS = {"safe": "#41ab5d", "no valid answer": "#bdbdbd", "over yield": "#a50f15", "fatigue": "#fd8d3c",
+           "critical speed": "#6baed6"}
+CRITERIA = ("life", "endurance")
+
+
+def _limit(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """The output over every dimension, NaN where absent (an unknown value never passes a limit)."""
+    if name in ds.data_vars:
+        return _full(ds, name)
+    return xr.full_like(ok_points(ds), np.nan, dtype=float)
+
+
+def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
+             ) -> tuple[dict[str, xr.DataArray], bool]:
+    """Per point, which of :data:`REASONS` keep it out of the envelope (each a boolean over every dimension),
+    and whether the critical speeds could be checked."""
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
+    if not target_hours > 0:
+        raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
+    ok = ok_points(ds)
+    with np.errstate(invalid="ignore"):
+        over_yield = ok & ~(_limit(ds, "yield_utilisation") <= 1.0)
+        if criterion == "life":
+            fatigue = ok & ~(_limit(ds, "fatigue_life") >= target_hours * HOUR)
+        else:
+            fatigue = ok & ~(_limit(ds, "endurance_utilisation") <= 1.0)
+    band = in_band(ds)
+    checked = band is not None
+    critical = (band.transpose(*ds.sizes) if checked else xr.zeros_like(ok)).astype(bool)
+    return {"no valid answer": ~ok, "over yield": over_yield, "fatigue": fatigue, "critical speed": critical}, checked
+
+
+def _has_limits(ds: xr.Dataset, criterion: str) -> bool:
+    fatigue = "fatigue_life" if criterion == "life" else "endurance_utilisation"
+    return "yield_utilisation" in ds.data_vars and fatigue in ds.data_vars
+
+
+def _criterion_text(target_hours: float, criterion: str) -> str:
+    if criterion == "life":
+        return f"fatigue life ≥ {format_value(target_hours)} h"
+    return "below the endurance limit (endurance utilisation ≤ 1)"
+
+
+def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
+                   ) -> list[dict]:
+    """One row per rotary speed × axial load cell (display units): whether it is safe, what limits it, the
+    points it holds and how many are ok, and the worst values over them. Empty without the plane or the limits."""
+    p = plane(ds)
+    if p is None or not _has_limits(ds, criterion):
+        return []
+    fails, _ = failures(ds, target_hours, criterion)
+    xq, yq = quantity(ds[p.x]), quantity(ds[p.y])
+    ok = ok_points(ds)
+    reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
+    count = p.reduce(xr.ones_like(ok, dtype=int), "sum")
+    ok_count = p.reduce(ok.astype(int), "sum")
+    worst = {}
+    for name, how, scale in (("yield_utilisation", "max", 1.0), ("endurance_utilisation", "max", 1.0),
+                             ("fatigue_life", "min", 1.0 / HOUR)):
+        worst[name] = p.reduce(_limit(ds, name).where(ok), how) * scale
+    rows = []
+    for i, load in enumerate(yq.convert(ds[p.y].values)):
+        for j, speed in enumerate(xq.convert(ds[p.x].values)):
+            limited = [r for r in REASONS if reduced[r][i, j]]
+            rows.append({
+                xq.label: _round(speed), yq.label: _round(load), "safe": not limited,
+                "limited by": "; ".join(limited), "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
+                "max yield utilisation [-]": _round(worst["yield_utilisation"][i, j], 4),
+                "max endurance utilisation [-]": _round(worst["endurance_utilisation"][i, j], 4),
+                "min fatigue life [h]": _round(worst["fatigue_life"][i, j], 4),
+            })
+    return rows
+
+
+def _round(value, digits: int = 10) -> float:
+    """``value`` to ``digits`` significant digits (unit conversion leaves 5000.000000000001)."""
+    return float(f"{float(value):.{digits}g}")
+
+
+def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
+    """Per axial load (from :func:`envelope_table`'s rows), the safe rotary speeds as runs of neighbouring grid
+    speeds: [(load text, "60–120, 200 rpm" or "none"), ...]."""
+    if not rows:
+        return []
+    speed_key, load_key = list(rows[0])[:2]
+    speed_unit = speed_key.split("[")[-1].rstrip("]")
+    load_unit = load_key.split("[")[-1].rstrip("]")
+    out = []
+    for load in dict.fromkeys(r[load_key] for r in rows):
+        mine = [r for r in rows if r[load_key] == load]
+        runs: list[list[float]] = []
+        previous_safe = False
+        for r in mine:
+            if r["safe"]:
+                if previous_safe:
+                    runs[-1].append(r[speed_key])
+                else:
+                    runs.append([r[speed_key]])
+            previous_safe = r["safe"]
+        text = ", ".join(format_value(run[0]) if len(run) == 1 else f"{format_value(run[0])}–{format_value(run[-1])}"
+                         for run in runs)
+        out.append((f"{format_value(load)} {load_unit}", f"{text} {speed_unit}" if runs else "none"))
+    return out
+
+
+def write_table(rows: list[dict], path) -> Path:
+    """Write :func:`envelope_table`'s rows to ``path`` as CSV, atomically."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="", encoding="utf-8") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["safe"])
+            writer.writeheader()
+            writer.writerows(rows)
+    return path
+
+
+def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
+                   ) -> list[Chart]:
+    """The safe cells in green with the envelope outlined; every other cell coloured by the first limit it breaks.
+    Drawn when the dataset has the limits (yield utilisation and the fatigue criterion's output)."""
+    p = plane(ds)
+    if p is None or not _has_limits(ds, criterion):
+        return []
+    fails, checked = failures(ds, target_hours, criterion)
+    reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
+    category = np.zeros(reduced[REASONS[0]].shape, dtype=int)  # 0: safe
+    for k, reason in reversed(list(enumerate(REASONS, start=1))):
+        category[reduced[reason]] = k
+    safe = category == 0
+    names = ["safe", *REASONS]
+    fig = Figure(figsize=(10.0, 5.4), dpi=DPI, layout="constrained")
+    ax = fig.subplots()
+    ax.pcolormesh(p.xedges, p.yedges, category, cmap=ListedColormap([COLOURS[n] for n in names]), vmin=-0.5,
+                  vmax=len(names) - 0.5, shading="flat", edgecolors="white", linewidth=0.3)
+    if safe.any():
+        draw_boundary(ax, safe, p, colors="k", linewidths=2.5)
+    plane_axes(ax, p)
+    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{n} ({int(np.sum(category == k))} cells)")
+               for k, n in enumerate(names) if np.any(category == k)]
+    handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
+    fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
+               title="cell (first limit broken)", title_fontsize=8)
+    context = [f"safe: every point ok, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
+               + (", outside ±15 % of the joint's critical speeds" if checked else
+                  "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "
+                  "mass_per_length)")]
+    context += p.context("every point must pass")
+    _title(fig, "Safe operating envelope", context, 8.5)
+    caption = (f"Where the pipe can run: green cells pass every limit at every value of the other swept inputs "
+               f"(solved, below yield, {_criterion_text(target_hours, criterion)}, away from critical speeds); other "
+               "cells show the first limit they break.")
+    return [Chart("envelope", fig, caption)]
+

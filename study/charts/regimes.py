@@ -1,0 +1,108 @@
+"""The regime map: how the pipe moves at each rotary speed and load.
+
+No contact / forward whirl / backward whirl / bouncing impacts / periodic impacts (the source paper's
+state) / unstable, as the codes of :data:`study.solvers.result.REGIMES`. A method that classifies the motion
+writes the output ``regime``; where a point has none, the regime is read from its status (no_impact: no
+contact; ok or disagrees: periodic impacts; unstable or period_doubling: unstable; not_periodic or
+chattering: bouncing) and the title says so. Any other status leaves the regime undetermined (hatched).
+Other swept inputs are reduced to the most severe regime (:data:`SEVERITY`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+
+from study.charts.critical import avoid_bands
+from study.charts.design import DPI, Chart, _full, _mark_missing, _title
+from study.charts.plane import BAND_LABEL, BAND_STYLE, draw_bands, draw_cells, plane, plane_axes
+from study.solvers.result import REGIMES, STATUS_CODES
+
+#: The regime a status implies, for points without a ``regime`` output.
+FROM_STATUS = {"no_impact": "no_contact", "ok": "periodic_impacts", "disagrees": "periodic_impacts",
+               "unstable": "unstable", "period_doubling": "unstable", "not_periodic": "bouncing",
+               "chattering": "bouncing"}
+#: Least to most severe: the map shows the most severe regime over the reduced inputs.
+SEVERITY = ("no_contact", "forward_whirl", "periodic_impacts", "bouncing", "unstable", "backward_whirl")
+COLOURS = {"no_contact": "#c7e9c0", "forward_whirl": "#9ecae1", "periodic_impacts": "#fdae6b",
+           "bouncing": "#e6550d", "unstable": "#a50f15", "backward_whirl": "#54278f"}
+LABELS = {"no_contact": "no contact", "forward_whirl": "forward whirl", "backward_whirl": "backward whirl",
+          "bouncing": "bouncing impacts", "periodic_impacts": "periodic impacts (the paper's state)",
+          "unstable": "unstable"}
+
+
+def regimes(ds: xr.Dataset) -> tuple[xr.DataArray, bool]:
+    """The regime code of every point (NaN: undetermined), over every dimension, and whether any point's regime
+    was read from its status rather than a ``regime`` output."""
+    if "regime" in ds.data_vars:
+        given = _full(ds, "regime").astype(float)
+    else:
+        given = xr.full_like(_full(ds, "status"), np.nan, dtype=float) if "status" in ds.data_vars else None
+    if given is None:
+        raise ValueError("the dataset has neither a regime nor a status variable")
+    derived = xr.full_like(given, np.nan)
+    if "status" in ds.data_vars:
+        status = _full(ds, "status")
+        for flag, regime in FROM_STATUS.items():
+            derived = xr.where(status == STATUS_CODES[flag], float(REGIMES[regime]), derived)
+    use_status = given.isnull() & derived.notnull()
+    return given.where(~use_status, derived), bool(use_status.any())
+
+
+def regime_map(ds: xr.Dataset) -> list[Chart]:
+    """The most severe regime over the other swept inputs at each rotary speed × axial load, in categorical colours,
+    with the critical-speed bands."""
+    p = plane(ds)
+    if p is None or ("regime" not in ds.data_vars and "status" not in ds.data_vars):
+        return []
+    codes, from_status = regimes(ds)
+    rank = xr.full_like(codes, np.nan)
+    for name, code in REGIMES.items():
+        rank = xr.where(codes == code, float(SEVERITY.index(name)), rank)
+    worst = p.reduce(rank, "max")
+    present = [SEVERITY[int(r)] for r in np.unique(worst[np.isfinite(worst)])]
+    index = np.full(worst.shape, np.nan)
+    for i, name in enumerate(present):
+        index[worst == SEVERITY.index(name)] = i
+    fig = _figure(p, index, present)
+    counts = {name: int(np.sum(index == i)) for i, name in enumerate(present)}
+    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{LABELS[n]} ({counts[n]} cells)") for n in present]
+    if np.isnan(index).any():
+        handles.append(Patch(facecolor="white", edgecolor="0.75", hatch="////",
+                             label=f"undetermined: no answer ({int(np.isnan(index).sum())} cells)"))
+    partial = p.reduce(codes.isnull(), "any") & np.isfinite(index)
+    if partial.any():  # the most severe regime of the points that have one; others might be worse
+        draw_cells(fig.axes[0], partial, p, facecolor="none", edgecolor="0.35", hatch="\\\\", linewidth=0)
+        handles.append(Patch(facecolor="white", edgecolor="0.35", hatch="\\\\",
+                             label=f"some points undetermined ({int(partial.sum())} cells)"))
+    bands = avoid_bands(p)
+    if bands is not None and draw_bands(fig.axes[0], bands, p) is not None:
+        handles.append(Patch(**BAND_STYLE, label=BAND_LABEL))
+    fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False, title="regime (cells)",
+               title_fontsize=8)
+    context = p.context("most severe regime (" + " < ".join(LABELS[n].split(" (")[0] for n in SEVERITY) + ")")
+    if from_status:
+        context.append("regime read from the status where the method gives none (no_impact: no contact; ok, "
+                       "disagrees: periodic impacts; unstable, period_doubling: unstable; not_periodic, chattering: "
+                       "bouncing)")
+    _title(fig, "Regime of the motion", context, 8.5)
+    caption = ("How the pipe moves at each rotary speed and load - free of the wall, whirling, bouncing or striking "
+               "periodically - taking the most severe regime over the other swept inputs; shaded bands are speeds to "
+               "avoid.")
+    return [Chart("regime_map", fig, caption)]
+
+
+def _figure(p, index: np.ndarray, present: list[str]) -> Figure:
+    fig = Figure(figsize=(10.0, 5.4), dpi=DPI, layout="constrained")
+    ax = fig.subplots()
+    masked = np.ma.masked_invalid(index)
+    if masked.mask.any():
+        _mark_missing(ax)
+    if present:
+        ax.pcolormesh(p.xedges, p.yedges, masked, cmap=ListedColormap([COLOURS[n] for n in present]),
+                      vmin=-0.5, vmax=len(present) - 0.5, shading="flat", edgecolors="white", linewidth=0.3)
+    plane_axes(ax, p)
+    return fig

@@ -1,0 +1,125 @@
+"""One page that holds a study: ``report.html`` with every chart, the safe operating envelope and the provenance.
+
+:func:`write_report` draws every chart of a results dataset (:func:`study.charts.catalogue.save_charts`), writes
+the envelope table as CSV beside the charts, and writes the page: the safe rotary speeds per load, each chart
+embedded (PNG or SVG as a data URI, so the page stands alone; other formats linked) with a sentence of what it
+shows, and the provenance from the dataset's attributes (config text, version, date, config hash, history).
+Every file is written atomically (:mod:`study.atomic`).
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import os
+from pathlib import Path
+
+from study.atomic import atomic_path
+from study.charts.catalogue import save_charts
+from study.charts.envelope import CRITERIA, envelope_table, safe_ranges, write_table
+from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS
+from study.charts.labels import format_value, quantity
+
+REPORT = "report.html"
+TABLE = "envelope.csv"
+MEDIA = {"png": "image/png", "svg": "image/svg+xml"}
+STYLE = """
+body { font-family: sans-serif; max-width: 1200px; margin: 2em auto; padding: 0 1em; color: #222; }
+figure { margin: 2em 0; border-top: 1px solid #ddd; padding-top: 1em; }
+figure img { max-width: 100%; height: auto; }
+figcaption { color: #444; margin-top: 0.5em; }
+table { border-collapse: collapse; }
+th, td { border: 1px solid #ccc; padding: 0.3em 0.8em; text-align: left; }
+pre { background: #f6f6f6; padding: 1em; overflow-x: auto; }
+"""
+
+
+def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: float = DEFAULT_TARGET_LIFE_HOURS,
+                 criterion: str = "life") -> list[Path]:
+    """Draw every chart, write the envelope CSV beside them and ``report.html``; return the written paths.
+
+    dataset_path : the results netCDF (or an open dataset, then ``out_dir`` is needed).
+    out_dir : the charts' folder, default ``charts/`` beside the dataset. The page goes beside the dataset
+        (``outputs/<study>/report.html``), or into ``out_dir`` when one is given.
+    target_hours, criterion : the fatigue limit of the envelope (see :func:`study.charts.envelope.failures`).
+    """
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
+    ds, saved = save_charts(dataset_path, out_dir, fmt, target_hours=target_hours, criterion=criterion)
+    if out_dir is None:
+        charts_dir = Path(dataset_path).parent / "charts"
+        page = Path(dataset_path).parent / REPORT
+    else:
+        charts_dir = Path(out_dir)
+        page = charts_dir / REPORT
+    written = [path for path, _ in saved]
+    rows = envelope_table(ds, target_hours, criterion)
+    table = None
+    if rows:
+        table = write_table(rows, charts_dir / TABLE)
+        written.append(table)
+    body = [f"<h1>{_e(ds.attrs.get('title') or ds.attrs.get('study_name') or 'Study')}</h1>",
+            f"<p>Study <code>{_e(ds.attrs.get('study_name', ''))}</code>: {_e(_size(ds))}.</p>",
+            _envelope_section(rows, table, page.parent, target_hours, criterion),
+            "<h2>Charts</h2>"]
+    body += [_figure(path, chart, page.parent) for path, chart in saved]
+    body.append(_provenance(ds))
+    text = ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            f"<title>{_e(ds.attrs.get('title', 'study report'))}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
+            + "\n".join(body) + "\n</body>\n</html>\n")
+    with atomic_path(page) as tmp:
+        Path(tmp).write_text(text, encoding="utf-8")
+    written.append(page)
+    return written
+
+
+def _e(text) -> str:
+    return html.escape(str(text))
+
+
+def _size(ds) -> str:
+    swept = [f"{quantity(ds[d]).short_name} ({n} values)" for d, n in ds.sizes.items() if n > 1]
+    points = 1
+    for n in ds.sizes.values():
+        points *= n
+    return f"{points} design points" + (" over " + ", ".join(swept) if swept else "")
+
+
+def _envelope_section(rows, table, folder: Path, target_hours: float, criterion: str) -> str:
+    if not rows:
+        return ("<h2>Safe operating envelope</h2><p>No envelope: it needs rotary speed and axial load both swept and "
+                "the design limits (yield utilisation and fatigue) in the dataset.</p>")
+    limit = (f"fatigue life at least {format_value(target_hours)} h" if criterion == "life"
+             else "below the endurance limit")
+    lines = ["<h2>Safe operating envelope</h2>",
+             f"<p>Rotary speeds where every point (over every other swept input) is solved, below yield, {_e(limit)} "
+             "and outside ±15 % of the joint's critical speeds.</p>",
+             '<table id="envelope"><thead><tr><th>axial load</th><th>safe rotary speeds</th></tr></thead><tbody>']
+    lines += [f"<tr><td>{_e(load)}</td><td>{_e(speeds)}</td></tr>" for load, speeds in safe_ranges(rows)]
+    lines.append("</tbody></table>")
+    link = os.path.relpath(table, folder)
+    lines.append(f'<p>Every cell, with what limits it: <a href="{_e(Path(link).as_posix())}">{_e(TABLE)}</a>.</p>')
+    return "\n".join(lines)
+
+
+def _figure(path: Path, chart, folder: Path) -> str:
+    fmt = path.suffix.lstrip(".").lower()
+    title = (chart.title or chart.name).split("\n")[0]
+    if fmt in MEDIA:
+        data = base64.b64encode(path.read_bytes()).decode("ascii")
+        shown = f'<img src="data:{MEDIA[fmt]};base64,{data}" alt="{_e(chart.name)}" data-chart="{_e(chart.name)}">'
+    else:
+        link = Path(os.path.relpath(path, folder)).as_posix()
+        shown = f'<p><a href="{_e(link)}" data-chart="{_e(chart.name)}">{_e(path.name)}</a></p>'
+    return (f'<figure id="chart-{_e(chart.name)}">\n<h3>{_e(title)}</h3>\n{shown}\n'
+            f"<figcaption>{_e(chart.caption)}</figcaption>\n</figure>")
+
+
+def _provenance(ds) -> str:
+    attrs = ds.attrs
+    items = [("study", attrs.get("study_name", "")), ("version", attrs.get("source", "")),
+             ("date", attrs.get("date_created", "")), ("config hash", attrs.get("config_hash", "")),
+             ("history", attrs.get("history", ""))]
+    rows = "\n".join(f"<dt>{_e(k)}</dt><dd>{_e(v)}</dd>" for k, v in items if v)
+    return (f'<h2>Provenance</h2>\n<dl id="provenance">\n{rows}\n</dl>\n<h3>Configuration</h3>\n'
+            f'<pre id="config">{_e(attrs.get("config", "(not recorded)"))}</pre>')

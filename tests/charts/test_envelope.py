@@ -1,0 +1,81 @@
+"""The safe operating envelope (study.charts.envelope): every safe cell passes every limit at every point."""
+
+import csv
+
+import numpy as np
+import pytest
+from matplotlib.collections import LineCollection
+
+from study.charts import figure_labels
+from study.charts.envelope import envelope_chart, envelope_table, safe_ranges, write_table
+from study.charts.plane import cell_boundary, plane
+
+RPM_PER_RAD_S = 30 / np.pi
+
+
+def _critical_rpm(ds):
+    """60 f_n of the joint's first three modes, from the closed form (docs/model.md §2), per point [rpm]."""
+    n = np.array([1, 2, 3])
+    k = n * np.pi / float(ds.joint_length)
+    ei, t, m = ds.bending_stiffness, ds.effective_tension, ds.mass_per_length
+    omega = np.sqrt((ei.values[..., None] * k**4 + t.values[..., None] * k**2) / m.values[..., None])
+    return omega * RPM_PER_RAD_S
+
+
+@pytest.mark.parametrize("target", [1000.0, 20000.0])
+def test_the_envelope_excludes_every_point_over_a_limit(study, target):
+    rows = envelope_table(study, target_hours=target)
+    assert len(rows) == 13 * 4
+    critical = _critical_rpm(study)
+    rpm = (study.rotary_speed * RPM_PER_RAD_S).broadcast_like(study.status).values
+    near = (np.abs(rpm[..., None] - critical) <= 0.15 * critical).any(-1)
+    bad = ((study.status != 0) | ~(study.yield_utilisation <= 1) | ~(study.fatigue_life >= target * 3600)).values
+    bad |= near
+    speeds = list(study.rotary_speed.values * RPM_PER_RAD_S)
+    loads = list(study.axial_tension.values / 4.4482216152605)
+    assert any(r["safe"] for r in rows) and not all(r["safe"] for r in rows)
+    dims = list(study.status.dims)
+    for r in rows:
+        i = int(np.argmin(np.abs(np.array(speeds) - r["rotary speed [rpm]"])))
+        j = int(np.argmin(np.abs(np.array(loads) - r["axial tension [lbf]"])))
+        cell = np.take(np.take(bad, [i], axis=dims.index("rotary_speed")), [j], axis=dims.index("axial_tension"))
+        assert r["safe"] == (not cell.any()), r
+        assert r["points"] == 4
+
+
+def test_a_longer_target_or_the_endurance_limit_shrinks_the_envelope(study):
+    def safe(rows):
+        return {(r["rotary speed [rpm]"], r["axial tension [lbf]"]) for r in rows if r["safe"]}
+
+    base = safe(envelope_table(study))
+    assert safe(envelope_table(study, target_hours=1e5)) < base
+    assert safe(envelope_table(study, criterion="endurance")) <= base
+    with pytest.raises(ValueError, match="criterion = 'never'"):
+        envelope_table(study, criterion="never")
+    with pytest.raises(ValueError, match="target_hours = -1"):
+        envelope_table(study, target_hours=-1)
+
+
+def test_the_chart_outlines_the_safe_cells_and_says_what_safe_means(study):
+    (chart,) = envelope_chart(study)
+    ax = chart.figure.axes[0]
+    rows = envelope_table(study)
+    safe = np.array([r["safe"] for r in rows]).reshape(4, 13)
+    p = plane(study)
+    drawn = [tuple(map(tuple, s)) for c in ax.collections if isinstance(c, LineCollection) for s in c.get_segments()]
+    assert sorted(drawn) == sorted(cell_boundary(safe, p.xedges, p.yedges))
+    title = figure_labels(chart.figure)["titles"][-1].replace("\n", " ")
+    assert "fatigue life ≥ 1,000 h" in title and "outside ±15 % of the joint's critical speeds" in title
+
+
+def test_safe_ranges_per_load_and_the_csv(study, tmp_path):
+    rows = envelope_table(study)
+    ranges = dict(safe_ranges(rows))
+    assert set(ranges) == {"5,000 lbf", "10,000 lbf", "20,000 lbf", "40,000 lbf"}
+    first = [r["rotary speed [rpm]"] for r in rows if r["safe"] and round(r["axial tension [lbf]"]) == 5000]
+    assert ranges["5,000 lbf"].startswith(f"{first[0]:.0f}")
+    path = write_table(rows, tmp_path / "envelope.csv")
+    with open(path, newline="") as handle:
+        read = list(csv.DictReader(handle))
+    assert len(read) == len(rows) and read[0]["safe"] in ("True", "False")
+    assert list(read[0])[:2] == ["rotary speed [rpm]", "axial tension [lbf]"]

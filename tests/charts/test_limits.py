@@ -1,0 +1,99 @@
+"""Stress, contact force and fatigue maps with their limits (study.charts.limits), on the synthetic study."""
+
+import numpy as np
+import pytest
+from matplotlib.collections import LineCollection, QuadMesh
+from matplotlib.colors import LogNorm
+
+from study.charts import figure_labels
+from study.charts.limits import contact_force_map, fatigue_life_map, stress_limit_maps
+from study.charts.plane import cell_boundary, plane
+
+PSI = 6894.757293168361
+LBF = 4.4482216152605
+E75_YIELD_PSI = 75_000  # API Spec 5D Table 6.3: grade E-75 minimum yield strength
+
+
+def panels(figure):
+    return [ax for ax in figure.axes if ax.get_label() != "<colorbar>"]
+
+
+def mesh_values(ax, shape):
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    return mesh, np.ma.masked_invalid(mesh.get_array()).reshape(shape)
+
+
+def outline(ax, colour=None):
+    return [seg for c in ax.collections if isinstance(c, LineCollection) for seg in c.get_segments()]
+
+
+def test_one_figure_worst_case_in_psi_with_the_yield_outline_where_the_stress_passes_75_ksi(study):
+    (chart,) = stress_limit_maps(study)
+    normal, alternating = panels(chart.figure)
+    shape = (study.sizes["axial_tension"], study.sizes["rotary_speed"])
+    _, values = mesh_values(normal, shape)
+    worst = study.max_normal_stress.max(["restitution", "mud_density"]).transpose("axial_tension", "rotary_speed")
+    np.testing.assert_allclose(values, worst.values / PSI)
+    # the outline is the boundary of the cells whose worst stress is over E-75's yield, computed from the stress
+    p = plane(study)
+    over = worst.values / PSI > E75_YIELD_PSI
+    assert over.any() and not over.all()
+    expected = cell_boundary(over, p.xedges, p.yedges)
+    drawn = outline(normal)
+    assert sorted(map(lambda s: tuple(map(tuple, s)), drawn)) == sorted(expected)
+    labels = figure_labels(chart.figure)
+    assert "maximum normal stress [psi]" in labels["ylabels"] and "alternating bending stress [psi]" in labels["ylabels"]
+    assert "worst case (highest stress) over restitution and mud density" in labels["titles"][-1]
+    assert any("E-75 75,000 psi" in t for t in labels["legend"])
+    assert outline(alternating)  # the endurance limit is passed somewhere in this study
+
+
+def test_failed_points_are_hatched_not_coloured(study):
+    ds = study.copy(deep=True)
+    ds["status"][dict(axial_tension=1, rotary_speed=3)] = 3  # no span at every restitution and mud density
+    (chart,) = stress_limit_maps(ds)
+    _, values = mesh_values(panels(chart.figure)[0], (4, 13))
+    assert values.mask[1, 3] and values.mask.sum() == 1
+    assert any("no ok point" in t for t in figure_labels(chart.figure)["legend"])
+
+
+def test_contact_force_in_lbf(study):
+    (chart,) = contact_force_map(study)
+    _, values = mesh_values(panels(chart.figure)[0], (4, 13))
+    speeds = study.rotary_speed.values * 60 / (2 * np.pi)
+    assert values[3, 0] == pytest.approx(100 * speeds[0] * 1.8)  # made-up 100 lbf/rpm x (1 + e), e = 0.8
+    assert "peak contact force [lbf]" in figure_labels(chart.figure)["ylabels"]
+
+
+def test_fatigue_life_in_hours_on_a_log_scale_with_the_curve_named(study):
+    (chart,) = fatigue_life_map(study, target_hours=500.0)
+    ax = panels(chart.figure)[0]
+    mesh, values = mesh_values(ax, (4, 13))
+    assert isinstance(mesh.norm, LogNorm)
+    shortest = study.fatigue_life.min(["restitution", "mud_density"]).transpose("axial_tension", "rotary_speed") / 3600
+    np.testing.assert_allclose(values, shortest.values)
+    title = figure_labels(chart.figure)["titles"][-1]
+    assert "DNV-RP-C203 B1" in title and "Goodman" in title and "shortest life over restitution" in title
+    p = plane(study)
+    assert sorted(map(lambda s: tuple(map(tuple, s)), outline(ax))) == \
+        sorted(cell_boundary(shortest.values < 500.0, p.xedges, p.yedges))
+
+
+def test_without_the_plane_the_stresses_are_lines(study):
+    line = study.isel(axial_tension=[0])
+    charts = stress_limit_maps(line)
+    assert charts and not [c for ax in charts[0].figure.axes for c in ax.collections if isinstance(c, QuadMesh)]
+    assert fatigue_life_map(line) == [] and contact_force_map(line) == []
+
+
+def test_cells_where_only_some_points_are_ok_are_marked(study):
+    from matplotlib.collections import PolyCollection
+
+    (chart,) = stress_limit_maps(study)
+    ax = panels(chart.figure)[0]
+    marked = [c for c in ax.collections if isinstance(c, PolyCollection) and c.get_hatch() == ".."]
+    (cells,) = marked
+    # 5,000 lbf above 200 rpm: no span at e = 0.8 -> the five cells 220-300 rpm show the worst of e = 0.2
+    lefts = sorted(round(float(p.vertices[:, 0].min())) for p in cells.get_paths())
+    assert lefts == [210, 230, 250, 270, 290]
+    assert "worst of the ok points; some points there failed" in figure_labels(chart.figure)["legend"]

@@ -1,0 +1,51 @@
+"""The regime map (study.charts.regimes): regimes from the output or the status, the most severe per cell."""
+
+import numpy as np
+from matplotlib.collections import QuadMesh
+
+from study.charts import figure_labels
+from study.charts.regimes import SEVERITY, regime_map, regimes
+from study.solvers.result import REGIMES, STATUS
+
+
+def test_regimes_are_read_from_the_status_where_no_method_gives_one(build_study):
+    ds = build_study(status={"no_impact": lambda g: g["rotary_speed"] < 100,
+                             "chattering": lambda g: g["rotary_speed"] > 250,
+                             "period_doubling": lambda g: (g["rotary_speed"] == 200) & (g["restitution"] == 0.8),
+                             "no_span": lambda g: g["rotary_speed"] == 160})
+    codes, from_status = regimes(ds)
+    assert from_status
+    at = dict(axial_tension=0, restitution=1, mud_density=0)
+    speeds = list(np.round(ds.rotary_speed.values * 30 / np.pi))
+    assert codes.isel(rotary_speed=speeds.index(60), **at) == REGIMES["no_contact"]
+    assert codes.isel(rotary_speed=speeds.index(120), **at) == REGIMES["periodic_impacts"]  # ok
+    assert codes.isel(rotary_speed=speeds.index(200), **at) == REGIMES["unstable"]
+    assert codes.isel(rotary_speed=speeds.index(300), **at) == REGIMES["bouncing"]
+    assert np.isnan(codes.isel(rotary_speed=speeds.index(160), **at))  # no span: undetermined
+    (chart,) = regime_map(ds)
+    (mesh,) = [c for ax in chart.figure.axes for c in ax.collections if isinstance(c, QuadMesh)]
+    labels = figure_labels(chart.figure)
+    present = [t.split(" (")[0] for t in labels["legend"][1:] if "cells)" in t and "undetermined" not in t]
+    index = np.ma.masked_invalid(mesh.get_array()).reshape(4, 13)
+    # 200 rpm: unstable at e = 0.8 outranks the periodic impacts at e = 0.2 in every load row
+    assert {present[int(v)] for v in index[:, speeds.index(200)]} == {"unstable"}
+    assert index.mask[:, speeds.index(160)].all()
+    assert "regime read from the status" in labels["titles"][-1]
+    assert "most severe regime" in labels["titles"][-1]
+
+
+def test_a_regime_output_is_used_where_present(study):
+    ds = study.copy()
+    ds["regime"] = (list(study.status.dims), np.full(study.status.shape, float(REGIMES["backward_whirl"])),
+                    {"units": "1", "flag_values": np.array(list(REGIMES.values()), float),
+                     "flag_meanings": " ".join(REGIMES)})
+    codes, from_status = regimes(ds)
+    assert not from_status and (codes == REGIMES["backward_whirl"]).all()
+    (chart,) = regime_map(ds)
+    labels = figure_labels(chart.figure)
+    assert "backward whirl (52 cells)" in labels["legend"] and "regime read" not in labels["titles"][-1]
+
+
+def test_every_regime_has_a_severity_and_the_codes_do_not_clash_with_the_status():
+    assert set(SEVERITY) == set(REGIMES) and len(set(REGIMES.values())) == len(REGIMES)
+    assert not set(REGIMES) & set(STATUS) - {"unstable"}

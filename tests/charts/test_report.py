@@ -1,0 +1,94 @@
+"""The study's page (study.charts.report), opened in headless Chromium: every chart, the envelope, the provenance.
+
+Chromium comes from Debian's packages; the set-up installs it (``apt-get install -y chromium``) only when
+/usr/bin/chromium is absent, and the test is skipped, saying so, only if that is not possible.
+"""
+
+import base64
+import os
+import shutil
+import subprocess
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+from study.charts.envelope import envelope_table, safe_ranges
+from study.charts.report import write_report
+
+CHROMIUM = Path("/usr/bin/chromium")
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    if not CHROMIUM.exists() and shutil.which("apt-get") and os.geteuid() == 0:
+        subprocess.run(["apt-get", "install", "-y", "chromium"], capture_output=True, timeout=900, check=False)
+    if not CHROMIUM.exists():
+        pytest.skip("/usr/bin/chromium is missing and `apt-get install -y chromium` was not possible here")
+    return CHROMIUM
+
+
+class Page(HTMLParser):
+    """The images, envelope-table cells and element texts of a DOM."""
+
+    def __init__(self):
+        super().__init__()
+        self.images, self.cells, self.ids, self.stack, self.text = {}, [], {}, [], {}
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "img":
+            self.images[attrs.get("data-chart")] = attrs.get("src", "")
+        if "id" in attrs:
+            self.ids[attrs["id"]] = tag
+        self.stack.append(attrs.get("id") or (self.stack[-1] if self.stack else None))
+        if tag == "td" and "envelope" in self.stack:
+            self.cells.append("")
+
+    def handle_endtag(self, tag):
+        if self.stack:
+            self.stack.pop()
+
+    def handle_data(self, data):
+        owner = self.stack[-1] if self.stack else None
+        if owner:
+            self.text[owner] = self.text.get(owner, "") + data
+        if self.cells and self.stack and self.stack[-1] == "envelope" and self.lasttag == "td":
+            self.cells[-1] += data
+
+
+def test_the_page_holds_every_chart_the_envelope_and_the_provenance(study, tmp_path, chromium):
+    results = tmp_path / "synthetic" / "results.nc"
+    results.parent.mkdir()
+    study.to_netcdf(results)
+    written = write_report(results)
+    page = results.parent / "report.html"
+    assert page in written and (results.parent / "charts" / "envelope.csv") in written
+    assert not [p for p in page.parent.rglob(".tmp*")]
+    charts = [p for p in written if p.suffix == ".png"]
+    assert {p.stem for p in charts} >= {"envelope", "stress_limits", "fatigue_life", "contact_force", "regime_map",
+                                        "campbell", "validity_map", "span_length"}
+    dom = subprocess.run([str(chromium), *FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--dump-dom",
+                          page.as_uri()], capture_output=True, text=True, timeout=120, check=True).stdout
+    parsed = Page()
+    parsed.feed(dom)
+    for png in charts:  # each chart is in the DOM as an image of exactly the file drawn
+        src = parsed.images[png.stem]
+        assert src.startswith("data:image/png;base64,")
+        assert base64.b64decode(src.split(",", 1)[1]) == png.read_bytes()
+        assert parsed.ids[f"chart-{png.stem}"] == "figure"
+    expected = [cell for row in safe_ranges(envelope_table(study)) for cell in row]
+    assert parsed.ids["envelope"] == "table" and [c.strip() for c in parsed.cells] == expected
+    provenance = parsed.text["provenance"]
+    assert "abc123" in provenance and "study 0.2.0" in provenance and "2026-11-24T09:00:00+00:00" in provenance
+    assert parsed.text["config"].strip() == study.attrs["config"].strip()
+
+
+def test_other_formats_are_linked_and_an_unknown_criterion_is_refused(study, tmp_path):
+    written = write_report(study.isel(rotary_speed=slice(0, 4)), out_dir=tmp_path / "pdf", fmt="pdf")
+    text = (tmp_path / "pdf" / "report.html").read_text()
+    assert all(f'href="{p.name}"' in text for p in written if p.suffix == ".pdf")
+    with pytest.raises(ValueError, match="criterion = 'soon'"):
+        write_report(study, out_dir=tmp_path, criterion="soon")
