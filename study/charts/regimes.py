@@ -26,12 +26,12 @@ FROM_STATUS = {"no_impact": "no_contact", "ok": "periodic_impacts", "disagrees":
                "unstable": "unstable", "period_doubling": "unstable", "not_periodic": "bouncing",
                "chattering": "bouncing"}
 #: Least to most severe: the map shows the most severe regime over the reduced inputs.
-SEVERITY = ("no_contact", "forward_whirl", "periodic_impacts", "bouncing", "unstable", "backward_whirl")
-COLOURS = {"no_contact": "#c7e9c0", "forward_whirl": "#9ecae1", "periodic_impacts": "#fdae6b",
+SEVERITY = ("no_contact", "sliding", "forward_whirl", "periodic_impacts", "bouncing", "unstable", "backward_whirl")
+COLOURS = {"no_contact": "#c7e9c0", "sliding": "#ffffb2", "forward_whirl": "#9ecae1", "periodic_impacts": "#fdae6b",
            "bouncing": "#e6550d", "unstable": "#a50f15", "backward_whirl": "#54278f"}
-LABELS = {"no_contact": "no contact", "forward_whirl": "forward whirl", "backward_whirl": "backward whirl",
-          "bouncing": "bouncing impacts", "periodic_impacts": "periodic impacts (the paper's state)",
-          "unstable": "unstable"}
+LABELS = {"no_contact": "no contact", "sliding": "lying on the wall, sliding", "forward_whirl": "forward whirl",
+          "backward_whirl": "backward whirl", "bouncing": "bouncing impacts",
+          "periodic_impacts": "periodic impacts (the paper's state)", "unstable": "unstable"}
 
 
 def regimes(ds: xr.Dataset) -> tuple[xr.DataArray, bool]:

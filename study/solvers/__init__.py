@@ -22,12 +22,17 @@ from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 #: package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
                   "crosscheck": "crosscheck", "reference": "reference", "reference-check": "refcheck",
-                  "sdof": "sdof"}
+                  "free-whirl": "freewhirl", "sdof": "sdof"}
+
+
+#: Methods whose solve function is not their module's ``solve``: name -> (module, function).
+METHOD_FUNCTIONS = {"periodic": ("auto", "solve_periodic")}
 
 
 def _registry() -> dict:
-    return {name: (importlib.import_module(f"study.solvers.{module}").solve, METHOD_DESCRIPTIONS[name])
-            for name, module in METHOD_MODULES.items()}
+    table = {name: (module, "solve") for name, module in METHOD_MODULES.items()} | METHOD_FUNCTIONS
+    return {name: (getattr(importlib.import_module(f"study.solvers.{module}"), function), METHOD_DESCRIPTIONS[name])
+            for name, (module, function) in table.items()}
 
 
 def __getattr__(name: str):

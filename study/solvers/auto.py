@@ -1,17 +1,25 @@
-"""The ``auto`` method: per design point, the cheapest model of the hierarchy that serves it (docs/model.md §9).
+"""The model hierarchy: per design point, the cheapest model that serves it (docs/model.md §9).
 
-The hierarchy is module data, :data:`LADDER`, cheapest first: each rung names a method and says which
-failures of the rungs below it can mend (:data:`MENDS`). A point is solved by the first rung; its result
-passes the gate every result passes (:func:`study.solvers.gate.admit`); if it is not ``ok`` and a higher
-rung can mend that failure, the point goes up. What a point ends with is the first ``ok`` result, or —
-when nothing served — the most informative failure (the last rung's that was tried), with the ladder it
-climbed in its message and ``extras["methods_tried"]`` (method → status and error estimate). A status
-that no rung can mend (buckling, missing inputs) is a property of the point, returned at once.
+A ladder is module data (:data:`LADDERS`), cheapest rung first: each rung names a method and, above the
+first, which failures of the rung below it the rung can mend (:data:`MENDS`). A point is solved by the first
+rung; its result passes the gate every result passes (:func:`study.solvers.gate.admit`); if it is not ``ok``
+and the next rung can mend that failure, the point goes up. What a point ends with is the first ``ok``
+result, or — when nothing served — the last rung's result that was tried, with the ladder it climbed at the
+head of its message and in ``extras["methods_tried"]`` (method → status and error estimate). A status no rung
+can mend (buckling, missing inputs) is a property of the point, returned at once.
 
-- ``fast``: the periodic solution (closed form in time, quasi-static correction).
-- ``series``: the paper's double series on the same span; it mends only an error estimate above
-  ``solver.tolerance`` where the span itself held when the modes doubled (its time series converges by
-  doubling the harmonics; the span search is the same as ``fast``'s).
+``auto`` (the default study's method) climbs the reference model's hierarchy:
+
+- ``free-whirl``: the reference model's scene clear of the wall, in closed form (synchronous whirl about the
+  sag; exact there) — a few milliseconds; ``out_of_scope`` where the free motion would reach the wall;
+- ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
+  second to seconds; it mends whatever the free whirl could not answer.
+
+The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
+docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
+where the section whirls clear of it, and where both touch its forces and stresses are off by factors. It keeps
+a ladder of its own, ``periodic``: ``fast``, then the paper's ``series`` where only ``fast``'s error estimate
+failed and its span held with doubled modes (the series searches the same spans).
 """
 
 from __future__ import annotations
@@ -19,11 +27,13 @@ from __future__ import annotations
 import time
 from typing import Any, Callable, Mapping
 
-from study.solvers import fast, gate, series
+from study.solvers import fast, freewhirl, gate, reference, series
 from study.solvers.options import DEFAULT_TOLERANCE
 from study.solvers.result import PointResult
 
 Solve = Callable[[Mapping[str, Any]], PointResult]
+#: Statuses that are properties of the point: no model answers them differently.
+FINAL = ("buckled", "incomplete")
 
 
 def _error_only(result: PointResult, inputs: Mapping[str, Any]) -> bool:
@@ -33,30 +43,36 @@ def _error_only(result: PointResult, inputs: Mapping[str, Any]) -> bool:
             and result.error_estimate is not None and result.error_estimate > tolerance)
 
 
+def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """Anything but a property of the point: the reference model answers what the free whirl cannot."""
+    return result.status not in FINAL
+
+
 def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
     """The series doubles its harmonics until the study's tolerance."""
     tolerance = float(inputs.get("tolerance") or DEFAULT_TOLERANCE)
     return {**inputs, "series_tolerance": inputs.get("series_tolerance") or tolerance}
 
 
-#: The hierarchy, cheapest first: method name -> (solve, how its inputs are made from the point's).
-LADDER: dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]] = {
-    "fast": (fast.solve, dict),
-    "series": (series.solve, _series_inputs),
+#: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
+LADDERS: dict[str, dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]]] = {
+    "auto": {"free-whirl": (freewhirl.solve, dict), "reference": (reference.solve, dict)},
+    "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs)},
 }
-#: For each rung above the first: which results of the rungs below it the rung can mend.
+#: For each rung above the first: which results of the rung below it the rung can mend.
 MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
+    "reference": _not_final,
     "series": _error_only,
 }
 
 
-def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """Climb :data:`LADDER` until a rung serves the point (see the module docstring)."""
+def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
+    """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     start = time.perf_counter()
     tried: list[PointResult] = []
-    for name, (method, prepare) in LADDER.items():
+    for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
-            continue
+            break
         tried.append(gate.admit(method(prepare(inputs)), inputs))
         if tried[-1].status == "ok":
             break
@@ -65,8 +81,18 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
            f"no model served ({result.method}'s {result.status} is what is known)")
     if len(tried) > 1:
         why += " after " + ", ".join(f"{r.method}: {r.status}" for r in tried[:-1])
-    result.message = f"auto: {why}; {result.message}"
+    result.message = f"{ladder}: {why}; {result.message}"
     result.extras["methods_tried"] = {r.method: {"status": r.status, "error_estimate": r.error_estimate}
                                       for r in tried}
     result.wall_time = time.perf_counter() - start
     return result
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The reference model's hierarchy: the free whirl where the pipe stays clear, else the reference model."""
+    return climb("auto", inputs)
+
+
+def solve_periodic(inputs: Mapping[str, Any]) -> PointResult:
+    """The paper's periodic solution: ``fast``, then ``series`` where only its error estimate failed."""
+    return climb("periodic", inputs)

@@ -18,8 +18,9 @@ METHOD_DESCRIPTIONS = {
             "stresses",
     "series": "the paper's double Fourier series (modes x harmonics) with the same span search as fast: the "
               "reproduction, and the slow reference",
-    "auto": "the cheapest model of the hierarchy that serves the point (fast, then series where only its error "
-            "estimate failed)",
+    "auto": "the cheapest model of the hierarchy that serves the point: the free whirl where the pipe stays clear "
+            "of the wall, else the reference model",
+    "periodic": "the paper's periodic solution: fast, then series where only fast's error estimate failed",
     "time-domain": "modal span integrated through Hertz contact with both walls (event-driven, explicit Verlet "
                    "or implicit LSODA) until periodic: the check on the periodic assumption",
     "crosscheck": "the fast periodic solution replayed through one revolution of real Hertz contact in the time "
@@ -29,6 +30,8 @@ METHOD_DESCRIPTIONS = {
                  "and stresses after the transient",
     "reference-check": "the periodic solution (fast) against the reference model on the same point: contact or "
                        "not, peak force, max normal and alternating stress within solver.check_tolerance",
+    "free-whirl": "the reference model's scene clear of the wall in closed form: synchronous whirl under the mass "
+                  "eccentricity about the sag, drag exact on the circle; out of scope where it would touch",
     "sdof": "one-degree-of-freedom screen: first-mode impact oscillator between the walls, exact period-1 orbit "
             "and Floquet stability at a given span",
 }

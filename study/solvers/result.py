@@ -29,6 +29,7 @@ STATUS = {
     "disagrees": (15, "the time domain with real contact disagrees with the periodic solution (see message)"),
     "unphysical": (16, "a computed value breaks a physical bound: deflection past the wall, inconsistent "
                        "stresses (see message)"),
+    "out_of_scope": (17, "the model's assumptions do not hold at this point (see message): a higher model answers"),
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
@@ -37,7 +38,7 @@ STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 #: bouncing (impacts that do not settle into a periodic motion, chattering included); periodic impacts (the
 #: source paper's state); unstable (the periodic impacting motion exists but is unstable).
 REGIMES = {"no_contact": 0, "forward_whirl": 1, "backward_whirl": 2, "bouncing": 3, "periodic_impacts": 4,
-           "unstable": 5}
+           "unstable": 5, "sliding": 6}
 
 
 @dataclass

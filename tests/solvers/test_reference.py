@@ -20,7 +20,7 @@ def test_nothing_moves_without_a_drive(base):
     assert np.all(run["integrator"].z == 0.0)
     assert np.all(run["window"].states == 0.0)
     result = solve_point(inputs, "reference")
-    assert result.status == "no_impact"
+    assert result.status == "ok" and result.values["regime"] == 0  # clear of the wall is an answer: no contact
     assert result.values["max_deflection"] == 0.0 and result.values["peak_contact_force"] == 0.0
 
 

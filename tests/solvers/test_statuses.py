@@ -94,6 +94,10 @@ CASES = [
     # report no deflection; no point was found. So the gate's within_clearance check is shown on a method
     # registered for this test only (`liar`, via monkeypatch in METHODS) that reports 2 c at the real point.
     pytest.param("unphysical", "liar", {}, "passes the wall", id="unphysical-test-method-2c-deflection"),
+    # source: tests/solvers/test_auto.py - a 15-deg hole: the sag takes the tool joints to the wall, where the
+    # closed-form free whirl does not hold
+    pytest.param("out_of_scope", "free-whirl", {"inclination": 0.2617993877991494}, "reaches the wall",
+                 id="out_of_scope-free-whirl-15deg"),
 ]
 
 #: Statuses no real point reaches, with the reason (checked to be exactly the ones without a case).

@@ -1,0 +1,157 @@
+"""The ``free-whirl`` method: the steady state of the reference model's scene where the pipe does not touch the
+wall, in closed form (docs/reference_model.md; the cheapest rung of the ``auto`` hierarchy).
+
+The scene is the reference model's (:mod:`study.solvers.reference`): the pinned section of length L in both
+lateral directions, driven by its mass eccentricity ε (the centrifugal load m_p ε Ω² turning with the pipe) and,
+in an inclined hole, pushed to the low side by its buoyed weight w; mud added mass in M and quadratic drag
+D |u̇| u̇. Both loads are uniform along the section, so only odd modes respond (Jeffcott's rotor on a pinned
+beam-column; Vance 1988 ch. 2, Genta 2005 §4.2). Away from the wall the steady state is exact:
+
+- **sag** S(x) = Σ_n s_n/ω_n² sin(k_n x), the static deflection under w (fixed in the hole);
+- **synchronous whirl** A(x) e^{iΩt}: the rotating load's forced response, a circle at each section. On a
+  circle the speed |u̇| = Ω |A(x)| is constant, so the drag is exactly a viscous damping c(x) = D Ω |A(x)|,
+  and the modal equations (ω_n² − Ω²) a_n + iΩ Σ_m C_nm a_m / m = ε_n are linear; C depends on |A|, so
+  they are solved by fixed-point iteration on |A| (a few steps: the drag is weak away from resonance).
+
+The pipe stays clear of the wall when |S(x)| + |A(x)| < c everywhere — c_b = R − r_o along the body, c_tj =
+R − r_tj at the tool joints (every ``joint_length``). Then the answer is (per section x, the pipe rotating):
+the whirl's curvature is fixed in the pipe and the sag's turns once per revolution through every fibre, so
+
+    max bending stress = E r_o max_x (|κ_S| + |κ_A|),   alternating = E r_o max_x |κ_S|,
+
+with κ = y''; shear 2V/A_s likewise with V = EI y'''. Where the free motion would reach the wall (within the
+study's tolerance), or near a resonance where the iteration does not settle, the method does not answer:
+status ``out_of_scope`` (a higher model answers). Its error estimate is the modal truncation's (the part of
+the stress carried by the upper half of the modes) plus the iteration's last change.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import section, whirl
+from study.solvers.options import DEFAULT_TOLERANCE, ReferenceOptions
+from study.solvers.result import REGIMES, PointResult
+from study.solvers.scene import section_properties
+
+METHOD = "free-whirl"
+#: Odd modes kept (every odd mode up to this number): the uniform loads excite no even mode.
+MODES = 61
+#: Points along the section for the clearance check and the stress maxima.
+POINTS = 401
+#: Fixed-point iterations on the drag at most, and the relative change of |A| that ends them.
+ITERATIONS, SETTLED = 50, 1e-10
+
+
+def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = POINTS) -> dict[str, Any]:
+    """The steady state of the section without wall contact: x [m], sag S and whirl A (complex) [m] and their
+    second and third derivatives along x, the section's data, and how the drag iteration ended."""
+    option = ReferenceOptions.from_inputs(inputs)
+    props = section_properties(inputs)
+    L, M, Om = float(option.section_length), props["mass_per_length"], float(inputs["rotary_speed"])
+    n = np.arange(1, modes + 1, 2, dtype=float)
+    k = n * np.pi / L
+    omega = np.asarray(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M,
+                                                   n), float).ravel()
+    mass = 0.5 * M * L
+    factors = whirl.uniform_load_modal_factors(n, L)
+    eccentric = whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors / mass
+    r_o = inputs["outer_diameter"] / 2.0
+    w_side = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
+                                   float(inputs.get("inclination") or 0.0)))
+    sag_modal = w_side * factors / mass / omega**2
+    x = np.linspace(0.0, L, points)
+    shapes = np.sin(np.outer(x, k))  # (X, N)
+    gx, gw = np.polynomial.legendre.leggauss(2 * modes + 8)
+    gauss_x, gauss_w = 0.5 * L * (gx + 1.0), 0.5 * L * gw
+    gauss_shapes = np.sin(np.outer(gauss_x, k))
+    drag = props["drag_coefficient_per_length"]
+    stiffness = np.diag(omega**2 - Om**2).astype(complex)
+    a = eccentric / (omega**2 - Om**2) + 0j
+    change = np.inf
+    for iteration in range(1, ITERATIONS + 1):
+        speed = Om * np.abs(gauss_shapes @ a)  # |u̇| on the circle [m/s]
+        damping = (gauss_shapes * (gauss_w * drag * speed)[:, None]).T @ gauss_shapes / mass  # C/m [1/s]
+        new = np.linalg.solve(stiffness + 1j * Om * damping, eccentric + 0j)
+        change = float(np.max(np.abs(new - a)) / max(np.max(np.abs(new)), 1e-300))
+        a = new
+        if change < SETTLED:
+            break
+    derivative = {0: shapes, 2: -shapes * k**2, 3: -np.cos(np.outer(x, k)) * k**3}
+    return dict(x=x, L=L, n=n, k=k, omega=omega, rotary_speed=Om, sag={d: s @ sag_modal for d, s in derivative.items()},
+                whirl={d: s @ a for d, s in derivative.items()}, sag_modal=sag_modal, whirl_modal=a,
+                iterations=iteration, change=change, props=props, option=option, side_load=w_side)
+
+
+def clearances(inputs: Mapping[str, Any], x: np.ndarray, option: ReferenceOptions) -> tuple[np.ndarray, np.ndarray]:
+    """Clearance along the body [m] at every x, and the tool-joint stations [m] with theirs [m]."""
+    hole_r = inputs["hole_diameter"] / 2.0
+    body = np.full(x.shape, hole_r - inputs["outer_diameter"] / 2.0)
+    L, joint = float(option.section_length), float(option.joint_length)
+    stations = np.arange(0.0, L + 1e-9 * L, joint)
+    return body, np.column_stack([stations, np.full(stations.shape, hole_r - float(option.tool_joint_diameter) / 2)])
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The free steady whirl and sag of the section, or ``out_of_scope`` where it would touch the wall."""
+    start = time.perf_counter()
+    result = PointResult(method=METHOD)
+    tolerance = float(inputs.get("tolerance") or DEFAULT_TOLERANCE)
+    props = section_properties(inputs)
+    option = ReferenceOptions.from_inputs(inputs)
+    result.values.update(props)
+    L = float(option.section_length)
+    if section.is_buckled(L, props["bending_stiffness"], props["effective_tension"]):
+        result.status = "buckled"
+        result.message = (f"effective tension {props['effective_tension']:.4g} N buckles the {L:.4g} m section "
+                          "(contact.section_length)")
+        result.wall_time = time.perf_counter() - start
+        return result
+    state = steady_state(inputs)
+    x, sag, spin = state["x"], state["sag"], state["whirl"]
+    reach = np.abs(sag[0]) + np.abs(spin[0])  # largest distance from the hole's axis over a revolution [m]
+    body, joints = clearances(inputs, x, option)
+    at_joints = np.interp(joints[:, 0], x, reach)
+    margin = 1.0 - tolerance
+    touches = [f"the body at x = {x[i]:.3g} m ({reach[i] / body[i]:.3g} of its clearance)"
+               for i in [int(np.argmax(reach / body))] if reach[i] >= margin * body[i]]
+    touches += [f"the tool joint at x = {xj:.3g} m ({r / cj:.3g} of its clearance)"
+                for (xj, cj), r in zip(joints, at_joints) if r >= margin * cj][:1]
+    result.values.update(span_length=L, first_natural_frequency=float(state["omega"][0] / (2 * np.pi)),
+                         clearance=float(body[0]), eccentricity=float(option.eccentricity))
+    if touches or state["change"] > tolerance:
+        result.status = "out_of_scope"
+        why = ("the free motion reaches the wall: " + "; ".join(touches)) if touches else \
+            f"the drag iteration did not settle (last change {state['change']:.2g}; near a resonance)"
+        result.message = f"{why}: the closed form holds only clear of the wall, a higher model answers"
+        result.wall_time = time.perf_counter() - start
+        return result
+    ei = props["bending_stiffness"]
+    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    scale = r_o / float(section.second_moment_of_area(r_o, r_i))  # σ_b = M r_o / I
+    bending = ei * (np.abs(sag[2]) + np.abs(spin[2])) * scale
+    alternating = ei * np.abs(sag[2]) * scale
+    shear = 2.0 * ei * (np.abs(sag[3]) + np.abs(spin[3])) / props["steel_area"]
+    axial = abs(inputs["axial_tension"]) / props["steel_area"]
+    i_b, i_a, i_s = int(np.argmax(bending)), int(np.argmax(alternating)), int(np.argmax(shear))
+    # truncation: the stress carried by the upper half of the odd modes kept
+    upper = state["n"] > state["n"][-1] / 2
+    tail = ei * scale * float(np.max(np.abs(np.sin(np.outer(x, state["k"][upper])) * state["k"][upper] ** 2
+                                      @ (np.abs(state["whirl_modal"][upper]) + np.abs(state["sag_modal"][upper])))))
+    result.values.update(
+        max_deflection=float(np.max(reach)), max_bending_stress=float(bending[i_b]),
+        max_normal_stress=float(axial + bending[i_b]), max_normal_stress_x=float(x[i_b]),
+        alternating_bending_stress=float(alternating[i_a]), alternating_bending_stress_x=float(x[i_a]),
+        max_shear_stress=float(shear[i_s]), max_shear_stress_x=float(x[i_s]), peak_contact_force=0.0,
+        contact_fraction=0.0, impacts_per_revolution=0.0, whirl_frequency_ratio=1.0,
+        regime=float(REGIMES["no_contact"]))
+    result.error_estimate = tail / max(float(axial + bending[i_b]), 1e-300) + state["change"]
+    result.message = (f"clear of the wall: synchronous forward whirl of {np.max(np.abs(spin[0])) * 1e3:.3g} mm"
+                      + (f" about a sag of {np.max(np.abs(sag[0])) * 1e3:.3g} mm" if state["side_load"] else "")
+                      + f", at most {np.max(reach / body):.3g} of the body's clearance; drag settled in "
+                      f"{state['iterations']} iterations")
+    result.wall_time = time.perf_counter() - start
+    return result
