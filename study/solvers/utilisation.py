@@ -13,6 +13,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from study.physics import section
 from study.physics.limits import LIMIT_INPUTS, design_limits
 from study.solvers.result import PointResult
 
@@ -26,9 +27,10 @@ def add_limits(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
     stresses (unchanged otherwise)."""
     values = result.values
     normal, alternating = values.get("max_normal_stress"), values.get("alternating_bending_stress")
-    area = values.get("steel_area")
-    if normal is None or alternating is None or not area or not (np.isfinite(normal) and np.isfinite(alternating)):
+    if normal is None or alternating is None or not (np.isfinite(normal) and np.isfinite(alternating)):
         return result
+    area = values.get("steel_area") or float(section.steel_area(inputs["outer_diameter"] / 2.0,
+                                                                inputs["inner_diameter"] / 2.0))
     options = {name: inputs[name] for name in LIMIT_INPUTS if inputs.get(name) is not None}
     limits = design_limits(normal, alternating, inputs["axial_tension"] / area, inputs["rotary_speed"], **options)
     values.update(yield_utilisation=float(limits.yield_utilisation),

@@ -43,3 +43,10 @@ def test_endurance_and_life_follow_the_alternating_stress(paper_one_wall):
 def test_no_limits_without_stresses(paper_one_wall):
     result = solve_point({**paper_one_wall, "span_length": 105.156, "closure": "prescribed"}, "core")
     assert "yield_utilisation" not in result.values and "fatigue_life" not in result.values
+
+
+def test_limits_of_a_method_that_does_not_report_the_section(paper_one_wall):
+    # the reference model reports stresses but not the steel area: the limits take it from the inputs
+    result = solve_point({**paper_one_wall, "reference_modes": 6}, "reference")
+    v = result.values
+    assert "steel_area" not in v and v["yield_utilisation"] == pytest.approx(v["max_normal_stress"] / (75_000 * PSI))
