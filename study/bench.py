@@ -182,6 +182,24 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3,
     return rows, lines
 
 
+def bench_hierarchy(count: int = 12) -> list[str]:
+    """The default study's hierarchy (``auto``) against the reference model at every point, on the held-back
+    sample of :func:`study.validate.hierarchy_sample` (the reference run where a cheaper model answered)."""
+    from study.validate import hierarchy_sample
+
+    rows = hierarchy_sample(count)
+    auto_time, ref_time = sum(r["auto_time"] for r in rows), sum(r["ref_time"] for r in rows)
+    methods = [r["method"] for r in rows]
+    by = {m: sum(r["auto_time"] for r in rows if r["method"] == m) for m in dict.fromkeys(methods)}
+    return ["### The default study's model hierarchy against the reference model everywhere", "",
+            f"{len(rows)} points spread over `configs/default.toml`'s grid (the sample of docs/validation.md): "
+            + ", ".join(f"`{m}` answered {methods.count(m)} in {by[m]:.3g} s" for m in by)
+            + f". The hierarchy took {auto_time:.3g} s, the reference model at every point {ref_time:.3g} s: "
+            f"{ref_time / auto_time:.3g}x. The free whirl costs milliseconds, but the reference model is cheap "
+            "too where the pipe stays clear (no contact to integrate); the points in contact, which only the "
+            "reference model answers, take most of the time.", ""]
+
+
 def _grid_of_size(study, points: int) -> Grid:
     """The study's grid with its first axis resampled so that the grid has about ``points`` points."""
     grid = Grid(dict(study.inputs), dict(study.axes))
@@ -296,6 +314,7 @@ def run_bench(out: str | None = None) -> str:
                         "no event-driven setting above is as accurate"))
     lines.append("")
     lines += bench_reference(point)[1]
+    lines += bench_hierarchy()
     stability = timedomain.step_stability(case)
     lines += ["### Stability of the integrators against the contact stiffness", "",
               "Same case, 3 revolutions; the step as a multiple of the explicit limit 2/omega_max (contact "

@@ -33,3 +33,10 @@ def test_reference_bench_compares_the_compiled_integrator_with_rk45_on_the_same_
     assert all(r["wall_time"] > 0 and np.isfinite(r["error"]) for r in rows)
     assert rows[1]["error"] < rows[0]["error"]  # a tighter tolerance is more accurate
     assert any(line.startswith("- RK45 at rtol 1e-05") for line in lines)
+
+
+def test_hierarchy_bench_states_both_times_and_the_methods():
+    from study.bench import bench_hierarchy
+
+    text = " ".join(bench_hierarchy(count=2))
+    assert "The hierarchy took" in text and "the reference model at every point" in text and "answered" in text

@@ -41,10 +41,11 @@ class Grid:
         return next(self.points(range(flat_index, flat_index + 1)))
 
     def points(self, indices: range) -> Iterator[dict[str, Any]]:
-        """SI inputs of the points ``indices`` (C order), unravelled once for the whole range."""
+        """SI inputs of the points ``indices`` (C order; any range, a step included), unravelled once for the
+        whole range."""
         names = list(self.axes)
         columns = [self.axes[name][i].tolist() for name, i in
-                   zip(names, np.unravel_index(np.arange(indices.start, indices.stop), self.shape))] if names else []
+                   zip(names, np.unravel_index(np.asarray(indices, dtype=int), self.shape))] if names else []
         for row in range(len(indices)):
             inputs = dict(self.base)
             for name, column in zip(names, columns):

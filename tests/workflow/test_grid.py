@@ -48,3 +48,10 @@ def test_chunk_key_changes_when_an_input_changes():
 @pytest.mark.parametrize("size, workers, expected", [(10, 2, 16), (1404, 2, 88), (10**6, 2, 512)])
 def test_auto_chunk_size_balances_and_amortises(size, workers, expected):
     assert auto_chunk_size(size, workers) == expected
+
+
+def test_points_of_a_stepped_range_are_those_points():
+    # a range with a step (every k-th point) gives those points, not the first len(range) ones
+    grid = Grid(base={"a": 1.0}, axes={"x": np.arange(4.0), "y": np.arange(3.0)})
+    picked = list(grid.points(range(1, 12, 5)))
+    assert [(p["x"], p["y"]) for p in picked] == [(0.0, 1.0), (2.0, 0.0), (3.0, 2.0)]
