@@ -97,7 +97,7 @@ def bench_hertz_coefficients(count: int = 2000) -> list[tuple[str, float]]:
 
 
 def work_precision(point) -> list[tuple[list[dict], str, str]]:
-    """Fast and series stresses against a converged double series at fixed spans (MODEL.md §9).
+    """Fast and series stresses against a converged double series at fixed spans (docs/model.md §9).
 
     Two cases, each (rows of :func:`study.solvers.series.convergence_table`, a description, the chart's
     file name):

@@ -84,12 +84,12 @@ def textbook_section() -> list[str]:
     ratio = restitution.collision(60.0, 1.0, 10.0, 0.0, 0.0).v1  # box on a free roller (Example 8.2)
     cycle = restitution.periodic_impact_steady_state(float(ratio), 1.4715)
     return [
-        "## Textbook impact examples (seed 000, chapter 8)", "",
+        "## Textbook impact examples (Harrison & Nettleton, chapter 8)", "",
         _row("case", "printed / closed form", "computed", "source"), _row(*["---"] * 4),
-        _row("Problem 8.1: e from 2 m drop, 1.5 m rebound", "√0.75 = 0.8660 (closed form)", f"{e:.4f}", "seed line 1598"),
-        _row("Problem 8.1: rebound from 3 m", "2.25 m (closed form)", f"{rebound:.4f} m", "seed line 1598"),
-        _row("Example 8.2: velocity ratio at a roller", "6/7 = 0.8571", f"{float(ratio):.4f}", "seed lines ~330"),
-        _row("Example 8.2: steady mean velocity", "2.187 m/s", f"{float(cycle.mean):.4f} m/s", "seed lines ~380"),
+        _row("Problem 8.1: e from 2 m drop, 1.5 m rebound", "√0.75 = 0.8660 (closed form)", f"{e:.4f}", "book, Problem 8.1"),
+        _row("Problem 8.1: rebound from 3 m", "2.25 m (closed form)", f"{rebound:.4f} m", "book, Problem 8.1"),
+        _row("Example 8.2: velocity ratio at a roller", "6/7 = 0.8571", f"{float(ratio):.4f}", "book, Example 8.2"),
+        _row("Example 8.2: steady mean velocity", "2.187 m/s", f"{float(cycle.mean):.4f} m/s", "book, Example 8.2"),
         "", "The full catalogue of the textbook's worked examples is `docs/textbook_examples.md`.", "",
     ]
 
@@ -138,7 +138,7 @@ def paper_example_section() -> list[str]:
 
 
 def periodic_solution_section(modes: int = 21) -> list[str]:
-    """The span search of the fast method on the paper's example, in every reading of MODEL.md §4."""
+    """The span search of the fast method on the paper's example, in every reading of docs/model.md §4."""
     point = load(DEFAULT_CONFIG).point()
     rows, stress_rows = [], []
     for pattern in ("alternating", "one_wall"):
@@ -162,15 +162,15 @@ def periodic_solution_section(modes: int = 21) -> list[str]:
     return [
         "## The periodic solution of the paper's example (method `fast`)", "",
         f"Span search of `study point --method fast` ({modes} modes, spans 3 m to 1000 ft) on the paper's "
-        "example, in the four readings of MODEL.md §4: the impact pattern (one wall per revolution, or "
+        "example, in the four readings of docs/model.md §4: the impact pattern (one wall per revolution, or "
         "both walls alternately) and the closure of the impact velocity (prescribed V_p = Ω c, or the "
         "solution's own pre-impact velocity). Paper: 345 ft with all terms, 337 ft without the mud-flow "
         "and drag terms.", "",
         _row("pattern", "closure", "roots of condition 2", "poles", "poles searched (wider than 1e-6 L)",
              "valid spans [ft]", "verdict"),
         _row(*["---"] * 7), *rows, "",
-        "No reading yields a valid span near the paper's 345 ft (MODEL.md's prototype found none "
-        "either). Roots of condition 2 (the midspan at the wall when the pulse starts) are plentiful "
+        "No reading yields a valid span near the paper's 345 ft (the team's earlier prototype, docs/model.md "
+        "§4.6, found none either). Roots of condition 2 (the midspan at the wall when the pulse starts) are plentiful "
         "- nearly one next to every resonance pole - but at nearly all of them the solution's own "
         "shape contradicts the impact: the pipe is not convex towards the wall at the contact, the "
         "midspan is moving away from the wall when contact starts, or the pipe crosses the hole "
@@ -185,7 +185,7 @@ def periodic_solution_section(modes: int = 21) -> list[str]:
         "answer. The search skips resonances narrower than 1e-6 of the span (`solver.resonance_width`): "
         "the root such a resonance pins lies within about that distance of its pole, and any damping of "
         "that order removes it (tests/solvers/test_periodic.py checks that nothing else is skipped). "
-        "The paper's span is therefore not reproduced; the damped periodic solution (MODEL.md §7) is "
+        "The paper's span is therefore not reproduced; the damped periodic solution (docs/model.md §7) is "
         "the next step to tell whether a periodic impacting motion with a span of that length exists. "
         "The time domain's check of the 22-ft solutions follows.", "",
         *stress_table,

@@ -1,4 +1,4 @@
-"""Cost against accuracy of the periodic methods (a work-precision diagram, MODEL.md §9)."""
+"""Cost against accuracy of the periodic methods (a work-precision diagram, docs/model.md §9)."""
 
 from __future__ import annotations
 

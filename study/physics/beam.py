@@ -1,13 +1,13 @@
 """Simply supported beam-column under a periodic train of impact pulses at midspan.
 
-The building blocks of the periodic impact solution (MODEL.md §2–5, §9 "fast periodic"):
+The building blocks of the periodic impact solution (docs/model.md §2–5, §9 "fast periodic"):
 
-    EI y'''' − T y'' + M ÿ = f(t) g(x),    y = y'' = 0 at x = 0, L          (MODEL.md §2, paper eq. 1)
+    EI y'''' − T y'' + M ÿ = f(t) g(x),    y = y'' = 0 at x = 0, L          (docs/model.md §2, paper eq. 1)
 
 undamped, T the effective tension (may be ≤ 0 but above buckling). Modes φ_n = sin(k_n x),
 k_n = nπ/L, ω_n² = (EI k_n⁴ + T k_n²)/M, modal mass M L/2. The load is Lee's half-sine
 f(t) = F̂ sin(π t/T_L) on 0 ≤ t ≤ T_L of impulse J (paper eq. 15), repeated with period τ
-(``pattern``, MODEL.md §4), spread at midspan over the contact half-length b with a shape g(x)
+(``pattern``, docs/model.md §4), spread at midspan over the contact half-length b with a shape g(x)
 of unit integral (``shape``, paper eq. 18–24). With h(t) = f(t)/J the unit-impulse pulse train,
 
     y(x, t) = Σ_n [J g_n/(M L/2)] q_n(t) sin(k_n x),   q̈_n + ω_n² q_n = h(t),
@@ -15,7 +15,7 @@ of unit integral (``shape``, paper eq. 18–24). With h(t) = f(t)/J the unit-imp
 where q_n is the exact periodic solution in closed form (:func:`modal_periodic_response`).
 The quasi-static split y = J h(t) G(x) + Σ_n [J g_n/(M L/2)] (q_n − h/ω_n²) sin(k_n x), G the
 static deflection under the unit spread load in closed form (:func:`static_deflection`), makes
-moment and shear converge in few modes (MODEL.md §9).
+moment and shear converge in few modes (docs/model.md §9).
 
 Pure functions of numpy arrays, SI units, no I/O.
 """
@@ -37,7 +37,7 @@ LOAD_SHAPES = {
     "integrated across the contact width, paper eq. 18–21); g_n = sin(nπ/2) 3(sin β − β cos β)/β³, β = k_n b",
 }
 
-#: Impact patterns over one period τ (MODEL.md §4).
+#: Impact patterns over one period τ (docs/model.md §4).
 IMPACT_PATTERNS = {
     "one_wall": "one pulse +f at t = 0 per period τ (mean force J/τ, all harmonics of 2π/τ)",
     "alternating": "+f at t = 0 and −f at t = τ/2 (both walls; odd harmonics only, no mean)",
@@ -776,7 +776,7 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
 def static_deflection(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
     """Static deflection G(x) [m/N] of the simply supported beam-column under the unit midspan load.
 
-    EI G'''' − T G'' = g(x) (MODEL.md §2 with ÿ = 0), g of unit integral (:data:`LOAD_SHAPES`).
+    EI G'''' − T G'' = g(x) (docs/model.md §2 with ÿ = 0), g of unit integral (:data:`LOAD_SHAPES`).
     x [m] (0 ≤ x ≤ L), span_length L [m], bending_stiffness EI [N m²], tension T [N] (any sign
     above buckling), half_length b [m] (0 ≤ b < L/2; ignored for ``"point"``). Closed form in the
     generalised hyperbolic functions F_k(x) = x^k c_k(T x²/EI) (see ``_static_derivatives``),
@@ -790,7 +790,7 @@ def static_deflection(x, span_length, bending_stiffness, tension, half_length=0.
 
 
 def static_moment(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point"):
-    """Bending moment −EI G''(x) [m] (N m per N of load) of the static unit-load solution (MODEL.md §5).
+    """Bending moment −EI G''(x) [m] (N m per N of load) of the static unit-load solution (docs/model.md §5).
 
     Arguments as :func:`static_deflection`. Point load: sinh(λx)/(2λ cosh(λL/2)), x ≤ L/2 (T > 0),
     x/2 (T = 0). Sagging positive.
@@ -801,7 +801,7 @@ def static_moment(x, span_length, bending_stiffness, tension, half_length=0.0, s
 
 def static_shear(x, span_length, bending_stiffness, tension, half_length=0.0, shape="point",
                  include_tension=False):
-    """Shear force of the static unit-load solution [-] (N per N of load) (MODEL.md §5).
+    """Shear force of the static unit-load solution [-] (N per N of load) (docs/model.md §5).
 
     Returns the section shear V = −EI G''' (= dM_b/dx, the force normal to the deflected axis that
     sets the wall shear stress); with ``include_tension`` the transverse force −EI G''' + T G'
@@ -900,8 +900,8 @@ _FIELD_DOC = """
     T_L [s], period τ [s]; pattern (:data:`IMPACT_PATTERNS`), half_length b [m] and shape
     (:data:`LOAD_SHAPES`) of the load; n_modes: highest mode number N kept (odd n ≤ N: the load is
     symmetric). Modal sum y = Σ [J g_n/(M L/2)] q_n(t) sin(k_n x) with q_n from
-    :func:`modal_periodic_response` (MODEL.md §4, §9). With ``quasi_static`` (default) the sum is
-    split (MODEL.md §9): y = J h(t) G(x) + Σ [J g_n/(M L/2)] (q_n − h(t)/ω_n²) sin(k_n x), G the
+    :func:`modal_periodic_response` (docs/model.md §4, §9). With ``quasi_static`` (default) the sum is
+    split (docs/model.md §5): y = J h(t) G(x) + Σ [J g_n/(M L/2)] (q_n − h(t)/ω_n²) sin(k_n x), G the
     closed-form static solution (:func:`static_deflection`); the remainder's terms fall like
     ω_n⁻³ faster, so moment and shear converge in few modes. NaN at resonance or buckling."""
 
@@ -921,7 +921,7 @@ def bending_moment(x, t, span_length, bending_stiffness, tension, mass, impulse,
                            period, pattern, half_length, shape, n_modes, quasi_static)["moment"]
 
 
-bending_moment.__doc__ = ("Bending moment M_b = −EI y''(x, t) [N m] (MODEL.md §5, paper eq. 37), sagging "
+bending_moment.__doc__ = ("Bending moment M_b = −EI y''(x, t) [N m] (docs/model.md §5, paper eq. 37), sagging "
                           "positive." + _FIELD_DOC)
 
 
@@ -932,14 +932,14 @@ def shear_force(x, t, span_length, bending_stiffness, tension, mass, impulse, pu
                            period, pattern, half_length, shape, n_modes, quasi_static, include_tension)["shear"]
 
 
-shear_force.__doc__ = ("Shear force [N] (MODEL.md §5, paper eq. 38): by default the section shear "
+shear_force.__doc__ = ("Shear force [N] (docs/model.md §5, paper eq. 38): by default the section shear "
                        "V = −EI y''' = ∂M_b/∂x (normal to the deflected axis, sets the wall shear stress); with "
                        "``include_tension`` the transverse force −EI y''' + T y'. At x = L/2 under a point "
                        "load the series gives the mean of the two sides (0) while the closed form gives "
                        "the left limit." + _FIELD_DOC)
 
 
-# --- the paper's double Fourier series (MODEL.md §4 "series", paper eq. 25, 36) ------------------
+# --- the paper's double Fourier series (docs/model.md §4 "series", paper eq. 25, 36) ------------------
 #: Largest number of array elements one vectorised block of a series evaluation may hold; larger
 #: evaluations are chunked (over time, or over the flattened broadcast shape).
 _SERIES_CHUNK = 4_000_000
@@ -986,7 +986,7 @@ def modal_fourier_response(t, omega_n, pulse_duration, period, pattern="one_wall
     """Steady periodic response of q̈ + ω² q = h(t) as the truncated Fourier series in time (paper eq. 25, 36).
 
     The same response and normalisation as :func:`modal_periodic_response` (h the unit-impulse pulse
-    train of :func:`pulse_train`), computed the paper's way, harmonic by harmonic (MODEL.md §4, §9
+    train of :func:`pulse_train`), computed the paper's way, harmonic by harmonic (docs/model.md §4, §9
     "series"): with Ω = 2π/τ and c_m = H(mΩ)/τ the train's coefficients (:func:`pulse_spectrum`;
     c_m (1 − (−1)^m) for the alternating train),
 
@@ -1040,7 +1040,7 @@ SERIES_KINDS = {
     "d4": "y'''' [1/m³]",
     "moment": "bending moment −EI y'' [N m] (sagging positive, as :func:`bending_moment`)",
     "shear": "section shear −EI y''' [N] (as :func:`shear_force` without tension)",
-    "bending_load": "EI y'''' [N/m] (the bending term of the equation of motion, MODEL.md §2)",
+    "bending_load": "EI y'''' [N/m] (the bending term of the equation of motion, docs/model.md §2)",
 }
 _SERIES_ORDERS = {0: "deflection", 2: "moment", 3: "shear", 4: "bending_load"}
 
@@ -1048,7 +1048,7 @@ _SERIES_ORDERS = {0: "deflection", 2: "moment", 3: "shear", 4: "bending_load"}
 def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
                   pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
                   resonance_tol=1e-15):
-    """The paper's double Fourier series of the periodic field (paper eq. 25, 36; MODEL.md §4, §9 "series").
+    """The paper's double Fourier series of the periodic field (paper eq. 25, 36; docs/model.md §4, §9 "series").
 
     kinds: names of :data:`SERIES_KINDS` (or the integer orders 0, 2, 3, 4); returns {kind: field}, the
     time factors e^{imΩt} computed once for all kinds. Each kind: "deflection" y [m], "velocity" ẏ

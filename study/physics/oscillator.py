@@ -1,12 +1,12 @@
 """One-degree-of-freedom oscillator, free, forced and impacting against a rigid wall.
 
 Pure functions of numpy arrays where natural (broadcasting; floats accepted), SI units, no I/O.
-This is the reduced model of MODEL.md §8: a mass m on a spring k with viscous damping c (or
+This is the reduced model of docs/model.md §8: a mass m on a spring k with viscous damping c (or
 Coulomb friction f), driven by F_c + F0 cos(Ωt), with a rigid wall at x = gap that it strikes
 with Newton's law of restitution (coefficient e).
 
 Sources: Harrison & Nettleton, *Principles of Engineering Mechanics*, 2nd ed., ch. 9
-"Vibration" (seed ``000_ff8da5e84ac23651.txt``; equation numbers and seed lines as catalogued in
+"Vibration" (the book's equation numbers; the relations used are listed in docs/model.md §8.3 and
 ``docs/textbook_examples.md``), and ch. 8 for the impact law (``study.physics.restitution``).
 Impact-oscillator map and its stability: Shaw & Holmes, J. Sound Vib. 90 (1983) 129–155;
 Budd & Dux, Phil. Trans. R. Soc. A 347 (1994) 365–389 (chattering); Hertz-spring wall with
@@ -66,7 +66,7 @@ def natural_frequency(mass, stiffness):
     """Undamped natural frequency ω_n = √(k/m) [rad/s].
 
     Parameters: mass m [kg] > 0, stiffness k [N/m] ≥ 0.
-    Textbook: eq. 9.4 (seed lines 2257–2335).
+    Textbook: eq. 9.4.
     """
     m = check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
     k = check_range(stiffness, "stiffness", 0.0, np.inf, high_open=True)
@@ -77,7 +77,7 @@ def damping_ratio(mass, stiffness, damping):
     """Damping ratio ζ = c / c_crit, c_crit = 2√(km) [-].
 
     Parameters: mass m [kg] > 0, stiffness k [N/m] > 0, damping c [N s/m] ≥ 0.
-    Textbook: eq. 9.21–9.22 (seed lines 2975–3072).
+    Textbook: eq. 9.21–9.22.
     """
     m = check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True)
     k = check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True)
@@ -88,7 +88,7 @@ def damping_ratio(mass, stiffness, damping):
 def damped_frequency(natural_freq, zeta):
     """Damped natural frequency ω_d = ω_n √(1 − ζ²) [rad/s], for 0 ≤ ζ < 1.
 
-    Textbook: eq. 9.23 (seed lines 3083–3103).
+    Textbook: eq. 9.23.
     """
     wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
     z = check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
@@ -151,7 +151,7 @@ def free_response(t, natural_freq, zeta, x0, v0=0.0) -> State:
     State
         ``x`` [m], ``v`` [m/s].
 
-    Textbook: eq. 9.7 (ζ = 0), 9.18–9.20, 9.26 (x0, v0 = 0; seed lines 3155–3224).
+    Textbook: eq. 9.7 (ζ = 0), 9.18–9.20, 9.26 (x0, v0 = 0).
     """
     t = check_range(t, "t", 0.0, np.inf, high_open=True)
     wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, high_open=True)
@@ -168,7 +168,7 @@ def free_response(t, natural_freq, zeta, x0, v0=0.0) -> State:
 def logarithmic_decrement(zeta):
     """Logarithmic decrement δ = ln(x_n / x_(n+1)) = 2πζ/√(1 − ζ²) [-], for 0 ≤ ζ < 1.
 
-    Textbook: eq. 9.27–9.28 (seed lines 3095–3190).
+    Textbook: eq. 9.27–9.28.
     """
     z = check_range(zeta, "zeta", 0.0, 1.0, high_open=True)
     return 2.0 * np.pi * z / np.sqrt(1.0 - z**2)
@@ -198,7 +198,7 @@ def coulomb_free_response(t, natural_freq, friction_displacement, x0) -> State:
     State
         ``x`` [m], ``v`` [m/s].
 
-    Textbook: eq. 9.30 and the text after it (seed lines 3280–3320, 3384–3433).
+    Textbook: eq. 9.30 and the text after it.
     """
     t = check_range(t, "t", 0.0, np.inf, high_open=True)
     wn = float(check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True,
@@ -228,7 +228,7 @@ def step_response(t, natural_freq, zeta) -> State:
 
     (continued analytically to ζ ≥ 1). Overshoot for ζ < 1: exp(−ζπ/√(1 − ζ²)) at ω_d t = π.
 
-    Textbook: eq. 9.33–9.34 (seed lines 3503–3661, 3736–3767).
+    Textbook: eq. 9.33–9.34.
     """
     r = free_response(t, natural_freq, zeta, -1.0, 0.0)
     return State(x=1.0 + r.x, v=r.v)
@@ -242,7 +242,7 @@ def ramp_response(t, natural_freq, zeta) -> State:
     i.e. the steady ramp t − 2ζ/ω_n plus the free response that cancels its initial
     displacement −2ζ/ω_n and velocity 1.
 
-    Textbook: eq. 9.36 (seed lines 3571–3811).
+    Textbook: eq. 9.36.
     """
     wn = check_range(natural_freq, "natural_freq", 0.0, np.inf, low_open=True, high_open=True)
     z = np.asarray(zeta, float)
@@ -254,7 +254,7 @@ def dynamic_magnifier(frequency_ratio, zeta):
     """Steady-state dynamic magnifier β = X/(F0/k) = 1/√((1 − r²)² + (2ζr)²) [-].
 
     Parameters: frequency_ratio r = Ω/ω_n [-] ≥ 0; zeta ζ [-] ≥ 0 (β = inf at r = 1, ζ = 0).
-    Textbook: eq. 9.46, 9.50 (seed lines 4258–4301).
+    Textbook: eq. 9.46, 9.50.
     """
     r = check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
     z = check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
@@ -265,7 +265,7 @@ def dynamic_magnifier(frequency_ratio, zeta):
 def phase_angle(frequency_ratio, zeta):
     """Phase lag φ = atan2(2ζr, 1 − r²) ∈ [0, π] of x = X cos(Ωt − φ) behind F0 cos Ωt [rad].
 
-    Textbook: eq. 9.47 (seed lines 4302–4321).
+    Textbook: eq. 9.47.
     """
     r = check_range(frequency_ratio, "frequency_ratio", 0.0, np.inf, high_open=True)
     z = check_range(zeta, "zeta", 0.0, np.inf, high_open=True)
@@ -381,7 +381,7 @@ def flight_state(t, state0, params: ImpactParams, t0=0.0) -> State:
     State
         ``x`` [m], ``v`` [m/s] at t.
 
-    Textbook: eq. 9.18–9.26 (homogeneous), 9.42–9.47 (steady state); ch. 9 seed lines 2849–4321.
+    Textbook: eq. 9.18–9.26 (homogeneous), 9.42–9.47 (steady state).
     """
     p = _validated(params)
     t = np.asarray(t, float)

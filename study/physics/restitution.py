@@ -3,20 +3,17 @@
 Pure functions of numpy arrays (broadcasting; floats accepted), SI units, no I/O.
 
 Source: Harrison & Nettleton, *Principles of Engineering Mechanics*, 2nd ed.,
-ch. 8 "Momentum and impulse" (impact). The available OCR of the chapter (seed
-``000_ff8da5e84ac23651.txt``) starts part-way through the chapter, so the section that defines the
+ch. 8 "Momentum and impulse" (impact). The copy of the chapter the project holds
+(docs/model.md §8.3) starts part-way through the chapter, so the section that defines the
 coefficient of restitution and its equation number are *not* in it; no equation number is cited
-for the law itself. What the seed does contain and this module reproduces:
+for the law itself. What the copy does contain and this module reproduces:
 
 - the plastic (common-velocity) impact and its energy loss ½ I1 I2/(I1+I2) (ω1 − ω2)², in the
-  clutch example before Example 8.2 (seed lines 1-65, 193-206);
+  clutch example before Example 8.2;
 - Example 8.2, the box on a roller conveyor: an impulsive velocity ratio 6/7 at each roller and
-  constant acceleration between rollers, leading to a steady mean velocity 2.187 m/s
-  (seed lines 67-493);
-- Example 8.7 and 8.8, "velocity of approach equals velocity of recession" for ideal impact
-  (seed lines 1240-1245, 1497-1499);
-- Problem 8.1, ball dropped on a floor (seed line 1598) and Problem 8.2, Newton's cradle
-  (seed line 1701).
+  constant acceleration between rollers, leading to a steady mean velocity 2.187 m/s;
+- Example 8.7 and 8.8, "velocity of approach equals velocity of recession" for ideal impact;
+- Problem 8.1, ball dropped on a floor and Problem 8.2, Newton's cradle.
 
 Law used (standard form): for two bodies moving along the common normal, positive direction from
 body 1 towards body 2, with approach velocity v1 − v2 > 0 before impact,
@@ -160,7 +157,7 @@ def restitution_from_rebound(drop_height, rebound_height):
         e [-]. Impact speed √(2 g h_d) and rebound speed √(2 g h_r) (energy conserved in flight),
         and e = rebound speed / impact speed; g cancels.
 
-    Textbook: ch. 8, Problem 8.1 (seed line 1598): dropped from 2 m, rebounds 1.5 m.
+    Textbook: ch. 8, Problem 8.1: dropped from 2 m, rebounds 1.5 m.
     """
     hd = check_range(drop_height, "drop_height", 0.0, np.inf, low_open=True, high_open=True)
     hr = check_range(rebound_height, "rebound_height", 0.0, np.inf, high_open=True)
@@ -187,7 +184,7 @@ def rebound_height(drop_height, restitution):
     ndarray
         Rebound height [m].
 
-    Textbook: ch. 8, Problem 8.1 (seed line 1598).
+    Textbook: ch. 8, Problem 8.1.
     """
     hd = check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
     e = check_restitution(restitution)
@@ -211,7 +208,7 @@ def bounce_heights(drop_height, restitution, n_bounces: int):
     ndarray
         Shape ``broadcast(drop_height, restitution).shape + (n_bounces,)`` [m].
 
-    Textbook: repeated application of Problem 8.1 (seed line 1598).
+    Textbook: repeated application of Problem 8.1.
     """
     if int(n_bounces) != n_bounces or n_bounces < 0:
         raise ValueError(f"n_bounces = {n_bounces!r} is outside the allowed range: integers >= 0")
@@ -245,7 +242,7 @@ def bounce_to_rest(drop_height, restitution, g=STANDARD_GRAVITY):
     BounceSummary
         ``total_time`` [s] and ``total_distance`` [m].
 
-    Textbook: extension of Problem 8.1 (seed line 1598); not a printed result.
+    Textbook: extension of Problem 8.1; not a printed result.
     """
     hd = check_range(drop_height, "drop_height", 0.0, np.inf, high_open=True)
     e = check_restitution(restitution)
@@ -280,7 +277,7 @@ def restitution_from_velocities(v1_before, v2_before, v1_after, v2_after):
         e [-].
 
     Textbook: ch. 8, "velocity of approach equals velocity of recession" for ideal impact
-    (Example 8.7, seed lines 1240-1245).
+    (Example 8.7).
     """
     v1b = np.asarray(v1_before, dtype=float)
     v2b = np.asarray(v2_before, dtype=float)
@@ -302,7 +299,7 @@ def collision(m1, v1, m2, v2, restitution) -> CollisionResult:
         Masses [kg], in (0, inf]; ``m2 = np.inf`` is a rigid immovable wall (then v1' =
         v2 − e (v1 − v2)), likewise ``m1 = np.inf``; not both infinite. For rotating bodies
         coupled without bounce (e = 0) the same algebra holds with moments of inertia [kg m²]
-        and angular velocities [rad/s] (clutch example, seed lines 193-206).
+        and angular velocities [rad/s] (clutch example).
     v1, v2 : array_like
         Velocities just before impact along the common normal [m/s], positive from body 1
         towards body 2; the approach velocity v1 − v2 must be ≥ 0 (0: no impact, unchanged).
@@ -314,8 +311,8 @@ def collision(m1, v1, m2, v2, restitution) -> CollisionResult:
     CollisionResult
         ``v1``, ``v2`` just after impact [m/s].
 
-    Textbook: ch. 8; common velocity (e = 0) eq. (iii) of the clutch example (seed line 206),
-    conveyor impulsive ratio 6/7 (Example 8.2, seed line 402), Example 8.7 (seed line 1289-1304).
+    Textbook: ch. 8; common velocity (e = 0) eq. (iii) of the clutch example,
+    conveyor impulsive ratio 6/7 (Example 8.2), Example 8.7.
     """
     m1 = check_range(m1, "m1", 0.0, np.inf, low_open=True)
     m2 = check_range(m2, "m2", 0.0, np.inf, low_open=True)
@@ -339,8 +336,7 @@ def energy_loss(m1, v1, m2, v2, restitution):
     ndarray
         Energy lost (≥ 0) [J].
 
-    Textbook: for e = 0 this is the clutch result "energy lost = ½ I1 I2/(I1+I2)(ω1 − ω2)²"
-    (seed lines 22-27, 62).
+    Textbook: for e = 0 this is the clutch result "energy lost = ½ I1 I2/(I1+I2)(ω1 − ω2)²".
     """
     m1 = check_range(m1, "m1", 0.0, np.inf, low_open=True)
     m2 = check_range(m2, "m2", 0.0, np.inf, low_open=True)
@@ -423,7 +419,7 @@ def collision_chain(masses, velocities, restitution, *, max_impacts: int = 100_0
     ndarray, shape (n,)
         Velocities after the last impact [m/s].
 
-    Textbook: ch. 8, Problem 8.2 (Newton's cradle, seed lines 1701-1737).
+    Textbook: ch. 8, Problem 8.2 (Newton's cradle).
     """
     m = check_range(masses, "masses", 0.0, np.inf, low_open=True, high_open=True)
     v = np.array(velocities, dtype=float)
@@ -474,7 +470,7 @@ def impact_sequence(initial_speed, velocity_ratio, speed_squared_gain, n_impacts
     ImpactSequence
         ``before`` and ``after``, last axis = impact index 1..n [m/s].
 
-    Textbook: Example 8.2, roller conveyor, equations (i) and (iii) (seed lines 385-434):
+    Textbook: Example 8.2, roller conveyor, equations (i) and (iii):
     R = 6/7, Δ = 2 m g l sin α/(m + 3I/r²) = 1.4715 m²/s².
     """
     if int(n_impacts) != n_impacts or n_impacts < 1:
@@ -516,7 +512,7 @@ def periodic_impact_steady_state(velocity_ratio, speed_squared_gain) -> ImpactCy
     ImpactCycle
         ``before``, ``after``, ``mean`` [m/s].
 
-    Textbook: Example 8.2(b), roller conveyor (seed lines 447-493): 2.3551 m/s before,
+    Textbook: Example 8.2(b), roller conveyor: 2.3551 m/s before,
     2.0187 m/s after, mean 2.1869 m/s (printed 2.187 m/s in the statement, line 157).
     """
     r = check_range(velocity_ratio, "velocity_ratio", 0.0, 1.0, high_open=True)

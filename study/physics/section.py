@@ -1,7 +1,7 @@
 """Pipe section, drilling-mud and beam-column properties of the sample span.
 
 Pure functions of numpy arrays (broadcasting), SI units throughout. The equations
-are those of the source paper (``../shared/MODEL.md`` §2; paper eq. 1–4, 26–35) with
+are those of the source paper (``docs/model.md`` §2; paper eq. 1–4, 26–35) with
 the reconstructions written there.
 """
 
@@ -59,7 +59,7 @@ def added_mass(mud_density, outer_radius, hole_radius, model="potential_flow"):
       concentric rigid cylinder, m_a = ρ π r_o² (R² + r_o²)/(R² − r_o²). It is exact for small
       motions of an ideal fluid and reduces to the unbounded-fluid value ρ π r_o² as R → ∞, which is
       why it is the default.
-    - ``"gap_flow"``: the paper's estimate (eq. 31, MODEL.md §2): the pipe at V_p drives the annular
+    - ``"gap_flow"``: the paper's estimate (eq. 31, docs/model.md §2): the pipe at V_p drives the annular
       mud through the two side gaps at V_f = V_p r_o/S; taking that acceleration for all the
       annular mud gives m_a = ρ π (R² − r_o²) r_o/S = ρ π r_o (R + r_o). It does not tend to
       ρ π r_o² for a wide hole; it exceeds the potential-flow value when R/r_o is above 1.521 (the
@@ -79,7 +79,7 @@ def added_mass(mud_density, outer_radius, hole_radius, model="potential_flow"):
 def drag_coefficient_per_length(mud_density, outer_radius, hole_radius, drag_coefficient=0.5):
     """Quadratic drag coefficient D [kg/m²] of the term D |ẏ| ẏ (force per unit length).
 
-    Paper eq. 26–30 as read in MODEL.md §2: the relative velocity of the gap flow to the pipe is
+    Paper eq. 26–30 as read in docs/model.md §2: the relative velocity of the gap flow to the pipe is
     V_p (1 + r_o/S), and drag on a cylinder of diameter 2 r_o in that stream gives
     D = ½ ρ C_d (2 r_o) (1 + r_o/S)². mud_density [kg/m³], radii [m], drag_coefficient C_d [-]
     (paper: 0.5 for the highly turbulent annular flow).
@@ -106,7 +106,7 @@ def effective_tension(axial_tension, internal_mud, mud_flow_velocity):
 def natural_frequencies(span_length, bending_stiffness, tension, mass, modes=(1,)):
     """Natural circular frequencies ω_n [rad/s] of a simply supported beam-column.
 
-    ω_n² = [EI (nπ/L)⁴ + T_eff (nπ/L)²]/M (MODEL.md §2). span_length L [m], bending_stiffness EI
+    ω_n² = [EI (nπ/L)⁴ + T_eff (nπ/L)²]/M (docs/model.md §2). span_length L [m], bending_stiffness EI
     [N m²], tension T_eff [N], mass M [kg/m], modes: mode numbers n. The last axis of the result
     runs over ``modes``. A mode whose ω² ≤ 0 has buckled: its frequency is returned as NaN (see
     :func:`is_buckled`).

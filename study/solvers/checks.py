@@ -1,12 +1,12 @@
 """The paper's check of the dropped terms: term-ratio table over the span and the period (paper §VI).
 
-The equation of motion (MODEL.md §2, paper eq. 33–35)
+The equation of motion (docs/model.md §2, paper eq. 33–35)
 
     EI y'''' − T0 y'' + m_i V_m² y'' + M ÿ + D |ẏ| ẏ = p(x, t)
 
 is solved undamped (drag dropped, paper eq. 35 → 36) and, in the paper's reduced form, also without
 the mud-flow term (eq. 39). A dropped term is acceptable only if it is small beside the kept ones
-(MODEL.md §6). Following the paper's numerical example, each term's magnitude is evaluated on a grid
+(docs/model.md §6). Following the paper's numerical example, each term's magnitude is evaluated on a grid
 of (t, x) over the period and the span, and compared with a reference term (the dropped one, = 1):
 
     (A) "max":   max|term| / max|reference|          ratios of the maximum magnitudes,
@@ -15,7 +15,7 @@ of (t, x) over the period and the span, and compared with a reference term (the 
     (C) "least": mean|term| / max|reference|         the lowest ratios: the average of the other terms
                                                       divided by the maximum magnitude of the dropped term.
 
-The paper's example, relative to the drag term A3 ẏ² = 1 (OCR of the seed, our reading): one term
+The paper's example, relative to the drag term A3 ẏ² = 1 (the copy's OCR, our reading; docs/model.md §6): one term
 (A) 60, (B) 100, (C) 40; another 7 / 3 / 2; a third 100 / 100 / 300; it drops the drag, and then the
 mud-flow term "of the same order of magnitude" as the drag.
 
@@ -29,7 +29,7 @@ from typing import Mapping
 
 import numpy as np
 
-#: The terms of the equation of motion (MODEL.md §2). ``kept``: kept in the project's undamped model
+#: The terms of the equation of motion (docs/model.md §2). ``kept``: kept in the project's undamped model
 #: (paper eq. 35 without drag; the mud-flow force enters through T_eff = T0 − m_i V_m²);
 #: ``kept_eq39``: kept in the paper's reduced equation (39), which also drops the mud-flow term.
 TERMS = {
@@ -75,7 +75,7 @@ RATIO_KINDS = ("max", "mean", "least")
 
 
 def term_magnitudes(fields: Mapping[str, np.ndarray], props: Mapping[str, float]) -> dict[str, np.ndarray]:
-    """Magnitude of each term of the equation of motion at every grid point [N/m] (MODEL.md §2).
+    """Magnitude of each term of the equation of motion at every grid point [N/m] (docs/model.md §2).
 
     fields: arrays on one (t, x) grid (any common broadcastable shape), keyed as :data:`FIELDS`:
     "d4" y'''' [1/m³], "d2" y'' [1/m], "acceleration" ÿ [m/s²], "velocity" ẏ [m/s].
@@ -109,7 +109,7 @@ def _ratio(num, den):
 
 def term_ratios(magnitudes: Mapping[str, np.ndarray], reference: str = "drag",
                 exclude=None) -> dict[str, dict[str, float]]:
-    """The paper's term-ratio table (paper §VI, MODEL.md §6): each term relative to ``reference`` [-].
+    """The paper's term-ratio table (paper §VI, docs/model.md §6): each term relative to ``reference`` [-].
 
     magnitudes: term → |term| on one (t, x) grid (:func:`term_magnitudes`); reference: the term set
     to 1 (the paper's convention: the dropped term); exclude: boolean mask broadcastable to the grid,
@@ -143,7 +143,7 @@ def term_ratios(magnitudes: Mapping[str, np.ndarray], reference: str = "drag",
 
 def dropped_terms_small(ratios: Mapping[str, Mapping[str, float]], threshold: float = 10.0,
                         dropped=("drag",), max_threshold: float | None = None) -> tuple[bool, str]:
-    """Verdict on the dropped terms from the ratio table (paper §VI, MODEL.md §6) → (ok, message).
+    """Verdict on the dropped terms from the ratio table (paper §VI, docs/model.md §6) → (ok, message).
 
     ratios: the table of :func:`term_ratios` (any reference term: the ratios are re-referenced to each
     dropped term); dropped: the terms left out of the model (("drag",) for the undamped solution,

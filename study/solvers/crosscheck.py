@@ -1,4 +1,4 @@
-"""Is the periodic solution an orbit of the real contact? (method ``crosscheck``; MODEL.md §4, §8–9)
+"""Is the periodic solution an orbit of the real contact? (method ``crosscheck``; docs/model.md §11)
 
 The periodic methods assume the contact: a Lee half-sine pulse of impulse J = m_e (1 + e) V_p at
 midspan, once per (half) period. The time domain knows only the Hertz contact. This method puts the
@@ -30,7 +30,7 @@ midspan need not be into the wall by the Hertz approach its force needs, :func:`
 the equivalent mass alone on the same contact shows how much is the contact law), or the contact
 dissipates energy that the undamped periodic solution never loses (e < 1: Lee's pulse does no net work
 over a period of the undamped periodic response, a contact with e < 1 does; the paper's end moments,
-MODEL.md §7, feed only what the mud's damping takes). A point without a periodic solution keeps
+docs/model.md §7, feed only what the mud's damping takes). A point without a periodic solution keeps
 ``fast``'s status.
 """
 
@@ -173,7 +173,7 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
             reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
                            f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: "
                            "Lee's pulse does no net work over a period of the undamped periodic response; the "
-                           "paper's energy input (end moments, MODEL.md §7) balances the mud's damping only")
+                           "paper's energy input (end moments, docs/model.md §7) balances the mud's damping only")
     return reasons
 
 

@@ -1,6 +1,6 @@
 """Event-driven integration of the span's modal model: exact flights, fixed-step RK4 through contact.
 
-The time-domain method's fastest integrator (``time_integrator = "event"``; MODEL.md §9). Between
+The time-domain method's fastest integrator (``time_integrator = "event"``; docs/model.md §10). Between
 contacts the modal model is linear, m q̈ + C q̇ + m W q = F0 cos(Ωt) e_1, so the flight is known in
 closed form: with z = (q, q̇), ż = A z + b cos Ωt,
 

@@ -2,9 +2,9 @@
 
 No time series: each mode's steady response to the periodic pulse train is summed in closed form
 (:func:`study.physics.beam.modal_periodic_response`), and the quasi-static split makes moment and shear
-converge in few modes (MODEL.md §9). The span is found by the pole-bracketed search of
+converge in few modes (docs/model.md §9). The span is found by the pole-bracketed search of
 :mod:`study.solvers.periodic`; the smallest span that satisfies the constraints is reported with its
-impact and stresses (MODEL.md §5).
+impact and stresses (docs/model.md §5).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from study.solvers.scene import Scene
 
 def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options) -> dict[str, float]:
-    """Deflection and stress maxima over the span and the period (MODEL.md §5, paper eq. 37–38) from
+    """Deflection and stress maxima over the span and the period (docs/model.md §5, paper eq. 37–38) from
     the closed-form fields with the quasi-static correction, located (:func:`series.stresses` with no
     harmonics)."""
     return series.stresses(scene, impact, inputs, options)

@@ -1,4 +1,4 @@
-"""Periodic orbits of the time domain's modal model, found directly, with their stability (MODEL.md §8–9).
+"""Periodic orbits of the time domain's modal model, found directly, with their stability (docs/model.md §12).
 
 The time domain (:mod:`study.solvers.timedomain`) finds a periodic state by integrating until the motion
 repeats, which needs the state to be stable and reached. Shooting finds the orbit whether or not it is

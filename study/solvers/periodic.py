@@ -1,12 +1,12 @@
 """The periodic impact solution of one design point: closure, span search and constraint checks.
 
-Shared by the periodic methods (``fast`` and ``series``; ``../shared/MODEL.md`` §3–6). The sample span
+Shared by the periodic methods (``fast`` and ``series``; ``docs/model.md`` §3–6). The sample span
 (simply supported, length L) is struck at midspan by the Hertz/Lee pulse of the equivalent mass once
 per period at the wall y = +c (pattern ``one_wall``) or alternately at +c and −c every half period
 (``alternating``). The response is linear in the impulse J, so everything is built from the response
 to a unit impulse directed along +y; the real load pushes the pipe off the wall (−y at +c).
 
-Unknowns and closures (MODEL.md §4). Condition 2, y(L/2, 0) = c, is one equation; the unknowns are L
+Unknowns and closures (docs/model.md §4). Condition 2, y(L/2, 0) = c, is one equation; the unknowns are L
 and the impact velocity V_p:
 
 - ``prescribed``: V_p = Ω c (the paper's assumed motion), J = m_e (1 + e) V_p; condition 2 is an
@@ -20,7 +20,7 @@ on the curvature of the pipe at the contact, taken from the solution itself: κ 
 iterated to a fixed point at every span evaluated exactly.
 
 Span search. F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train
-(MODEL.md §4): a sign change across a pole is not a root. The poles are located analytically
+(docs/model.md §4): a sign change across a pole is not a root. The poles are located analytically
 (:func:`resonant_spans`), F times the distances to the interval's two poles is sampled inside every
 interval between consecutive poles (its values at the poles follow from their residues), and only sign
 changes inside one interval are bracketed and solved. Roots are then refined with the
@@ -87,7 +87,7 @@ def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[n
     and the mode number n resonating at each.
 
     From ω² M = EI k⁴ + T k² with k = nπ/L: k² = [−T + √(T² + 4 EI M (mΩ)²)]/(2 EI), L = nπ/k
-    (MODEL.md §4). These are the poles of the undamped periodic response.
+    (docs/model.md §4). These are the poles of the undamped periodic response.
     """
     p = scene.props
     ei, tension, mass = p["bending_stiffness"], p["effective_tension"], p["mass_per_length"]
@@ -524,7 +524,7 @@ def resonance_widths(residual, spans, modes) -> np.ndarray:
     Near the pole F = R/(L − L_p) + B(L): the resonant mode alone moves F by more than 1 (it alone
     carries the midspan to the wall) only within |L − L_p| < |R|, and the root it pins sits within
     |R/B| of the pole. Light damping of ratio ζ bounds the resonant term by about |R|/(ζ L_p), so a
-    resonance with |R|/L_p ≪ ζ has no root once the pipe is damped at all (MODEL.md §7): such a root is
+    resonance with |R|/L_p ≪ ζ has no root once the pipe is damped at all (docs/model.md §7): such a root is
     an artefact of the undamped model.
     """
     spans = np.asarray(spans, dtype=float)
@@ -707,7 +707,7 @@ def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
 
     Each left-out mode adds at most (r_o/I) EI k_n² |a_n(t) − a_n,qs(t)| to the stress anywhere on the
     span (|sin k_n x| ≤ 1), where a_n − a_n,qs is its dynamic remainder after the quasi-static split
-    (MODEL.md §9); its maximum over the period is taken on the solver's time grid. Summing the modes
+    (docs/model.md §5); its maximum over the period is taken on the solver's time grid. Summing the modes
     up to reach·N catches a near-resonant mode just above the truncation, which a comparison with
     fewer modes cannot see; the modes beyond fall off like n⁻⁴ once ω_n T_L ≫ 1.
     """
@@ -838,7 +838,7 @@ def options_from(inputs: Mapping[str, Any]) -> Options:
 def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
                          shear=None, mirrored: bool | None = None, field_at=None,
                          tolerance: float | None = None) -> dict[str, float]:
-    """Deflection and stress maxima over the span and the period from the fields (MODEL.md §5, paper
+    """Deflection and stress maxima over the span and the period from the fields (docs/model.md §5, paper
     eq. 37–38) — the same for every method, whatever made the fields.
 
     x [m], t [s] (the half period for the alternating pattern: the other half mirrors it), deflection

@@ -72,7 +72,7 @@ class Scene:
     def equivalent_mass(self, span_length):
         """m_e [kg] of the closure's impulse J = m_e (1 + e) V_p: 2ML/π (``momentum``, the paper's
         equivalent mass) or ML/2 (``modal``, the modal mass of sin(πx/L) referred to midspan — the mass a
-        one-mode model strikes the wall with; MODEL.md §4, §8)."""
+        one-mode model strikes the wall with; docs/model.md §4, §8)."""
         mass = self.props["mass_per_length"]
         if self.impact_mass == "modal":
             return 0.5 * mass * np.asarray(span_length, dtype=float)

@@ -1,4 +1,4 @@
-"""The one-degree-of-freedom screen of a design point (method ``sdof``; MODEL.md §8, paper fig. 1).
+"""The one-degree-of-freedom screen of a design point (method ``sdof``; docs/model.md §8, paper fig. 1).
 
 The span's first mode, y(x, t) = q(t) sin(πx/L), reduced to a mass on a spring between the two
 walls of the hole at q = ±c, driven harmonically at the rotary speed Ω, striking the walls with
@@ -19,13 +19,13 @@ Equivalent parameters (our choices, stated):
 - **clearance** c = R_hole − r_o, walls at ±c.
 - **drive** F0 cos Ωt, a generalised force on the first mode: what a distributed whirl/unbalance
   load p(x, t) = (2F0/L) sin(πx/L) cos Ωt puts into it (input ``drive_amplitude`` [N]). The paper
-  feeds energy through end moments instead (MODEL.md §7); a harmonic force at Ω is our choice. When
+  feeds energy through end moments instead (docs/model.md §7); a harmonic force at Ω is our choice. When
   ``drive_amplitude`` is not given, the default is the **mean impact force of the paper's prescribed
   closure**: F0 = n_i m (1 + e) Ω c/τ (n_i = 2 impacts per revolution for the alternating pattern,
   1 for one wall; V_p = Ω c; τ = 2π/Ω) — a force of the size the wall exerts on average, not a
   hidden constant. ``result.extras['drive_source']`` says which was used.
 - **restitution** e from the inputs.
-- **damping** ``sdof_damping``: ``"mud"`` (default) the paper's linearised drag (MODEL.md §7,
+- **damping** ``sdof_damping``: ``"mud"`` (default) the paper's linearised drag (docs/model.md §7,
   appendix A): c_eq = 8 D Ω Y/(3π) per unit length for harmonic motion of amplitude Y at Ω, with
   Y = c sin(πx/L) (the assumed mode) and projected on the mode: c_modal = ∫ c_eq(x) sin²(πx/L) dx
   = (8 D Ω c/(3π)) (4L/(3π)). ``"none"``: undamped.

@@ -1,4 +1,4 @@
-"""The ``series`` periodic method: the paper's double Fourier series (MODEL.md §4, §9 "series").
+"""The ``series`` periodic method: the paper's double Fourier series (docs/model.md §4, §9 "series").
 
 The design point is solved exactly as by the ``fast`` method — the pole-bracketed span search, the
 midspan screen, the exact refinement and the constraint check of :mod:`study.solvers.periodic`
@@ -109,7 +109,7 @@ def fields(scene: Scene, impact: periodic.Impact, options: periodic.Options, har
 
 def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
-    """Stress maxima (MODEL.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
+    """Stress maxima (docs/model.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
     or from the double series with options.modes × harmonics terms, sampled on :func:`stress_grid` and
     located to a tenth of the study's tolerance (:func:`periodic.stresses_from_fields`)."""
     x, t = stress_grid(scene, impact, options)
@@ -172,7 +172,7 @@ def term_grid(scene: Scene, impact: periodic.Impact, points_per_pulse: int = 8, 
 
 def term_ratio_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                      options: periodic.Options, harmonics: int = DEFAULT_HARMONICS) -> dict[str, Any]:
-    """The paper's §VI table for this span and impact (MODEL.md §6) and its verdict.
+    """The paper's §VI table for this span and impact (docs/model.md §6) and its verdict.
 
     Terms of EI y'''' − T0 y'' + m_i V_m² y'' + M ÿ + D|ẏ|ẏ = p (``checks.TERMS``: bending, tension,
     mud_flow, inertia, drag) from the double series (options.modes × harmonics terms, the same
@@ -202,7 +202,7 @@ def term_ratio_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str,
 def convergence_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
                       resolutions: Iterable[tuple[str, Any]], reference: tuple[int, int] = (961, 25_600),
                       options: periodic.Options | None = None) -> list[dict[str, Any]]:
-    """Work-precision rows of each method and resolution at a fixed span and impact (MODEL.md §9).
+    """Work-precision rows of each method and resolution at a fixed span and impact (docs/model.md §9).
 
     resolutions: ("fast", N) or ("series", (N, M)) pairs. reference: (N, M) of the converged double
     series every row is compared with (default: converged to ~1e-8 in max normal stress on the test

@@ -1,4 +1,4 @@
-"""The time-domain method (method ``time-domain``; MODEL.md §9): the span integrated through real contact.
+"""The time-domain method (method ``time-domain``; docs/model.md §10): the span integrated through real contact.
 
 The check on the periodic assumption itself: the span's modal model is integrated in time through
 Hertz contact with both walls, from a stated initial state, revolution after revolution, until the
@@ -560,7 +560,7 @@ def sample_after(run: Mapping[str, Any], revolutions: int | None = None) -> traj
 
 def stresses(inputs: Mapping[str, Any], model: ModalModel, samples: trajectory.Samples,
              space_points: int = 65) -> dict[str, float]:
-    """Deflection and normal-stress maxima (MODEL.md §5) over the sampled motion, on ``space_points``
+    """Deflection and normal-stress maxima (docs/model.md §5) over the sampled motion, on ``space_points``
     points along the whole span and at the contact points, the fields with the quasi-static correction
     for the contact forces (:func:`study.solvers.trajectory.fields`); times from the first sample."""
     x = np.unique(np.concatenate([np.linspace(0.0, model.span, space_points), model.points * model.span]))
@@ -824,7 +824,7 @@ def benchmark(inputs: Mapping[str, Any], revolutions: int = 10, repeat: int = 3,
 
 def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0.05, 0.1, 0.2, 0.5, 0.9, 1.1, 2.0, 4.0),
                    contact_steps=(1, 2, 3, 5, 10, 25, 100, 400)) -> list[dict[str, Any]]:
-    """Error and outcome of the explicit and event-driven integrators against their step (MODEL.md §9).
+    """Error and outcome of the explicit and event-driven integrators against their step (docs/model.md §9).
 
     The step is given as a fraction of the explicit step limit 2/ω_max (:func:`stability_limit`, the
     contact linearised at the expected penetration): the Verlet step for ``"explicit"`` at each of

@@ -1,4 +1,4 @@
-"""The time domain's motion sampled over one revolution, and the stresses it carries (MODEL.md §5).
+"""The time domain's motion sampled over one revolution, and the stresses it carries (docs/model.md §5, §10).
 
 The event-driven integrator (:mod:`study.solvers.event_driven`) gives the modal state at any time: the
 flights are exact and the contacts are integrated with their own step, so a revolution is sampled by
@@ -7,7 +7,7 @@ contacts are found by a first pass over the same revolution from the same state)
 
 Fields from the sampled modal states q_n(t) and contact forces F_p(t) (forces on the pipe at x_p = ξ_p L),
 with the quasi-static (mode-acceleration) correction for the contact forces, as the ``fast`` method's
-split (MODEL.md §9): the N modes carry the dynamics; the modes above N respond to the contact forces
+split (docs/model.md §5): the N modes carry the dynamics; the modes above N respond to the contact forces
 statically, and their sum is the exact static field of a point load minus its first N modal terms.
 
 - moment −EI y'' = EI Σ_n k_n² q_n sin k_n x + Σ_p F_p [m_s(x; x_p) − Σ_{n ≤ N} (2/L) EI sin k_n x_p

@@ -249,7 +249,7 @@ def field_args(span, tl, pattern, shape="point"):
 
 @pytest.mark.parametrize("span,tl", [(6.0, 1e-2), (8.0, 6e-3)], ids=["L=6", "L=8"])
 def test_corrected_moment_beats_plain(span, tl):
-    # source: convergence to reference (corrected sum with 20 001 modes) — MODEL.md §9 claim:
+    # source: convergence to reference (corrected sum with 20 001 modes) — docs/model.md §9 claim:
     # corrected sum with 21 modes beats the plain sum with 2001 modes for the midspan moment
     # during the pulse (holds when ω_21 T_L ≫ 1; see the report for spans where it does not)
     args = field_args(span, tl, "alternating")

@@ -1,8 +1,8 @@
 """Tests of study.physics.oscillator.
 
-"seed" = /work/shared/seeds/000_ff8da5e84ac23651.txt (OCR of Harrison & Nettleton, Principles of
-Engineering Mechanics, 2nd ed., ch. 8-9); line numbers and equation numbers as catalogued in
-docs/textbook_examples.md (chapter 9 table: the seed has no numerical examples in ch. 9, so the
+"book" = Harrison & Nettleton, Principles of Engineering Mechanics, 2nd ed., ch. 8-9
+(docs/model.md §8.3); equation numbers are the book's, as catalogued in
+docs/textbook_examples.md (chapter 9 table: the copy has no numerical examples in ch. 9, so the
 closed-form relations are tested symbolically and against scipy.integrate.solve_ivp).
 """
 
@@ -33,7 +33,7 @@ def _ivp(rhs, y0, t_eval, **kw):
 
 @pytest.mark.parametrize("zeta", [0.0, 0.08, 0.7, 1.0, 1.0 + 1e-9, 1.6])
 def test_free_response_matches_ivp(zeta):
-    # eq. 9.18-9.22 (seed lines 2849-3072): x'' + 2 zeta wn x' + wn^2 x = 0, all damping regimes
+    # eq. 9.18-9.22: x'' + 2 zeta wn x' + wn^2 x = 0, all damping regimes
     t = np.linspace(0.0, 0.5, 101)
     x0, v0 = 0.01, -0.3
     y = _ivp(lambda _, y: [y[1], -2 * zeta * WN * y[1] - WN**2 * y[0]], [x0, v0], t)
@@ -43,7 +43,7 @@ def test_free_response_matches_ivp(zeta):
 
 
 def test_free_response_eq_9_26():
-    # eq. 9.26 (seed lines 3155-3224):
+    # eq. 9.26:
     # x = x0 e^(-zeta wn t)[cos wd t + zeta/sqrt(1-zeta^2) sin wd t]
     zeta, x0 = 0.08, 0.02
     wd = osc.damped_frequency(WN, zeta)
@@ -54,7 +54,7 @@ def test_free_response_eq_9_26():
 
 
 def test_undamped_free_response_eq_9_7():
-    # eq. 9.7-9.8 (seed lines 2364-2420): y = Y cos wn t + (V/wn) sin wn t, amplitude C
+    # eq. 9.7-9.8: y = Y cos wn t + (V/wn) sin wn t, amplitude C
     t = np.linspace(0, 1, 33)
     r = osc.free_response(t, WN, 0.0, 0.01, 0.5)
     assert np.allclose(r.x, 0.01 * np.cos(WN * t) + 0.5 / WN * np.sin(WN * t), atol=1e-15)
@@ -72,14 +72,14 @@ def test_parameters_eq_9_4_9_21_9_23():
 
 @pytest.mark.parametrize("zeta", [0.01, 0.08, 0.3])
 def test_logarithmic_decrement_eq_9_27(zeta):
-    # eq. 9.27-9.28 (seed lines 3095-3190): ln(x_n/x_(n+1)) over one damped period
+    # eq. 9.27-9.28: ln(x_n/x_(n+1)) over one damped period
     delta = osc.logarithmic_decrement(zeta)
     wd = osc.damped_frequency(WN, zeta)
     t = np.array([0.3, 0.3 + 2 * math.pi / wd])
     x = osc.free_response(t, WN, zeta, 0.01, 0.2).x
     assert math.log(x[0] / x[1]) == pytest.approx(float(delta), rel=1e-12)
     assert float(delta) == pytest.approx(2 * math.pi * zeta, rel=zeta**2)  # small-zeta form
-    # eq. 9.29 (seed lines 3209-3279): specific loss 1 - exp(-2 delta) ~ 2 delta
+    # eq. 9.29: specific loss 1 - exp(-2 delta) ~ 2 delta
     assert 1 - math.exp(-2 * delta) == pytest.approx(2 * delta, rel=2 * delta)
 
 
@@ -105,7 +105,7 @@ def _coulomb_ivp(x0, d, t_end):
 
 
 def test_coulomb_response_eq_9_30():
-    # eq. 9.30 (seed lines 3280-3433): amplitude drops 2f/k per half cycle, period 2 pi/wn,
+    # eq. 9.30: amplitude drops 2f/k per half cycle, period 2 pi/wn,
     # motion stops at a velocity reversal with |x| <= f/k
     x0, d = 0.01, 0.0012  # d = f/k [m]
     half = math.pi / WN
@@ -131,7 +131,7 @@ def test_coulomb_response_eq_9_30():
 
 @pytest.mark.parametrize("zeta", [0.08, 1.0, 2.0])
 def test_step_response_eq_9_33(zeta):
-    # eq. 9.33 (seed lines 3503-3661): x/(P0/k) against solve_ivp of
+    # eq. 9.33: x/(P0/k) against solve_ivp of
     # x'' + 2 zeta wn x' + wn^2 x = wn^2
     t = np.linspace(0, 0.6, 61)
     y = _ivp(lambda _, y: [y[1], WN**2 - 2 * zeta * WN * y[1] - WN**2 * y[0]], [0.0, 0.0], t)
@@ -141,7 +141,7 @@ def test_step_response_eq_9_33(zeta):
 
 
 def test_step_overshoot_eq_9_34():
-    # eq. 9.34 (seed lines 3736-3767): overshoot exp(-zeta pi/sqrt(1-zeta^2)) at wd t = pi
+    # eq. 9.34: overshoot exp(-zeta pi/sqrt(1-zeta^2)) at wd t = pi
     zeta = 0.08
     wd = osc.damped_frequency(WN, zeta)
     r = osc.step_response(math.pi / wd, WN, zeta)
@@ -152,7 +152,7 @@ def test_step_overshoot_eq_9_34():
 
 @pytest.mark.parametrize("zeta", [0.08, 0.5, 1.0])
 def test_ramp_response_eq_9_36(zeta):
-    # eq. 9.36 (seed lines 3571-3811); printed closed form for zeta < 1 and solve_ivp
+    # eq. 9.36; printed closed form for zeta < 1 and solve_ivp
     t = np.linspace(0, 0.6, 61)
     y = _ivp(lambda s, y: [y[1], WN**2 * s - 2 * zeta * WN * y[1] - WN**2 * y[0]], [0.0, 0.0], t)
     r = osc.ramp_response(t, WN, zeta)
@@ -166,7 +166,7 @@ def test_ramp_response_eq_9_36(zeta):
 
 
 def test_dynamic_magnifier_and_phase_eq_9_46_9_47():
-    # eq. 9.42-9.47 (seed lines 4088-4321) against the complex receptance and solve_ivp
+    # eq. 9.42-9.47 against the complex receptance and solve_ivp
     zeta = 0.08
     r = np.array([0.0, 0.5, 1.0, 1.5, 3.0])
     H = 1.0 / (1 - r**2 + 2j * zeta * r)
@@ -239,7 +239,7 @@ def test_next_impact_time_matches_ivp_event(name):
 
 def test_next_impact_half_cycle_bounce():
     # undriven oscillator with the wall at its equilibrium (gap = 0): a bounce takes pi/wn,
-    # eq. 9.7 / 9.9 (seed lines 2364-2554), and returns at the same speed
+    # eq. 9.7 / 9.9, and returns at the same speed
     p = osc.ImpactParams(M, K, 0.0, gap=0.0, restitution=1.0)
     ev = osc.next_impact_time(0.0, (0.0, -0.3), p, t_max=1.0)
     assert ev.time == pytest.approx(math.pi / WN, rel=1e-13)
@@ -270,7 +270,7 @@ G = 9.81
 def test_bouncing_ball_accumulation_time(e):
     # ball leaving a fixed floor at v0 (no spring, gravity towards the wall; x measured downwards):
     # flights 2 e^j v0/g, so impacts accumulate at 2 v0/g / (1 - e) and the ball sticks (ch. 8,
-    # geometric series as in restitution.bounce_to_rest, Problem 8.1 seed line 1598)
+    # geometric series as in restitution.bounce_to_rest, Problem 8.1)
     v0 = 1.3
     p = osc.ImpactParams(0.2, 0.0, constant_force=0.2 * G, gap=0.0, restitution=e)
     h = osc.simulate_impacts(0.0, (0.0, -v0), p, t_end=100.0)
@@ -284,7 +284,7 @@ def test_bouncing_ball_accumulation_time(e):
 def test_bouncing_ball_accumulation_matches_restitution_module():
     # dropped from rest at height h_d: accumulation = restitution.bounce_to_rest total time
     from study.physics.restitution import bounce_to_rest
-    hd, e = 2.0, math.sqrt(0.75)  # Problem 8.1 (seed lines 1598-1612)
+    hd, e = 2.0, math.sqrt(0.75)  # Problem 8.1
     p = osc.ImpactParams(1.0, 0.0, constant_force=G, gap=0.0, restitution=e)
     h = osc.simulate_impacts(0.0, (-hd, 0.0), p, t_end=100.0)
     assert h.status == "sticking"
@@ -302,7 +302,7 @@ def test_elastic_half_cycle_bounces():
 
 def test_damped_half_cycle_bounces():
     # gap = 0 with viscous damping and restitution: each half cycle takes pi/wd and the speed
-    # falls by e exp(-zeta wn pi/wd) per bounce (eq. 9.26-9.27, seed lines 3155-3190)
+    # falls by e exp(-zeta wn pi/wd) per bounce (eq. 9.26-9.27)
     zeta, e = 0.05, 0.8
     p = osc.ImpactParams(M, K, 2 * zeta * math.sqrt(K * M), gap=0.0, restitution=e)
     wd = float(osc.damped_frequency(WN, zeta))

@@ -1,9 +1,9 @@
 """Tests of study.physics.restitution.
 
-Expected values cite their source. "seed" = /work/shared/seeds/000_ff8da5e84ac23651.txt, the OCR of
+Expected values cite their source. "book" = the copy (docs/model.md §8.3) of
 Harrison & Nettleton, Principles of Engineering Mechanics, 2nd ed., ch. 8-9; see
 docs/textbook_examples.md for the catalogue. "printed" = number printed in the book;
-"closed form" = follows from the legible data, no printed number in the seed.
+"closed form" = follows from the legible data, no printed number in the book.
 Tolerances for printed numbers are half a unit in the last printed digit.
 """
 
@@ -30,14 +30,14 @@ def half_ulp(printed: str) -> float:
 
 
 def test_problem_8_1_restitution():
-    # textbook Problem 8.1, seed lines 1598-1612: dropped from 2 m, rebounds to 1.5 m.
+    # textbook Problem 8.1: dropped from 2 m, rebounds to 1.5 m.
     e = rs.restitution_from_rebound(2.0, 1.5)
     assert e == pytest.approx(math.sqrt(0.75), rel=1e-15)
 
 
 def test_problem_8_1_rebound_from_3m():
-    # textbook Problem 8.1, seed lines 1598-1612: "If the ball is dropped from a height of 3 m,
-    # estimate the rebound height". No printed answer in the seed; closed form from data:
+    # textbook Problem 8.1: "If the ball is dropped from a height of 3 m,
+    # estimate the rebound height". No printed answer in the book; closed form from data:
     # h = e^2 * 3 m = (1.5/2) * 3 m = 2.25 m.
     e = rs.restitution_from_rebound(2.0, 1.5)
     assert rs.rebound_height(3.0, e) == pytest.approx(2.25, rel=1e-14)
@@ -46,7 +46,7 @@ def test_problem_8_1_rebound_from_3m():
 @pytest.mark.parametrize(
     "drop, rebound, e",
     [
-        (2.0, 1.5, math.sqrt(0.75)),  # Problem 8.1, seed line 1598
+        (2.0, 1.5, math.sqrt(0.75)),  # Problem 8.1
         (1.0, 1.0, 1.0),  # e = 1: perfectly elastic, rebounds to the drop height
         (1.0, 0.0, 0.0),  # e = 0: perfectly plastic, no rebound
         (4.0, 1.0, 0.5),  # closed form sqrt(1/4)
@@ -58,7 +58,7 @@ def test_rebound_roundtrip(drop, rebound, e):
 
 
 def test_bounce_to_rest_problem_8_1_data():
-    # closed form from Problem 8.1 data (seed line 1598), not printed: e^2 = 0.75, h = 2 m,
+    # closed form from Problem 8.1 data, not printed: e^2 = 0.75, h = 2 m,
     # distance = h (1+e^2)/(1-e^2) = 2 * 1.75/0.25 = 14 m; time = sqrt(2h/g)(1+e)/(1-e).
     e = math.sqrt(0.75)
     out = rs.bounce_to_rest(2.0, e, g=G)
@@ -99,8 +99,8 @@ def test_bounce_heights_shape_and_values():
 
 
 def test_clutch_example_common_velocity_and_energy_loss():
-    # textbook clutch example preceding Example 8.2 (probably Example 8.1; heading not in seed),
-    # seed lines 193-206 and 22-27, 62: common angular velocity
+    # textbook clutch example preceding Example 8.2 (probably Example 8.1; heading not in the copy):
+    # common angular velocity
     # w_c = (I1 w1 + I2 w2)/(I1 + I2) and energy lost 1/2 I1 I2/(I1+I2) (w1 - w2)^2
     # -- the e = 0 impact with moments of inertia in place of masses. Closed form (symbolic).
     I1, I2, w1, w2 = 2.5, 0.7, 120.0, -30.0
@@ -117,7 +117,7 @@ def test_clutch_example_common_velocity_and_energy_loss():
 
 @pytest.mark.parametrize("theta_deg", [5.0, 30.0, 45.0, 60.0, 89.0])
 def test_example_8_7_equal_masses_leave_at_right_angles(theta_deg):
-    # textbook Example 8.7, seed lines 1187-1331: smooth oblique ideal impact (e = 1) of equal
+    # textbook Example 8.7: smooth oblique ideal impact (e = 1) of equal
     # spheres, target at rest; the paths after impact are at 90 deg for any theta != 0.
     # Normal (x) components obey the direct-impact law, tangential (y) components are unchanged.
     m, u1 = 0.17, 3.0
@@ -130,7 +130,7 @@ def test_example_8_7_equal_masses_leave_at_right_angles(theta_deg):
 
 @pytest.mark.parametrize("m1, m2", [(1.0, 3.0), (2.0, 0.5), (5.0, 5.0)])
 def test_example_8_7_general_masses(m1, m2):
-    # textbook Example 8.7, seed lines 1289-1304 (closed form):
+    # textbook Example 8.7 (closed form):
     # v2 = 2 m1 u1 cos(theta)/(m1 + m2), v1 cos(alpha) = (m1 - m2)/(m1 + m2) u1 cos(theta).
     u1, th = 4.0, math.radians(35.0)
     out = rs.collision(m1, u1 * math.cos(th), m2, 0.0, 1.0)
@@ -140,7 +140,7 @@ def test_example_8_7_general_masses(m1, m2):
 
 # --- Example 8.2: box on a roller conveyor ----------------------------------------------------
 
-# Data, seed lines 125-144: alpha = 30 deg, r = 50 mm, I = 0.025 kg m^2, l = 0.3 m, m = 30 kg.
+# Data: alpha = 30 deg, r = 50 mm, I = 0.025 kg m^2, l = 0.3 m, m = 30 kg.
 CONV_M, CONV_I, CONV_R, CONV_L, CONV_ALPHA = 30.0, 0.025, 0.05, 0.3, math.radians(30.0)
 # The box rides on three rollers that turn with it (effective mass m + 3I/r^2 = 60 kg) and
 # strikes a stationary roller (effective mass at its rim I/r^2 = 10 kg); slip ceases during the
@@ -154,31 +154,31 @@ def conveyor_ratio() -> float:
 
 
 def conveyor_gain() -> float:
-    # equation (i), seed lines 351-385: v_b^2 = v_a^2 + 2 m g l sin(a)/(m + 3I/r^2)
+    # equation (i): v_b^2 = v_a^2 + 2 m g l sin(a)/(m + 3I/r^2)
     return 2 * CONV_M * G * CONV_L * math.sin(CONV_ALPHA) / CONV_MOVING
 
 
 def test_example_8_2_velocity_ratio_is_six_sevenths():
-    # textbook Example 8.2, equation (iii), seed line 402: v_E(a) = 6 v_E(b)/7 (printed).
+    # textbook Example 8.2, equation (iii): v_E(a) = 6 v_E(b)/7 (printed).
     assert conveyor_ratio() == pytest.approx(6.0 / 7.0, rel=1e-15)
 
 
 def test_example_8_2_speed_squared_gain():
-    # textbook Example 8.2, seed line 385: [v_D(a)^2 + 1.4715]^(1/2) (printed 1.4715).
+    # textbook Example 8.2: [v_D(a)^2 + 1.4715]^(1/2) (printed 1.4715).
     assert conveyor_gain() == pytest.approx(1.4715, abs=half_ulp("1.4715"))
 
 
 @pytest.mark.parametrize(
-    "which, index, printed, line",
+    "which, index, printed",
     [
-        ("before", 0, "1.2131", 413),  # v5(b), printed
-        ("after", 0, "1.0398", 420),  # v5(a), printed
-        ("before", 1, "1.5977", 427),  # v6(b), printed
-        ("after", 1, "1.3694", 433),  # v6(a): answer to part (a), printed
+        ("before", 0, "1.2131"),  # v5(b), printed
+        ("after", 0, "1.0398"),  # v5(a), printed
+        ("before", 1, "1.5977"),  # v6(b), printed
+        ("after", 1, "1.3694"),  # v6(a): answer to part (a), printed
     ],
 )
-def test_example_8_2_first_impacts(which, index, printed, line):
-    # textbook Example 8.2(a), seed line `line`: box released from rest with its leading edge
+def test_example_8_2_first_impacts(which, index, printed):
+    # textbook Example 8.2(a), printed speeds: box released from rest with its leading edge
     # touching roller 4; impacts with rollers 5 and 6.
     seq = rs.impact_sequence(0.0, conveyor_ratio(), conveyor_gain(), 2)
     value = getattr(seq, which)[index]
@@ -197,7 +197,7 @@ def test_example_8_2_first_impacts(which, index, printed, line):
     ],
 )
 def test_example_8_2_steady_mean_velocity(field, printed, line):
-    # textbook Example 8.2(b), seed lines 447-493 (and 157): steady cycle of impacts.
+    # textbook Example 8.2(b): steady cycle of impacts.
     cycle = rs.periodic_impact_steady_state(conveyor_ratio(), conveyor_gain())
     tol = 2 * half_ulp(printed) if line == 465 else half_ulp(printed)
     assert getattr(cycle, field) == pytest.approx(float(printed), abs=tol)
@@ -225,7 +225,7 @@ def test_impact_sequence_broadcasts():
 
 @pytest.mark.parametrize("n_lifted", [1, 2, 3, 4])
 def test_newtons_cradle(n_lifted):
-    # textbook Problem 8.2, seed lines 1701-1737 (statement, closed form): five identical balls,
+    # textbook Problem 8.2 (statement, closed form): five identical balls,
     # A, B, C lifted and released, no energy loss -> A and B stay at rest, C, D, E rise together
     # (n_lifted = 3); in general the last n_lifted balls leave with the impact speed.
     n, v = 5, 1.3
@@ -236,7 +236,7 @@ def test_newtons_cradle(n_lifted):
 
 
 def test_newtons_cradle_rise_angle():
-    # textbook Problem 8.2, seed lines 1715-1737: C, D, E rise until their strings make the
+    # textbook Problem 8.2: C, D, E rise until their strings make the
     # release angle theta_0 with the vertical (closed form: same speed -> same height).
     length, theta0 = 0.25, math.radians(28.0)
     v = math.sqrt(2 * G * length * (1 - math.cos(theta0)))

@@ -57,7 +57,7 @@ def test_gap_flow_and_potential_flow_cross_where_x3_minus_x_minus_2_vanishes(rat
 
 
 def test_gap_flow_formula_as_read_in_model():
-    # MODEL.md §2: m_a = rho pi (R^2 - r_o^2) r_o / S with S = R - r_o; here R = 2 r_o gives 3 rho pi r_o^2.
+    # docs/model.md §2: m_a = rho pi (R^2 - r_o^2) r_o / S with S = R - r_o; here R = 2 r_o gives 3 rho pi r_o^2.
     r_o = 0.05
     assert section.added_mass(1.0, r_o, 2 * r_o, "gap_flow") == pytest.approx(3 * np.pi * r_o**2, rel=1e-14)
 
@@ -68,7 +68,7 @@ def test_unknown_added_mass_model_names_the_choices():
 
 
 def test_drag_coefficient_as_read_in_model():
-    # MODEL.md §2 (paper eq. 30): D = 1/2 rho C_d (2 r_o)(1 + r_o/S)^2; S = r_o gives 4 rho C_d r_o.
+    # docs/model.md §2 (paper eq. 30): D = 1/2 rho C_d (2 r_o)(1 + r_o/S)^2; S = r_o gives 4 rho C_d r_o.
     assert section.drag_coefficient_per_length(1000.0, 0.05, 0.1, 0.5) == pytest.approx(4 * 1000 * 0.5 * 0.05)
 
 

@@ -1,4 +1,4 @@
-"""Tests of study.solvers.checks: the paper's term-ratio table (paper §VI, MODEL.md §6).
+"""Tests of study.solvers.checks: the paper's term-ratio table (paper §VI, docs/model.md §6).
 
 Synthetic field y = Y sin(πx/L) sin(Ωt) on a grid where every term's max and mean are known in
 closed form ("closed form"): x at the midpoints x_i = (i + ½)L/n_x, n_x odd (so x = L/2 is a grid
@@ -49,7 +49,7 @@ def expected(nx=NX, nt=NT):
 
 
 def test_terms_table():
-    # source: MODEL.md §2 — five terms, only the drag dropped from the undamped model; eq. 39 also
+    # source: docs/model.md §2 — five terms, only the drag dropped from the undamped model; eq. 39 also
     # drops the mud-flow term
     assert set(checks.TERMS) == {"bending", "tension", "mud_flow", "inertia", "drag"}
     assert [k for k, v in checks.TERMS.items() if not v["kept"]] == ["drag"]

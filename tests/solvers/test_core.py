@@ -28,7 +28,7 @@ def test_paper_example_is_consistent_and_not_a_hertz_contact(paper_point):
     assert 2 * v["contact_half_length"] > 70 * paper_point["outer_diameter"]
     c = (8.75 - 4.5) / 2 * 0.0254  # clearance of the reconstructed hole [m]
     assert v["clearance"] == pytest.approx(c)
-    # Prescribed closure (MODEL.md §4): V_p = Omega c with Omega = 10 pi rad/s (300 rpm).
+    # Prescribed closure (docs/model.md §4): V_p = Omega c with Omega = 10 pi rad/s (300 rpm).
     assert v["impact_velocity"] == pytest.approx(10 * np.pi * c)
     # Paper eq. 5 and 16: m_e = 2 M L / pi, J = m_e (1 + e) V_p.
     assert v["equivalent_mass"] == pytest.approx(2 * v["mass_per_length"] * v["span_length"] / np.pi)

@@ -102,7 +102,7 @@ def test_without_a_periodic_solution_the_point_keeps_fasts_status(paper_inputs):
 
 
 def test_modal_impact_mass_is_half_the_span_mass(paper_inputs):
-    # Source: MODEL.md §4/§8: the modal mass of sin(pi x/L) referred to midspan is M L/2, the paper's
+    # Source: docs/model.md §4/§8: the modal mass of sin(pi x/L) referred to midspan is M L/2, the paper's
     # equivalent (momentum) mass 2 M L/pi.
     scene = periodic.make_scene({**paper_inputs, "impact_mass": "modal"})
     paper = periodic.make_scene(paper_inputs)

@@ -32,7 +32,7 @@ def test_stresses_are_consistent(fixed_span):
     inputs, scene, impact = fixed_span
     v = fast.stresses(scene, impact, inputs, periodic.Options(modes=15))
     area = scene.props["steel_area"]
-    # MODEL.md §5: normal = |T0|/A + bending; alternating <= bending amplitude; maxima inside the half span.
+    # docs/model.md §5: normal = |T0|/A + bending; alternating <= bending amplitude; maxima inside the half span.
     assert v["max_normal_stress"] == pytest.approx(abs(inputs["axial_tension"]) / area + v["max_bending_stress"])
     assert 0 < v["alternating_bending_stress"] <= v["max_bending_stress"] * (1 + 1e-12)
     assert v["max_shear_stress"] > 0 and 0 <= v["max_normal_stress_x"] <= impact.span_length / 2

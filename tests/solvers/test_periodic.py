@@ -18,7 +18,7 @@ def scene_of(inputs, pattern, closure, rpm=300.0):
 
 @pytest.mark.parametrize("pattern", ["alternating", "one_wall"])
 def test_poles_are_where_a_natural_frequency_meets_a_harmonic(paper_inputs, pattern):
-    # MODEL.md §4: the undamped periodic response has a pole where omega_n tau/2pi is a harmonic of the
+    # docs/model.md §4: the undamped periodic response has a pole where omega_n tau/2pi is a harmonic of the
     # train - any integer (one_wall) or an odd integer (alternating).
     scene = scene_of(paper_inputs, pattern, "prescribed")
     modes = periodic.odd_modes(9)
@@ -53,7 +53,7 @@ def test_roots_lie_between_poles_and_zero_the_screening_residual(paper_inputs):
 
 
 def test_refined_root_satisfies_condition_2_exactly(paper_inputs):
-    # Condition 2 (MODEL.md §4): y(L/2, 0) = c with the exact T_L and contact curvature of the solution.
+    # Condition 2 (docs/model.md §4): y(L/2, 0) = c with the exact T_L and contact curvature of the solution.
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=15, min_span=9.0)
     search = periodic.find_roots(scene, options)
@@ -113,7 +113,7 @@ def test_residues_skipped_below_a_floor_are_certainly_below_it(paper_inputs, pat
 def test_narrow_resonances_only_hide_the_roots_pinned_to_them(paper_inputs):
     # The search with every pole (resonance_width = 0) against the default (1e-6): the default finds no
     # root the full search does not, and every root it skips lies within 1e-5 L of a resonance narrower
-    # than 1e-6 L (the root such a resonance pins; any damping of that order removes it, MODEL.md §7).
+    # than 1e-6 L (the root such a resonance pins; any damping of that order removes it, docs/model.md §7).
     scene = scene_of(paper_inputs, "alternating", "prescribed", rpm=100.0)
     options = periodic.Options(modes=15, min_span=9.0, max_span=120.0)
     full = periodic.find_roots(scene, periodic.Options(**{**options.__dict__, "resonance_width": 0.0}))
