@@ -74,7 +74,7 @@ def cmd_sweep(args) -> int:
 
     study = load(args.config, parse_set(args.set or []))
     path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
-                     progress=not args.quiet)
+                     progress=not args.quiet, max_points=args.max_points, charts=not args.no_charts)
     print(f"results: {path}")
     if not args.no_charts:
         from study.charts import draw_all
@@ -133,6 +133,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: cores)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-charts", action="store_true", help="skip the charts")
+    p.add_argument("--max-points", type=int, default=None, metavar="N",
+                   help="largest grid accepted (default sweep.max_points, 1000000)")
     p.set_defaults(func=cmd_sweep)
 
     p = sub.add_parser("charts", help="draw the design charts of a results dataset")
@@ -153,8 +155,16 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
+    from study.workflow.execute import SweepError
+
     try:
         return args.func(args)
+    except KeyboardInterrupt as exc:  # a sweep says what it kept; anything else just stops
+        print(f"study: {exc or 'interrupted'}", file=sys.stderr)
+        return 130
+    except SweepError as exc:  # an unwritable output, a running sweep, a grid too large: one line
+        print(f"study: error: {exc}", file=sys.stderr)
+        return 1
     except ConfigError as exc:
         print(f"study: error: {exc}", file=sys.stderr)
         return 2
