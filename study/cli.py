@@ -14,6 +14,7 @@ from study import __version__
 from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert, display_unit, pint_unit
+from study.workflow.execute import Interrupted, SweepError
 
 DEFAULT_CONFIG = "configs/default.toml"
 
@@ -72,9 +73,14 @@ def cmd_point(args) -> int:
 def cmd_sweep(args) -> int:
     from study.workflow.sweep import run_sweep
 
-    study = load(args.config, parse_set(args.set or []))
-    path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
-                     progress=not args.quiet, max_points=args.max_points, charts=not args.no_charts)
+    try:
+        study = load(args.config, parse_set(args.set or []))
+        path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
+                         progress=not args.quiet, max_points=args.max_points, charts=not args.no_charts)
+    except Interrupted:
+        raise
+    except KeyboardInterrupt:
+        raise KeyboardInterrupt("interrupted before the sweep started: nothing new was computed") from None
     print(f"results: {path}")
     if not args.no_charts:
         from study.charts import draw_all
@@ -155,8 +161,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    from study.workflow.execute import SweepError
-
     try:
         return args.func(args)
     except KeyboardInterrupt as exc:  # a sweep says what it kept; anything else just stops

@@ -10,6 +10,7 @@ every worker lost at once, only delays the chunks it held: they are solved again
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import sys
@@ -117,6 +118,7 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
         elif tasks:
             _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1, say)
     except KeyboardInterrupt:
+        _quiet_shutdown()
         raise Interrupted(f"interrupted: kept {kept} of {grid.size} points in {store}; run the same command "
                           "again to resume") from None
     finally:
@@ -124,22 +126,57 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     return stored.columns(keys)
 
 
+def _local_cluster(workers: int, attempts: int = 3):
+    """A LocalCluster of ``workers`` single-thread processes that ignore Ctrl-C (:func:`dask_setup`).
+    A worker killed while the cluster starts fails the start: it is tried again. Ctrl-C during the
+    start closes what was started, so nothing is left for the interpreter's exit to complain about."""
+    from dask.distributed import LocalCluster
+    from distributed.deploy.spec import SpecCluster
+
+    for attempt in range(attempts):
+        before = set(SpecCluster._instances)
+        try:
+            return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
+                                preload=[__name__])
+        except BaseException as exc:
+            retry = isinstance(exc, RuntimeError) and attempt < attempts - 1
+            if not retry:
+                _quiet_shutdown()
+            for started in set(SpecCluster._instances) - before:
+                with contextlib.suppress(Exception):
+                    started.close(timeout=5)
+            if isinstance(exc, RuntimeError) and not retry:
+                raise SweepError(f"could not start {workers} local workers ({exc}); nothing was computed in "
+                                 "this run: run the same command again") from None
+            if not retry:
+                raise
+
+
+def _quiet_shutdown() -> None:
+    """Going down on purpose: the event loop's and dask's complaints about half-started or cancelled
+    work would only bury the one line the user needs."""
+    for name in ("asyncio", "distributed", "tornado"):
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+
+
 def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers, say) -> None:
     """Submit every chunk with its own points; store each as it completes; resubmit a chunk whose
     worker was lost (dask gives up on a task after a few lost workers: ``KilledWorker``)."""
-    from dask.distributed import Client, LocalCluster, as_completed
+    from dask.distributed import Client, as_completed
     from distributed.comm.core import CommClosedError
     from distributed.scheduler import KilledWorker
 
-    cluster = None
     if scheduler:
-        client = Client(scheduler)
+        cluster, client = None, Client(scheduler)
     else:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.CRITICAL, preload=[__name__])
+        cluster = _local_cluster(workers)
         client = Client(cluster)
     try:
-        client.run(warm_up)  # import the solvers on every worker before the clock of the first chunk
+        try:  # import the solvers on every worker before the clock of the first chunk
+            client.run(warm_up)
+        except Exception:  # noqa: BLE001 - only a head start: a worker lost meanwhile imports on its first task
+            pass
 
         def submit(task):
             indices, _ = task
