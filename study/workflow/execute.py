@@ -116,7 +116,7 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
             for indices, path in tasks:
                 store_chunk(indices, path, solve_chunk(grid.take(indices, keys[indices])))
         elif tasks:
-            _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1, say)
+            _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1)
     except KeyboardInterrupt:
         _quiet_shutdown()
         raise Interrupted(f"interrupted: kept {kept} of {grid.size} points in {store}; run the same command "
@@ -160,7 +160,7 @@ def _quiet_shutdown() -> None:
         logging.getLogger(name).setLevel(logging.CRITICAL + 1)
 
 
-def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers, say) -> None:
+def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers) -> None:
     """Submit every chunk with its own points; store each as it completes; resubmit a chunk whose
     worker was lost (dask gives up on a task after a few lost workers: ``KilledWorker``)."""
     from dask.distributed import Client, as_completed

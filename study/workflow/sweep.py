@@ -46,7 +46,7 @@ def check_size(study: Study, cap: int) -> None:
     raise SweepError(
         f"the grid has {size:,} points ({shape}), more than sweep.max_points = {cap:,}: about "
         f"{_bytes(size * per_point)} of results and {_bytes(size * 8)} of memory per output column, and "
-        f"{size * 1e-3 / 3600:,.3g} core-hours at 1 ms a point (the fastest methods); "
+        f"{size * 1e-3 / 3600:,.3g} core-hours at 1 ms a point; "
         f"to run it anyway set sweep.max_points or pass --max-points {size}")
 
 
