@@ -127,14 +127,21 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
 
 
 def _local_cluster(workers: int, attempts: int = 3):
-    """A LocalCluster of ``workers`` single-thread processes that ignore Ctrl-C (:func:`dask_setup`).
-    A worker killed while the cluster starts fails the start: it is tried again. Ctrl-C during the
-    start closes what was started, so nothing is left for the interpreter's exit to complain about."""
+    """A LocalCluster of ``workers`` single-thread processes that never see Ctrl-C.
+
+    SIGINT is ignored in this process while the cluster starts, so the worker processes it spawns
+    inherit the ignored signal (a spawned Python keeps an ignored SIGINT ignored); a Ctrl-C in those
+    1-3 s is lost (press it again). A worker restarted later ignores it once :func:`dask_setup` has
+    run. A worker killed while the cluster starts fails the start: it is tried again.
+    """
+    import signal
+
     from dask.distributed import LocalCluster
     from distributed.deploy.spec import SpecCluster
 
+    before = set(SpecCluster._instances)
     for attempt in range(attempts):
-        before = set(SpecCluster._instances)
+        handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
             return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                 dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
@@ -151,6 +158,8 @@ def _local_cluster(workers: int, attempts: int = 3):
                                  "this run: run the same command again") from None
             if not retry:
                 raise
+        finally:
+            signal.signal(signal.SIGINT, handler)
 
 
 def _quiet_shutdown() -> None:

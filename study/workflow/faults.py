@@ -162,7 +162,9 @@ def one_run(command: list[str], out: Path, chunks: int, rng: random.Random, refe
                 os.killpg(proc.pid, signal.SIGINT if kind == "Ctrl-C" else signal.SIGKILL)
                 label += f" ({when})"
         _, err = proc.communicate()
-        if kind in ("kill -9 all", "Ctrl-C", "damaged chunk") and proc.returncode == 0:  # no moment left
+        if kind == "Ctrl-C" and proc.returncode == 0 and label.endswith("after start)"):
+            label = label[:-1] + ": lost while the workers started; finished)"
+        elif kind in ("kill -9 all", "Ctrl-C", "damaged chunk") and proc.returncode == 0:  # no moment left
             label += " (too late: finished)"
         run.exits.append(proc.returncode)
         lines = err.strip().splitlines()
@@ -226,6 +228,7 @@ def run_faults(runs: int = 10, seed: int = 1, config: Path = DEFAULT_CONFIG, wor
 def report(results: list[Run], duration: float, sizes, seed: int, config: Path, workers: int) -> str:
     kinds = collections.Counter(fault.split(" (")[0].split(",")[0] for run in results for fault in run.faults)
     late = sum("too late" in fault for run in results for fault in run.faults)
+    lost = sum("lost while the workers started" in fault for run in results for fault in run.faults)
     passed = sum(not run.problems for run in results)
     points = int(np.prod(list(sizes.values())))
     lines = [
@@ -233,7 +236,8 @@ def report(results: list[Run], duration: float, sizes, seed: int, config: Path, 
         f"{points} points, {workers} local workers; seed {seed}; "
         f"uninterrupted sweep {duration:.1f} s (start-up included)",
         f"- {len(results)} faulted sweeps, {sum(len(r.faults) for r in results)} faults: "
-        + ", ".join(f"{kinds[k]} {k}" for k in KINDS) + f" ({late} landed after the sweep had finished)",
+        + ", ".join(f"{kinds[k]} {k}" for k in KINDS) + f" ({late} landed after the sweep had finished; "
+        f"{lost} Ctrl-C lost while the local workers started, as documented)",
         f"- attempts per sweep (the faulted ones and the resumes): "
         f"{min(len(r.exits) for r in results)} to {max(len(r.exits) for r in results)}; "
         f"time per faulted sweep {min(r.seconds for r in results):.1f} to {max(r.seconds for r in results):.1f} s",
