@@ -71,9 +71,9 @@ def cmd_point(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from study.workflow.sweep import run_sweep
-
     try:
+        from study.workflow.sweep import run_sweep
+
         study = load(args.config, parse_set(args.set or []))
         path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
                          progress=not args.quiet, max_points=args.max_points, charts=not args.no_charts)
@@ -164,7 +164,7 @@ def main(argv=None) -> int:
     try:
         return args.func(args)
     except KeyboardInterrupt as exc:  # a sweep says what it kept; anything else just stops
-        print(f"study: {exc or 'interrupted'}", file=sys.stderr)
+        print(f"study: {str(exc) or 'interrupted'}", file=sys.stderr)
         return 130
     except SweepError as exc:  # an unwritable output, a running sweep, a grid too large: one line
         print(f"study: error: {exc}", file=sys.stderr)
