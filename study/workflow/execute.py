@@ -135,13 +135,15 @@ def _local_cluster(workers: int, attempts: int = 3):
     run. A worker killed while the cluster starts fails the start: it is tried again.
     """
     import signal
+    import threading
 
     from dask.distributed import LocalCluster
     from distributed.deploy.spec import SpecCluster
 
     before = set(SpecCluster._instances)
     for attempt in range(attempts):
-        handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        main = threading.current_thread() is threading.main_thread()  # only it may set handlers
+        handler = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
         try:
             return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                 dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
@@ -159,7 +161,8 @@ def _local_cluster(workers: int, attempts: int = 3):
             if not retry:
                 raise
         finally:
-            signal.signal(signal.SIGINT, handler)
+            if main:
+                signal.signal(signal.SIGINT, handler)
 
 
 def _quiet_shutdown() -> None:
