@@ -4,8 +4,9 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
+RUNS   ?= 10
 
-.PHONY: help setup test sweep charts bench validate clean chromium
+.PHONY: help setup test sweep charts bench validate faults clean chromium
 
 help:
 	@echo "make test      install (first time) and run the whole test suite"
@@ -13,6 +14,7 @@ help:
 	@echo "make charts    redraw the charts of the default study"
 	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
+	@echo "make faults    kill sweeps and their workers at random moments RUNS=$(RUNS) times (docs/reliability.md)"
 	@echo "make clean     remove outputs and the virtual environment"
 
 setup: $(STAMP)
@@ -40,6 +42,9 @@ bench: $(STAMP)
 
 validate: $(STAMP)
 	$(BIN)/study validate --out docs/validation.md
+
+faults: $(STAMP)
+	$(BIN)/python -m study.workflow.faults --runs $(RUNS)
 
 clean:
 	find outputs -mindepth 1 ! -name README.md -exec rm -rf {} +

@@ -22,7 +22,7 @@ from study import __version__
 from study.config import load
 from study.physics import hertz
 from study.solvers import METHODS, periodic, reference, series, solve_point, timedomain
-from study.workflow.execute import load_chunk, run_grid, warm_up
+from study.workflow.execute import run_grid, warm_up
 from study.workflow.grid import Grid
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
@@ -224,9 +224,9 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     def timed(scheduler, workers):
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
-            paths = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
+            stored = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
             wall = time.perf_counter() - start
-            return wall, sum(float(load_chunk(p)["wall_time"].sum()) for p in paths)
+            return wall, float(stored["wall_time"].sum())
 
     runs = sorted(timed("synchronous", 1) for _ in range(repeat))
     rows, notes = [(f"in process ({grid.size} points)", runs[len(runs) // 2][0])], []

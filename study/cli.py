@@ -14,6 +14,7 @@ from study import __version__
 from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert, display_unit, pint_unit
+from study.workflow.execute import Interrupted, SweepError
 
 DEFAULT_CONFIG = "configs/default.toml"
 
@@ -70,11 +71,16 @@ def cmd_point(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from study.workflow.sweep import run_sweep
+    try:
+        from study.workflow.sweep import run_sweep
 
-    study = load(args.config, parse_set(args.set or []))
-    path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
-                     progress=not args.quiet)
+        study = load(args.config, parse_set(args.set or []))
+        path = run_sweep(study, out_dir=args.out, scheduler=args.scheduler, workers=args.workers,
+                         progress=not args.quiet, max_points=args.max_points, charts=not args.no_charts)
+    except Interrupted:
+        raise
+    except KeyboardInterrupt:
+        raise KeyboardInterrupt("interrupted before the sweep started: nothing new was computed") from None
     print(f"results: {path}")
     if not args.no_charts:
         from study.charts.report import write_report
@@ -133,6 +139,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: cores)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-charts", action="store_true", help="skip the charts")
+    p.add_argument("--max-points", type=int, default=None, metavar="N",
+                   help="largest grid accepted (default sweep.max_points, 1000000)")
     p.set_defaults(func=cmd_sweep)
 
     p = sub.add_parser("charts", help="draw the design charts of a results dataset")
@@ -155,6 +163,12 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except KeyboardInterrupt as exc:  # a sweep says what it kept; anything else just stops
+        print(f"study: {str(exc) or 'interrupted'}", file=sys.stderr)
+        return 130
+    except SweepError as exc:  # an unwritable output, a running sweep, a grid too large: one line
+        print(f"study: error: {exc}", file=sys.stderr)
+        return 1
     except ConfigError as exc:
         print(f"study: error: {exc}", file=sys.stderr)
         return 2

@@ -218,10 +218,11 @@ SWEEP_KEYS = {
     "chunk_size": "design points per task (a whole number >= 1)",
     "scheduler": "address of a dask.distributed scheduler ('' for local processes)",
     "workers": "local worker processes (0: one per core)",
+    "max_points": "the most points a sweep accepts (a whole number >= 1; --max-points overrides it)",
 }
 ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
 SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "contact", "solver", "fatigue", "sweep")
-SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0}
+SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0, "max_points": 1_000_000}
 
 
 class ConfigError(ValueError):
@@ -342,8 +343,12 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
                                 raw["step"], f"{where}.step", problems)
             if step is None:
                 return None
-            if step <= 0 or stop < start:
-                problems.append(f"{where}.step = {raw['step']!r}: must be > 0 with stop >= start")
+            if stop < start:
+                problems.append(f"{where}: stop = {raw['stop']!r} is below start = {raw['start']!r}; a range "
+                                "with a step runs up from start to stop >= start")
+                return None
+            if step <= 0:
+                problems.append(f"{where}.step = {raw['step']!r}: must be > 0")
                 return None
             count = (stop - start) / step
             if count > 1e7:
@@ -492,10 +497,10 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
             inputs[spec.name] = spec.default
 
     sweep = dict(SWEEP_DEFAULTS)
-    for key in ("chunk_size", "workers"):
+    for key in ("chunk_size", "workers", "max_points"):
         if key in sweep_table:
             value = sweep_table[key]
-            if isinstance(value, bool) or not isinstance(value, int) or value < 0 or (key == "chunk_size" and value == 0):
+            if isinstance(value, bool) or not isinstance(value, int) or value < 0 or (key != "workers" and value == 0):
                 problems.append(f"sweep.{key} = {value!r}: must be {SWEEP_KEYS[key]}")
             else:
                 sweep[key] = value
@@ -520,6 +525,9 @@ def load(path: str | Path, overrides: dict[str, Any] | None = None) -> Study:
         text = path.read_text()
     except OSError as exc:
         raise ConfigError([f"cannot read config: {exc.strerror}"], str(path)) from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError([f"not a text config: byte {exc.object[exc.start]:#04x} at offset {exc.start} is not "
+                           "UTF-8 (a config is a TOML text file)"], str(path)) from None
     return load_text(text, str(path), overrides)
 
 

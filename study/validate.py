@@ -18,7 +18,6 @@ from study.solvers import OUTPUTS, solve_point
 from study.solvers.crosscheck import DEFAULT_TOLERANCE
 from study.solvers.orbit import STABILITY_TOL
 from study.units import convert, pint_unit
-from study.workflow.dataset import ChunkColumns
 from study.workflow.execute import run_grid
 from study.workflow.grid import Grid
 
@@ -321,7 +320,7 @@ def crosscheck_survey(workers: int = 2) -> dict[str, np.ndarray]:
     axes["axial_tension"] = axes["axial_tension"][axes["axial_tension"] < convert(30000.0, "lbf", "N")]
     grid = Grid(base=dict(study.inputs), axes=axes)
     with tempfile.TemporaryDirectory() as store:
-        stored = ChunkColumns(run_grid(grid, Path(store), workers=workers, progress=False))
+        stored = run_grid(grid, Path(store), workers=workers, progress=False)
         columns = {name: stored[name] for name in SURVEY_COLUMNS}
     for name, column in zip(grid.dims, np.meshgrid(*grid.axes.values(), indexing="ij")):
         columns[name] = column.ravel()

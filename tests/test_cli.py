@@ -66,3 +66,19 @@ def test_sweep_writes_results_and_charts_then_charts_redraws(tmp_path, capsys):
     assert "validity_map.png" in charts and "span_length.png" in charts
     assert main(["charts", str(out / "results.nc"), "--out", str(tmp_path / "pdf"), "--format", "pdf"]) == 0
     assert any(p.suffix == ".pdf" for p in (tmp_path / "pdf").iterdir())
+
+
+def test_a_sweep_that_cannot_go_on_ends_with_one_line_and_status_1(tmp_path, capsys):
+    config = tmp_path / "tiny.toml"
+    config.write_text((ROOT / "configs" / "paper.toml").read_text().split("[sweep]")[0]
+                      + '[sweep.axes]\nload.rotary_speed = ["100 rpm", "200 rpm", "300 rpm"]\n')
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "charts").write_text("a file where the charts folder goes")
+    assert main(["sweep", str(config), "--out", str(out), "--scheduler", "synchronous", "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert err == f"study: error: cannot write {out / 'charts'}: it is a file, not a folder; nothing was computed\n"
+    assert main(["sweep", str(config), "--out", str(out), "--quiet", "--max-points", "2"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("study: error: the grid has 3 points (3 rotary_speed), more than sweep.max_points = 2")
+    assert err.count("\n") == 1 and not (out / "results.nc").exists()

@@ -214,6 +214,34 @@ def test_missing_file_is_a_config_error():
         config.load(ROOT / "configs" / "no-such-file.toml")
 
 
+def test_binary_garbage_as_a_config_names_the_file(tmp_path):
+    garbage = tmp_path / "results.nc"  # e.g. a dataset passed where the config goes
+    garbage.write_bytes(b"\x89HDF\r\n\x1a\n\x00\x00\xff\xfe")
+    with pytest.raises(ConfigError) as info:
+        config.load(garbage)
+    assert str(info.value) == (f"{garbage}: 1 problem(s)\n  - not a text config: byte 0x89 at offset 0 is not UTF-8 "
+                               "(a config is a TOML text file)")
+
+
+def test_a_range_with_stop_below_start_names_both():
+    with pytest.raises(ConfigError) as info:
+        load_text(with_lines('[sweep.axes] load.rotary_speed = { start = "300 rpm", stop = "50 rpm", step = "10 rpm" }'))
+    assert "sweep.axes.load.rotary_speed: stop = '50 rpm' is below start = '300 rpm'" in str(info.value)
+    assert "step" not in str(info.value).split("below")[0]  # the step is not blamed
+    with pytest.raises(ConfigError, match=r"sweep.axes.load.rotary_speed.step = '-10 rpm': must be > 0"):
+        load_text(with_lines('[sweep.axes] load.rotary_speed = { start = "50 rpm", stop = "300 rpm", step = "-10 rpm" }'))
+
+
+@pytest.mark.parametrize("value, accepted", [(10, True), (0, False), (-1, False), (2.5, False), (True, False)])
+def test_sweep_max_points_is_a_whole_number_of_at_least_one(value, accepted):
+    text = with_lines(f"[sweep] max_points = {str(value).lower()}")
+    if accepted:
+        assert load_text(text).sweep["max_points"] == value
+    else:
+        with pytest.raises(ConfigError, match=f"sweep.max_points = {value!r}: must be the most points a sweep accepts"):
+            load_text(text)
+
+
 # --- fuzzing: whatever a user writes, the answer is a Study or a ConfigError, never a crash ----------
 from hypothesis import given, settings
 from hypothesis import strategies as st

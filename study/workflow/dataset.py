@@ -19,7 +19,7 @@ from study.atomic import atomic_path
 from study.config import FIELDS_BY_NAME, Study
 from study.solvers import OUTPUTS, STATUS
 from study.solvers.result import REGIMES
-from study.workflow.grid import Grid
+from study.workflow.grid import Grid, code_hash
 
 CONVENTIONS = "CF-1.10"
 
@@ -41,21 +41,6 @@ def _input_attrs(name: str) -> dict[str, str]:
     if spec.display_unit:
         attrs["display_units"] = spec.display_unit
     return attrs
-
-
-class ChunkColumns:
-    """The chunk files of a sweep read one column at a time: ``columns[name]`` is that output for every
-    stored point (in chunk order), loaded from each file's member alone. Memory holds one column."""
-
-    def __init__(self, paths: Sequence[Path]):
-        self.paths = list(paths)
-
-    def __getitem__(self, name: str) -> np.ndarray:
-        parts = []
-        for path in self.paths:
-            with np.load(path, allow_pickle=False) as data:
-                parts.append(data[name])
-        return np.concatenate(parts)
 
 
 def _data_variables(grid: Grid, columns, order: np.ndarray) -> Iterator[tuple[str, xr.Variable]]:
@@ -88,7 +73,8 @@ def write_dataset(study: Study, grid: Grid, columns, path: Path, history: Sequen
     """Write the labelled dataset of a sweep to ``path``, atomically and one variable at a time.
 
     columns: ``columns[name]`` gives that output for every point of the grid in any order, with the
-    flat grid index in ``columns["index"]`` (a :class:`ChunkColumns` reads them from the chunk files).
+    flat grid index in ``columns["index"]`` (a :class:`~study.workflow.chunks.StoredColumns` reads them
+    from the chunk files).
     The coordinates and attributes are written first; each output is then read, reshaped and appended,
     so memory holds one variable however many outputs the sweep has.
     """
@@ -116,6 +102,7 @@ def write_dataset(study: Study, grid: Grid, columns, path: Path, history: Sequen
         "study_name": study.name,
         "config_hash": study.config_hash,
         "config": study.text,
+        "code_hash": code_hash(),  # of the sources that computed the points (study.workflow.grid.code_hash)
     }
     header = xr.Dataset(coords=coords, attrs=attrs)
     with atomic_path(path) as tmp:

@@ -2,49 +2,37 @@
 
 Local worker processes by default (a ``dask.distributed.LocalCluster``), an existing cluster when
 given a scheduler address, or ``"synchronous"`` to run in this process. Each chunk's results are
-written atomically to ``<store>/<chunk key>.npz`` as soon as they arrive: memory stays bounded,
-a killed worker's chunk is simply redone by dask, and an interrupted sweep resumes by skipping the
-chunks already on disk.
+written atomically to ``<store>/<chunk key>.npz`` (with a checksum, :mod:`study.workflow.chunks`)
+as soon as they arrive: memory stays bounded and an interrupted sweep resumes by solving only the
+points whose keys are not in the store. Every task carries its own points, so a lost worker, or
+every worker lost at once, only delays the chunks it held: they are solved again.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
+import sys
+from concurrent.futures import CancelledError
 from pathlib import Path
-from typing import Callable, Mapping
+from typing import Callable
 
 import numpy as np
 
-from study.atomic import atomic_path
-from study.solvers import OUTPUTS, STATUS_CODES, solve_point
-from study.workflow.grid import Grid, auto_chunk_size, chunk_key, grid_id
+from study.workflow.chunks import Store, StoredColumns, save_chunk, solve_chunk
+from study.workflow.grid import Grid, auto_chunk_size, chunk_key, chunks, code_hash
+
+#: How many times a chunk is resubmitted after the worker solving it was lost.
+RESUBMITS = 20
 
 
-def solve_chunk(grid: Grid, indices: range) -> dict[str, np.ndarray]:
-    """Solve the points ``indices`` of the grid; columns of SI values, NaN where not computed."""
-    n = len(indices)
-    columns = {name: np.full(n, np.nan) for name in OUTPUTS}
-    columns["error_estimate"] = np.full(n, np.nan)
-    columns["wall_time"] = np.zeros(n)
-    status = np.zeros(n, dtype=np.int8)
-    messages, methods = [], []
-    for row, inputs in enumerate(grid.points(indices)):
-        result = solve_point(inputs)
-        for name, value in result.values.items():
-            if name in columns:
-                columns[name][row] = value
-        if result.error_estimate is not None:
-            columns["error_estimate"][row] = result.error_estimate
-        columns["wall_time"][row] = result.wall_time
-        status[row] = STATUS_CODES[result.status]
-        messages.append(result.message)
-        methods.append(result.method)
-    columns["status"] = status
-    columns["message"] = np.array(messages, dtype=str)
-    columns["method"] = np.array(methods, dtype=str)
-    columns["index"] = np.arange(indices.start, indices.stop)
-    return columns
+class SweepError(Exception):
+    """A sweep that cannot go on; str() is one line naming the path, the reason and what was kept."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during a sweep; str() says how much was kept and how to resume."""
 
 
 def warm_up() -> None:
@@ -52,77 +40,179 @@ def warm_up() -> None:
     import study.solvers  # noqa: F401
 
 
-def _save_atomic(path: Path, columns: Mapping[str, np.ndarray]) -> None:
-    with atomic_path(path) as tmp:
-        np.savez(tmp, **columns)
+def dask_setup(worker) -> None:
+    """Preload of a local worker process: Ctrl-C is for the sweep, which stops its workers itself; a
+    worker ignores it (otherwise every worker prints a traceback of its own)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def load_chunk(path: Path) -> dict[str, np.ndarray]:
-    with np.load(path, allow_pickle=False) as data:
-        return {key: data[key] for key in data.files}
+def tell(message: str) -> None:
+    """The default ``say``: one line on stderr."""
+    print(f"study: {message}", file=sys.stderr)
+
+
+def reason(exc: OSError) -> str:
+    """The operating system's words for an OSError (e.g. 'No space left on device')."""
+    if exc.errno:
+        return exc.strerror or os.strerror(exc.errno)
+    return str(exc)
 
 
 def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: int = 0,
-             chunk_size: int = 0, progress: bool = True,
-             on_chunk: Callable[[int], None] | None = None) -> list[Path]:
-    """Solve every chunk of ``grid`` not yet in ``store``; return the chunk files in grid order.
+             chunk_size: int = 0, progress: bool = True, on_chunk: Callable[[int], None] | None = None,
+             say: Callable[[str], None] = tell) -> StoredColumns:
+    """Solve every point of ``grid`` whose key is not yet in ``store``; return the stored columns of
+    the grid's points in grid order.
 
     scheduler : None or "" for a local process pool, "synchronous" for this process, otherwise
         the address of a running dask.distributed scheduler (e.g. "tcp://10.0.0.5:8786").
     workers : local worker processes (0: one per core).
+    chunk_size : points per task (0: :func:`auto_chunk_size` of the grid); never depends on ``workers``.
     on_chunk : called with the number of chunks done after each one is stored (tests use it).
+    say : prints a line for the user (a damaged chunk found and removed).
+    Raises :class:`SweepError` when a chunk cannot be written, :class:`Interrupted` on Ctrl-C.
     """
     store.mkdir(parents=True, exist_ok=True)
     for stale in store.glob(".tmp-*"):  # a write cut short by a kill: never a result, remove it
         stale.unlink(missing_ok=True)
-    workers = workers or os.cpu_count() or 1
-    chunk_size = chunk_size or auto_chunk_size(grid.size, workers)
-    chunks = list(grid.chunks(chunk_size))
-    grid_hash = grid_id(grid)
-    paths = [store / f"{chunk_key(grid, chunk, grid_hash)}.npz" for chunk in chunks]
-    todo = [(chunk, path) for chunk, path in zip(chunks, paths) if not path.exists()]
+    keys = grid.point_keys(code_hash())
+    stored = Store.scan(store)
+    for path, why in stored.damaged:
+        say(f"damaged chunk {path.name} ({why}): removed, its points are solved again")
+    todo = np.flatnonzero(stored.locate(keys)[0] < 0)
+    if len(todo) < grid.size:
+        say(f"reusing {grid.size - len(todo)} of {grid.size} points stored in {store}")
+    tasks = [(indices, store / f"{chunk_key(keys[indices])}.npz")
+             for indices in chunks(todo, chunk_size or auto_chunk_size(grid.size))]
 
     from tqdm import tqdm
 
-    bar = tqdm(total=grid.size, initial=grid.size - sum(len(c) for c, _ in todo), unit="point",
-               disable=not progress, desc="sweep", dynamic_ncols=True)
-    done = len(chunks) - len(todo)
-    try:
-        if not todo:
-            return paths
-        if scheduler == "synchronous":
-            for chunk, path in todo:
-                _save_atomic(path, solve_chunk(grid, chunk))
-                done += 1
-                bar.update(len(chunk))
-                if on_chunk:
-                    on_chunk(done)
-            return paths
-        from dask.distributed import Client, LocalCluster, as_completed
+    kept = grid.size - len(todo)
+    bar = tqdm(total=grid.size, initial=kept, unit="point", disable=not progress, desc="sweep",
+               dynamic_ncols=True)
+    done = 0
 
-        cluster = None
-        if scheduler:
-            client = Client(scheduler)
-        else:
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.ERROR)
-            client = Client(cluster)
+    def store_chunk(indices, path, columns):
+        nonlocal done, kept
         try:
-            client.run(warm_up)  # import the solvers on every worker before the clock of the first chunk
-            shared = client.scatter(grid, broadcast=True)
-            futures = {client.submit(solve_chunk, shared, chunk, pure=False): (chunk, path) for chunk, path in todo}
-            for future in as_completed(futures):
-                chunk, path = futures.pop(future)
-                _save_atomic(path, future.result())
-                future.release()
-                done += 1
-                bar.update(len(chunk))
-                if on_chunk:
-                    on_chunk(done)
-        finally:
-            client.close()
-            if cluster is not None:
-                cluster.close()
-        return paths
+            save_chunk(path, columns)
+        except OSError as exc:
+            where = exc.filename or path
+            raise SweepError(f"cannot write {where}: {reason(exc)}; kept {kept} of {grid.size} points in "
+                             f"{store} (run the same command again to resume once it can be written)") from None
+        stored.add(path, columns["point_key"])
+        done += 1
+        kept += len(indices)
+        bar.update(len(indices))
+        if on_chunk:
+            on_chunk(done)
+
+    try:
+        if scheduler == "synchronous":
+            for indices, path in tasks:
+                store_chunk(indices, path, solve_chunk(grid.take(indices, keys[indices])))
+        elif tasks:
+            _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1)
+    except KeyboardInterrupt:
+        _quiet_shutdown()
+        raise Interrupted(f"interrupted: kept {kept} of {grid.size} points in {store}; run the same command "
+                          "again to resume") from None
     finally:
         bar.close()
+    return stored.columns(keys)
+
+
+def _local_cluster(workers: int, attempts: int = 3):
+    """A LocalCluster of ``workers`` single-thread processes that never see Ctrl-C.
+
+    SIGINT is ignored in this process while the cluster starts, so the worker processes it spawns
+    inherit the ignored signal (a spawned Python keeps an ignored SIGINT ignored); a Ctrl-C in those
+    1-3 s is lost (press it again). A worker restarted later ignores it once :func:`dask_setup` has
+    run. A worker killed while the cluster starts fails the start: it is tried again.
+    """
+    import signal
+    import threading
+
+    from dask.distributed import LocalCluster
+    from distributed.deploy.spec import SpecCluster
+
+    before = set(SpecCluster._instances)
+    for attempt in range(attempts):
+        main = threading.current_thread() is threading.main_thread()  # only it may set handlers
+        handler = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        try:
+            return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
+                                preload=[__name__])
+        except BaseException as exc:
+            retry = isinstance(exc, RuntimeError) and attempt < attempts - 1
+            if not retry:
+                _quiet_shutdown()
+            for started in set(SpecCluster._instances) - before:
+                with contextlib.suppress(Exception):
+                    started.close(timeout=5)
+            if isinstance(exc, RuntimeError) and not retry:
+                raise SweepError(f"could not start {workers} local workers ({exc}); nothing was computed in "
+                                 "this run: run the same command again") from None
+            if not retry:
+                raise
+        finally:
+            if main:
+                signal.signal(signal.SIGINT, handler)
+
+
+def _quiet_shutdown() -> None:
+    """Going down on purpose: the event loop's and dask's complaints about half-started or cancelled
+    work would only bury the one line the user needs."""
+    for name in ("asyncio", "distributed", "tornado"):
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+
+
+def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers) -> None:
+    """Submit every chunk with its own points; store each as it completes; resubmit a chunk whose
+    worker was lost (dask gives up on a task after a few lost workers: ``KilledWorker``)."""
+    from dask.distributed import Client, as_completed
+    from distributed.comm.core import CommClosedError
+    from distributed.scheduler import KilledWorker
+
+    if scheduler:
+        cluster, client = None, Client(scheduler)
+    else:
+        cluster = _local_cluster(workers)
+        client = Client(cluster)
+    try:
+        try:  # import the solvers on every worker before the clock of the first chunk
+            client.run(warm_up)
+        except Exception:  # noqa: BLE001 - only a head start: a worker lost meanwhile imports on its first task
+            pass
+
+        def submit(task):
+            indices, _ = task
+            return client.submit(solve_chunk, grid.take(indices, keys[indices]), pure=False)
+
+        futures = {submit(task): (task, 0) for task in tasks}
+        pending = as_completed(futures)
+        for future in pending:
+            task, resubmits = futures.pop(future)
+            try:
+                columns = future.result()
+            except (KilledWorker, CancelledError, CommClosedError) as exc:
+                if resubmits >= RESUBMITS:
+                    raise SweepError(f"chunk {task[1].name} lost its worker {resubmits + 1} times "
+                                     f"({type(exc).__name__}); run the same command again to resume") from None
+                again = submit(task)
+                futures[again] = (task, resubmits + 1)
+                pending.add(again)
+                continue
+            finally:
+                future.release()
+            store_chunk(*task, columns)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+

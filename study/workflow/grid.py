@@ -1,20 +1,76 @@
-"""The design grid: the cartesian product of the sweep axes, in chunks of flat indices.
+"""The design grid: the cartesian product of the sweep axes, its points and their keys.
 
 Points are numbered in C order over the axes (the last axis varies fastest), so a flat index
-maps to one tuple of axis indices with ``numpy.unravel_index`` and chunks are plain ranges.
+maps to one tuple of axis indices with ``numpy.unravel_index``. Every point has a key: a hash of
+its normalised inputs and of the code that computes it (:func:`code_hash`), so a stored result is
+reused only for the same inputs solved by the same code, whatever grid it was computed in.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, Iterator, Mapping
 
 import numpy as np
 
+import study
 from study import __version__
+
+#: The package sources whose change changes a point's result: the physics, the solvers, and the
+#: workflow module that turns a point's result into a chunk's columns (relative to the package).
+CODE_SOURCES = ("__init__.py", "physics", "solvers", "workflow/chunks.py")
+
+KEY_DTYPE = "S32"  # a point key: 128-bit BLAKE2b digest in hex
+
+
+def code_hash(package: str | None = None) -> str:
+    """SHA-256 of the source files that compute a point (:data:`CODE_SOURCES` under ``package``, by
+    default this installed package, read once a process), each with its path: any edit to the physics
+    or a solver changes it."""
+    return _hash_sources(Path(package)) if package else _installed_code_hash()
+
+
+@functools.lru_cache(maxsize=1)
+def _installed_code_hash() -> str:
+    return _hash_sources(Path(study.__file__).parent)
+
+
+def _hash_sources(root: Path) -> str:
+    digest = hashlib.sha256(f"study {__version__}".encode())
+    for source in CODE_SOURCES:
+        path = root / source
+        files = sorted(path.rglob("*.py")) if path.is_dir() else [path]
+        for file in files:
+            digest.update(f"\n{file.relative_to(root).as_posix()}\n".encode())
+            digest.update(file.read_bytes())
+    return digest.hexdigest()
+
+
+@dataclass(frozen=True)
+class Points:
+    """Some points of a grid, self-contained (a task carries its own inputs): the fixed inputs, the
+    swept inputs' values at these points, and the points' keys."""
+
+    base: Mapping[str, Any]
+    columns: Mapping[str, np.ndarray]
+    keys: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.keys)
+
+    def __iter__(self) -> Iterator[dict[str, Any]]:
+        names = list(self.columns)
+        values = [np.asarray(self.columns[name]).tolist() for name in names]
+        for row in range(len(self)):
+            inputs = dict(self.base)
+            for name, column in zip(names, values):
+                inputs[name] = column[row]
+            yield inputs
 
 
 @dataclass(frozen=True)
@@ -43,48 +99,81 @@ class Grid:
     def points(self, indices: range) -> Iterator[dict[str, Any]]:
         """SI inputs of the points ``indices`` (C order; any range, a step included), unravelled once for the
         whole range."""
-        names = list(self.axes)
-        columns = [self.axes[name][i].tolist() for name, i in
-                   zip(names, np.unravel_index(np.asarray(indices, dtype=int), self.shape))] if names else []
-        for row in range(len(indices)):
-            inputs = dict(self.base)
-            for name, column in zip(names, columns):
-                inputs[name] = column[row]
-            yield inputs
+        return iter(self.take(np.asarray(indices, dtype=np.int64), np.zeros(len(indices), KEY_DTYPE)))
 
-    def chunks(self, chunk_size: int) -> Iterator[range]:
-        """Consecutive ranges of flat indices, each at most ``chunk_size`` long."""
-        for start in range(0, self.size, chunk_size):
-            yield range(start, min(start + chunk_size, self.size))
+    def take(self, indices: np.ndarray, keys: np.ndarray) -> Points:
+        """The points at the flat ``indices`` with their ``keys``, as a self-contained :class:`Points`."""
+        indices = np.asarray(indices, dtype=np.int64)
+        unravelled = np.unravel_index(indices, self.shape) if self.axes else ()
+        columns = {name: np.asarray(values)[i] for (name, values), i in zip(self.axes.items(), unravelled)}
+        return Points(dict(self.base), columns, np.asarray(keys, dtype=KEY_DTYPE))
+
+    def point_keys(self, code: str | None = None) -> np.ndarray:
+        """The key of every point (C order): :func:`point_key` of its inputs, computed for the whole grid
+        by hashing the inputs' common prefix once (about a microsecond a point)."""
+        code = code_hash() if code is None else code
+        names = sorted(set(self.base) | set(self.axes))
+        swept = [name for name in names if name in self.axes]
+        segments = [f"{code}|"]
+        for name in names:
+            if name in self.axes:
+                segments[-1] += f"{json.dumps(name)}="
+                segments.append(";")
+            else:
+                segments[-1] += f"{json.dumps(name)}={_token(self.base[name])};"
+        tokens = [[_token(v).encode() for v in np.asarray(self.axes[name]).tolist()] for name in swept]
+        tails = [segment.encode() for segment in segments[1:]]
+        shape = [len(t) for t in tokens]
+        keys = np.empty(math.prod(shape), dtype=KEY_DTYPE)
+        position = 0
+
+        def fill(level: int, prefix):
+            nonlocal position
+            if level == len(tokens):
+                keys[position] = prefix.hexdigest().encode()
+                position += 1
+                return
+            for token in tokens[level]:
+                state = prefix.copy()
+                state.update(token + tails[level])
+                fill(level + 1, state)
+
+        fill(0, hashlib.blake2b(segments[0].encode(), digest_size=16))
+        if not swept:
+            return keys
+        order = [swept.index(name) for name in self.axes]  # hashed in name order; the grid's C order
+        return keys.reshape(shape).transpose(order).ravel()
 
 
-def auto_chunk_size(size: int, workers: int) -> int:
-    """Points per task: about 8 tasks per worker to balance, at least 16 and at most 512 points to
-    amortise the scheduler's per-task cost (a few ms per task against about 1 ms per point)."""
-    return int(min(512, max(16, math.ceil(size / max(1, 8 * workers)))))
-
-
-def _normalise(value):
+def _token(value) -> str:
+    """A value's normalised text: floats exactly (hex), anything else as JSON."""
     if isinstance(value, float):
-        return float.hex(value) if math.isfinite(value) else repr(value)
-    return value
+        return json.dumps(float.hex(value) if math.isfinite(value) else repr(value))
+    return json.dumps(value)
 
 
-def point_id(inputs: Mapping[str, Any]) -> str:
-    """Hash of the normalised inputs of one point and the solver version (signac's job id idea)."""
-    text = json.dumps({k: _normalise(v) for k, v in sorted(inputs.items())}, sort_keys=True)
-    return hashlib.sha256(f"{__version__}|{text}".encode()).hexdigest()
+def point_key(inputs: Mapping[str, Any], code: str | None = None) -> bytes:
+    """Key of one point: BLAKE2b of its normalised inputs (every input, in name order, floats exactly)
+    and of the code that computes it (:func:`code_hash`); signac's job id idea, at point granularity."""
+    code = code_hash() if code is None else code
+    text = f"{code}|" + "".join(f"{json.dumps(name)}={_token(inputs[name])};" for name in sorted(inputs))
+    return hashlib.blake2b(text.encode(), digest_size=16).hexdigest().encode()
 
 
-def grid_id(grid: Grid) -> str:
-    """Hash of the normalised fixed inputs, the axes' values and the solver version."""
-    axes = {name: [_normalise(v) for v in np.asarray(values).tolist()] for name, values in grid.axes.items()}
-    return point_id({**grid.base, "__axes__": json.dumps(axes, sort_keys=True), "__order__": list(grid.axes)})
+def auto_chunk_size(size: int) -> int:
+    """Points per task when the config does not say (``sweep.chunk_size``): about 32 tasks, to balance
+    a few workers, at least 16 and at most 512 points to amortise the scheduler's per-task cost (a few
+    ms per task against about 1 ms per point). It depends on the grid alone, never on the number of
+    workers (reuse does not depend on it either: a stored point is found by its key)."""
+    return int(min(512, max(16, math.ceil(size / 32))))
 
 
-def chunk_key(grid: Grid, indices: range, grid_hash: str | None = None) -> str:
-    """Key of a chunk: its index range within the hashed grid. The grid fixes every point's inputs (C
-    order over the axes), so the key changes with any input, axis value or solver version and never
-    reuses a stale result - the same guarantee as hashing each point, without hashing each point."""
-    base = grid_hash or grid_id(grid)
-    return hashlib.sha256(f"{base}|{indices.start}|{indices.stop}".encode()).hexdigest()[:32]
+def chunks(indices: np.ndarray, chunk_size: int) -> Iterator[np.ndarray]:
+    """Consecutive runs of ``indices``, each at most ``chunk_size`` long."""
+    for start in range(0, len(indices), chunk_size):
+        yield indices[start:start + chunk_size]
+
+
+def chunk_key(keys: np.ndarray) -> str:
+    """Name of a chunk file: a hash of its points' keys (the same points give the same name)."""
+    return hashlib.blake2b(b"".join(np.asarray(keys, dtype=KEY_DTYPE).tolist()), digest_size=16).hexdigest()

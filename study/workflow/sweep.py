@@ -1,42 +1,119 @@
-"""A whole sweep: config -> grid -> parallel solve -> ``outputs/<study name>/results.nc``."""
+"""A whole sweep: config -> grid -> parallel solve -> ``outputs/<study name>/results.nc``.
+
+Before any work: the grid's size against its cap (``sweep.max_points``), the output folder's
+writability, and the folder's lock (one sweep at a time). During and after it, an OS error or a
+Ctrl-C ends the run with one line saying what was kept and how to resume.
+"""
 
 from __future__ import annotations
 
+import os
 import shutil
+import tempfile
 from pathlib import Path
 
-
 from study.config import Study
-from study.workflow.dataset import ChunkColumns, previous_history, write_dataset
-from study.workflow.execute import run_grid
+from study.solvers import OUTPUTS
+from study.workflow.dataset import previous_history, write_dataset
+from study.workflow.chunks import ChunkDamaged
+from study.workflow.execute import Interrupted, SweepError, reason, run_grid, tell
 from study.workflow.grid import Grid
+from study.workflow.lock import Locked, folder_lock
 
 PARTIAL = ".partial"  # chunk store inside the study folder, removed once the dataset is written
+RESULTS = "results.nc"
 
 
 def study_grid(study: Study) -> Grid:
     return Grid(base=dict(study.inputs), axes=dict(study.axes))
 
 
+def _bytes(n: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return f"{n:.3g} {unit}"
+        n /= 1000
+    raise AssertionError
+
+
+def check_size(study: Study, cap: int) -> None:
+    """Refuse a grid of more than ``cap`` points, with an estimate of what it would take."""
+    size = study.size
+    if size <= cap:
+        return
+    shape = " x ".join(f"{len(values)} {name}" for name, values in study.axes.items())
+    per_point = 8 * (len(OUTPUTS) + 4) + 32 + 64  # float outputs, status, key and message text [bytes]
+    raise SweepError(
+        f"the grid has {size:,} points ({shape}), more than sweep.max_points = {cap:,}: about "
+        f"{_bytes(size * per_point)} of results and {_bytes(size * 8)} of memory per output column, and "
+        f"{size * 1e-3 / 3600:,.3g} core-hours at 1 ms a point; "
+        f"to run it anyway set sweep.max_points or pass --max-points {size}")
+
+
+def check_writable(out: Path, charts: bool = False) -> None:
+    """Before any work: the output folder, its chunk store and results file can be written."""
+    for folder in [out, *out.parents]:
+        if folder.exists() and not folder.is_dir():
+            raise SweepError(f"cannot write {out}: {folder} is a file, not a folder; nothing was computed")
+    for name in [PARTIAL, RESULTS] + (["charts"] if charts else []):
+        path = out / name
+        if name == RESULTS and path.is_dir():
+            raise SweepError(f"cannot write {path}: it is a folder; remove or rename it; nothing was computed")
+        if name != RESULTS and path.exists() and not path.is_dir():
+            raise SweepError(f"cannot write {path}: it is a file, not a folder; nothing was computed")
+    try:
+        for folder in (out, out / PARTIAL):
+            folder.mkdir(parents=True, exist_ok=True)
+            fd, probe = tempfile.mkstemp(dir=folder, prefix=".tmp-probe-")
+            os.close(fd)
+            os.unlink(probe)
+    except OSError as exc:
+        raise SweepError(f"cannot write {exc.filename or out}: {reason(exc)}; nothing was computed") from None
+
+
 def run_sweep(study: Study, out_dir: str | Path | None = None, *, scheduler: str | None = None,
-              workers: int | None = None, progress: bool = True, on_chunk=None) -> Path:
+              workers: int | None = None, progress: bool = True, on_chunk=None, max_points: int | None = None,
+              charts: bool = False, say=None) -> Path:
     """Solve the study's grid and write ``<out_dir>/results.nc``; return its path.
 
-    Resumable: chunks already in ``<out_dir>/.partial`` (from an interrupted run of the same inputs
-    and solver version) are not recomputed.
+    Resumable: points already in ``<out_dir>/.partial`` (from an interrupted run, solved by the same
+    code for the same inputs, in any grid) are not recomputed. ``charts``: also check that the charts
+    folder can be written. Raises :class:`SweepError` (one line) for a grid over ``max_points``
+    (default ``sweep.max_points``), an unwritable output, or a sweep already running in the folder;
+    :class:`Interrupted` on Ctrl-C.
     """
     out = Path(out_dir) if out_dir else Path("outputs") / study.name
+    check_size(study, study.sweep["max_points"] if max_points is None else max_points)
+    check_writable(out, charts)
+    say = say or tell
+    try:
+        with folder_lock(out, study.path or study.name, say):
+            return _locked_sweep(study, out, scheduler, workers, progress, on_chunk, say)
+    except Locked as exc:
+        raise SweepError(str(exc)) from None
+
+
+def _locked_sweep(study, out, scheduler, workers, progress, on_chunk, say) -> Path:
     for stale in out.glob(".tmp-*"):  # a dataset write cut short by a kill
         stale.unlink(missing_ok=True)
     grid = study_grid(study)
     store = out / PARTIAL
-    paths = run_grid(
+    columns = run_grid(
         grid, store,
         scheduler=study.sweep["scheduler"] if scheduler is None else scheduler,
         workers=study.sweep["workers"] if workers is None else workers,
-        chunk_size=study.sweep["chunk_size"], progress=progress, on_chunk=on_chunk,
+        chunk_size=study.sweep["chunk_size"], progress=progress, on_chunk=on_chunk, say=say,
     )
-    result = out / "results.nc"
-    write_dataset(study, grid, ChunkColumns(paths), result, previous_history(result))
+    result = out / RESULTS
+    kept = f"all {grid.size} points are kept in {store}; run the same command again to write it (nothing is recomputed)"
+    try:
+        write_dataset(study, grid, columns, result, previous_history(result))
+    except OSError as exc:
+        raise SweepError(f"cannot write {result}: {reason(exc)}; {kept}") from None
+    except ChunkDamaged as exc:
+        raise SweepError(f"a chunk was damaged while {result} was written ({exc}); run the same command "
+                         "again: it is found and solved again") from None
+    except KeyboardInterrupt:
+        raise Interrupted(f"interrupted while writing {result}; {kept}") from None
     shutil.rmtree(store, ignore_errors=True)
     return result

@@ -1,5 +1,12 @@
 """Sweeps end to end (study.workflow.execute, .dataset, .sweep): dataset, resume, distributed."""
 
+import errno
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -7,6 +14,7 @@ import pytest
 import xarray as xr
 
 from study.config import load_text
+from study.workflow.execute import SweepError
 from study.workflow.sweep import PARTIAL, run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -89,7 +97,7 @@ def test_interrupted_sweep_resumes_and_recomputes_only_what_is_missing(tmp_path,
 
     solved = []
     original = execute.solve_chunk
-    monkeypatch.setattr(execute, "solve_chunk", lambda grid, idx: solved.append(idx) or original(grid, idx))
+    monkeypatch.setattr(execute, "solve_chunk", lambda points: solved.append(len(points)) or original(points))
     path = run_sweep(small_study(), out, scheduler="synchronous", progress=False)
     total_chunks = -(-30 // 4)
     assert len(solved) == total_chunks - 2
@@ -143,3 +151,243 @@ def test_an_output_named_like_a_swept_input_is_kept_beside_it(tmp_path):
     with xr.open_dataset(path) as ds:
         np.testing.assert_allclose(ds.span_length_result.values, ds.span_length.values)
         assert "as solved" in ds.span_length_result.attrs["long_name"]
+
+
+# --- Faults (issue 19): each test injects one and checks that nothing is lost, mixed or silently broken.
+
+def solved_points(monkeypatch):
+    """Count the points this process solves (synchronous sweeps)."""
+    import study.workflow.execute as execute
+
+    solved = []
+    original = execute.solve_chunk
+    monkeypatch.setattr(execute, "solve_chunk", lambda points: solved.append(len(points)) or original(points))
+    return solved
+
+
+def interrupt_at(chunks_done):
+    def stop(done):
+        if done == chunks_done:
+            raise KeyboardInterrupt
+    return stop
+
+
+def same_as(path, reference):
+    with xr.open_dataset(path) as ds:
+        for name in ("peak_contact_force", "status", "first_natural_frequency", "message"):
+            np.testing.assert_array_equal(ds[name].values, reference[name].values, err_msg=name)
+
+
+def damage_truncate(path):
+    path.write_bytes(path.read_bytes()[:-100])
+
+
+def damage_empty(path):
+    path.write_bytes(b"")
+
+
+def damage_flip(path):
+    # one bit of a stored value flipped (inside a member's data, not the zip's metadata, which may not matter)
+    import zipfile
+
+    with zipfile.ZipFile(path) as archive:
+        member = max(archive.infolist(), key=lambda info: info.file_size)
+    data = bytearray(path.read_bytes())
+    name_length, extra_length = int.from_bytes(data[member.header_offset + 26:member.header_offset + 28], "little"), \
+        int.from_bytes(data[member.header_offset + 28:member.header_offset + 30], "little")
+    start = member.header_offset + 30 + name_length + extra_length
+    data[start + member.file_size - 4] ^= 0x10  # a byte of the last value, past the .npy header
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.parametrize("damage", [damage_truncate, damage_empty, damage_flip])
+def test_a_damaged_chunk_is_named_and_solved_again(tmp_path, reference, monkeypatch, damage):
+    out = tmp_path / "d"
+    with pytest.raises(KeyboardInterrupt):  # all 8 chunks stored, the dataset not yet written
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False, on_chunk=interrupt_at(8))
+    victim = sorted((out / PARTIAL).glob("*.npz"))[3]
+    damage(victim)
+    said, solved = [], solved_points(monkeypatch)
+    path = run_sweep(small_study(), out, scheduler="synchronous", progress=False, say=said.append)
+    assert said[0].startswith(f"damaged chunk {victim.name} (") and "solved again" in said[0]
+    assert said[1:] == [f"reusing {30 - sum(solved)} of 30 points stored in {out / PARTIAL}"]
+    assert sum(solved) in (2, 4)  # the damaged chunk's points only (the last chunk has 2)
+    same_as(path, reference)
+
+
+def test_a_changed_solver_source_recomputes_every_point(tmp_path, reference):
+    # The fault of issue 19: a solver's code changed without a version bump, then an interrupted sweep
+    # resumed. A copy of the package with core.py edited (peak force doubled) resumes the store of the
+    # installed one: every point must be solved again by the new code, none mixed in from the old.
+    out = tmp_path / "code"
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False, on_chunk=interrupt_at(5))
+    package = tmp_path / "edited"
+    shutil.copytree(ROOT / "study", package / "study", ignore=shutil.ignore_patterns("__pycache__"))
+    core = package / "study" / "solvers" / "core.py"
+    core.write_text(core.read_text().replace('"peak_contact_force": peak,', '"peak_contact_force": 2.0 * peak,'))
+    config = tmp_path / "small.toml"
+    config.write_text(small_study().text)
+    proc = subprocess.run([sys.executable, "-m", "study", "sweep", str(config), "--out", str(out), "--scheduler",
+                           "synchronous", "--quiet", "--no-charts"], cwd=package, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert "reusing" not in proc.stderr
+    with xr.open_dataset(out / "results.nc") as ds:
+        np.testing.assert_array_equal(ds.peak_contact_force.values, 2.0 * reference.peak_contact_force.values)
+        assert ds.attrs["code_hash"] != reference.attrs["code_hash"]
+
+
+def test_another_chunking_or_a_changed_axis_value_reuses_every_unchanged_point(tmp_path, monkeypatch):
+    out = tmp_path / "axis"
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False, on_chunk=interrupt_at(3))
+    solved = solved_points(monkeypatch)
+    with pytest.raises(KeyboardInterrupt):  # 12 points stored in chunks of 4; resumed in chunks of 5
+        run_sweep(small_study(chunk_size=5), out, scheduler="synchronous", progress=False, on_chunk=interrupt_at(4))
+    assert solved == [5, 5, 5, 3]  # the 18 missing points, none of the 12 stored
+    solved.clear()
+    # One of the five rotary speeds changed (150 -> 175 rpm): 6 of the 30 points are new.
+    changed = small_study().text.replace('load.rotary_speed = { start = "100 rpm", stop = "300 rpm", num = 5 }',
+                                         'load.rotary_speed = ["100 rpm", "175 rpm", "200 rpm", "250 rpm", "300 rpm"]')
+    path = run_sweep(load_text(changed, "small.toml"), out, scheduler="synchronous", progress=False)
+    assert sum(solved) == 6
+    with xr.open_dataset(path) as ds:
+        fresh = run_sweep(load_text(changed, "small.toml"), tmp_path / "fresh", scheduler="synchronous",
+                          progress=False)
+        with xr.open_dataset(fresh) as ref:
+            np.testing.assert_array_equal(ds.peak_contact_force.values, ref.peak_contact_force.values)
+
+
+def test_a_second_sweep_into_a_running_ones_folder_is_refused_and_a_killed_ones_lock_taken_over(tmp_path):
+    # A real concurrent run: `study sweep` in another process, 3000 points in chunks of 10.
+    config = tmp_path / "long.toml"
+    config.write_text(TEXT.split("[sweep]")[0] + '[sweep]\nchunk_size = 10\n[sweep.axes]\n'
+                      'load.rotary_speed = { start = "50 rpm", stop = "300 rpm", num = 1000 }\n'
+                      'impact.restitution = [0.2, 0.5, 0.8]\n')
+    out = tmp_path / "busy"
+    running = subprocess.Popen([sys.executable, "-m", "study", "sweep", str(config), "--out", str(out),
+                                "--scheduler", "synchronous", "--quiet", "--no-charts"], cwd=ROOT,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        while running.poll() is None and not list((out / PARTIAL).glob("*.npz")):
+            time.sleep(0.01)
+        assert running.poll() is None, "the first sweep ended before the second one started"
+        with pytest.raises(SweepError) as refused:
+            run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+        message = str(refused.value)
+        assert f"{out} is being swept by pid {running.pid} on {socket.gethostname()}, started 20" in message
+        assert f"config {config}" in message and "\n" not in message
+    finally:
+        running.kill()
+        running.wait()
+    said = []
+    path = run_sweep(small_study(), out, scheduler="synchronous", progress=False, say=said.append)
+    assert said[0].startswith(f"took over the stale lock of pid {running.pid} ")
+    assert path.exists() and not (out / ".lock").exists()
+
+
+def read_only(out, monkeypatch):
+    out.mkdir()
+    out.chmod(0o555)
+    if os.geteuid() == 0:  # root ignores the mode bits: inject the kernel's answer to everyone else
+        import tempfile
+
+        def refuse(*args, dir=None, **kwargs):
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(dir))
+
+        monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    return str(out), "Permission denied"
+
+
+def file_as_folder(out, monkeypatch):
+    out.write_text("not a folder")
+    return f"{out}: {out} is a file, not a folder", None
+
+
+def file_as_parent(out, monkeypatch):
+    out.parent.write_text("")  # outputs/ is a file: outputs/small cannot be made
+    return f"cannot write {out}: {out.parent} is a file, not a folder", None
+
+
+def results_a_folder(out, monkeypatch):
+    (out / "results.nc").mkdir(parents=True)
+    return f"cannot write {out / 'results.nc'}: it is a folder", None
+
+
+@pytest.mark.parametrize("fault", [read_only, file_as_folder, file_as_parent, results_a_folder])
+def test_an_unwritable_output_is_refused_before_any_work(tmp_path, monkeypatch, fault):
+    out = tmp_path / "outputs" / "small" if fault is file_as_parent else tmp_path / "small"
+    path, reason = fault(out, monkeypatch)
+    solved = solved_points(monkeypatch)
+    try:
+        with pytest.raises(SweepError) as refused:
+            run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+    finally:
+        if out.is_dir():
+            out.chmod(0o755)
+    message = str(refused.value)
+    assert path in message and (reason is None or reason in message)
+    assert message.endswith("nothing was computed") and "\n" not in message and solved == []
+
+
+def test_a_full_disk_while_storing_chunks_keeps_what_was_stored(tmp_path, monkeypatch, reference):
+    import study.workflow.execute as execute
+
+    out = tmp_path / "full"
+    calls = []
+    original = execute.save_chunk
+
+    def save_until_full(path, columns):
+        calls.append(path)
+        if len(calls) == 3:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), f"{path.parent}/.tmp-x.npz")
+        original(path, columns)
+
+    monkeypatch.setattr(execute, "save_chunk", save_until_full)
+    with pytest.raises(SweepError) as full:
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+    assert str(full.value) == (f"cannot write {out / PARTIAL}/.tmp-x.npz: No space left on device; kept 8 of 30 points "
+                               f"in {out / PARTIAL} (run the same command again to resume once it can be written)")
+    monkeypatch.setattr(execute, "save_chunk", original)
+    solved = solved_points(monkeypatch)
+    same_as(run_sweep(small_study(), out, scheduler="synchronous", progress=False), reference)
+    assert sum(solved) == 22
+
+
+def test_a_full_disk_while_writing_the_dataset_keeps_every_point(tmp_path, monkeypatch, reference):
+    out = tmp_path / "full"
+    original = xr.Dataset.to_netcdf
+    writes = []
+
+    def write_until_full(self, path=None, *args, **kwargs):
+        writes.append(path)
+        if len(writes) == 4:  # the header and two variables are in the temporary file
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return original(self, path, *args, **kwargs)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", write_until_full)
+    with pytest.raises(SweepError) as full:
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+    assert str(full.value) == (f"cannot write {out / 'results.nc'}: No space left on device; all 30 points are kept "
+                               f"in {out / PARTIAL}; run the same command again to write it (nothing is recomputed)")
+    assert sorted(p.name for p in out.iterdir()) == [PARTIAL]  # no half-written file
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", original)
+    solved = solved_points(monkeypatch)
+    same_as(run_sweep(small_study(), out, scheduler="synchronous", progress=False), reference)
+    assert solved == []
+
+
+def test_a_grid_over_the_cap_is_refused_with_an_estimate(tmp_path):
+    huge = load_text(TEXT.split("[sweep]")[0] + '[sweep.axes]\n'
+                     'load.rotary_speed = { start = "50 rpm", stop = "300 rpm", num = 1000000 }\n'
+                     'load.axial_tension = { start = "1000 lbf", stop = "40000 lbf", num = 1000 }\n', "huge.toml")
+    start = time.perf_counter()
+    with pytest.raises(SweepError) as refused:
+        run_sweep(huge, tmp_path / "huge", progress=False)
+    assert time.perf_counter() - start < 1.0 and not (tmp_path / "huge").exists()
+    assert str(refused.value).startswith("the grid has 1,000,000,000 points (1000000 rotary_speed x 1000 "
+                                         "axial_tension), more than sweep.max_points = 1,000,000: about ")
+    assert "--max-points 1000000000" in str(refused.value)
+    with pytest.raises(SweepError, match="more than sweep.max_points = 29"):
+        run_sweep(small_study(), tmp_path / "s", max_points=29, progress=False)
+    assert run_sweep(small_study(), tmp_path / "s", max_points=30, scheduler="synchronous", progress=False).exists()
