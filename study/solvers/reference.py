@@ -489,6 +489,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result = PointResult(method=METHOD)
     model = build_model(inputs)
     vals = result.values
+    vals.update(model.props)  # the section's properties, as every method of the hierarchy reports them
     vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi)
                 if np.isfinite(model.omega[0]) else np.nan, clearance=float(np.max(model.clearance)))
     if not np.all(np.isfinite(model.omega)):
