@@ -82,6 +82,19 @@ def resonance_candidates(scene: Scene, modes, min_span: float) -> int:
     return int(modes.size * (np.ceil(omega_max / scene.rotary_speed) + 1))
 
 
+def span_search_too_large(scene: Scene, options: Options, budget: int | None = None) -> str | None:
+    """None when the span search's resonance candidates (:func:`resonance_candidates`) fit ``budget`` (config
+    ``solver.max_poles``; default :data:`MAX_POLES`), otherwise why not, with the numbers."""
+    budget = int(budget or MAX_POLES)
+    count = resonance_candidates(scene, odd_modes(options.modes), options.min_span)
+    if count <= budget:
+        return None
+    return (f"the span search would enumerate {count:.3g} resonance candidates (about {count * 16 / 2**30:.3g} GiB) "
+            f"at {scene.rotary_speed * 30 / np.pi:.4g} rpm down to a {options.min_span:.4g}-m span, above "
+            f"solver.max_poles = {budget:.3g}: raise the rotary speed or solver.min_span, or solver.max_poles on a "
+            "larger machine")
+
+
 def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:
     """Spans [m] in [min_span, max_span] where some ω_n(L) equals a harmonic m Ω of the train, sorted,
     and the mode number n resonating at each.
@@ -1055,14 +1068,10 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.wall_time = time.perf_counter() - start
         return result
     options = Options(**{**options.__dict__, "max_span": max_span})
-    budget = int(inputs.get("max_poles") or MAX_POLES)
-    candidates = resonance_candidates(scene, odd_modes(options.modes), options.min_span)
-    if candidates > budget:
+    too_many = span_search_too_large(scene, options, inputs.get("max_poles"))
+    if too_many is not None:
         result.status = "failed"
-        result.message = (f"the span search would enumerate {candidates:.3g} resonance candidates (about "
-                          f"{candidates * 16 / 2**30:.3g} GiB) at {scene.rotary_speed * 30 / np.pi:.4g} rpm down to a "
-                          f"{options.min_span:.4g}-m span, above solver.max_poles = {budget:.3g}: raise the "
-                          "rotary speed or solver.min_span, or solver.max_poles on a larger machine")
+        result.message = too_many
         result.wall_time = time.perf_counter() - start
         return result
     choice = find_span(scene, options)

@@ -7,13 +7,17 @@ Ctrl-C ends the run with one line saying what was kept and how to resume.
 
 from __future__ import annotations
 
+import itertools
 import os
 import shutil
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 from study.config import Study
-from study.solvers import OUTPUTS
+from study.solvers import OUTPUTS, periodic
+from study.solvers.options import Options
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
 from study.workflow.execute import Interrupted, SweepError, reason, run_grid, tell
@@ -50,6 +54,26 @@ def check_size(study: Study, cap: int) -> None:
         f"to run it anyway set sweep.max_points or pass --max-points {size}")
 
 
+#: Methods that search the span over resonances (their memory grows as the rotary speed falls).
+SPAN_SEARCHES = ("fast", "series", "periodic", "crosscheck", "reference-check")
+
+
+def check_span_search(study: Study) -> None:
+    """Refuse, before any work, a grid whose span search cannot be held in memory at some point: the resonance
+    candidates at every corner of the grid (the slowest rotary speed and the shortest span searched decide)
+    against ``solver.max_poles`` (docs/model.md §9)."""
+    methods = study.axes.get("solver_method", [study.inputs.get("solver_method")])
+    if not any(m in SPAN_SEARCHES for m in methods):
+        return
+    axes = {name: (np.min(v), np.max(v)) for name, v in study.axes.items() if np.asarray(v).dtype.kind == "f"}
+    for corner in itertools.product(*axes.values()):
+        point = {**study.inputs, **dict(zip(axes, corner))}
+        problem = periodic.span_search_too_large(periodic.make_scene(point), Options.from_inputs(point),
+                                                 point.get("max_poles"))
+        if problem is not None:
+            raise SweepError(f"{problem}; nothing was computed")
+
+
 def check_writable(out: Path, charts: bool = False) -> None:
     """Before any work: the output folder, its chunk store and results file can be written."""
     for folder in [out, *out.parents]:
@@ -84,6 +108,7 @@ def run_sweep(study: Study, out_dir: str | Path | None = None, *, scheduler: str
     """
     out = Path(out_dir) if out_dir else Path("outputs") / study.name
     check_size(study, study.sweep["max_points"] if max_points is None else max_points)
+    check_span_search(study)
     check_writable(out, charts)
     say = say or tell
     try:

@@ -391,3 +391,15 @@ def test_a_grid_over_the_cap_is_refused_with_an_estimate(tmp_path):
     with pytest.raises(SweepError, match="more than sweep.max_points = 29"):
         run_sweep(small_study(), tmp_path / "s", max_points=29, progress=False)
     assert run_sweep(small_study(), tmp_path / "s", max_points=30, scheduler="synchronous", progress=False).exists()
+
+
+def test_a_span_search_too_slow_to_hold_is_refused_before_any_work(tmp_path):
+    # the honest-results issue: 0.001 rpm made fast allocate 8-16 GiB for one point; a sweep reaching it is
+    # refused before it starts, naming the rotary speed, the span and the budget
+    from study.workflow.sweep import SweepError
+
+    text = TEXT.split("[sweep]")[0].replace('method = "core"', 'method = "fast"') + \
+        '[sweep.axes]\nload.rotary_speed = ["0.001 rpm", "300 rpm"]\n'
+    with pytest.raises(SweepError, match=r"at 0.001 rpm down to a 3-m span, above solver.max_poles = 2e\+07.*nothing was computed"):
+        run_sweep(load_text(text, "slow.toml"), tmp_path / "slow", scheduler="synchronous", progress=False)
+    assert not (tmp_path / "slow").exists() or not any((tmp_path / "slow").iterdir())
