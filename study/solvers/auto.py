@@ -28,7 +28,7 @@ import time
 from typing import Any, Callable, Mapping
 
 from study.solvers import fast, freewhirl, gate, reference, series
-from study.solvers.options import DEFAULT_TOLERANCE
+from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
 
 Solve = Callable[[Mapping[str, Any]], PointResult]
@@ -38,7 +38,7 @@ FINAL = ("buckled", "incomplete")
 
 def _error_only(result: PointResult, inputs: Mapping[str, Any]) -> bool:
     """The span held with doubled modes and only the error estimate is above the tolerance."""
-    tolerance = float(inputs.get("tolerance") or DEFAULT_TOLERANCE)
+    tolerance = study_tolerance(inputs)
     return (result.status == "not_converged" and result.extras.get("span_converged", False)
             and result.error_estimate is not None and result.error_estimate > tolerance)
 
@@ -50,7 +50,7 @@ def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
 
 def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
     """The series doubles its harmonics until the study's tolerance."""
-    tolerance = float(inputs.get("tolerance") or DEFAULT_TOLERANCE)
+    tolerance = study_tolerance(inputs)
     return {**inputs, "series_tolerance": inputs.get("series_tolerance") or tolerance}
 
 

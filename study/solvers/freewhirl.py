@@ -33,7 +33,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import section, whirl
-from study.solvers.options import DEFAULT_TOLERANCE, ReferenceOptions
+from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -99,7 +99,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The free steady whirl and sag of the section, or ``out_of_scope`` where it would touch the wall."""
     start = time.perf_counter()
     result = PointResult(method=METHOD)
-    tolerance = float(inputs.get("tolerance") or DEFAULT_TOLERANCE)
+    tolerance = study_tolerance(inputs)
     props = section_properties(inputs)
     option = ReferenceOptions.from_inputs(inputs)
     result.values.update(props)

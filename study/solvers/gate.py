@@ -32,7 +32,7 @@ import numpy as np
 
 from study.physics import hertz
 from study.solvers.scene import contact_compliance
-from study.solvers.options import DEFAULT_TOLERANCE
+from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
 
 
@@ -43,11 +43,6 @@ PRINCIPAL = ("span_length", "impact_velocity", "impulse", "peak_contact_force", 
              "contact_duration", "error_estimate")
 
 Problem = tuple[str, str]  #: (status, message with the numbers)
-
-
-def _tolerance(inputs: Mapping[str, Any]) -> float:
-    value = inputs.get("tolerance")
-    return DEFAULT_TOLERANCE if value is None else float(value)
 
 
 def finite(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Problem | None:
@@ -64,7 +59,7 @@ def within_clearance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Pr
         return None
     approach = values.get("max_approach")
     approach = float(approach) if approach is not None and np.isfinite(approach) else 0.0
-    bound = clearance * (1.0 + _tolerance(inputs)) + approach
+    bound = clearance * (1.0 + study_tolerance(inputs)) + approach
     if deflection > bound:
         return ("unphysical", f"the largest deflection {deflection:.4g} m ({deflection / clearance:.4g} c) "
                               f"passes the wall: the bound is the clearance {clearance:.4g} m (1 + tolerance) plus "
@@ -117,7 +112,7 @@ def consistent_stresses(values: Mapping[str, Any], inputs: Mapping[str, Any]) ->
 
 def within_tolerance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Problem | None:
     """The method's error estimate (``values['error_estimate']``) meets the study's tolerance."""
-    estimate, tolerance = values.get("error_estimate"), _tolerance(inputs)
+    estimate, tolerance = values.get("error_estimate"), study_tolerance(inputs)
     if estimate is not None and np.isfinite(estimate) and estimate > tolerance:
         return ("not_converged", f"error estimate {estimate:.3g} is above the tolerance {tolerance:.3g} "
                                  "(solver.tolerance)")

@@ -39,14 +39,60 @@ METHOD_DESCRIPTIONS = {
 #: Relative accuracy asked of every method's answer (config ``solver.tolerance``): 1 %, what a design decision
 #: needs. A result whose error estimate is above it is ``not_converged`` (study.solvers.gate).
 DEFAULT_TOLERANCE = 1e-2
+def study_tolerance(inputs: Mapping[str, Any]) -> float:
+    """The study's relative tolerance of a point (config ``solver.tolerance``; :data:`DEFAULT_TOLERANCE` unset)."""
+    value = inputs.get("tolerance")
+    return DEFAULT_TOLERANCE if value is None else float(value)
+
+
 #: The mass of the closure's impulse (periodic.Scene.equivalent_mass): 2ML/π (the paper's) or ML/2.
 IMPACT_MASSES = ("momentum", "modal")
 #: Resonance candidates the span search may enumerate (config ``solver.max_poles``; a memory guard).
 MAX_POLES = 20_000_000
 
 
+def option(default, choices: tuple[str, ...] | None = None):
+    """A declared option: its default and, for a choice, the allowed values."""
+    return field(default=default, metadata={"choices": choices} if choices else {})
+
+
 @dataclass(frozen=True)
-class Options:
+class MethodOptions:
+    """Base of a method's options: a frozen dataclass whose fields are the option names (as in the point's
+    inputs and the config's ``solver.*`` fields) with their defaults."""
+
+    @classmethod
+    def from_inputs(cls, inputs: Mapping[str, Any]):
+        """The options of a point: its inputs where set (not None), the declared defaults elsewhere (only the
+        ``CONFIG_FIELDS`` where a class names them). A choice outside its declared values raises ValueError
+        naming the option, the value and what is allowed."""
+        names = getattr(cls, "CONFIG_FIELDS", None)
+        values = {}
+        for spec in fields(cls):
+            value = inputs.get(spec.name)
+            if value is None or (names is not None and spec.name not in names):
+                continue
+            allowed = spec.metadata.get("choices")
+            if allowed is not None and value not in allowed:
+                raise ValueError(f"{spec.name} = {value!r}; allowed: {', '.join(allowed)}")
+            if isinstance(spec.default, (int, float)):  # a number as its declared kind (bool, int, float)
+                value = type(spec.default)(value)
+            values[spec.name] = value
+        return cls(**values)
+
+    @classmethod
+    def default(cls, name: str):
+        """The declared default of option ``name``."""
+        return next(spec.default for spec in fields(cls) if spec.name == name)
+
+    @classmethod
+    def choices(cls, name: str) -> tuple[str, ...]:
+        """The declared values of choice option ``name``."""
+        return next(spec.metadata["choices"] for spec in fields(cls) if spec.name == name)
+
+
+@dataclass(frozen=True)
+class Options(MethodOptions):
     """Resolution and search settings of the periodic methods (``fast``, ``series``, ``auto``, ``crosscheck``).
 
     The first five are config fields (``solver.modes`` ...); the rest are internal resolutions.
@@ -64,52 +110,9 @@ class Options:
     tolerance: float = 1e-6  #: relative slack of condition 1, |y| <= c (1 + tolerance)
     fixed_point_tol: float = 1e-9  #: relative change of T_L that ends the T_L-κ iteration
 
-    #: the fields a config sets (same names in the point's inputs)
+    #: the fields a config sets (same names in the point's inputs); the others are internal resolutions (the
+    #: point's ``tolerance`` is the study's, not condition 1's slack)
     CONFIG_FIELDS = ("modes", "min_span", "max_span", "load_shape", "resonance_width")
-
-    @classmethod
-    def from_inputs(cls, inputs: Mapping[str, Any]) -> "Options":
-        """The settings of a point: its inputs where set (not None), the declared defaults elsewhere."""
-        given = {name: inputs[name] for name in cls.CONFIG_FIELDS if inputs.get(name) is not None}
-        types = {f.name: f.type for f in fields(cls)}
-        return cls(**{name: (int(v) if types[name] == "int" else v if types[name] == "str" else float(v))
-                      for name, v in given.items()})
-
-
-def option(default, choices: tuple[str, ...] | None = None):
-    """A declared option: its default and, for a choice, the allowed values."""
-    return field(default=default, metadata={"choices": choices} if choices else {})
-
-
-@dataclass(frozen=True)
-class MethodOptions:
-    """Base of a method's options: a frozen dataclass whose fields are the option names (as in the point's
-    inputs and the config's ``solver.*`` fields) with their defaults."""
-
-    @classmethod
-    def from_inputs(cls, inputs: Mapping[str, Any]):
-        """The options of a point: its inputs where set (not None), the declared defaults elsewhere. A choice
-        outside its declared values raises ValueError naming the option, the value and what is allowed."""
-        values = {}
-        for spec in fields(cls):
-            value = inputs.get(spec.name)
-            if value is None:
-                continue
-            allowed = spec.metadata.get("choices")
-            if allowed is not None and value not in allowed:
-                raise ValueError(f"{spec.name} = {value!r}; allowed: {', '.join(allowed)}")
-            values[spec.name] = value
-        return cls(**values)
-
-    @classmethod
-    def default(cls, name: str):
-        """The declared default of option ``name``."""
-        return next(spec.default for spec in fields(cls) if spec.name == name)
-
-    @classmethod
-    def choices(cls, name: str) -> tuple[str, ...]:
-        """The declared values of choice option ``name``."""
-        return next(spec.metadata["choices"] for spec in fields(cls) if spec.name == name)
 
 
 #: Time-domain integrators; "auto": the event-driven one where the damping is linear, the explicit one with

@@ -42,7 +42,7 @@ from study.physics import beam, hertz, section
 from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
 from study.solvers import extremes
-from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, Options
+from study.solvers.options import DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, Options, study_tolerance
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene, make_scene
 
@@ -893,7 +893,7 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
                    max_shear_stress_t=float(t[i_s[0]]))
     if field_at is None:
         return out
-    tol = 0.1 * _tolerance({"tolerance": tolerance})
+    tol = 0.1 * (DEFAULT_TOLERANCE if tolerance is None else tolerance)
     y = extremes.locate(field_at, "deflection", x, t, *i_y, tol)
     m = extremes.locate(field_at, "moment", x, t, *i_b, tol)
     out.update(max_deflection=max(out["max_deflection"], abs(y.value)),
@@ -1012,10 +1012,6 @@ def distinct_spans(impacts: list) -> list:
     return out
 
 
-def _tolerance(inputs: Mapping[str, Any]) -> float:
-    return DEFAULT_TOLERANCE if inputs.get("tolerance") is None else float(inputs["tolerance"])
-
-
 def doubled(options: Options) -> Options:
     """The same settings with the modes doubled (41 -> 81: every odd mode up to twice the highest)."""
     return Options(**{**options.__dict__, "modes": 2 * options.modes - 1})
@@ -1087,11 +1083,10 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.wall_time = time.perf_counter() - start
         return result
     chosen = choice.candidates[0]
-    survives = span_survives_doubling(scene, options, chosen.span_length, _tolerance(inputs))
+    survives = span_survives_doubling(scene, options, chosen.span_length, study_tolerance(inputs))
     result.extras["span_converged"] = survives is None
     if survives is not None:
         result.status = "not_converged"
-        choice.summary += f"; {survives}"
     result.values.update(
         span_length=chosen.span_length, equivalent_mass=chosen.equivalent_mass,
         impact_velocity=chosen.impact_velocity, impulse=chosen.impulse, axial_curvature=chosen.axial_curvature,
@@ -1102,11 +1097,9 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
     )
     omega = natural_frequencies(scene, chosen.span_length, [1.0])
     result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
-    result.message = f"{choice.summary}; {len(choice.candidates)} satisfy the constraints; the smallest is reported"
-    if survives is not None:
-        result.message = (f"{choice.summary.split('; the span ')[0]}; {len(choice.candidates)} satisfy the "
-                          f"constraints; the smallest, {chosen.span_length:.6g} m, is not converged: "
-                          f"the span {survives.split('the span ', 1)[1]}")
+    smallest = ("the smallest is reported" if survives is None else
+                f"the smallest, {chosen.span_length:.6g} m, is not converged: {survives}")
+    result.message = f"{choice.summary}; {len(choice.candidates)} satisfy the constraints; {smallest}"
     finish(scene, chosen, inputs, options, result)
     result.wall_time = time.perf_counter() - start
     return result

@@ -26,7 +26,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.solvers import fast, reference
-from study.solvers.crosscheck import DEFAULT_TOLERANCE
+from study.solvers.options import CrosscheckOptions
 from study.solvers.result import PointResult
 
 METHOD = "reference-check"
@@ -83,7 +83,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = f"no periodic solution to compare: {result.message}"
         result.wall_time = time.perf_counter() - start
         return result
-    tolerance = float(inputs.get("check_tolerance") or DEFAULT_TOLERANCE)
+    tolerance = float(CrosscheckOptions.from_inputs(inputs).check_tolerance)
     touches = ref.values.get("contact_fraction", 0.0) > 0 or ref.values.get("peak_contact_force", 0.0) > 0
     status, ratios, reasons = verdict(periodic_values, ref.values, touches, tolerance)
     result.values.update(ratios)

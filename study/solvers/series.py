@@ -39,7 +39,7 @@ import numpy as np
 
 from study.physics import beam
 from study.solvers import checks, periodic
-from study.solvers.options import SeriesOptions
+from study.solvers.options import SeriesOptions, study_tolerance
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene
 
@@ -119,7 +119,7 @@ def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
         return fields(scene, impact, options, harmonics, (kind,), xs, ts)[kind]
 
     return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"],
-                                         field_at=field_at, tolerance=inputs.get("tolerance"))
+                                         field_at=field_at, tolerance=study_tolerance(inputs))
 
 
 @dataclass
