@@ -197,6 +197,9 @@ FIELDS: tuple[Field, ...] = (
           "transient", "", default=ReferenceOptions.default("reference_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",
           default=ReferenceOptions.default("reference_window"), integer=True, lower=1.0),
+    Field("solver.reference_max_revolutions", "reference_max_revolutions", "revolution budget of the reference "
+          "model's run while its figures have not converged to solver.tolerance (transient included)", "",
+          default=ReferenceOptions.default("reference_max_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
           default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,

@@ -182,7 +182,8 @@ class ReferenceOptions(MethodOptions):
     friction: float = 0.3  #: Coulomb coefficient of pipe on wall
     reference_modes: int = 16  #: modes per lateral direction
     reference_revolutions: int = 40  #: most revolutions of the transient
-    reference_window: int = 6  #: revolutions of the output window
+    reference_window: int = 6  #: revolutions of the output window (and of each extension of the record)
+    reference_max_revolutions: int = 100  #: revolution budget of a run that has not converged (transient included)
     reference_damping: str = option("drag", ("drag", "viscous", "none"))
     reference_initial: str = option("forced", ("forced", "rest"))
     contact_law: str = option("hertz", ("hertz", "penalty"))

@@ -51,7 +51,7 @@ import numpy as np
 
 from study.physics import hertz, section, whirl
 from study.solvers import trajectory, whirl_kernel
-from study.solvers.options import ReferenceOptions
+from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
 from study.solvers.timedomain import calibrated_hysteresis, settled_period
@@ -312,11 +312,191 @@ def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
     return z
 
 
-def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
-    """Transient until periodic (or ``reference_revolutions``), then the recorded window.
+#: The design figures whose convergence the error estimate states, with the names of their largest values seen
+#: in the window and what the message calls them (docs/reference_model.md §3.1).
+FIGURES = {"peak_contact_force": ("window_largest_contact_force", "peak force"),
+           "max_normal_stress": ("window_largest_normal_stress", "max normal stress"),
+           "alternating_bending_stress": ("window_largest_alternating_stress", "alternating stress")}
+#: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
+#: this many of their combined standard errors (a two-sided z-test at about 95 %).
+DRIFT_SIGNIFICANCE = 2.0
+#: The largest per-revolution settling ratio :func:`settle_ratio` states: a drift over h revolutions that shrinks
+#: by 1 % a revolution is taken to have 1/(1 − 0.99^h) times itself still to come.
+MAX_SETTLE_RATIO = 0.99
 
-    Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or
-    None), revolutions (of the transient), window (:class:`Window` or None), failure (text or None).
+
+def merge(windows: list[Window]) -> Window:
+    """One window from consecutive ones (their recordings joined, their counts added)."""
+    return Window(times=np.concatenate([w.times for w in windows]), states=np.concatenate([w.states for w in windows]),
+                  forces=np.concatenate([w.forces for w in windows]), peak=np.max([w.peak for w in windows], axis=0),
+                  onsets=np.sum([w.onsets for w in windows], axis=0),
+                  contact_time=np.sum([w.contact_time for w in windows], axis=0),
+                  any_contact_time=float(sum(w.any_contact_time for w in windows)), start=windows[0].start,
+                  end=windows[-1].end)
+
+
+def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
+    """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
+    :func:`stresses` (with the quasi-static correction where :func:`quasi_static_applies` over them all; the
+    fields computed once) and the peak contact force, exact at every step of the integrator; ``correction``
+    says whether the correction was applied, ``start`` is the cycle's start [s]."""
+    joined = merge(cycles)
+    correction = quasi_static_applies(model, joined)
+    ends = np.cumsum([c.times.size for c in cycles])
+    segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
+    return [dict(values, peak_contact_force=float(np.max(c.peak)), correction=correction, start=c.start)
+            for values, c in zip(stresses(inputs, model, joined, correction=correction, segments=segments), cycles)]
+
+
+def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
+    """The stress outputs of the window from its cycles' (:func:`cycle_values`): the design figures as
+    :func:`settling` states them (the mean over the cycles) and their largest values; the max bending stress
+    the mean of the cycles' too (so that normal = axial + bending holds); the largest deflection and shear
+    stress over the window (bounds); positions and times (from the window's start) of the cycle with the
+    largest normal (alternating) stress; the modal tail fraction the mean over the cycles; ``correction`` whether
+    the quasi-static correction was applied in every cycle."""
+    out = {name: s["value"] for name, s in stats.items()}
+    out.update({largest: stats[name]["largest"] for name, (largest, _) in FIGURES.items()})
+    origin = cycles[0]["start"]
+    worst = cycles[int(np.argmax([c["max_normal_stress"] for c in cycles]))]
+    alternating = cycles[int(np.argmax([c["alternating_bending_stress"] for c in cycles]))]
+    sheared = cycles[int(np.argmax([c["max_shear_stress"] for c in cycles]))]
+    out.update(max_bending_stress=float(np.mean([c["max_bending_stress"] for c in cycles])),
+               max_deflection=float(max(c["max_deflection"] for c in cycles)),
+               max_normal_stress_x=worst["max_normal_stress_x"],
+               max_normal_stress_t=worst["max_normal_stress_t"] + worst["start"] - origin,
+               alternating_bending_stress_x=alternating["alternating_bending_stress_x"],
+               max_shear_stress=sheared["max_shear_stress"], max_shear_stress_x=sheared["max_shear_stress_x"],
+               max_shear_stress_t=sheared["max_shear_stress_t"] + sheared["start"] - origin,
+               modal_tail_fraction=float(np.mean([c["modal_tail_fraction"] for c in cycles])),
+               correction=all(c["correction"] for c in cycles))
+    return out
+
+
+def standard_error(x) -> float:
+    """Standard error of the mean of the series x: the larger of the batch-means estimate (batches of ⌊√n⌋
+    consecutive values, the first values dropped to make them whole; Schmeiser 1982, doi:10.1287/opre.30.3.556),
+    which holds where consecutive values are correlated, and the plain s/√n, which is steadier where the batches
+    are few. 0 for a constant series, NaN for fewer than two values."""
+    x = np.asarray(x, float)
+    if x.size < 2:
+        return float("nan")
+    plain = float(np.std(x, ddof=1) / np.sqrt(x.size))
+    size = max(1, int(np.sqrt(x.size)))
+    count = x.size // size
+    if count < 2:
+        return plain
+    means = x[x.size - count * size:].reshape(count, size).mean(axis=1)
+    return max(plain, float(np.std(means, ddof=1) / np.sqrt(count)))
+
+
+def settle_ratio(states, scale) -> float:
+    """Per-revolution ratio ρ by which the change of the state from one revolution boundary to the next shrinks
+    while the motion settles, taken at the slow end of what the data allow: exp of the least-squares slope of the
+    change's logarithm over the later half of the revolutions run, plus two of its standard errors, at most
+    :data:`MAX_SETTLE_RATIO`. NaN where the changes do not shrink beyond doubt (that bound is 1 or more: a
+    stationary or wandering motion) or there are fewer than six of them."""
+    S = np.asarray(states) / scale
+    change = np.max(np.abs(np.diff(S, axis=0)), axis=1)
+    change = change[change.size // 2:]
+    k = np.flatnonzero(change > 0)
+    if k.size < 6:
+        return float("nan")
+    (slope, _), cov = np.polyfit(k, np.log(change[k]), 1, cov=True)
+    upper = float(np.exp(slope + 2.0 * np.sqrt(cov[0, 0])))
+    return min(upper, MAX_SETTLE_RATIO) if upper < 1.0 else float("nan")
+
+
+def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]],
+             ratio: float = float("nan")) -> dict[str, dict[str, Any]]:
+    """Per design figure (:data:`FIGURES`), from its per-cycle values over the window and the preceding
+    stretch of equal length (empty when the motion is periodic): ``value`` (the mean over the window's cycles),
+    ``largest`` (over them), ``error`` (relative standard error of the mean by batch means), ``drift`` (relative
+    difference of the window's and the preceding stretch's means), ``significant`` (that difference is more
+    than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the window's part of
+    the figure's error: the larger of the standard error and the drift, and where the motion settles (the state's
+    changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to come if they shrink
+    alike, drift/(1 − ρ^h) for a window of h revolutions."""
+    out = {}
+    h = len(window)
+    settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
+    for name in FIGURES:
+        x = np.array([v[name] for v in window])
+        value, largest = float(np.mean(x)), float(np.max(x))
+        size = max(abs(value), 1e-300)
+        error = standard_error(x) if np.ptp(x) > 0 else 0.0
+        drift, significant = 0.0, False
+        if preceding:
+            before = np.array([v[name] for v in preceding])
+            change = abs(value - float(np.mean(before)))
+            spread = np.hypot(np.nan_to_num(error, nan=np.inf), standard_error(before) if np.ptp(before) > 0 else 0.0)
+            drift, significant = change / size, bool(change > DRIFT_SIGNIFICANCE * spread)
+        error = error / size if np.isfinite(error) else np.inf
+        part = max(error, drift / (1.0 - ratio**h) if settles else drift)
+        out[name] = dict(value=value, largest=largest, error=error, drift=drift, significant=significant,
+                         window=float(part))
+    return out
+
+
+def modal_error(model: WhirlModel, window: Window, tail: float, correction: bool) -> float:
+    """Relative error of the bending moment from the modes left out: the upper half of the modes' share
+    ``tail`` of the largest moment (for a point load the modal moments fall like 1/n², and the modes above N
+    carry about what the modes N/2 … N carry); with the quasi-static correction their static part is exact and
+    what is left is their dynamic amplification, 1/(1 − r²) − 1 ≈ r², r = (2π / the shortest mean contact) /
+    ω_{N+1}."""
+    if not correction:
+        return float(tail)
+    touching = window.contact_time > 0
+    durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
+    props = model.props
+    first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
+                                                            props["effective_tension"], props["mass_per_length"],
+                                                            [model.n_modes + 1]))[0])
+    r = 2.0 * np.pi / (first_left * float(np.min(durations)))
+    return float(tail * min(1.0, r**2))
+
+
+def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
+                stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None) -> dict:
+    """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
+    larger of the standard error and the drift from the preceding stretch; the periodicity tolerance when the
+    motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
+    which is whole but with ``reference_damping = "viscous"``),
+    ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force); ``total`` their
+    sum."""
+    option = ReferenceOptions.from_inputs(inputs)
+    # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
+    whole = residual is not None and option.reference_damping != "viscous"
+    integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
+    tail = modal_error(model, window, values["modal_tail_fraction"], values["correction"])
+    normal = values["max_normal_stress"]
+    bending_share = (normal - abs(inputs["axial_tension"]) / model.props["steel_area"]) / normal if normal > 0 else 0.0
+    modes = {"peak_contact_force": 0.0, "max_normal_stress": tail * bending_share, "alternating_bending_stress": tail}
+    out = {}
+    for name, s in stats.items():
+        window_part = float(option.reference_tolerance) if periodic else s["window"]
+        parts = dict(window=window_part, integrator=integrator, modes=modes[name])
+        out[name] = dict(parts, total=float(sum(parts.values())), dominant=max(parts, key=parts.get))
+    return out
+
+
+def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
+    """Transient until periodic (or ``reference_revolutions``), then the recorded window, extended while its
+    figures have not converged (docs/reference_model.md §3.1).
+
+    Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
+    periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
+    record (one cycle a revolution) grows by ``reference_window`` revolutions while the error of a design figure
+    (:func:`convergence`) is above the study's tolerance, more revolutions could bring it there (its window part
+    is what is over) and ``reference_max_revolutions`` allow; the window is the record's second half, the
+    preceding stretch its first, and where they differ significantly (:data:`DRIFT_SIGNIFICANCE`: still
+    settling) the first half is dropped.
+
+    Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or None),
+    revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
+    of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
+    the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
+    the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None).
     """
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
@@ -324,16 +504,29 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     run = Integrator(model, float(option.reference_rtol), start)
     tau = model.period
     revolutions = int(option.reference_revolutions)
+    n_window = int(option.reference_window)
+    budget = int(option.reference_max_revolutions)
+    tolerance = study_tolerance(inputs)
     tol = float(option.reference_tolerance)
     N = model.n_modes
     scale = model.state_scale()
     states = [run.z[:4 * N].copy()]
     period = None
+    ratio = float("nan")
+
+    def failed(where: str) -> dict[str, Any]:
+        return dict(model=model, integrator=run, verdict="failed", period=None, revolutions=len(states) - 1,
+                    window=None, cycles=[], preceding=[], budget_spent=False,
+                    failure=f"{whirl_kernel.OUTCOMES[run.outcome]} {where}")
+
+    kept: list[Window] = []  # the transient's last revolutions, recorded
     for k in range(1, revolutions + 1):
-        run.run(k * tau)
+        keep = k > revolutions - n_window
+        cycle = run.run(k * tau, record=keep)
         if run.outcome != whirl_kernel.OK:
-            return dict(model=model, integrator=run, verdict="failed", period=None, revolutions=k, window=None,
-                        failure=f"{whirl_kernel.OUTCOMES[run.outcome]} in revolution {k}")
+            return failed(f"in revolution {k}")
+        if keep:
+            kept.append(cycle)
         states.append(run.z[:4 * N].copy())
         if np.max(np.abs(states[-1]) / scale) == 0.0:  # nothing moves
             period = 1 if k >= 2 else None
@@ -341,16 +534,60 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             period = settled_period(states, scale, tol)
         if period is not None:
             break
-    n_window = int(option.reference_window)
+    done = len(states) - 1
+    budget_spent, needed = False, float(done)
     if period:
-        n_window = period * max(1, int(np.ceil(n_window / period)))
-    window = run.run(run.t + n_window * tau, record=True)
-    failure = None
-    verdict = "periodic" if period else "not_periodic"
-    if run.outcome != whirl_kernel.OK:
-        verdict, failure = "failed", f"{whirl_kernel.OUTCOMES[run.outcome]} in the output window"
-    return dict(model=model, integrator=run, verdict=verdict, period=period, revolutions=len(states) - 1,
-                window=window, failure=failure)
+        blocks = []
+        for _ in range(max(1, int(np.ceil(n_window / period)))):
+            blocks.append(run.run(run.t + period * tau, record=True))
+            if run.outcome != whirl_kernel.OK:
+                return failed("in the output window")
+        window_cycles, preceding = list(zip(blocks, cycle_values(inputs, model, blocks))), []
+    else:
+        # (cycle, its values) per recorded revolution
+        record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
+        first = 0  # the record's first revolution
+        while True:
+            added = []
+            for _ in range(n_window):
+                added.append(run.run(run.t + tau, record=True))
+                if run.outcome != whirl_kernel.OK:
+                    return failed("in the output window")
+                states.append(run.z[:4 * N].copy())
+            record += zip(added, cycle_values(inputs, model, added))
+            half = (len(record) - first) // 2
+            preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
+            window_cycles = record[len(record) - half:]
+            ratio = settle_ratio(states, scale)
+            stats = settling([v for _, v in window_cycles], preceding, ratio)
+            window = merge([c for c, _ in window_cycles])
+            errors = convergence(inputs, model, window, window_summary([v for _, v in window_cycles], stats), stats,
+                                 periodic=False)
+            used = len(states) - 1
+            more = 0.0  # the revolutions more that the figures over the tolerance need, as far as can be foreseen
+            for name, e in errors.items():
+                room = tolerance - (e["total"] - e["window"])  # what the window part may be
+                if e["total"] <= tolerance:
+                    continue
+                if room <= 0:
+                    more = np.inf  # the integrator or the modes take it over: more revolutions do not help
+                elif np.isfinite(ratio) and e["window"] > stats[name]["error"]:  # settling: the drifts shrink by ρ
+                    more = max(more, np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0)
+                else:  # the standard error falls as the root of the window's length, twice that recorded
+                    more = max(more, 2.0 * half * ((e["window"] / room) ** 2 - 1.0))
+            needed = used + more
+            if more == 0.0 or used + max(more, n_window) > budget:
+                budget_spent = more > 0.0
+                break
+            if any(stats[name]["significant"] for name in FIGURES):
+                first = len(record) - half  # still settling: drop the first half
+            for i in range(first):
+                record[i] = (None, record[i][1])  # free the recordings no longer needed
+        done = used - len(window_cycles)
+    window = merge([c for c, _ in window_cycles])
+    return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
+                revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
+                budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None)
 
 
 # --- outputs -----------------------------------------------------------------------------------------
@@ -402,7 +639,7 @@ def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
 
 
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
-             fibres: int = 16, correction: bool = True) -> dict[str, float]:
+             fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
     docs/reference_model.md §3).
 
@@ -414,50 +651,55 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     alternating stress is half the range, over the window, of the stress of one fibre of the turning
     pipe, (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I, at the worst fibre ψ and section; shear force
     dM/dx (the −EI y''' part, by differences of the corrected moment), shear stress 2|V|/A_s.
+
+    With ``segments`` (row ranges [start, stop) of the recording), a list of those values per segment, times
+    from each segment's first row (the fields computed once for all).
     """
     N = model.n_modes
     L = model.span
     x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
-    out = {}
     fields = []
     for j in range(2):
         forces = window.forces[:, :, j] if correction else np.zeros_like(window.forces[:, :, j])
         samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=forces)
         fields.append(trajectory.fields(samples, x, model.modes, model.points / L, L, ei, tn))
-    my, mz = fields[0]["moment"], fields[1]["moment"]
-    uy, uz = fields[0]["deflection"], fields[1]["deflection"]
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]
-    moment = np.hypot(my, mz)
-    it, ix = np.unravel_index(np.argmax(moment), moment.shape)
-    turn = model.rotary_speed * window.times
-    half = np.zeros(x.size)
-    for psi in np.linspace(0.0, np.pi, fibres, endpoint=False):  # ψ and ψ + π have the same half range
-        fibre = my * np.cos(turn + psi)[:, None] + mz * np.sin(turn + psi)[:, None]
-        half = np.maximum(half, 0.5 * (fibre.max(axis=0) - fibre.min(axis=0)))
-    dx = np.diff(x)
-    shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / dx
-    js = np.unravel_index(np.argmax(shear), shear.shape)
-    # modal truncation indicator: the upper half of the modes' share of the largest modal moment
     k = model.modes * np.pi / L
     upper = model.modes > N // 2
-    shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
-    qy, qz = window.states[it, :N], window.states[it, N:2 * N]
-    full = np.hypot(qy @ shapes, qz @ shapes)
-    tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
-    out.update(max_deflection=float(np.max(np.hypot(uy, uz))),
-               max_bending_stress=float(moment[it, ix] * scale),
-               max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
-               max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(window.times[it] - window.start),
-               alternating_bending_stress=float(np.max(half) * scale),
-               alternating_bending_stress_x=float(x[int(np.argmax(half))]),
-               max_shear_stress=float(2.0 * shear[js] / area),
-               max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
-               max_shear_stress_t=float(window.times[js[0]] - window.start),
-               modal_tail_fraction=float(tail / full) if full > 0 else 0.0)
-    return out
+    outs = []
+    for first, stop in (segments or [(0, window.times.size)]):
+        rows = slice(first, stop)
+        times = window.times[rows]
+        my, mz = fields[0]["moment"][rows], fields[1]["moment"][rows]
+        uy, uz = fields[0]["deflection"][rows], fields[1]["deflection"][rows]
+        moment = np.hypot(my, mz)
+        it, ix = np.unravel_index(np.argmax(moment), moment.shape)
+        turn = model.rotary_speed * times
+        half = np.zeros(x.size)
+        for psi in np.linspace(0.0, np.pi, fibres, endpoint=False):  # ψ and ψ + π have the same half range
+            fibre = my * np.cos(turn + psi)[:, None] + mz * np.sin(turn + psi)[:, None]
+            half = np.maximum(half, 0.5 * (fibre.max(axis=0) - fibre.min(axis=0)))
+        shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / np.diff(x)
+        js = np.unravel_index(np.argmax(shear), shear.shape)
+        # modal truncation indicator: the upper half of the modes' share of the largest modal moment
+        shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
+        qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
+        full = np.hypot(qy @ shapes, qz @ shapes)
+        tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
+        outs.append(dict(max_deflection=float(np.max(np.hypot(uy, uz))),
+                         max_bending_stress=float(moment[it, ix] * scale),
+                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
+                         max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),
+                         alternating_bending_stress=float(np.max(half) * scale),
+                         alternating_bending_stress_x=float(x[int(np.argmax(half))]),
+                         max_shear_stress=float(2.0 * shear[js] / area),
+                         max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
+                         max_shear_stress_t=float(times[js[0]] - times[0]),
+                         modal_tail_fraction=float(tail / full) if full > 0 else 0.0))
+    return outs if segments is not None else outs[0]
 
 
 def contact_spacing(model: WhirlModel, window: Window) -> tuple[float, list[float]]:
@@ -506,11 +748,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = f"integration failed: {run['failure']}"
         result.wall_time = time.perf_counter() - start
         return result
-    window = run["window"]
+    window, cycles = run["window"], run["cycles"]
     tau = model.period
     revs = (window.end - window.start) / tau
-    vals.update(revolutions_simulated=float(run["revolutions"] + revs),
-                peak_contact_force=float(np.max(window.peak)),
+    periodic = bool(run["period"])
+    vals.update(revolutions_simulated=float(run["revolutions"] + revs), window_revolutions=float(revs),
                 impacts_per_revolution=float(np.sum(window.onsets) / revs),
                 contact_fraction=float(window.any_contact_time / (window.end - window.start)),
                 eccentricity=model.eccentricity)
@@ -521,24 +763,42 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 whirl_class=float(WHIRL_CLASSES[measure["whirl"]]), regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
     spacing, touching = contact_spacing(model, window)
     vals["contact_spacing"] = spacing
-    correction = quasi_static_applies(model, window)
-    vals.update(stresses(inputs, model, window, correction=correction))
-    half = window.times < 0.5 * (window.start + window.end)
-    peaks = [np.max(window.forces[m, :, 2]) if np.any(m) else 0.0 for m in (half, ~half)]
-    vals["window_spread"] = float(abs(peaks[0] - peaks[1]) / max(peaks)) if max(peaks) > 0 else 0.0
+    stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
+    summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
+    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"])
+    correction = summary.pop("correction")
+    vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
+    result.error_estimate = float(max(e["total"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
-                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction)
+                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
+                         revolutions_needed=float(run.get("revolutions_needed", np.nan)),
+                         convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
+                                      for name, e in errors.items()})
+    option = ReferenceOptions.from_inputs(inputs)
+    cycle = f"{run['period']} revolution(s)" if periodic else "revolution"
+    needed = run.get("revolutions_needed", np.nan)
+    stopped = ""
+    if run["budget_spent"]:
+        stopped = ("; more revolutions would not bring them within the tolerance (the modes or the integrator take "
+                   "them over)" if not np.isfinite(needed) else
+                   f"; about {needed:.0f} revolutions in all would bring them within the tolerance, more than the "
+                   f"budget of {option.reference_max_revolutions} (solver.reference_max_revolutions)")
+    figures = ", ".join(f"{FIGURES[name][1]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
+                        f"integrator {e['integrator']:.1e}, "
+                        f"{'modes not stated' if name == 'peak_contact_force' else format(e['modes'], '.2%') + ' modes'})"
+                        for name, e in errors.items())
     messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
-                (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if run["period"] else
+                (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
                  f"not periodic within {run['revolutions']} revolutions"),
+                f"figures: means over the window's {len(cycles)} cycle(s) of {cycle} of each cycle's largest value"
+                f" (largest seen: window_largest_*){stopped}",
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
-                f"{float(ReferenceOptions.from_inputs(inputs).reference_rtol):g}; upper-half modes carry "
-                f"{vals['modal_tail_fraction']:.2%} of the largest moment"
-                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}; "
-                f"peak force differs by "
-                f"{vals['window_spread']:.2%} between the window's halves"]
-    # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which
+                f"{float(option.reference_rtol):g}"
+                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}",
+                f"error of each figure (its largest part): {figures}"]
+    # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
+    # study's tolerance makes the gate call it not_converged
     result.status = "ok"
     result.message = "; ".join(messages)
     result.wall_time = time.perf_counter() - start

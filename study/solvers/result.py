@@ -160,8 +160,16 @@ OUTPUTS = {
     "alternating_bending_stress_x": ("m", "position along the section of the largest alternating bending stress"),
     "modal_tail_fraction": ("1", "share of the largest bending moment carried by the upper half of the modes "
                             "(method reference: a truncation indicator)"),
-    "window_spread": ("1", "relative difference of the peak contact force between the two halves of the output "
-                      "window (method reference: a settling indicator)"),
+    "window_spread": ("1", "relative difference of the peak contact force between the output window and the "
+                      "equal stretch before it (method reference: a settling indicator)"),
+    "window_revolutions": ("1", "revolutions of the output window over which the design figures are averaged "
+                           "(method reference)"),
+    "window_largest_contact_force": ("N", "largest contact force seen in the output window: a sample value that "
+                                     "grows with the window where the motion is not periodic (method reference)"),
+    "window_largest_normal_stress": ("Pa", "largest combined normal stress seen in the output window (method "
+                                     "reference; a sample value, as window_largest_contact_force)"),
+    "window_largest_alternating_stress": ("Pa", "largest per-cycle alternating bending stress seen in the output "
+                                          "window (method reference; a sample value)"),
     "reference_peak_force_ratio": ("1", "peak contact force, periodic solution over the reference model (method "
                                    "reference-check)"),
     "reference_normal_stress_ratio": ("1", "largest normal stress, periodic solution over the reference model (method "

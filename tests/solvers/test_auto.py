@@ -76,7 +76,9 @@ def test_a_point_on_the_wall_climbs_to_the_reference_model(paper):
     # 15 deg: the sag takes the tool joints to the wall, which the free whirl does not model
     result = solve_point({**paper, "inclination": np.radians(15.0)}, "auto")
     assert result.method == "reference" and "after free-whirl: out_of_scope" in result.message
-    assert result.status == "ok" and result.values["peak_contact_force"] > 0
+    # an answer either way; bouncing at the joints, its figures are sample statistics of a chaotic motion whose
+    # error the reference model states (docs/reference_model.md §3.1), over the study's 1 % here
+    assert result.status in ("ok", "not_converged") and result.values["peak_contact_force"] > 0
     assert list(result.extras["methods_tried"]) == ["free-whirl", "reference"]
 
 
