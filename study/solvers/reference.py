@@ -353,8 +353,8 @@ def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[
     :func:`settling` states them (the mean over the cycles) and their largest values; the max bending stress
     the mean of the cycles' too (so that normal = axial + bending holds); the largest deflection and shear
     stress over the window (bounds); positions and times (from the window's start) of the cycle with the
-    largest normal (alternating) stress; the modal tail fraction the mean over the cycles; ``correction`` whether
-    the quasi-static correction was applied in every cycle."""
+    largest normal (alternating) stress; the modal tail and quarter fractions the means over the cycles;
+    ``correction`` whether the quasi-static correction was applied in every cycle."""
     out = {name: s["value"] for name, s in stats.items()}
     out.update({largest: stats[name]["largest"] for name, (largest, _) in FIGURES.items()})
     origin = cycles[0]["start"]
@@ -369,6 +369,7 @@ def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[
                max_shear_stress=sheared["max_shear_stress"], max_shear_stress_x=sheared["max_shear_stress_x"],
                max_shear_stress_t=sheared["max_shear_stress_t"] + sheared["start"] - origin,
                modal_tail_fraction=float(np.mean([c["modal_tail_fraction"] for c in cycles])),
+               modal_quarter_fraction=float(np.mean([c["modal_quarter_fraction"] for c in cycles])),
                correction=all(c["correction"] for c in cycles))
     return out
 
@@ -438,22 +439,29 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     return out
 
 
-def modal_error(model: WhirlModel, window: Window, tail: float, correction: bool) -> float:
-    """Relative error of the bending moment from the modes left out: the upper half of the modes' share
-    ``tail`` of the largest moment (for a point load the modal moments fall like 1/n², and the modes above N
-    carry about what the modes N/2 … N carry); with the quasi-static correction their static part is exact and
-    what is left is their dynamic amplification, 1/(1 − r²) − 1 ≈ r², r = (2π / the shortest mean contact) /
-    ω_{N+1}."""
+def modal_error(model: WhirlModel, window: Window, tail: float, quarter: float, correction: bool) -> float:
+    """Relative error of the bending moment from the modes left out, from the shares of the largest moment that
+    the modes N/2 … N (``tail``) and N/4 … N/2 (``quarter``) carry. At a contact: the tail itself, what the modes
+    above N carry where the modal moments fall like a point load's, 1/n² (an impact's fall no faster). With the
+    quasi-static correction (held contacts) the static part of the modes left out is exact and what is left is
+    their dynamic amplification, 1/(1 − ρ²) − 1 ≈ ρ², ρ = (2π / the shortest mean contact) / ω_{N+1}. Clear of
+    the wall the loads are distributed and the terms fall faster: for terms like n^−p the ratio r = tail/quarter
+    is 2^(1−p) and the modes above N carry tail·r/(1 − r), taken as at most the tail (r ≥ 1/2, or N < 8)."""
+    left = float(tail)
+    clear = not (np.any(window.contact_time > 0) or np.any(window.onsets > 0))
+    if clear and model.n_modes >= 8 and quarter > 0:
+        r = tail / quarter
+        left = tail * min(1.0, r / (1.0 - r)) if r < 1.0 else left
     if not correction:
-        return float(tail)
+        return left
     touching = window.contact_time > 0
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
     props = model.props
     first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
                                                             props["effective_tension"], props["mass_per_length"],
                                                             [model.n_modes + 1]))[0])
-    r = 2.0 * np.pi / (first_left * float(np.min(durations)))
-    return float(tail * min(1.0, r**2))
+    ratio = 2.0 * np.pi / (first_left * float(np.min(durations)))
+    return float(left * min(1.0, ratio**2))
 
 
 def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
@@ -463,18 +471,23 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
     which is whole but with ``reference_damping = "viscous"``),
     ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force); ``total`` their
-    sum."""
+    sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
     option = ReferenceOptions.from_inputs(inputs)
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
     integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
-    tail = modal_error(model, window, values["modal_tail_fraction"], values["correction"])
+    tail = modal_error(model, window, values["modal_tail_fraction"], values["modal_quarter_fraction"],
+                       values["correction"])
     normal = values["max_normal_stress"]
     bending_share = (normal - abs(inputs["axial_tension"]) / model.props["steel_area"]) / normal if normal > 0 else 0.0
     modes = {"peak_contact_force": 0.0, "max_normal_stress": tail * bending_share, "alternating_bending_stress": tail}
+    # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
+    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing
+    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"])}
     out = {}
     for name, s in stats.items():
-        window_part = float(option.reference_tolerance) if periodic else s["window"]
+        share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
+        window_part = float(option.reference_tolerance) if periodic else s["window"] * share
         parts = dict(window=window_part, integrator=integrator, modes=modes[name])
         out[name] = dict(parts, total=float(sum(parts.values())), dominant=max(parts, key=parts.get))
     return out
@@ -653,7 +666,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     dM/dx (the −EI y''' part, by differences of the corrected moment), shear stress 2|V|/A_s.
 
     With ``segments`` (row ranges [start, stop) of the recording), a list of those values per segment, times
-    from each segment's first row (the fields computed once for all).
+    from each segment's first row (the fields computed once for all). ``modal_quarter_fraction``: the share of
+    the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (:func:`modal_error`).
     """
     N = model.n_modes
     L = model.span
@@ -669,6 +683,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     area = model.props["steel_area"]
     k = model.modes * np.pi / L
     upper = model.modes > N // 2
+    second = (model.modes > N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
@@ -689,6 +704,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
         full = np.hypot(qy @ shapes, qz @ shapes)
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
+        below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
         outs.append(dict(max_deflection=float(np.max(np.hypot(uy, uz))),
                          max_bending_stress=float(moment[it, ix] * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
@@ -698,7 +714,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
                          max_shear_stress=float(2.0 * shear[js] / area),
                          max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
                          max_shear_stress_t=float(times[js[0]] - times[0]),
-                         modal_tail_fraction=float(tail / full) if full > 0 else 0.0))
+                         modal_tail_fraction=float(tail / full) if full > 0 else 0.0,
+                         modal_quarter_fraction=float(below / full) if full > 0 else 0.0))
     return outs if segments is not None else outs[0]
 
 
@@ -768,11 +785,12 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     budget = energy_balance(model, window)
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"])
     correction = summary.pop("correction")
+    quarter = summary.pop("modal_quarter_fraction")
     vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
     result.error_estimate = float(max(e["total"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
                          energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
-                         revolutions_needed=float(run.get("revolutions_needed", np.nan)),
+                         revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
                                       for name, e in errors.items()})
     option = ReferenceOptions.from_inputs(inputs)

@@ -331,3 +331,19 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
     result = solve_point(point, "reference")
     assert result.status == "not_converged" and result.extras["whirl"] == "bouncing"
     assert result.values["window_largest_contact_force"] > result.values["peak_contact_force"] > 0
+
+
+def test_the_window_grows_until_the_figures_converge_within_the_budget(default_study):
+    # configs/default.toml at 100 rpm, 10 000 lbf, e = 0.3, 9 ppg, no flow: the joints slide on the low side and
+    # after the fixed run (40 + 6 revolutions) the figures are just over the study's 1 %; the record grows by
+    # 6 revolutions at a time until they are within it, inside the default budget of 100 revolutions
+    point = _default_point(default_study, 100, 10, 0.3, 9, 0.0)
+    grown = solve_point(point, "reference")
+    assert grown.status == "ok", grown.message
+    assert grown.error_estimate <= 0.01 and grown.values["revolutions_simulated"] > 46
+    fixed = solve_point({**point, "reference_max_revolutions": 46}, "reference")  # no room to grow
+    assert fixed.values["revolutions_simulated"] == pytest.approx(46)
+    assert fixed.status == "not_converged" and fixed.error_estimate > 0.01
+    # the grown answer lies within the fixed one's stated error of it
+    for name, parts in fixed.extras["convergence"].items():
+        assert abs(fixed.values[name] / grown.values[name] - 1.0) <= parts["total"] + grown.error_estimate, name
