@@ -200,6 +200,96 @@ def bench_hierarchy(count: int = 12) -> list[str]:
             "reference model answers, take most of the time.", ""]
 
 
+STUDY_CONFIG = DEFAULT_CONFIG.with_name("default.toml")
+
+#: Run in a fresh process per method: the point solved once (its compiled kernels loaded), then again under
+#: tracemalloc, which sees every allocation of Python and numpy (numba's own arrays inside a kernel are not seen).
+_MEMORY_SCRIPT = """
+import json, resource, sys, tracemalloc
+from study.config import load
+from study.solvers import solve_point
+point = load(sys.argv[1], json.loads(sys.argv[3])).point()
+solve_point(point, sys.argv[2])
+tracemalloc.start()
+result = solve_point(point, sys.argv[2])
+peak = tracemalloc.get_traced_memory()[1]
+tracemalloc.stop()
+print(json.dumps(dict(peak=peak, process=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, status=result.status)))
+"""
+
+
+def bench_memory(cases=None) -> list[dict]:
+    """Peak memory per design point of every method (:data:`_MEMORY_SCRIPT`), each in a fresh process: rows
+    with the case, the method, the point's peak traced allocation [MiB], the process's peak resident memory
+    [MiB] (interpreter, solver stack and kernels included) and the point's status."""
+    import json
+    import subprocess
+    import sys
+
+    cases = cases or [("paper example", DEFAULT_CONFIG, {}),
+                      ("paper example, one wall, self-consistent", DEFAULT_CONFIG,
+                       {"impact.pattern": "one_wall", "impact.closure": "self_consistent"}),
+                      ("default study, first point", STUDY_CONFIG, {})]
+    rows = []
+    for label, config, overrides in cases:
+        for method in METHODS:
+            run = subprocess.run([sys.executable, "-c", _MEMORY_SCRIPT, str(config), method, json.dumps(overrides)],
+                                 capture_output=True, text=True, timeout=600, check=True)
+            got = json.loads(run.stdout.strip().splitlines()[-1])
+            rows.append(dict(case=label, method=method, peak=got["peak"] / 2**20, process=got["process"] / 1024,
+                             status=got["status"]))
+    return rows
+
+
+def memory_table(rows: list[dict]) -> list[str]:
+    """The rows of :func:`bench_memory` as a markdown table, one column per case."""
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    lines = ["### Peak memory per design point, by method", "",
+             "Each method in a fresh process per case (`study.bench.bench_memory`): the point solved once to load "
+             "its compiled kernels, then again under tracemalloc, which counts every allocation of Python and numpy "
+             "during the point (numba's arrays inside a kernel are not counted). In brackets: the process's peak "
+             "resident memory, interpreter and solver stack included; then the point's status.", "",
+             "| method | " + " | ".join(f"{c}: peak [MiB] (process) status" for c in cases) + " |",
+             "|---|" + "---|" * len(cases)]
+    for method in dict.fromkeys(r["method"] for r in rows):
+        cells = [next(f"{r['peak']:.3g} ({r['process']:.0f}) {r['status']}" for r in rows
+                      if r["method"] == method and r["case"] == c) for c in cases]
+        lines.append(f"| {method} | " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
+def bench_compile(repeat: int = 3) -> list[str]:
+    """The first run after installation against later ones: ``study compile`` into an empty numba cache
+    (a fresh install; ``make setup`` runs it), then ``study point`` on the default study with the cache
+    filled (median of ``repeat`` processes, start-up and imports included)."""
+    import subprocess
+    import sys
+
+    with tempfile.TemporaryDirectory() as cache:
+        env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "study.cli", "compile"], env=env, check=True, capture_output=True)
+        cold = time.perf_counter() - start
+        point = [sys.executable, "-m", "study.cli", "point", str(STUDY_CONFIG)]
+        times = []
+        for _ in range(repeat):
+            start = time.perf_counter()
+            subprocess.run(point, env=env, check=True, capture_output=True)
+            times.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-c", "import study.cli"], env=env, check=True)
+        imports = time.perf_counter() - start
+    return ["### Compiling ahead: the first run after installation against later ones", "",
+            "`study compile` (run by `make setup`) solves every method on the warm-up points "
+            "(`study.workflow.compiled`) into an empty numba cache, as on a fresh install; then `study point "
+            "configs/default.toml` (the reference model answers its first point) as a new process, with the "
+            "cache filled.", "",
+            "| step | time [s] |", "|---|---|",
+            f"| `study compile`, empty cache | {cold:.3g} |",
+            f"| `study point configs/default.toml` after it (median of {repeat} processes) | {statistics.median(times):.3g} |",
+            f"| of which starting Python and importing the command | {imports:.3g} |", ""]
+
+
 def _grid_of_size(study, points: int) -> Grid:
     """The study's grid with its first axis resampled so that the grid has about ``points`` points."""
     grid = Grid(dict(study.inputs), dict(study.axes))
@@ -331,15 +421,25 @@ def run_bench(out: str | None = None) -> str:
         chart = Path(out).with_name("time_domain.png")
         time_domain_chart(rows, stability, "the paper's example at a 10 m span, first mode").savefig(chart, dpi=150)
         lines += [f"Chart: `{chart.name}` beside this file.", ""]
-    for config, points, what in ((study, 10_000, "the default study (method core, about 0.2 ms per point: "
-                                  "scheduling- and storage-bound)"),
-                                 (load(SCREEN_CONFIG), 4_000, "`configs/screen.toml` (method sdof, about 2 ms per "
-                                  "point: compute-bound)")):
-        sweep_rows, notes = bench_sweep(config, points)
-        lines += _table(f"Sweep of {what}, its axes resampled to about {points} points: in process vs local "
-                        "dask workers (median of 3 runs each)", sweep_rows, "s", 1.0)
+    for config, points, repeat, project, what in (
+            (study, 10_000, 3, False, "`configs/paper.toml` (method core, about 0.2 ms per point: scheduling- and "
+             "storage-bound)"),
+            (load(SCREEN_CONFIG), 4_000, 3, False, "`configs/screen.toml` (method sdof, about 2 ms per point: compute-bound)"),
+            (load(STUDY_CONFIG), 96, 1, True, "the default study `configs/default.toml` (method auto: the free whirl where "
+             "the pipe stays clear, the reference model where it touches; its rotary speeds resampled)")):
+        sweep_rows, notes = bench_sweep(config, points, repeat)
+        lines += _table(f"Sweep of {what}, about {points} points: in process vs local dask workers (median of "
+                        f"{repeat} run{'s' if repeat > 1 else ''} each)", sweep_rows, "s", 1.0)
         speedup = sweep_rows[1][1] / sweep_rows[2][1]
         lines += [f"Two workers vs one: {speedup:.2f}x.", ""] + [f"- {note}" for note in notes] + [""]
+        if project:
+            size = _grid_of_size(config, points).size
+            hours = sweep_rows[2][1] / size * 1e5 / 3600
+            lines += [f"At this mix's measured rate on 2 workers, 10^5 points of the default study would take "
+                      f"about {hours:.3g} h (an extrapolation of the {size}-point run, not a measured 10^5-point "
+                      "sweep): the reference model's points in contact set the pace.", ""]
+    lines += bench_compile()
+    lines += memory_table(bench_memory())
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # KiB on Linux
     lines += [f"Peak memory of the benchmark process (every method above run in it): {peak:.0f} MiB.", ""]
     report = "\n".join(lines).rstrip() + "\n"
