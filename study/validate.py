@@ -457,7 +457,7 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
     worst = {k: (max(v) if v else float("nan")) for k, v in errors.items()}
     lines += ["",
               f"Which model answered: {shares} (the time it saves against the reference model everywhere is measured "
-              "by `make bench`, docs/performance.md). Where the free whirl answered ({len(errors['max_normal_stress'])} points) it is within "
+              f"by `make bench`, docs/performance.md). Where the free whirl answered ({len(errors['max_normal_stress'])} points) it is within "
               f"{100 * worst['max_normal_stress']:.2g} % of the reference model's max normal stress and "
               f"{100 * worst['max_deflection']:.2g} % of its deflection, and its alternating stress within "
               f"{max(alternating, default=float('nan')):.3g} psi (the reference's remnant of the start-up transient; "
