@@ -12,8 +12,12 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 
 - ``free-whirl``: the reference model's scene clear of the wall, in closed form (synchronous whirl about the
   sag; exact there) — a few milliseconds; ``out_of_scope`` where the free motion would reach the wall;
+- ``sliding``: the same scene lying on the wall at its tool joints (an inclined hole), the contact held and
+  sliding round: the rest on the wall and the synchronous whirl about it — a fraction of a second; the state
+  the reference model reaches only as its start-up ringing dies (after hundreds of revolutions);
+  ``out_of_scope`` where the contact would open or the section does not reach the wall;
 - ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
-  second to seconds; it mends whatever the free whirl could not answer.
+  second to seconds; it mends whatever the cheaper rungs could not answer.
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -27,7 +31,7 @@ from __future__ import annotations
 import time
 from typing import Any, Callable, Mapping
 
-from study.solvers import fast, freewhirl, gate, reference, series
+from study.solvers import fast, freewhirl, gate, reference, series, sliding
 from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
 
@@ -56,11 +60,12 @@ def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
 #: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
 LADDERS: dict[str, dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]]] = {
-    "auto": {"free-whirl": (freewhirl.solve, dict), "reference": (reference.solve, dict)},
+    "auto": {"free-whirl": (freewhirl.solve, dict), "sliding": (sliding.solve, dict), "reference": (reference.solve, dict)},
     "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.
 MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
+    "sliding": _not_final,
     "reference": _not_final,
     "series": _error_only,
 }
@@ -89,7 +94,8 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The reference model's hierarchy: the free whirl where the pipe stays clear, else the reference model."""
+    """The reference model's hierarchy: the free whirl where the pipe stays clear, the sliding state where it lies
+    on the wall, else the reference model."""
     return climb("auto", inputs)
 
 

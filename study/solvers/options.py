@@ -19,7 +19,7 @@ METHOD_DESCRIPTIONS = {
     "series": "the paper's double Fourier series (modes x harmonics) with the same span search as fast: the "
               "reproduction, and the slow reference",
     "auto": "the cheapest model of the hierarchy that serves the point: the free whirl where the pipe stays clear "
-            "of the wall, else the reference model",
+            "of the wall, the sliding state where it lies on it, else the reference model",
     "periodic": "the paper's periodic solution: fast, then series where only fast's error estimate failed",
     "time-domain": "modal span integrated through Hertz contact with both walls (event-driven, explicit Verlet "
                    "or implicit LSODA) until periodic: the check on the periodic assumption",
@@ -32,6 +32,9 @@ METHOD_DESCRIPTIONS = {
                        "not, peak force, max normal and alternating stress within solver.check_tolerance",
     "free-whirl": "the reference model's scene clear of the wall in closed form: synchronous whirl under the mass "
                   "eccentricity about the sag, drag exact on the circle; out of scope where it would touch",
+    "sliding": "the reference model's scene lying on the wall at its tool joints, sliding round as the pipe turns: "
+               "rest on the wall with Hertz contact and friction, and the synchronous whirl about it; out of scope "
+               "where the contact would open",
     "sdof": "one-degree-of-freedom screen: first-mode impact oscillator between the walls, exact period-1 orbit "
             "and Floquet stability at a given span",
 }
