@@ -456,12 +456,18 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result.extras.update(closure=scene.closure, impact_pattern=scene.pattern)
     reasons: dict[str, int] = {}
     chosen = bracket = None
+    c, history, converged, why = c0, [c0], True, ""
     for seed, window in starts:
-        found = continue_root(scene, seed, window, c0, options, settings.damped_harmonics)
+        found = continue_root(scene, seed, window, c, options, settings.damped_harmonics)
         problem = "; ".join(found.impact.problems) or violation(scene, found, options)
-        if problem is None:
-            chosen, bracket = found, window
-            break
+        if problem is None:  # settle c with this motion, then condition 1 again
+            found, history, converged, why = iterate_damping(scene, found, window, options, settings)
+            problem = None if not converged else violation(scene, found, options)
+            if problem is None:  # valid, or its damping did not settle (reported as not converged)
+                chosen, bracket = found, window
+                break
+            c = history[-1]  # the next roots are continued with the damping this motion settled at
+            problem = "breaks condition 1 at its settled damping"
         key = periodic._reason(problem)
         reasons[key] = reasons.get(key, 0) + 1
     summary = (f"{search.roots.size} roots of the undamped condition 2, {len(starts)} pass its midspan screen and "
@@ -469,17 +475,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if chosen is None:
         detail = "; ".join(f"{v} x {k}" for k, v in sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
         return done("no_span", f"{summary}; none satisfies condition 1 with damping" + (f" ({detail})" if detail else ""))
-    chosen, history, converged, why = iterate_damping(scene, chosen, bracket, options, settings)
-    result.extras.update(damping_history=[float(c) for c in history], damping_converged=converged)
-    status, notes = "ok", []
-    if not converged:
-        status = "not_converged"
-        notes.append(why)
-    else:
-        problem = violation(scene, chosen, options)
-        if problem is not None:
-            status = "no_span"
-            notes.append(f"at the settled damping the span breaks condition 1: {problem}")
+    result.extras.update(damping_history=[float(v) for v in history], damping_converged=converged)
+    status, notes = ("ok", []) if converged else ("not_converged", [why])
     impact = chosen.impact
     finer = periodic.doubled(options)
     check = refine(scene, impact.span_length, bracket, chosen.spec.damping, finer, settings.damped_harmonics,
@@ -500,7 +497,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result.values.update(values)
     balance = energy(scene, chosen)
     t, moment = end_moment_history(scene, chosen)
-    residual = abs(balance["end_moment_work"] - balance["drag_dissipation"]) / balance["drag_dissipation"]
+    taken = balance["drag_dissipation"]
+    residual = abs(balance["end_moment_work"] - taken) / taken if taken > 0 else abs(balance["end_moment_work"])
     omega1 = periodic.natural_frequencies(scene, impact.span_length, [1.0])[0]
     result.values.update(
         equivalent_damping=chosen.spec.damping,

@@ -83,3 +83,29 @@ def test_a_point_on_the_wall_climbs_to_the_reference_model(paper):
 def test_a_buckled_section_is_not_sent_up(paper):
     result = solve_point({**paper, "axial_tension": -2e5}, "auto")
     assert result.status == "buckled" and list(result.extras["methods_tried"]) == ["free-whirl"]
+
+
+def test_a_dropped_drag_that_is_not_small_goes_to_the_damped_solution(monkeypatch):
+    # the periodic ladder passes over the series (it mends only an error estimate) and sends the undamped
+    # solution's terms_not_small (docs/model.md §6) to the damped one, which keeps the drag (§7.1)
+    from study.solvers import auto
+    from study.solvers.result import PointResult
+
+    def rung(name, status, calls):
+        def solve(inputs):
+            calls.append(name)
+            return PointResult(method=name, status=status)
+        return solve
+
+    calls = []
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "terms_not_small", calls), dict),
+                                                   "series": (rung("series", "ok", calls), dict),
+                                                   "damped": (rung("damped", "ok", calls), dict)})
+    result = auto.solve_periodic({})
+    assert calls == ["fast", "damped"] and result.method == "damped" and result.status == "ok"
+    assert result.message.startswith("periodic: damped answered after fast: terms_not_small")
+    calls.clear()
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "no_span", calls), dict),
+                                                   "series": (rung("series", "ok", calls), dict),
+                                                   "damped": (rung("damped", "ok", calls), dict)})
+    assert auto.solve_periodic({}).method == "fast" and calls == ["fast"]  # nothing above mends no_span
