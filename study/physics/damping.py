@@ -113,9 +113,9 @@ def in_phase_moments(load_factors, moment_factors, transfer, work_weights):
     move the in-phase part (Re S_e = 0)."""
     h = np.asarray(transfer, dtype=complex)
     g = np.asarray(work_weights, dtype=float)
-    # complex @ complex: numpy's mixed complex @ float product is a slow generic loop
-    s_a = h @ (g * np.asarray(load_factors, dtype=float)).astype(complex)
-    s_e = h @ (g * np.asarray(moment_factors, dtype=float)).astype(complex)
+    # summed elementwise: a BLAS complex matrix-vector product of this size costs more in thread wake-ups
+    s_a = (h * (g * np.asarray(load_factors, dtype=float))).sum(axis=-1)
+    s_e = (h * (g * np.asarray(moment_factors, dtype=float))).sum(axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(s_a.imag == 0.0, 0.0, -s_a.imag / s_e.real)
 

@@ -142,9 +142,12 @@ def correction_fields(spec: Spectrum, x, t, kinds) -> dict[str, np.ndarray]:
 
 
 def _dot(a, b):
-    """a @ b for complex a and real b, as a complex product (numpy's mixed complex @ float product is a slow
-    generic loop)."""
-    return a @ np.asarray(b, dtype=complex)
+    """a @ b for complex a and real b (a vector or a matrix), as two real products: BLAS's complex products of
+    these small sizes cost more in thread wake-ups than they compute."""
+    b = np.asarray(b, dtype=float)
+    if b.ndim == 1:
+        return (a * b).sum(axis=-1)
+    return a.real @ b + 1j * (a.imag @ b)
 
 
 def _moment_slope(x, span, lam):
