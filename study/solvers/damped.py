@@ -10,7 +10,7 @@ a period and the end moments do exactly what the damping dissipates (appendix B)
 Everything else is the undamped solution's (:mod:`study.solvers.periodic`, docs/model.md §3–5): the same
 closures, Lee's pulse at the T_L–κ–b fixed point, condition 1, the same grids and stresses. The field is the
 undamped closed form (:func:`study.physics.beam.periodic_fields`, exact in time, with the quasi-static
-correction) plus a harmonic series of what damping and end moments change (docs/model.md eq. 7.4), whose
+correction) plus a harmonic series of what damping and end moments change (docs/model.md eq. 7.5), whose
 terms fall like ω_m⁻⁴: modal transfer H_nm = 1/(ω_n² − ω_m² + i ω_m c/M) against the undamped one, and the
 end moments' static shape in closed form (:func:`study.physics.damping.end_moment_static`) with a modal
 dynamic remainder.
@@ -26,6 +26,7 @@ following it, until c changes by less than ``damping_tolerance`` (status ``not_c
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass
@@ -44,6 +45,9 @@ METHOD = "damped"
 SECANT_STEPS = 12
 #: |F| below which a damped root is refined.
 ROOT_TOL = 1e-9
+#: Why a secant left its interval: around an undamped root, or between two samples of :func:`scan` (no root
+#: there: the residual changed sign across a pole of the in-phase moments).
+LEFT = "the damped root left its interval"
 
 
 @dataclass
@@ -59,9 +63,9 @@ class Spectrum:
     frequency: np.ndarray  #: ω_m [rad/s] of the kept harmonics
     coef: np.ndarray  #: one-sided train coefficients [1/s] (complex)
     transfer: np.ndarray  #: H_nm damped (harmonics × modes)
-    load: np.ndarray  #: a_n = g_n/(M L/2) [1/(kg m)... per unit impulse]
-    moment_factors: np.ndarray  #: e_n (modal forcing per unit end moment)
-    moments: np.ndarray  #: μ_m: end-moment harmonic i μ_m c_m per unit impulse [m]
+    load: np.ndarray  #: a_n = g_n/(M L/2) [1/kg]: the load's modal forcing per unit force
+    moment_factors: np.ndarray  #: e_n = 4 k_n/(M L) [1/(kg m)]: the end moments' per unit moment
+    moments: np.ndarray  #: μ_m [m]: the end moment's harmonic is i μ_m c_m per unit impulse
     dynamic: np.ndarray  #: z_nm: modal remainder of the end moments' response over their static shape
     correction: np.ndarray  #: modal amplitude added to the undamped one, without the static shape
     static: tuple  #: (s, m_s, s') of the end-moment static shape at (mid, mid, end): (L/2, L/2, 0)
@@ -114,8 +118,8 @@ def midspan_correction(spec: Spectrum) -> tuple[float, float, float]:
 
 
 def correction_fields(spec: Spectrum, x, t, kinds) -> dict[str, np.ndarray]:
-    """What damping and end moments add to the undamped fields (per unit impulse along +y), shape t × x:
-    "deflection" [m/(N s)], "moment" −EI y'' [m/s... per N s], "shear" −EI y''', "velocity"."""
+    """What damping and end moments add to the undamped fields per unit impulse along +y, shape t × x:
+    "deflection" y [m/(N s)], "velocity" ẏ [m/(N s²)], "moment" −EI y'' [1/s], "shear" −EI y''' [1/(m s)]."""
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
     ei, tn = spec.props["bending_stiffness"], spec.props["effective_tension"]
     s, ms, slope = damping.end_moment_static(x, spec.span, ei, tn)
@@ -186,17 +190,16 @@ def velocity_field(spec: Spectrum, impulse: float, x, t) -> np.ndarray:
 # --- the impact at one span ---------------------------------------------------------------------
 @dataclass
 class DampedImpact:
+    """The impact of one span with damping (as :class:`periodic.Impact`) and the spectrum it was solved with."""
+
     impact: periodic.Impact
     spec: Spectrum | None
 
 
-_GUESS = []
-
-
+@functools.lru_cache(maxsize=1)
 def _table():
-    if not _GUESS:
-        _GUESS.append(hertz.guess_table())
-    return _GUESS[0]
+    """The Hertz eccentricity's starting table (:func:`hertz.guess_table`), built once."""
+    return hertz.guess_table()
 
 
 def impact_at(scene: Scene, span: float, c: float, options: Options, harmonics: int, duration: float | None = None,
@@ -286,7 +289,7 @@ def refine(scene: Scene, span: float, bracket, c: float, options: Options, harmo
             break
         x2 = x1 - f1 * (x1 - x0) / (f1 - f0)
         if not lo < x2 < hi:
-            here.impact.problems.append("the damped root left the interval around the undamped root")
+            here.impact.problems.append(LEFT)
             return here
         x0, last, x1 = x1, here, x2
         here = impact_at(scene, x1, c, options, harmonics, last.impact.contact_duration,
@@ -522,3 +525,30 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                f"{result.values['end_moment_amplitude']:.4g} N m feeding {result.values['end_moment_power']:.4g} W; "
                f"energy residual {residual:.2g}")
     return done(status, "; ".join([message] + notes))
+
+
+def scan(scene: Scene, options: Options, c: float, lo: float, hi: float, samples: int = 201,
+         harmonics: int = DampedOptions.default("damped_harmonics")) -> list[tuple[float, str | None]]:
+    """Every root of the damped condition 2 with damping c [N s/m²] in [lo, hi] [m], found directly (not
+    continued from the undamped roots): the residual sampled at ``samples`` spans, each sign change between two
+    evaluated samples refined inside its interval, and kept when the residual vanishes there (not at a pole of
+    the in-phase moments, where it changes sign too). Returns (span [m], None or why condition 1 or the impact
+    rejects it) per root, ascending — the check of a given span range, e.g. around the paper's 345 ft."""
+    spans = np.linspace(lo, hi, samples)
+    values, starts, start = [], [], (None, 0.0)
+    for span in spans:
+        found = impact_at(scene, float(span), c, options, harmonics, *start)
+        ok = not found.impact.problems
+        values.append(found.impact.residual if ok else math.nan)
+        starts.append((found.impact.contact_duration, found.impact.contact_half_length) if ok else (None, 0.0))
+        start = starts[-1]
+    values = np.asarray(values)
+    out = []
+    for i in np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0]:
+        found = refine(scene, 0.5 * (spans[i] + spans[i + 1]), (spans[i], spans[i + 1]), c, options, harmonics,
+                       *starts[i])
+        if LEFT in found.impact.problems:
+            continue
+        problem = "; ".join(found.impact.problems) or violation(scene, found, options)
+        out.append((found.impact.span_length, problem))
+    return out
