@@ -109,3 +109,13 @@ def test_a_dropped_drag_that_is_not_small_goes_to_the_damped_solution(monkeypatc
                                                    "series": (rung("series", "ok", calls), dict),
                                                    "damped": (rung("damped", "ok", calls), dict)})
     assert auto.solve_periodic({}).method == "fast" and calls == ["fast"]  # nothing above mends no_span
+
+
+def test_a_thick_mud_climbs_to_the_damped_solution(valid_point):
+    # source: tests/solvers/test_statuses.py - drag coefficient 20 on the 15-mode point: the undamped solution's
+    # drag term is NOT small (terms_not_small); the damped solution keeps it and finds no span with that much
+    # damping (c0 = 3.5e3 N s/m²): what the ladder reports is the damped solution's answer
+    result = solve_point({**valid_point, "drag_coefficient": 20.0, "tolerance": 0.025}, "periodic")
+    assert list(result.extras["methods_tried"]) == ["fast", "damped"]
+    assert result.extras["methods_tried"]["fast"]["status"] == "terms_not_small"
+    assert result.method == "damped" and "after fast: terms_not_small" in result.message

@@ -83,3 +83,30 @@ def test_the_paper_reading_without_spans_has_none_with_damping_either(one_wall):
     result = solve_point({**one_wall, "impact_pattern": "alternating", "closure": "prescribed", "modes": 21},
                          "damped")
     assert result.status == "no_span" and "none satisfies condition 1 with damping" in result.message
+
+
+def test_the_end_moment_is_the_bending_moment_at_the_ends(solved, one_wall):
+    # source: boundary condition of eq. 7.3 (docs/model.md §7.1), −EI y''(0, t) = M_e(t): the field's moment at
+    # x = 0 (modes vanish there, the static shape m_s(0) = 1) is the end moment the method reports
+    scene, options = periodic.make_scene(one_wall), periodic.options_from(one_wall)
+    v = solved.values
+    found = damped.impact_at(scene, v["span_length"], v["equivalent_damping"], options, 400, v["contact_duration"],
+                             v["contact_half_length"])
+    t, moment = damped.end_moment_history(scene, found)
+    at_end = damped.fields(scene, found.impact, found.spec, options, np.array([0.0, 1e-9]), t, ["moment"])["moment"]
+    assert np.allclose(at_end[:, 0], moment, rtol=1e-9, atol=1e-9 * np.abs(moment).max())
+    assert np.abs(moment).max() == pytest.approx(v["end_moment_amplitude"], rel=1e-3)
+
+
+@pytest.mark.parametrize("pattern", ["alternating", "one_wall"])
+def test_energy_balance_at_a_fixed_span_and_damping(one_wall, pattern):
+    # source: paper appendix B carried to the span - the impact load in phase with the displacement it works on
+    # does no net work, so the end moments' work equals the damper's dissipation (harmonics against the velocity
+    # field on a grid); at an arbitrary span, damping and either impact pattern
+    inputs = {**one_wall, "impact_pattern": pattern, "closure": "prescribed", "modes": 21}
+    scene, options = periodic.make_scene(inputs), periodic.options_from(inputs)
+    found = damped.impact_at(scene, 40.0, 300.0, options, 400, 2e-3, 0.01, max_iterations=1)
+    balance = damped.energy(scene, found)
+    assert balance["end_moment_work"] > 0
+    assert balance["end_moment_work"] == pytest.approx(balance["damper_dissipation"], rel=1e-4)
+    assert abs(balance["impact_work"]) < 1e-9 * balance["damper_dissipation"]
