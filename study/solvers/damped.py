@@ -350,7 +350,6 @@ def energy(scene: Scene, found: DampedImpact) -> dict[str, float]:
             "impact_work": work_load, "equivalent_damping": damping.equivalent_damping(drag, v, w)}
 
 
-
 # --- the design point ---------------------------------------------------------------------------
 def assumed_damping(scene: Scene) -> float:
     """c₀ [N s/m²] of the paper's assumed motion y = c sin(πx/L) sin Ωt (the clearance c; paper appendix A):
