@@ -56,7 +56,7 @@ def check_size(study: Study, cap: int) -> None:
 
 
 #: Methods that search the span over resonances (their memory grows as the rotary speed falls).
-SPAN_SEARCHES = ("fast", "series", "periodic", "crosscheck", "reference-check")
+SPAN_SEARCHES = ("fast", "series", "periodic", "crosscheck", "reference-check", "damped")
 
 
 def check_span_search(study: Study) -> None:

@@ -85,3 +85,39 @@ def test_a_point_on_the_wall_climbs_to_the_reference_model(paper):
 def test_a_buckled_section_is_not_sent_up(paper):
     result = solve_point({**paper, "axial_tension": -2e5}, "auto")
     assert result.status == "buckled" and list(result.extras["methods_tried"]) == ["free-whirl"]
+
+
+def test_a_dropped_drag_that_is_not_small_goes_to_the_damped_solution(monkeypatch):
+    # the periodic ladder passes over the series (it mends only an error estimate) and sends the undamped
+    # solution's terms_not_small (docs/model.md §6) to the damped one, which keeps the drag (§7.1)
+    from study.solvers import auto
+    from study.solvers.result import PointResult
+
+    def rung(name, status, calls):
+        def solve(inputs):
+            calls.append(name)
+            return PointResult(method=name, status=status)
+        return solve
+
+    calls = []
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "terms_not_small", calls), dict),
+                                                   "series": (rung("series", "ok", calls), dict),
+                                                   "damped": (rung("damped", "ok", calls), dict)})
+    result = auto.solve_periodic({})
+    assert calls == ["fast", "damped"] and result.method == "damped" and result.status == "ok"
+    assert result.message.startswith("periodic: damped answered after fast: terms_not_small")
+    calls.clear()
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "no_span", calls), dict),
+                                                   "series": (rung("series", "ok", calls), dict),
+                                                   "damped": (rung("damped", "ok", calls), dict)})
+    assert auto.solve_periodic({}).method == "fast" and calls == ["fast"]  # nothing above mends no_span
+
+
+def test_a_thick_mud_climbs_to_the_damped_solution(valid_point):
+    # source: tests/solvers/test_statuses.py - drag coefficient 20 on the 15-mode point: the undamped solution's
+    # drag term is NOT small (terms_not_small); the damped solution keeps it and finds no span with that much
+    # damping (c0 = 3.5e3 N s/m²): what the ladder reports is the damped solution's answer
+    result = solve_point({**valid_point, "drag_coefficient": 20.0, "tolerance": 0.025}, "periodic")
+    assert list(result.extras["methods_tried"]) == ["fast", "damped"]
+    assert result.extras["methods_tried"]["fast"]["status"] == "terms_not_small"
+    assert result.method == "damped" and "after fast: terms_not_small" in result.message
