@@ -262,12 +262,13 @@ class Integrator:
         # estimate alone lets an undamped high mode ring at the edge of it
         self.h_max = min(model.period / 64.0, STABLE_STEP / float(np.max(model.omega)))
         self.steps = 0
+        self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK
 
     def run(self, t_end: float, record: bool = False, rows_per_revolution: int = 256,
             max_steps: int = 2_000_000) -> Window:
         P = self.model.points.size
-        stats, peak, onsets, ctime = np.zeros(1), np.zeros(P), np.zeros(P, np.int64), np.zeros(P)
+        stats, peak, onsets, ctime = np.zeros(whirl_kernel.N_STATS), np.zeros(P), np.zeros(P, np.int64), np.zeros(P)
         tau = self.model.period
         revs = max((t_end - self.t) / tau, 1e-9)
         cap = int(rows_per_revolution * 16 * revs) + 16 if record else 1
@@ -281,6 +282,7 @@ class Integrator:
             max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0)
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
+        self.work += stats
         return Window(times=rec_t[:n_rec], states=rec_z[:n_rec], forces=rec_f[:n_rec], peak=peak, onsets=onsets,
                       contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
 
