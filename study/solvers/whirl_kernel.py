@@ -15,7 +15,8 @@ more than ``ONSET_TOLERANCE`` of its clearance, or past the end of a contact for
 where the step's continuous extension (the 4th-order dense output of DOPRI5, Hairer, Nørsett &
 Wanner 1993 §II.6) puts the switch half that tolerance behind, until it lands within it: no step
 integrates across a kink of the force. At an onset the Hunt–Crossley hysteresis of the contact is
-set from its approach speed (as :mod:`study.solvers.event_driven` does); the contact is closed where
+set from its approach speed (as :mod:`study.solvers.event_driven` does; no slower than
+``ONSET_SPEED_FLOOR``); the contact is closed where
 the penetration returns to zero. A step is also capped at the predicted time to the next onset, so
 that one step cannot carry a point through a whole contact.
 
@@ -41,6 +42,11 @@ import numpy as np
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
+#: Approach speed [m/s] below which a contact opens with the Hunt–Crossley damping of this speed, χ = h(e)/v
+#: (its restitution then nearer 1, as in Hunt & Crossley's law of constant damping): a contact settling onto the
+#: wall at a vanishing speed would otherwise get an unbounded χ, a stiffness that held the explicit steps of a
+#: pipe sliding on the wall 100 times below those of its elastic contact (docs/reference_model.md §6).
+ONSET_SPEED_FLOOR = 1e-3
 #: Outcomes of :func:`advance`.
 OK, BLOWN_UP, STEP_UNDERFLOW, TOO_MANY_STEPS = 0, 1, 2, 3
 OUTCOMES = {OK: "ok", BLOWN_UP: "non-finite state or deflection above 100 clearances",
@@ -405,7 +411,7 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
                 chi[p] = 0.0
             elif not active[p] and d > 0.0:
                 active[p] = True
-                chi[p] = hyst / rate if rate > 0.0 else 0.0
+                chi[p] = hyst / max(rate, ONSET_SPEED_FLOOR)
                 onsets[p] += 1
                 opened = True
         if opened:  # the new chi changes the force at the step's end

@@ -85,3 +85,45 @@ def test_the_onset_is_located_within_its_tolerance(paper_inputs):
     assert window.onsets[0] == 1 and run.active[0]
     onset = end - window.contact_time[0]
     assert abs(onset - t1) <= 2 * whirl_kernel.ONSET_TOLERANCE * c / v1
+
+
+def _one_mode_hertz(base, **extra):
+    """One mode in one plane touching at midspan, Hertz contact with e = 0.5, nothing else acting."""
+    return reference.build_model({**base, "reference_modes": 1, "contact_points": [0.5], "contact_kinds": [0],
+                                  "friction": 0.0, "eccentricity": 0.0, "reference_damping": "none",
+                                  "restitution": 0.5, **extra})
+
+
+def test_hunt_crossley_damping_is_set_from_the_approach_speed(paper_inputs):
+    # χ = h(e)/v1 (Hunt & Crossley 1975, doi:10.1115/1.3423596, with the calibrated h(e)) at the closed-form
+    # approach speed v1 = √(v0² − ω²c²) of the free flight (as in _closed_form_cycle)
+    from study.solvers.timedomain import calibrated_hysteresis
+
+    model = _one_mode_hertz(paper_inputs)
+    om, c = model.omega[0], model.clearance[0]
+    v0 = np.hypot(om * c, 3.0 * om * c)
+    t1 = np.arcsin(om * c / v0) / om
+    z0 = np.zeros(8)
+    z0[2] = v0
+    run = reference.Integrator(model, 1e-9, z0)
+    run.run(t1 * (1 + 1e-3))
+    assert run.active[0]
+    assert run.chi[0] == pytest.approx(calibrated_hysteresis(0.5) / (3.0 * om * c), rel=1e-4)
+
+
+def test_a_contact_settling_at_a_vanishing_speed_gets_the_damping_of_the_floor(paper_inputs):
+    # laid 1e-10 c off the wall under a side load that sags it to twice the clearance: it reaches the wall at
+    # √(2 a 1e-10 c) (about 1e-6 m/s, a = s - ω²c), far below ONSET_SPEED_FLOOR, and takes that floor's χ
+    from study.solvers.timedomain import calibrated_hysteresis
+
+    unit = _one_mode_hertz(paper_inputs, side_load=1.0)
+    om, c = unit.omega[0], unit.clearance[0]
+    model = _one_mode_hertz(paper_inputs, side_load=2.0 * om**2 * c / unit.side[0])
+    a = model.side[0] - om**2 * c
+    assert np.sqrt(2 * a * 1e-10 * c) < 1e-2 * whirl_kernel.ONSET_SPEED_FLOOR
+    z0 = np.zeros(8)
+    z0[0] = c * (1 - 1e-10)
+    run = reference.Integrator(model, 1e-9, z0)
+    run.run(0.01 / om)
+    assert run.active[0]
+    assert run.chi[0] == pytest.approx(calibrated_hysteresis(0.5) / whirl_kernel.ONSET_SPEED_FLOOR, rel=1e-12)
