@@ -610,9 +610,10 @@ def penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: fl
 
 def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
     """The compiled integrator over ``revolutions`` from the centred pipe at rest: wall_time [s],
-    outcome, steps, final_state."""
+    outcome, steps, final_state, work (the kernel's counts, :data:`whirl_kernel.N_STATS`)."""
     model = build_model(inputs)
     run = Integrator(model, rtol)
     start = time.perf_counter()
     run.run(revolutions * model.period)
-    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy())
+    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),
+                work=run.work.copy())
