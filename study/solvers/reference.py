@@ -120,7 +120,7 @@ class WhirlModel:
         return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
 
     def system(self) -> tuple:
-        """The tuple the compiled right-hand side takes (:func:`whirl_kernel.rhs`)."""
+        """The tuple the compiled integrator takes (:func:`whirl_kernel.advance`)."""
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
                          float(self.law), self.hysteresis])
         return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
