@@ -2,7 +2,8 @@
 
 The model's physics checks (Jeffcott, rolling whirl, energy, the event-driven time domain, scipy on the same
 equations) are in test_reference.py; here the integrator itself: an impact on a linear wall against the
-piecewise-linear oscillator in closed form, the onset located within its tolerance, and its work counted.
+piecewise-linear oscillator in closed form, the onset located within its tolerance, its work counted, and the
+Hunt–Crossley damping set at an onset from the approach speed, down to ONSET_SPEED_FLOOR.
 """
 
 import numpy as np
