@@ -21,7 +21,7 @@ import numpy as np
 from study import __version__
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, periodic, reference, series, solve_point, timedomain
+from study.solvers import METHODS, periodic, reference, series, solve_point, timedomain, whirl_kernel
 from study.workflow.execute import run_grid, warm_up
 from study.workflow.grid import Grid
 
@@ -137,16 +137,21 @@ def work_precision(point) -> list[tuple[list[dict], str, str]]:
 #: The reference model's benchmark scene: 1-in eccentricity at 60 rpm, six modes per direction (forward whirl with
 #: impacts at the tool joints and body, friction and mud drag).
 REFERENCE_CASE = dict(reference_modes=6, rotary_speed=2 * np.pi, eccentricity=0.0254)
+#: The compiled integrator's tolerances in the comparison: half decades, so that each RK45 run meets a compiled run
+#: of about its accuracy (the pairing takes the cheapest compiled run at least as accurate).
+COMPILED_RTOLS = (3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 1e-9)
+#: Issue 20's target: the compiled integrator at least this many times faster than RK45 at equal accuracy.
+REFERENCE_TARGET = 50.0
 
 
-def bench_reference(point, revolutions: float = 3.0, repeat: int = 3,
-                    compiled_rtols=(1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9),
+def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_rtols=COMPILED_RTOLS,
                     penalty_rtols=(1e-4, 1e-5, 1e-6, 1e-7), case=None) -> tuple[list[dict], list[str]]:
     """The reference model's compiled integrator against scipy's solve_ivp (RK45) on the same equations (the
     linear penalty contact, :func:`study.solvers.reference.penalty_rhs`), from the centred pipe at rest over
     ``revolutions``. Error: largest difference of the final state (q in units of c, q' in units of Omega c)
-    from DOP853 at rtol 1e-11 on the same equations. Returns rows (name, setting, wall_time, error) and the
-    report's lines with the equal-accuracy ratios."""
+    from DOP853 at rtol 1e-11 on the same equations. Each RK45 run is paired with the cheapest compiled run at
+    least as accurate. Returns rows (name, setting, wall_time (median of ``repeat``), error, steps, work: the
+    compiled kernel's counts) and the report's lines with the equal-accuracy ratios."""
     inputs = {**point, **(REFERENCE_CASE if case is None else case), "contact_law": "penalty"}
     model = reference.build_model(inputs)
     scale, n = model.state_scale(), 4 * model.n_modes
@@ -164,20 +169,86 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3,
     for name, rtol, run, count in runners:
         runs = [run(rtol) for _ in range(repeat)]
         rows.append(dict(name=name, setting=f"rtol {rtol:g}", wall_time=statistics.median(r["wall_time"] for r in runs),
-                         error=error(runs[-1]["final_state"]), steps=runs[-1][count]))
+                         error=error(runs[-1]["final_state"]), steps=runs[-1][count], work=runs[-1].get("work")))
     lines = ["### Reference model: compiled integrator against scipy's RK45 on the same equations", "",
              f"Case: the paper's example with {model.n_modes} modes per direction, "
              f"{model.rotary_speed * 30 / np.pi:.4g} rpm, eccentricity {model.eccentricity / 0.0254:.3g} in, "
              f"linear penalty contact, {revolutions:g} revolutions from rest (`study.bench.bench_reference`). Error: "
-             "largest difference of the final state from DOP853 at rtol 1e-11 on the same equations.", "",
-             "| integrator | setting | time [ms] | error | steps (RK45: evaluations) |", "|---|---|---|---|---|"]
-    lines += [f"| {r['name']} | {r['setting']} | {r['wall_time'] * 1e3:.3g} | {r['error']:.2g} | {r['steps']} |"
-              for r in rows]
+             "largest difference of the final state from DOP853 at rtol 1e-11 on the same equations. Compiled "
+             "work: steps accepted / rejected by the error test / redone to locate a contact's onset or end, and "
+             "right-hand-side evaluations.", "",
+             "| integrator | setting | time [ms] | error | steps (RK45: evaluations) | compiled work |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        work = r["work"]
+        counts = "-" if work is None else (
+            f"{work[whirl_kernel.S_ACCEPTED]:.0f} / {work[whirl_kernel.S_ERROR_REJECTED]:.0f} / "
+            f"{work[whirl_kernel.S_SWITCH_REDONE]:.0f}, {work[whirl_kernel.S_RHS]:.0f} evaluations")
+        lines.append(f"| {r['name']} | {r['setting']} | {r['wall_time'] * 1e3:.3g} | {r['error']:.2g} | {r['steps']} "
+                     f"| {counts} |")
     lines.append("")
+    ratios = []
     for ref, best, ratio in timedomain.equal_accuracy_speedups(rows, method="compiled"):
+        ratios.append(ratio)
         lines.append(f"- RK45 at {ref['setting']} (error {ref['error']:.2g}, {ref['wall_time'] * 1e3:.3g} ms): "
                      + (f"compiled at {best['setting']} (error {best['error']:.2g}, {best['wall_time'] * 1e3:.3g} ms) "
                         f"is {ratio:.3g}x faster" if best else "no compiled setting above is as accurate"))
+    if ratios:
+        met = all(r >= REFERENCE_TARGET for r in ratios)
+        lines += ["", f"Equal-accuracy ratios {', '.join(f'{r:.3g}x' for r in ratios)}: smallest {min(ratios):.3g}x; "
+                  f"issue 20's target of {REFERENCE_TARGET:g}x at every accuracy is "
+                  + ("met." if met else "not met.")]
+    lines.append("")
+    return rows, lines
+
+
+#: A contact point of the default study (configs/default.toml: 75 rpm, 10 000 lbf, e = 0.3, 12 ppg, 7.4 ft/s; the
+#: tool joints slide on the low side) for the reference model's work and precision.
+REFERENCE_PRECISION_POINT = dict(rotary_speed=75 * np.pi / 30, axial_tension=10_000 * 4.4482216152605,
+                                 restitution=0.3, mud_density=12 * 119.826427, mud_flow_velocity=7.4 * 0.3048)
+
+
+def bench_reference_precision(point=None, modes=(8, 16, 24), rtols=(1e-4, 1e-6, 1e-8), converged=(32, 1e-9),
+                              repeat: int = 1) -> tuple[list[dict], list[str]]:
+    """The reference model's work and precision at one contact point of the default study: time per point
+    (``solve_point``, median of ``repeat``) against the relative error of its outputs at each mode count and
+    rtol, the error taken from a run at ``converged`` (modes, rtol). Returns rows (method, modes, rtol,
+    harmonics None, wall_time, error: max normal stress, shear_error: max shear stress, alternating_error,
+    force_error: peak contact force) and the report's lines."""
+    if point is None:
+        point = {**load(DEFAULT_CONFIG.with_name("default.toml")).point(), **REFERENCE_PRECISION_POINT}
+    solve_point({**point, "reference_modes": 2, "reference_revolutions": 1, "reference_window": 1}, "reference")
+
+    def run(n, rtol):
+        inputs = {**point, "reference_modes": n, "reference_rtol": rtol}
+        times, result = [], None
+        for _ in range(repeat):
+            start = time.perf_counter()
+            result = solve_point(inputs, "reference")
+            times.append(time.perf_counter() - start)
+        return statistics.median(times), result
+
+    best_time, best = run(*converged)
+    names = dict(error="max_normal_stress", shear_error="max_shear_stress",
+                 alternating_error="alternating_bending_stress", force_error="peak_contact_force")
+    rows = []
+    for n in modes:
+        for rtol in rtols:
+            seconds, result = run(n, rtol)
+            rows.append(dict(method="reference", modes=n, rtol=rtol, harmonics=None, wall_time=seconds,
+                             whirl=result.extras.get("whirl"),
+                             **{key: abs(result.values[v] / best.values[v] - 1.0) for key, v in names.items()}))
+    lines = ["### Reference model: work and precision at a contact point of the default study", "",
+             f"`configs/default.toml` at {point['rotary_speed'] * 30 / np.pi:.4g} rpm, "
+             f"{point['axial_tension'] / 4.4482216152605:.5g} lbf, e = {point['restitution']:g}, "
+             f"{point['mud_density'] / 119.826427:.3g} ppg, {point['mud_flow_velocity'] / 0.3048:.3g} ft/s "
+             f"(`study.bench.bench_reference_precision`): the pipe {best.extras.get('whirl')}, "
+             f"{best.message.split(';')[1].strip()}. Time per point (`solve_point`) against the relative "
+             f"error of the outputs from {converged[0]} modes at rtol {converged[1]:g} ({best_time:.3g} s).", "",
+             "| modes | rtol | time per point [s] | max normal stress | alternating bending stress | "
+             "max shear stress | peak contact force |", "|---|---|---|---|---|---|---|"]
+    lines += [f"| {r['modes']} | {r['rtol']:g} | {r['wall_time']:.3g} | {r['error']:.1e} | "
+              f"{r['alternating_error']:.1e} | {r['shear_error']:.1e} | {r['force_error']:.1e} |" for r in rows]
     lines.append("")
     return rows, lines
 
@@ -404,6 +475,7 @@ def run_bench(out: str | None = None) -> str:
                         "no event-driven setting above is as accurate"))
     lines.append("")
     lines += bench_reference(point)[1]
+    lines += bench_reference_precision()[1]
     lines += bench_hierarchy()
     stability = timedomain.step_stability(case)
     lines += ["### Stability of the integrators against the contact stiffness", "",
