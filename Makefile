@@ -9,6 +9,7 @@ RUNS   ?= 10
 .PHONY: help setup test sweep charts bench validate faults clean chromium
 
 help:
+	@echo "make setup     install into .venv and compile the solver kernels ahead (every target does it first)"
 	@echo "make test      install (first time) and run the whole test suite"
 	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
 	@echo "make charts    redraw the charts of the default study"
@@ -22,6 +23,7 @@ setup: $(STAMP)
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	$(BIN)/study compile
 	touch $(STAMP)
 
 test: $(STAMP) chromium

@@ -1,4 +1,4 @@
-"""The ``study`` command: point, sweep, charts, bench, validate.
+"""The ``study`` command: point, sweep, charts, compile, bench, validate.
 
 Bad input ends with one clear message listing every problem and exit status 2, never a traceback.
 """
@@ -14,7 +14,8 @@ from study import __version__
 from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert, display_unit, pint_unit
-from study.workflow.execute import Interrupted, SweepError
+from study.workflow.compiled import compile_ahead, ensure_compiled, kernels, uncached
+from study.workflow.execute import Interrupted, SweepError, tell
 
 DEFAULT_CONFIG = "configs/default.toml"
 
@@ -65,6 +66,7 @@ def cmd_point(args) -> int:
     inputs = study.point()
     if args.method:
         inputs["solver_method"] = args.method
+    ensure_compiled(inputs, say=tell)
     result = solve_point(inputs)
     print(_point_json(result, inputs) if args.json else _point_table(result, inputs))
     return 0
@@ -95,6 +97,15 @@ def cmd_charts(args) -> int:
 
     for figure in write_report(args.dataset, out_dir=args.out, fmt=args.format):
         print(figure)
+    return 0
+
+
+def cmd_compile(args) -> int:
+    missing = uncached()
+    print(f"compiling the solver kernels ahead ({len(missing)} of {len(kernels())} not in numba's cache); "
+          "every method once on the warm-up points:")
+    seconds = compile_ahead(say=print)
+    print(f"compiled in {seconds:.0f} s; kernels not in the cache now: {', '.join(uncached()) or 'none'}")
     return 0
 
 
@@ -148,6 +159,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="folder (default: charts/ beside the dataset)")
     p.add_argument("--format", default="png", choices=["png", "pdf", "svg"])
     p.set_defaults(func=cmd_charts)
+
+    p = sub.add_parser("compile", help="compile the solver kernels ahead, once (make setup runs it)")
+    p.set_defaults(func=cmd_compile)
 
     p = sub.add_parser("bench", help="benchmark the methods side by side")
     p.add_argument("--out", default=None, help="also write the report to this markdown file")

@@ -28,7 +28,8 @@ from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.solvers.options import (DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
-                                   Options, ReferenceOptions, SdofOptions, SeriesOptions, TimeDomainOptions)
+                                   DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
+                                   TimeDomainOptions)
 from study.units import UnitProblem, parse_quantity
 
 REQUIRED = object()
@@ -169,6 +170,13 @@ FIELDS: tuple[Field, ...] = (
           lower=0.0, lower_open=True),
     Field("solver.series_max_harmonics", "series_max_harmonics", "cap on the series method's harmonics", "",
           default=SeriesOptions.default("series_max_harmonics"), integer=True, lower=1.0),
+    Field("solver.damped_harmonics", "damped_harmonics", "highest time harmonic of the damped method's damping "
+          "and end-moment correction", "", default=DampedOptions.default("damped_harmonics"), integer=True, lower=1.0),
+    Field("solver.damping_iterations", "damping_iterations", "most steps of the damped method's equivalent-damping "
+          "iteration", "", default=DampedOptions.default("damping_iterations"), integer=True, lower=1.0),
+    Field("solver.damping_tolerance", "damping_tolerance", "relative change of the equivalent damping that ends "
+          "the damped method's iteration", "", default=DampedOptions.default("damping_tolerance"), lower=0.0,
+          lower_open=True),
     Field("solver.time_integrator", "time_integrator", "integrator of the time-domain method", None,
           default=TimeDomainOptions.default("time_integrator"), choices=TimeDomainOptions.choices("time_integrator")),
     Field("solver.time_modes", "time_modes", "modes of the time-domain model", "",

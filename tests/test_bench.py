@@ -40,3 +40,41 @@ def test_hierarchy_bench_states_both_times_and_the_methods():
 
     text = " ".join(bench_hierarchy(count=2))
     assert "The hierarchy took" in text and "the reference model at every point" in text and "answered" in text
+
+
+def test_memory_bench_measures_each_method_in_its_own_process():
+    from study.bench import bench_memory, memory_table
+
+    rows = bench_memory([("paper example", DEFAULT_CONFIG, {})])
+    assert [r["method"] for r in rows] == list(METHODS)
+    # the span search holds thousands of poles; the core method only the point's scalars
+    by = {r["method"]: r for r in rows}
+    assert by["fast"]["peak"] > 10 * by["core"]["peak"] > 0
+    assert all(r["process"] > 50 for r in rows)  # an interpreter with numpy, scipy and numba: tens of MiB at least
+    table = memory_table(rows)
+    assert sum(line.startswith("| ") for line in table) == len(METHODS) + 1
+
+
+def test_reference_bench_pairs_every_rk45_run_and_states_the_target():
+    from study.bench import REFERENCE_TARGET, bench_reference
+
+    case = {"reference_modes": 2, "rotary_speed": 6.283185307179586, "eccentricity": 0.0254}
+    rows, lines = bench_reference(load(DEFAULT_CONFIG).point(), revolutions=0.5, repeat=1, compiled_rtols=(1e-3, 1e-9),
+                                  penalty_rtols=(1e-4, 1e-6), case=case)
+    compiled = [r for r in rows if r["name"] == "compiled"]
+    assert all(r["work"][0] >= 0 and r["steps"] == r["work"][1] for r in compiled)  # contact time, accepted steps
+    assert sum(line.startswith("- RK45 at rtol") for line in lines) == 2
+    summary = next(line for line in lines if line.startswith("Equal-accuracy ratios"))
+    assert f"target of {REFERENCE_TARGET:g}x" in summary and summary.endswith(("met.", "not met."))
+
+
+def test_reference_precision_bench_measures_errors_against_a_finer_run():
+    from study.bench import REFERENCE_PRECISION_POINT, bench_reference_precision
+
+    point = {**load(DEFAULT_CONFIG.with_name("default.toml")).point(), **REFERENCE_PRECISION_POINT,
+             "reference_revolutions": 2, "reference_window": 1}
+    rows, lines = bench_reference_precision(point, modes=(3,), rtols=(1e-4, 1e-7), converged=(6, 1e-8))
+    assert [(r["modes"], r["rtol"]) for r in rows] == [(3, 1e-4), (3, 1e-7)]
+    assert all(r["wall_time"] > 0 and np.isfinite(r["error"]) and r["force_error"] >= 0 for r in rows)
+    assert rows[0]["error"] > 0  # three modes are not six
+    assert sum(line.startswith("| 3 |") for line in lines) == 2

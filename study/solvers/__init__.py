@@ -22,7 +22,7 @@ from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 #: package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
                   "crosscheck": "crosscheck", "reference": "reference", "reference-check": "refcheck",
-                  "free-whirl": "freewhirl", "sdof": "sdof"}
+                  "free-whirl": "freewhirl", "sliding": "sliding", "sdof": "sdof", "damped": "damped"}
 
 
 #: Methods whose solve function is not their module's ``solve``: name -> (module, function).

@@ -12,14 +12,19 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 
 - ``free-whirl``: the reference model's scene clear of the wall, in closed form (synchronous whirl about the
   sag; exact there) — a few milliseconds; ``out_of_scope`` where the free motion would reach the wall;
+- ``sliding``: the same scene lying on the wall at its tool joints (an inclined hole), the contact held and
+  sliding round: the rest on the wall and the synchronous whirl about it — a fraction of a second; the state
+  the reference model reaches only as its start-up ringing dies (after hundreds of revolutions);
+  ``out_of_scope`` where the contact would open or the section does not reach the wall;
 - ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
-  second to seconds; it mends whatever the free whirl could not answer.
+  second to seconds; it mends whatever the cheaper rungs could not answer.
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
 where the section whirls clear of it, and where both touch its forces and stresses are off by factors. It keeps
 a ladder of its own, ``periodic``: ``fast``, then the paper's ``series`` where only ``fast``'s error estimate
-failed and its span held with doubled modes (the series searches the same spans).
+failed and its span held with doubled modes (the series searches the same spans), then the paper's ``damped``
+solution where the undamped one's dropped drag is not small (``terms_not_small``, docs/model.md §6, §7.1).
 """
 
 from __future__ import annotations
@@ -27,7 +32,7 @@ from __future__ import annotations
 import time
 from typing import Any, Callable, Mapping
 
-from study.solvers import fast, freewhirl, gate, reference, series
+from study.solvers import damped, fast, freewhirl, gate, reference, series, sliding
 from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
 
@@ -48,6 +53,11 @@ def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
     return result.status not in FINAL
 
 
+def _drag_not_small(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """The undamped solution answered but its dropped drag term is not small: the damped solution keeps it."""
+    return result.status == "terms_not_small"
+
+
 def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
     """The series doubles its harmonics until the study's tolerance."""
     tolerance = study_tolerance(inputs)
@@ -56,13 +66,15 @@ def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
 #: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
 LADDERS: dict[str, dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]]] = {
-    "auto": {"free-whirl": (freewhirl.solve, dict), "reference": (reference.solve, dict)},
-    "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs)},
+    "auto": {"free-whirl": (freewhirl.solve, dict), "sliding": (sliding.solve, dict), "reference": (reference.solve, dict)},
+    "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs), "damped": (damped.solve, dict)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.
 MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
+    "sliding": _not_final,
     "reference": _not_final,
     "series": _error_only,
+    "damped": _drag_not_small,
 }
 
 
@@ -72,7 +84,7 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     tried: list[PointResult] = []
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
-            break
+            continue
         tried.append(gate.admit(method(prepare(inputs)), inputs))
         if tried[-1].status == "ok":
             break
@@ -89,10 +101,12 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The reference model's hierarchy: the free whirl where the pipe stays clear, else the reference model."""
+    """The reference model's hierarchy: the free whirl where the pipe stays clear, the sliding state where it lies
+    on the wall, else the reference model."""
     return climb("auto", inputs)
 
 
 def solve_periodic(inputs: Mapping[str, Any]) -> PointResult:
-    """The paper's periodic solution: ``fast``, then ``series`` where only its error estimate failed."""
+    """The paper's periodic solution: ``fast``, then ``series`` where only its error estimate failed, then
+    ``damped`` where the dropped drag is not small."""
     return climb("periodic", inputs)

@@ -19,8 +19,9 @@ METHOD_DESCRIPTIONS = {
     "series": "the paper's double Fourier series (modes x harmonics) with the same span search as fast: the "
               "reproduction, and the slow reference",
     "auto": "the cheapest model of the hierarchy that serves the point: the free whirl where the pipe stays clear "
-            "of the wall, else the reference model",
-    "periodic": "the paper's periodic solution: fast, then series where only fast's error estimate failed",
+            "of the wall, the sliding state where it lies on it, else the reference model",
+    "periodic": "the paper's periodic solution: fast, then series where only fast's error estimate failed, then "
+                "damped where the dropped drag is not small",
     "time-domain": "modal span integrated through Hertz contact with both walls (event-driven, explicit Verlet "
                    "or implicit LSODA) until periodic: the check on the periodic assumption",
     "crosscheck": "the fast periodic solution replayed through one revolution of real Hertz contact in the time "
@@ -32,6 +33,12 @@ METHOD_DESCRIPTIONS = {
                        "not, peak force, max normal and alternating stress within solver.check_tolerance",
     "free-whirl": "the reference model's scene clear of the wall in closed form: synchronous whirl under the mass "
                   "eccentricity about the sag, drag exact on the circle; out of scope where it would touch",
+    "sliding": "the reference model's scene lying on the wall at its tool joints, sliding round as the pipe turns: "
+               "rest on the wall with Hertz contact and friction, and the synchronous whirl about it; out of scope "
+               "where the contact would open",
+    "damped": "the paper's damped periodic solution (appendices A, B): mud drag linearised by equal dissipation, "
+              "end moments in quadrature that keep the response in phase with the impact; span, impact, stresses, "
+              "the end moment required and the energy balance",
     "sdof": "one-degree-of-freedom screen: first-mode impact oscillator between the walls, exact period-1 orbit "
             "and Floquet stability at a given span",
 }
@@ -162,6 +169,15 @@ class SeriesOptions(MethodOptions):
     harmonics: int = 400  #: highest time harmonic kept
     series_tolerance: float | None = None  #: relative change at which the harmonics stop doubling (None: fixed)
     series_max_harmonics: int = 25_600  #: cap on the doubling
+
+
+@dataclass(frozen=True)
+class DampedOptions(MethodOptions):
+    """Options of the ``damped`` method (docs/model.md §7.1)."""
+
+    damped_harmonics: int = 400  #: highest time harmonic of the damping and end-moment correction
+    damping_iterations: int = 30  #: most steps of the equivalent-damping iteration
+    damping_tolerance: float = 1e-4  #: relative change of c that ends the iteration
 
 
 @dataclass(frozen=True)

@@ -120,7 +120,7 @@ class WhirlModel:
         return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
 
     def system(self) -> tuple:
-        """The tuple the compiled right-hand side takes (:func:`whirl_kernel.rhs`)."""
+        """The tuple the compiled integrator takes (:func:`whirl_kernel.advance`)."""
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
                          float(self.law), self.hysteresis])
         return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
@@ -262,12 +262,13 @@ class Integrator:
         # estimate alone lets an undamped high mode ring at the edge of it
         self.h_max = min(model.period / 64.0, STABLE_STEP / float(np.max(model.omega)))
         self.steps = 0
+        self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK
 
     def run(self, t_end: float, record: bool = False, rows_per_revolution: int = 256,
             max_steps: int = 2_000_000) -> Window:
         P = self.model.points.size
-        stats, peak, onsets, ctime = np.zeros(1), np.zeros(P), np.zeros(P, np.int64), np.zeros(P)
+        stats, peak, onsets, ctime = np.zeros(whirl_kernel.N_STATS), np.zeros(P), np.zeros(P, np.int64), np.zeros(P)
         tau = self.model.period
         revs = max((t_end - self.t) / tau, 1e-9)
         cap = int(rows_per_revolution * 16 * revs) + 16 if record else 1
@@ -281,6 +282,7 @@ class Integrator:
             max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0)
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
+        self.work += stats
         return Window(times=rec_t[:n_rec], states=rec_z[:n_rec], forces=rec_f[:n_rec], peak=peak, onsets=onsets,
                       contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
 
@@ -886,9 +888,10 @@ def penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: fl
 
 def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
     """The compiled integrator over ``revolutions`` from the centred pipe at rest: wall_time [s],
-    outcome, steps, final_state."""
+    outcome, steps, final_state, work (the kernel's counts, :data:`whirl_kernel.N_STATS`)."""
     model = build_model(inputs)
     run = Integrator(model, rtol)
     start = time.perf_counter()
     run.run(revolutions * model.period)
-    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy())
+    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),
+                work=run.work.copy())

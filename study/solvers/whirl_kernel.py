@@ -4,12 +4,21 @@ The pipe section's modal coordinates in both lateral directions, z = (q_y, q_z, 
 advanced by the Dormand–Prince 5(4) pair with error control (Hairer, Nørsett & Wanner, *Solving
 Ordinary Differential Equations I*, 2nd ed., Springer 1993, §II.5, doi:10.1007/978-3-540-78862-1) —
 the flights are not linear once the mud's quadratic drag is kept, so no closed-form flight exists.
-Every contact onset is located: a step that ends with a contact point inside the wall by more than
-``ONSET_TOLERANCE`` of its clearance is redone, cut by the secant of the penetration, until the
-onset lands within it; the Hunt–Crossley hysteresis of the contact is then set from its approach
-speed (as :mod:`study.solvers.event_driven` does), and its end is taken where the penetration
-returns to zero. A step is also capped at the predicted time to the next onset, so that one step
-cannot carry a point through a whole contact.
+The last stage of a step is the first of the next (FSAL), and the step size follows the PI
+controller of Gustafsson (ACM TOMS 17, 533–554, 1991, doi:10.1145/210232.210242) as in Hairer &
+Wanner's DOPRI5 (Hairer, Nørsett & Wanner 1993, §II.4; *Solving ODEs II*, §IV.2): it keeps the step
+steady where stability rather than accuracy limits it, as in a held contact.
+
+Every switch of a contact force is located: a step that ends with a contact point inside the wall by
+more than ``ONSET_TOLERANCE`` of its clearance, or past the end of a contact force by more than that
+(the penetration back below zero, or the bracket of the normal force below it), is redone, cut to
+where the step's continuous extension (the 4th-order dense output of DOPRI5, Hairer, Nørsett &
+Wanner 1993 §II.6) puts the switch half that tolerance behind, until it lands within it: no step
+integrates across a kink of the force. At an onset the Hunt–Crossley hysteresis of the contact is
+set from its approach speed (as :mod:`study.solvers.event_driven` does; no slower than
+``ONSET_SPEED_FLOOR``); the contact is closed where
+the penetration returns to zero. A step is also capped at the predicted time to the next onset, so
+that one step cannot carry a point through a whole contact.
 
 The last four entries of z integrate the power balance: work of the applied loads (eccentric and
 side load), work of wall friction on the lateral motion, drag dissipation and contact loss, so
@@ -33,14 +42,27 @@ import numpy as np
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
+#: Approach speed [m/s] below which a contact opens with the Hunt–Crossley damping of this speed, χ = h(e)/v
+#: (its restitution then nearer 1, as in Hunt & Crossley's law of constant damping): a contact settling onto the
+#: wall at a vanishing speed would otherwise get an unbounded χ, a stiffness that held the explicit steps of a
+#: pipe sliding on the wall 100 times below those of its elastic contact (docs/reference_model.md §6).
+ONSET_SPEED_FLOOR = 1e-3
 #: Outcomes of :func:`advance`.
 OK, BLOWN_UP, STEP_UNDERFLOW, TOO_MANY_STEPS = 0, 1, 2, 3
 OUTCOMES = {OK: "ok", BLOWN_UP: "non-finite state or deflection above 100 clearances",
             STEP_UNDERFLOW: "step size underflow", TOO_MANY_STEPS: "step budget exhausted"}
+#: Entries of the ``stats`` array of :func:`advance` (its work, for profiling; docs/reference_model.md §6):
+#: time with any contact [s], accepted steps, steps rejected by the error test, steps redone to locate the
+#: onset or end of a contact force, right-hand-side evaluations, steps shortened to the predicted time of an onset.
+S_CONTACT_TIME, S_ACCEPTED, S_ERROR_REJECTED, S_SWITCH_REDONE, S_RHS, S_CAPPED = range(6)
+N_STATS = 6
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
+#: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
+#: smallest and largest step ratio.
+PI_BETA, SAFETY, SHRINK_LIMIT, GROW_LIMIT = 0.04, 0.9, 0.2, 5.0
 
-# Dormand–Prince 5(4) tableau
+# Dormand–Prince 5(4) tableau (Hairer, Nørsett & Wanner 1993, Table II.5.2)
 _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
 _A = np.zeros((7, 6))
 _A[1, :1] = [1 / 5]
@@ -50,6 +72,9 @@ _A[4, :4] = [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729]
 _A[5, :5] = [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]
 _A[6, :6] = [35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84]
 _E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+# its continuous extension (Hairer, Nørsett & Wanner 1993 §II.6; the d_i of their DOPRI5 code, dense output)
+_D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
+               701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423])
 
 
 @numba.njit(cache=True, nogil=True)
@@ -67,14 +92,16 @@ def point_state(z, phi, p, N):
     return y, w, yd, wd
 
 
-@numba.njit(cache=True, nogil=True)
-def rhs(t, z, chi, out, fc, sy):
-    """ż into ``out``; contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3).
+@numba.njit(cache=True, nogil=True, inline="always")
+def rhs(t, z, chi, out, fc, pen, scratch, sy):
+    """ż into ``out``; contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
+    and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (2, G) holds the drag points' velocities.
 
-    sy = (omega2, damping, eccentric, side, S, w, phi, clearance, radius, K, kp, cp, fpar).
+    sy = (omega2, damping, eccentric, side, S^T (N, G), w, phi, clearance, radius, K, kp, cp, fpar).
     """
-    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
+    omega2, damp, ecc, side, ST, wts, phi, cl, rc, K, kp, cpen, fpar = sy
     N = omega2.size
+    G = wts.size
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
     co = np.cos(Om * t)
     si = np.sin(Om * t)
@@ -92,18 +119,33 @@ def rhs(t, z, chi, out, fc, sy):
     out[4 * N] = p_load / inv_m
     p_drag = 0.0
     if D > 0.0:
-        for g in range(wts.size):
-            uy = 0.0
-            uz = 0.0
-            for n in range(N):
-                uy += S[g, n] * z[2 * N + n]
-                uz += S[g, n] * z[3 * N + n]
-            sp = np.sqrt(uy * uy + uz * uz)
-            c = D * sp * wts[g] * inv_m
-            p_drag += D * sp * sp * sp * wts[g]
-            for n in range(N):
-                out[2 * N + n] -= c * S[g, n] * uy
-                out[3 * N + n] -= c * S[g, n] * uz
+        # the drag points' velocities u̇_g = Σ_n S_gn q̇_n, then the drag force per modal mass on them, then
+        # its projection on the modes: loops over the G points run along contiguous rows of S^T
+        uy = scratch[0]
+        uz = scratch[1]
+        for g in range(G):
+            uy[g] = 0.0
+            uz[g] = 0.0
+        for n in range(N):
+            vy = z[2 * N + n]
+            vz = z[3 * N + n]
+            for g in range(G):
+                uy[g] += ST[n, g] * vy
+                uz[g] += ST[n, g] * vz
+        for g in range(G):
+            sp = np.sqrt(uy[g] * uy[g] + uz[g] * uz[g])
+            c = D * sp * wts[g]
+            p_drag += c * sp * sp
+            uy[g] *= c * inv_m
+            uz[g] *= c * inv_m
+        for n in range(N):
+            ay = 0.0
+            az = 0.0
+            for g in range(G):
+                ay += ST[n, g] * uy[g]
+                az += ST[n, g] * uz[g]
+            out[2 * N + n] -= ay
+            out[3 * N + n] -= az
     out[4 * N + 2] = p_drag
     p_fric = 0.0
     p_loss = 0.0
@@ -111,6 +153,8 @@ def rhs(t, z, chi, out, fc, sy):
         y, w, yd, wd = point_state(z, phi, p, N)
         r = np.sqrt(y * y + w * w)
         d = r - cl[p]
+        pen[p, 0] = d
+        pen[p, 1] = (y * yd + w * wd) / r if r > 0.0 else 0.0
         fc[p, 0] = 0.0
         fc[p, 1] = 0.0
         fc[p, 2] = 0.0
@@ -142,24 +186,103 @@ def rhs(t, z, chi, out, fc, sy):
 
 
 @numba.njit(cache=True, nogil=True)
-def _step(t, z, h, chi, sy, k, tmp, fc, A, C):
-    """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state in tmp[6]."""
+def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
+    """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
+    derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
+    and ``pen``. Returns the error norm: RMS over the 4N dynamic entries of (z5 − z4)/(rtol (scale + |z|))."""
     n = z.size
-    for s in range(1, 7):
+    for s in range(1, 6):
         for i in range(n):
-            acc = z[i]
+            acc = 0.0
             for j in range(s):
-                acc += h * A[s, j] * k[j, i]
-            tmp[s, i] = acc
-        rhs(t + C[s] * h, tmp[s], chi, k[s], fc, sy)
+                acc += _A[s, j] * k[j, i]
+            stage[i] = z[i] + h * acc
+        rhs(t + _C[s] * h, stage, chi, k[s], fc, pen, scratch, sy)
+    for i in range(n):
+        znew[i] = z[i] + h * (_A[6, 0] * k[0, i] + _A[6, 2] * k[2, i] + _A[6, 3] * k[3, i]
+                              + _A[6, 4] * k[4, i] + _A[6, 5] * k[5, i])
+    rhs(t + h, znew, chi, k[6], fc, pen, scratch, sy)
+    err = 0.0
+    for i in range(4 * N):
+        e = h * (_E[0] * k[0, i] + _E[2] * k[2, i] + _E[3] * k[3, i] + _E[4] * k[4, i] + _E[5] * k[5, i]
+                 + _E[6] * k[6, i])
+        sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
+        err += (e / sc) ** 2
+    return np.sqrt(err / (4 * N))
 
 
 @numba.njit(cache=True, nogil=True)
-def _penetration(z, phi, cl, p, N):
-    y, w, yd, wd = point_state(z, phi, p, N)
+def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
+    """Where the contact force switches, as a fraction of the clearance: the penetration δ/c for an onset;
+    for the end of a contact, the smaller of δ/c and the bracket of the normal force, (1 + χ δ̇) (law 0) or
+    (k δ + c δ̇)/(k c) (law 1), whose sign ends the force before δ returns to zero when the wall is slower."""
     r = np.sqrt(y * y + w * w)
+    d = (r - cl) / cl
+    if not ending:
+        return d
     rate = (y * yd + w * wd) / r if r > 0.0 else 0.0
-    return r - cl[p], rate
+    bracket = 1.0 + chi * rate if law == 0 else d + cp * rate / (kp * cl)
+    return min(d, bracket)
+
+
+@numba.njit(cache=True, nogil=True)
+def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, target, within):
+    """The fraction θ of the step at which :func:`_contact_function` of point p, on the step's continuous
+    extension, reaches ``target`` within ``within`` (on one side of it at the start, on the other at the end):
+    regula falsi with the Illinois modification."""
+    # the extension's coefficients projected on the point: y, z, ẏ, ż (Hairer, Nørsett & Wanner 1993 §II.6)
+    r = np.zeros((4, 5))
+    for c in range(4):
+        y0 = 0.0
+        y1 = 0.0
+        f0 = 0.0
+        f6 = 0.0
+        dsum = 0.0
+        for m in range(N):
+            i = c * N + m
+            y0 += phi[p, m] * z[i]
+            y1 += phi[p, m] * znew[i]
+            f0 += phi[p, m] * k[0, i]
+            f6 += phi[p, m] * k[6, i]
+            dsum += phi[p, m] * (_D[0] * k[0, i] + _D[2] * k[2, i] + _D[3] * k[3, i] + _D[4] * k[4, i]
+                                 + _D[5] * k[5, i] + _D[6] * k[6, i])
+        r[c, 0] = y0
+        r[c, 1] = y1 - y0
+        r[c, 2] = h * f0 - r[c, 1]
+        r[c, 3] = r[c, 1] - h * f6 - r[c, 2]
+        r[c, 4] = h * dsum
+    v = np.empty(4)
+    lo, hi = 0.0, 1.0
+    glo = _switch_gap(r, v, 0.0, cl, law, chi, kp, cp, ending, target)
+    ghi = _switch_gap(r, v, 1.0, cl, law, chi, kp, cp, ending, target)
+    side = 0
+    for _ in range(60):
+        th = (lo * ghi - hi * glo) / (ghi - glo)
+        g = _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target)
+        if abs(g) < within:
+            return th
+        if (g > 0.0) == (ghi > 0.0):
+            hi, ghi = th, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        else:
+            lo, glo = th, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        if hi - lo < 1e-12:
+            break
+    return hi
+
+
+@numba.njit(cache=True, nogil=True)
+def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target):
+    """:func:`_contact_function` − target on the continuous extension (coefficients r, (4, 5)) at θ."""
+    s = 1.0 - th
+    for c in range(4):
+        v[c] = r[c, 0] + th * (r[c, 1] + s * (r[c, 2] + th * (r[c, 3] + s * r[c, 4])))
+    return _contact_function(v[0], v[1], v[2], v[3], cl, law, chi, kp, cp, ending) - target
 
 
 @numba.njit(cache=True, nogil=True)
@@ -170,30 +293,38 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     ``active``/``chi`` (P,): contact state, updated. ``scale`` (4N,): error scale of the dynamic
     entries (c for q, Ωc for q̇); error per entry (z5 − z4)/(rtol (scale + |z|)), RMS ≤ 1 accepted.
     ``peak`` (P,): largest F_n; ``onsets`` (P,): contact onsets; ``contact_time`` (P,): time in
-    contact; ``stats`` [time with any contact]. With ``record``, rows (t, z, F) are stored every
-    rec_dt[0] (no contact) or rec_dt[1] (a contact open) from index n_rec on, while room remains.
+    contact; ``stats`` (N_STATS,): the work, added to (S_* above). With ``record``, rows (t, z, F) are
+    stored every rec_dt[0] (no contact) or rec_dt[1] (a contact open) from index n_rec on, while room
+    remains. ``sy`` as for :func:`rhs`, with the drag shapes S (G, N) (transposed here).
     """
-    omega2, phi, cl, fpar = sy[0], sy[6], sy[7], sy[12]
+    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
+    ST = np.ascontiguousarray(S.T)
+    sys_t = (omega2, damp, ecc, side, ST, wts, phi, cl, rc, K, kp, cpen, fpar)
     hyst = fpar[6]
+    law = int(fpar[5])
     N = omega2.size
     P = phi.shape[0]
     n = z.size
     k = np.empty((7, n))
-    tmp = np.empty((7, n))
+    stage = np.empty(n)
+    znew = np.empty(n)
     fc = np.empty((P, 3))
     fc_end = np.empty((P, 3))
-    A = _A
-    C = _C
-    E = _E
-    rhs(t, z, chi, k[0], fc_end, sy)
+    pen = np.empty((P, 2))
+    pen_end = np.empty((P, 2))
+    scratch = np.empty((2, wts.size))
+    rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t)
+    stats[S_RHS] += 1
     last_rec = -1e300
     steps = 0
     h_floor = 1e-14 * (1.0 + abs(t_end))
+    err_old = 1e-4  # the previous accepted step's error (PI control)
+    expo = 0.2 - 0.75 * PI_BETA
     while t < t_end:
+        any_open = False
+        for p in range(P):
+            any_open = any_open or active[p]
         if record and n_rec < rec_t.size:
-            any_open = False
-            for p in range(P):
-                any_open = any_open or active[p]
             if t - last_rec >= (rec_dt[1] if any_open else rec_dt[0]) or t_end - t <= h_floor:
                 rec_t[n_rec] = t
                 rec_z[n_rec, :] = z
@@ -210,76 +341,82 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         # cap at the predicted onset of a point moving towards the wall
         for p in range(P):
             if not active[p]:
-                d, rate = _penetration(z, phi, cl, p, N)
+                d, rate = pen_end[p, 0], pen_end[p, 1]
                 if rate > 0.0 and d < 0.0:
-                    h = min(h, max(-d / rate * 1.05, 1e-4 * h_max))
+                    cap = max(-d / rate * 1.05, 1e-4 * h_max)
+                    if cap < h:
+                        h = cap
+                        stats[S_CAPPED] += 1
         accepted = False
+        rejected = False
+        err = 0.0
         for _attempt in range(60):
             if h < h_floor:
                 return t, h, STEP_UNDERFLOW, n_rec, steps
-            _step(t, z, h, chi, sy, k, tmp, fc, A, C)
-            err = 0.0
-            for i in range(4 * N):
-                e = 0.0
-                for j in range(7):
-                    e += E[j] * k[j, i]
-                e *= h
-                sc = rtol * (scale[i] + max(abs(z[i]), abs(tmp[6, i])))
-                err += (e / sc) ** 2
-            err = np.sqrt(err / (4 * N))
+            err = _step(t, z, h, chi, sys_t, k, stage, znew, fc, pen, scratch, scale, rtol, N)
+            stats[S_RHS] += 6
             if not np.isfinite(err):
                 h *= 0.1
+                rejected = True
                 continue
             if err > 1.0:
-                h *= max(0.2, 0.9 * err ** -0.2)
+                h *= max(SHRINK_LIMIT, SAFETY * err ** -0.2)
+                stats[S_ERROR_REJECTED] += 1
+                rejected = True
                 continue
-            # onset located within ONSET_TOLERANCE of the clearance
+            # an onset, or the end of a contact force, located within ONSET_TOLERANCE (of the clearance): else
+            # the step is cut where the continuous extension puts it at half the tolerance past the switch
             cut = 2.0
             for p in range(P):
-                if not active[p]:
-                    d1, _ = _penetration(tmp[6], phi, cl, p, N)
-                    if d1 > ONSET_TOLERANCE * cl[p]:
-                        d0, _ = _penetration(z, phi, cl, p, N)
-                        s = d0 / (d0 - d1) if d0 < 0.0 else 0.5
-                        cut = min(cut, max(s, 0.02))
+                if active[p]:
+                    y, w, yd, wd = point_state(z, phi, p, N)
+                    if _contact_function(y, w, yd, wd, cl[p], law, chi[p], kp[p], cpen[p], True) <= 0.0:
+                        continue
+                    y, w, yd, wd = point_state(znew, phi, p, N)
+                    f1 = _contact_function(y, w, yd, wd, cl[p], law, chi[p], kp[p], cpen[p], True)
+                    if f1 < -ONSET_TOLERANCE:
+                        th = _switch_fraction(z, znew, k, h, phi, p, N, cl[p], law, chi[p], kp[p], cpen[p], True,
+                                              -0.5 * ONSET_TOLERANCE, 0.25 * ONSET_TOLERANCE)
+                        cut = min(cut, max(th, 0.02))
+                elif pen[p, 0] > ONSET_TOLERANCE * cl[p] and pen_end[p, 0] < 0.0:
+                    th = _switch_fraction(z, znew, k, h, phi, p, N, cl[p], law, 0.0, kp[p], cpen[p], False,
+                                          0.5 * ONSET_TOLERANCE, 0.25 * ONSET_TOLERANCE)
+                    cut = min(cut, max(th, 0.02))
             if cut < 2.0:
                 h *= cut
+                stats[S_SWITCH_REDONE] += 1
                 continue
             accepted = True
             break
         if not accepted:
             return t, h, STEP_UNDERFLOW, n_rec, steps
         # accept
-        any_open = False
-        for p in range(P):
-            any_open = any_open or active[p]
+        stats[S_ACCEPTED] += 1
         if any_open:
-            stats[0] += h
+            stats[S_CONTACT_TIME] += h
         for p in range(P):
             if active[p]:
                 contact_time[p] += h
-        t_new = t + h if h < t_end - t else t_end
+        t = t + h if h < t_end - t else t_end
         for i in range(n):
-            z[i] = tmp[6, i]
-        t = t_new
-        for i in range(n):
-            k[0, i] = k[6, i]
-        changed = False
+            z[i] = znew[i]
+            k[0, i] = k[6, i]  # FSAL: the last stage is the next step's first
+        fc_end[:, :] = fc
+        pen_end[:, :] = pen
+        opened = False
         for p in range(P):
-            d, rate = _penetration(z, phi, cl, p, N)
+            d, rate = pen_end[p, 0], pen_end[p, 1]
             if active[p] and d <= 0.0:
-                active[p] = False
+                active[p] = False  # no force at d <= 0 whatever chi: the last stage stands
                 chi[p] = 0.0
-                changed = True
             elif not active[p] and d > 0.0:
                 active[p] = True
-                chi[p] = hyst / rate if rate > 0.0 else 0.0
+                chi[p] = hyst / max(rate, ONSET_SPEED_FLOOR)
                 onsets[p] += 1
-                changed = True
-        if changed:
-            rhs(t, z, chi, k[0], fc_end, sy)
-        else:
-            fc_end[:, :] = fc  # the last stage is the step's end (FSAL)
+                opened = True
+        if opened:  # the new chi changes the force at the step's end
+            rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t)
+            stats[S_RHS] += 1
         for p in range(P):
             if fc_end[p, 2] > peak[p]:
                 peak[p] = fc_end[p, 2]
@@ -287,10 +424,15 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             if not np.isfinite(z[i]):
                 return t, h, BLOWN_UP, n_rec, steps
         for p in range(P):
-            d, _ = _penetration(z, phi, cl, p, N)
-            if d > 100.0 * cl[p]:
+            if pen_end[p, 0] > 100.0 * cl[p]:
                 return t, h, BLOWN_UP, n_rec, steps
-        h = h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2))
+        # PI controller (Gustafsson 1991; DOPRI5): no growth right after a rejected step
+        e = max(err, 1e-10)
+        factor = min(GROW_LIMIT, max(SHRINK_LIMIT, SAFETY * e ** -expo * err_old ** PI_BETA))
+        if rejected:
+            factor = min(factor, 1.0)
+        err_old = max(err, 1e-4)
+        h = h * factor
     if record and n_rec < rec_t.size:
         rec_t[n_rec] = t
         rec_z[n_rec, :] = z

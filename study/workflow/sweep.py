@@ -20,6 +20,7 @@ from study.solvers import OUTPUTS, periodic
 from study.solvers.options import Options
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
+from study.workflow.compiled import ensure_compiled
 from study.workflow.execute import Interrupted, SweepError, reason, run_grid, tell
 from study.workflow.grid import Grid
 from study.workflow.lock import Locked, folder_lock
@@ -55,7 +56,7 @@ def check_size(study: Study, cap: int) -> None:
 
 
 #: Methods that search the span over resonances (their memory grows as the rotary speed falls).
-SPAN_SEARCHES = ("fast", "series", "periodic", "crosscheck", "reference-check")
+SPAN_SEARCHES = ("fast", "series", "periodic", "crosscheck", "reference-check", "damped")
 
 
 def check_span_search(study: Study) -> None:
@@ -123,9 +124,12 @@ def _locked_sweep(study, out, scheduler, workers, progress, on_chunk, say) -> Pa
         stale.unlink(missing_ok=True)
     grid = study_grid(study)
     store = out / PARTIAL
+    scheduler = study.sweep["scheduler"] if scheduler is None else scheduler
+    if not scheduler or scheduler == "synchronous":  # local workers share this machine's kernel cache
+        ensure_compiled(study.point(), say=say)
     columns = run_grid(
         grid, store,
-        scheduler=study.sweep["scheduler"] if scheduler is None else scheduler,
+        scheduler=scheduler,
         workers=study.sweep["workers"] if workers is None else workers,
         chunk_size=study.sweep["chunk_size"], progress=progress, on_chunk=on_chunk, say=say,
     )

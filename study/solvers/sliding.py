@@ -1,0 +1,345 @@
+"""The ``sliding`` method: the steady state of the reference model's scene with the pipe lying on the wall at some
+of its contact points, the contact held and sliding round as the pipe turns (docs/reference_model.md §10; a rung of
+the ``auto`` hierarchy between the free whirl and the reference model).
+
+The scene and its equations are the reference model's (:mod:`study.solvers.reference`, built by its
+:func:`~study.solvers.reference.build_model`: the same modes, loads, Hertz stiffness, friction and drag). In an
+inclined hole the buoyed weight lays the section on the low side at its tool joints; the pipe turns there, its
+surface sliding on the wall at Ω r_p, so the friction μ F_n keeps one sense and the contact never opens. The
+motion that remains is then the response to the eccentric load turning with the pipe, which is small beside the
+weight at low speed. It is solved in two parts:
+
+- **rest**: the static equilibrium under the side load with Hertz contact and sliding friction at the touching
+  points, F_p = −F_n (n̂ + μ s t̂) with F_n = K_p (|u_p| − c_p)^{3/2} and s = v_s/√(v_s² + v_ε²) at
+  v_s = Ω r_p: per touching point the unknowns (F_n, angle of n̂), the deflection from the section's modal
+  flexibility; the touching set found by adding the points past their wall and dropping those pulled off it;
+- **whirl about the rest**: the synchronous response Re(A e^{iΩt}) to the eccentric load, the contact forces
+  linearised about the rest (their 2×2 stiffness and damping per touching point, by differences of the force
+  law; no Hunt–Crossley term, which depends on an onset a held contact never had), the quadratic drag
+  replaced by the viscous drag that dissipates as much over the cycle, iterated with the motion as in the free
+  whirl (:mod:`study.solvers.freewhirl`).
+
+The outputs are the reference model's, computed by its own functions on one revolution of this motion (the
+contact forces from the exact force law on it): stresses with the quasi-static correction, peak contact force,
+the whirl measure. Where the answer would not be this state, the method does not answer (``out_of_scope``, the
+reference model does): no point touches (the free whirl's case); the contact would open during the revolution
+(F_n ≤ 0: bouncing); a point not touching would reach its wall; or the linearisation is not good to the study's
+tolerance — its error estimate is the largest difference, over the revolution, between the exact contact forces
+on the motion and their linearisation, relative to the peak force, plus the modal truncation's share of the
+largest moment and the drag iteration's last change.
+
+Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the
+tangential direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at
+50–150 rpm it had not settled after 120 revolutions, at 1–20 s a point; this state is what it tends to.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Mapping
+
+import numpy as np
+from scipy import optimize
+
+from study.solvers import reference
+from study.solvers.options import study_tolerance
+from study.solvers.result import PointResult
+
+METHOD = "sliding"
+#: Samples over the revolution for the outputs and the drag's equal dissipation.
+SAMPLES = 256
+#: Fixed-point iterations on the drag at most, and the relative change of A that ends them.
+ITERATIONS, SETTLED = 50, 1e-10
+#: Changes of the touching set at most.
+ACTIVE_SET_STEPS = 10
+
+
+def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Forces on the pipe (..., P, 2) [N] and normal forces (..., P) [N] at displacements u and velocities v
+    (..., P, 2) [m, m/s] of the contact points: the reference model's law (Hertz, sliding Coulomb friction on
+    v_s = u̇·t̂ + Ω r_p regularised over v_ε) without the Hunt–Crossley term."""
+    r = np.hypot(u[..., 0], u[..., 1])
+    depth = np.maximum(r - model.clearance, 0.0)
+    safe = np.where(r > 0, r, 1.0)
+    ny, nz = u[..., 0] / safe, u[..., 1] / safe
+    fn = model.stiffness * depth**1.5
+    vt = -v[..., 0] * nz + v[..., 1] * ny
+    vs = vt + model.rotary_speed * model.radius
+    ft = -model.friction * fn * vs / np.sqrt(vs**2 + model.slip_velocity**2)
+    return np.stack((-fn * ny - ft * nz, -fn * nz + ft * ny), axis=-1), fn
+
+
+def flexibility(model: reference.WhirlModel) -> np.ndarray:
+    """Static deflection of point p per unit force at point q (P, P) [m/N] of the modal model (either direction)."""
+    return (model.phi / (model.mass * model.omega**2)) @ model.phi.T
+
+
+def rest(model: reference.WhirlModel) -> dict[str, Any]:
+    """The static equilibrium on the wall (module docstring): displacements u (P, 2) [m], forces (P, 2) [N], normal
+    forces (P,) [N], the touching points (bool P), the modal state (2N,) and whether it was found.
+
+    The touching set grows from the point furthest past its wall by the point furthest past its wall, and loses a
+    point the wall would have to pull (F_n < 0), until every touching point pushes and no other is past its wall."""
+    P = model.points.size
+    G = flexibility(model)
+    free = np.zeros((P, 2))
+    free[:, 0] = model.phi @ (model.side / model.omega**2)
+    beyond = np.hypot(free[:, 0], free[:, 1]) / model.clearance
+    touching = np.zeros(P, bool)
+    if np.max(beyond) > 1:
+        touching[int(np.argmax(beyond))] = True
+    forces, found = np.zeros((P, 2)), not touching.any()
+    slide = model.rotary_speed * model.radius
+    s = slide / np.sqrt(slide**2 + model.slip_velocity**2)  # the friction's regularised sign at rest
+    for _ in range(ACTIVE_SET_STEPS * P):
+        idx = np.flatnonzero(touching)
+        if idx.size == 0:
+            found = True
+            break
+        Gaa = G[np.ix_(idx, idx)]
+
+        def force_of(x):  # unknowns per touching point: F_n and the angle of n̂ from the low side
+            fn, angle = x[:idx.size], x[idx.size:]
+            n = np.column_stack((np.cos(angle), np.sin(angle)))
+            t = np.column_stack((-np.sin(angle), np.cos(angle)))
+            return -(fn[:, None] * (n + model.friction * s[idx, None] * t)), fn, n
+
+        def residual(x):
+            f, fn, n = force_of(x)
+            depth = np.sign(fn) * np.abs(fn / model.stiffness[idx]) ** (2.0 / 3.0)
+            return ((free[idx] + Gaa @ f - (model.clearance[idx] + depth)[:, None] * n) / model.clearance[idx, None]).ravel()
+
+        # start: the touching points held at the wall's low side by rigid supports
+        x0 = np.concatenate((np.linalg.solve(Gaa, free[idx, 0] - model.clearance[idx]), np.zeros(idx.size)))
+        sol = optimize.root(residual, x0, method="hybr", options=dict(xtol=1e-13))
+        if not (sol.success and np.max(np.abs(residual(sol.x))) < 1e-9):
+            break
+        f, fn, _ = force_of(sol.x)
+        if np.min(fn) < 0:  # the wall would pull: that point leaves it
+            touching[idx[int(np.argmin(fn))]] = False
+            continue
+        forces[:] = 0.0
+        forces[idx] = f
+        reach = np.hypot(*(free + G @ forces).T) / model.clearance
+        reach[touching] = 0.0
+        if np.max(reach) <= 1:
+            found = True
+            break
+        touching[int(np.argmax(reach))] = True
+    if not found:
+        forces[:] = 0.0
+    u = free + G @ forces
+    _, fn = contact_forces(model, u, np.zeros_like(u))
+    q = np.concatenate(((model.side + model.phi.T @ forces[:, 0] / model.mass) / model.omega**2,
+                        (model.phi.T @ forces[:, 1] / model.mass) / model.omega**2))
+    return dict(u=u, forces=forces, normal=fn, touching=touching & (fn > 0), state=q, found=found)
+
+
+def _linearised(model: reference.WhirlModel, u0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The contact forces' stiffness −∂F/∂u and damping −∂F/∂u̇ (P, 2, 2) about the rest, by central differences."""
+    P = model.points.size
+    stiff, damp = np.zeros((P, 2, 2)), np.zeros((P, 2, 2))
+    v0 = np.zeros_like(u0)
+    du = 1e-7 * model.clearance
+    dv = 1e-4 * model.slip_velocity
+    for j in range(2):
+        e = np.zeros((P, 2))
+        e[:, j] = 1.0
+        fp, _ = contact_forces(model, u0 + e * du[:, None], v0)
+        fm, _ = contact_forces(model, u0 - e * du[:, None], v0)
+        stiff[:, :, j] = -(fp - fm) / (2 * du[:, None])
+        fp, _ = contact_forces(model, u0, v0 + e * dv)
+        fm, _ = contact_forces(model, u0, v0 - e * dv)
+        damp[:, :, j] = -(fp - fm) / (2 * dv)
+    return stiff, damp
+
+
+def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: float = 1.0) -> dict[str, Any]:
+    """The synchronous response about the rest (module docstring): complex modal amplitudes A (2N,) of
+    Re(A e^{iΩt}) [m], the drag iteration's count and last change; ``contact_scale`` multiplies the contacts'
+    linearised stiffness (the linearisation's error is measured by changing it)."""
+    N, Om = model.n_modes, model.rotary_speed
+    stiff, damp = _linearised(model, rested["u"])
+    stiff = stiff * contact_scale
+    touching = rested["touching"]
+    # the contact terms in modal form, (2N, 2N): rows/columns y-modes then z-modes
+    contact = np.zeros((2 * N, 2 * N), complex)
+    for p in np.flatnonzero(touching):
+        k = stiff[p] + 1j * Om * damp[p]
+        outer = np.outer(model.phi[p], model.phi[p])
+        for a in range(2):
+            for b in range(2):
+                contact[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
+    base = np.diag(np.tile(model.omega**2 - Om**2 + 1j * Om * model.damping, 2)) + contact
+    load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)  # (cos, sin) Ωt
+    S, w = model.drag_shapes, model.drag_weights
+    phase = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
+    A = np.linalg.solve(base, load)
+    change, iteration = 0.0, 0
+    if model.drag > 0:
+        for iteration in range(1, ITERATIONS + 1):
+            vel = 1j * Om * np.stack((S @ A[:N], S @ A[N:]))  # (2, G) complex velocity amplitudes
+            speed = np.hypot((vel[0][:, None] * phase).real, (vel[1][:, None] * phase).real)  # (G, 64)
+            mean2 = np.mean(speed**2, axis=1)
+            c_eq = model.drag * np.where(mean2 > 0, np.mean(speed**3, axis=1) / np.where(mean2 > 0, mean2, 1.0), 0.0)
+            C = (S * (w * c_eq)[:, None]).T @ S / model.mass
+            system = base + 1j * Om * np.kron(np.eye(2), C)
+            new = np.linalg.solve(system, load)
+            change = float(np.max(np.abs(new - A)) / max(np.max(np.abs(new)), 1e-300))
+            A = new
+            if change < SETTLED:
+                break
+    return dict(amplitudes=A, iterations=iteration, change=change, stiffness=stiff, damping=damp)
+
+
+def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[str, Any],
+               samples: int = SAMPLES) -> tuple[reference.Window, dict[str, float]]:
+    """One revolution of the motion as the reference model's :class:`~study.solvers.reference.Window`, the
+    contact forces linearised about the rest as the motion was solved; and the motion's sizes the linearisation
+    is judged by: the largest swing of a touching point's angle on the wall [rad] and the Hertz secant stiffness
+    over the normal approach's swing relative to the tangent one."""
+    N, P, Om = model.n_modes, model.points.size, model.rotary_speed
+    t = np.linspace(0.0, model.period, samples + 1)
+    e = np.exp(1j * Om * t)
+    A = whirled["amplitudes"]
+    q = rested["state"][None, :] + (A[None, :] * e[:, None]).real
+    v = (1j * Om * A[None, :] * e[:, None]).real
+    u = np.stack((q[:, :N] @ model.phi.T, q[:, N:] @ model.phi.T), axis=-1)  # (R, P, 2)
+    ud = np.stack((v[:, :N] @ model.phi.T, v[:, N:] @ model.phi.T), axis=-1)
+    held = rested["touching"]
+    u0 = rested["u"]
+    r0 = np.hypot(u0[:, 0], u0[:, 1])
+    n0 = u0 / np.where(r0 > 0, r0, 1.0)[:, None]
+    t0 = np.stack((-n0[:, 1], n0[:, 0]), axis=-1)
+    du = u - u0[None]
+    forces = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], du)
+              - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    forces[:, ~held] = 0.0
+    fn = -np.einsum("rpi,pi->rp", forces, n0)
+    fn[:, ~held] = 0.0
+    # the sizes of the motion on the wall: its angle's swing, and how far the Hertz law bends over the approach
+    swing = np.einsum("rpi,pi->rp", du, t0)[:, held] / r0[held]
+    depth0 = np.maximum(r0 - model.clearance, 0.0)[held]
+    depth = depth0 + np.einsum("rpi,pi->rp", du, n0)[:, held]
+    top = np.max(depth, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        secant = np.where(top > depth0, (top**1.5 - depth0**1.5) / (top - depth0) / (1.5 * np.sqrt(depth0)), 1.0)
+    sizes = dict(angle_swing=float(np.max(np.abs(swing))) if swing.size else 0.0,
+                 secant_ratio=float(np.max(secant)) if secant.size else 1.0)
+    peak = np.max(fn, axis=0)
+    touching = held & np.all(fn > 0, axis=0)
+    states = np.zeros((t.size, 4 * N + 4))
+    states[:, :2 * N], states[:, 2 * N:4 * N] = q, v
+    window = reference.Window(times=t, states=states, forces=np.concatenate((forces, fn[..., None]), axis=-1),
+                              peak=peak, onsets=np.zeros(P, np.int64), contact_time=np.where(touching, model.period, 0.0),
+                              any_contact_time=model.period if np.any(touching) else 0.0, start=0.0, end=model.period)
+    return window, sizes
+
+
+#: Modes per direction of the answer, and of the coarser solution its truncation error is measured against.
+MODES, COARSE_MODES = 48, 24
+#: The figures whose change with the modes is the truncation error.
+FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress")
+
+
+def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: float = 1.0) -> dict[str, Any]:
+    """The state on the wall with ``modes`` modes per direction: the model, the rest, the whirl (``contact_scale``
+    as :func:`whirl`), one revolution and its sizes (:func:`revolution`) and, when the state is not this
+    method's, ``why`` (text)."""
+    model = reference.build_model({**inputs, "reference_modes": modes})
+    out = dict(model=model, why=None)
+    if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
+        out["why"] = "buckled"
+        return out
+    rested = out["rest"] = rest(model)
+    if not rested["found"]:
+        out["why"] = "no equilibrium on the wall was found (the touching set did not settle)"
+        return out
+    if not np.any(rested["touching"]):
+        out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
+        return out
+    whirled = out["whirl"] = whirl(model, rested, contact_scale)
+    window, out["sizes"] = revolution(model, rested, whirled)
+    out["window"] = window
+    N = model.n_modes
+    reach = np.hypot(window.states[:, :N] @ model.phi.T, window.states[:, N:2 * N] @ model.phi.T)
+    held = rested["touching"]
+    lifts = held & (np.min(window.forces[:, :, 2], axis=0) <= 0)
+    strikes = (~held) & (np.max(reach, axis=0) >= model.clearance)
+    if np.any(lifts):
+        out["why"] = ("the contact would open during the revolution at "
+                      + ", ".join(f"{x:.3g} m" for x in model.points[lifts])
+                      + " (the turning eccentric load beats the weight on the wall): the pipe bounces")
+    elif np.any(strikes):
+        out["why"] = ("a point off the wall would reach it during the revolution at "
+                      + ", ".join(f"{x:.3g} m" for x in model.points[strikes]))
+    return out
+
+
+def values(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, float]:
+    """The reference model's outputs (its own functions) on the revolution of ``state``."""
+    model, window = state["model"], state["window"]
+    vals = dict(reference.stresses(inputs, model, window, correction=reference.quasi_static_applies(model, window)))
+    measure = reference.whirl_measure(model, window)
+    spacing, _ = reference.contact_spacing(model, window)
+    vals.update(peak_contact_force=float(np.max(window.peak)), impacts_per_revolution=0.0, contact_fraction=1.0,
+                whirl_frequency_ratio=measure["whirl_frequency_ratio"], contact_spacing=spacing,
+                whirl_class=float(reference.WHIRL_CLASSES["sliding"]), regime=float(reference.REGIMES["sliding"]))
+    return vals
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The pipe lying on the wall, sliding (module docstring), or ``out_of_scope`` where that is not the state."""
+    start = time.perf_counter()
+    result = PointResult(method=METHOD)
+    state = steady_state(inputs)
+    model = state["model"]
+    vals = result.values
+    vals.update(model.props)
+    vals.update(span_length=model.span, clearance=float(np.max(model.clearance)), eccentricity=model.eccentricity,
+                first_natural_frequency=model.omega[0] / (2 * np.pi) if np.isfinite(model.omega[0]) else np.nan)
+
+    def finish(status: str, message: str) -> PointResult:
+        result.status, result.message = status, message
+        result.wall_time = time.perf_counter() - start
+        return result
+
+    if state["why"] == "buckled":
+        return finish("buckled", f"effective tension {model.props['effective_tension']:.4g} N buckles the "
+                                 f"{model.span:.4g} m section")
+    if state["why"]:
+        return finish("out_of_scope", f"{state['why']}: a higher model answers")
+    vals.update(values(inputs, state))
+    coarse = steady_state(inputs, COARSE_MODES)
+    if coarse["why"]:
+        return finish("out_of_scope", f"with {COARSE_MODES} modes per direction {coarse['why']}: the state is not "
+                                      "resolved, a higher model answers")
+    rough = values(inputs, coarse)
+    truncation = max(abs(rough[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+    # the linearisation: the same motion with the Hertz secant stiffness over the approach's swing instead of the
+    # tangent one, and the second-order part of the angle's swing on the wall (1 − cos a ≈ a²/2)
+    sizes = state["sizes"]
+    secant = steady_state(inputs, contact_scale=sizes["secant_ratio"])
+    if secant["why"]:
+        return finish("out_of_scope", f"with the Hertz secant stiffness {secant['why']}: a higher model answers")
+    other = values(inputs, secant)
+    linearisation = (max(abs(other[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+                     + 0.5 * sizes["angle_swing"] ** 2)
+    rested, whirled = state["rest"], state["whirl"]
+    result.error_estimate = float(linearisation + truncation + whirled["change"])
+    result.extras.update(touching_points=[float(x) for x in model.points[rested["touching"]]],
+                         rest_normal_force=[float(v) for v in rested["normal"]], drag_iterations=whirled["iterations"],
+                         linearisation_error=linearisation, truncation_error=truncation,
+                         contact_points=[float(v) for v in model.points], reference_modes=model.n_modes)
+    fn = state["window"].forces[:, :, 2]
+    swing = float(np.max(np.max(fn, axis=0) - np.min(fn, axis=0)) / 2)
+    where = ", ".join(f"{x:.3g} m" for x in model.points[rested["touching"]])
+    message = (f"lying on the wall at {where}, sliding: {float(np.max(rested['normal'])):.4g} N at rest, "
+               f"±{swing:.3g} N as the eccentric load turns; linearisation {linearisation:.2g}, "
+               f"{model.n_modes} against {COARSE_MODES} modes {truncation:.2g}, drag settled in "
+               f"{whirled['iterations']} iterations")
+    tolerance = study_tolerance(inputs)
+    if result.error_estimate > tolerance:
+        return finish("out_of_scope", f"{message}: error estimate {result.error_estimate:.2g} above the study's "
+                                      f"tolerance {tolerance:g}, a higher model answers")
+    return finish("ok", message)

@@ -1,0 +1,106 @@
+"""The solvers' compiled kernels: whether numba's on-disk cache holds them, and compiling them ahead.
+
+numba compiles a kernel on its first call in a process and, with ``cache=True``, keeps the machine code
+beside the source (``__pycache__``, keyed on the source file's time stamp and size), so that a later
+process loads it instead of compiling again. Compiling every method's kernels takes about half a minute on
+this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/performance.md``). So:
+
+- ``make setup`` runs ``study compile``: every method solved once on the warm-up points (the paper's
+  example in two readings and the default study's first point), which leaves every kernel in the cache;
+- ``study point`` and ``study sweep`` check the cache first (:func:`uncached`, milliseconds) and, when a
+  kernel is missing (a fresh install that skipped ``make setup``, or a kernel's source changed), say that
+  they are compiling, for how long it should take, and how long it took;
+- a sweep compiles in its own process before it starts its workers, which would otherwise each compile the
+  same kernels at once.
+"""
+
+from __future__ import annotations
+
+import importlib
+import time
+from pathlib import Path
+from typing import Any, Callable, Iterable, Mapping
+
+#: Modules holding numba kernels compiled with ``cache=True``.
+KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.roots",
+                  "study.solvers.event_driven", "study.solvers.periodic", "study.solvers.whirl_kernel")
+#: Kernels no method calls (the array form of a physics function, kept for its users and tests): compiled on
+#: their own first call, not checked.
+OFF_THE_SOLVER_PATH = ("study.physics.beam._loaded_spectrum_kernel",)
+#: The warm-up points: the first point of each of these configs of the project (``configs/``), with overrides:
+#: the paper's example in its default reading and in the one that finds spans, and the default study.
+WARM_UP_CONFIGS = (("paper.toml", {}),
+                   ("paper.toml", {"impact.pattern": "one_wall", "impact.closure": "self_consistent"}),
+                   ("default.toml", {}))
+CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs"
+#: Seconds to compile every kernel from nothing: ``study compile`` took 32 s into an empty cache on the project's 2-core
+#: machine (docs/performance.md); quoted to the user before a compile starts.
+COMPILE_SECONDS = 35
+
+
+def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
+    """Every cached numba kernel of ``modules``: 'module.function' -> dispatcher."""
+    from numba.core.registry import CPUDispatcher
+
+    found = {}
+    for name in modules:
+        module = importlib.import_module(name)
+        for attr, value in vars(module).items():
+            if isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled:
+                found[f"{name}.{attr}"] = value
+    return found
+
+
+def cached(dispatcher) -> bool:
+    """Whether numba's on-disk cache holds at least one compiled version of ``dispatcher`` that is
+    current with its source (the index numba keeps per function: empty when absent or stale)."""
+    try:
+        return bool(dispatcher._cache._cache_file._load_index())
+    except Exception:  # noqa: BLE001 - an unreadable index is a missing one: numba compiles again
+        return False
+
+
+def uncached(modules: Iterable[str] = KERNEL_MODULES) -> list[str]:
+    """The kernels ('module.function') the methods reach that a first call would compile."""
+    return [name for name, dispatcher in kernels(modules).items()
+            if name not in OFF_THE_SOLVER_PATH and not cached(dispatcher)]
+
+
+def warm_up_points(extra: Iterable[Mapping[str, Any]] = ()) -> list[dict[str, Any]]:
+    """The points every method is solved at to compile its kernels: the project's warm-up configs'
+    first points (when the configs are beside the package) and ``extra``."""
+    from study.config import load
+
+    points = [load(CONFIG_DIR / name, overrides).point() for name, overrides in WARM_UP_CONFIGS
+              if (CONFIG_DIR / name).is_file()]
+    return points + [dict(point) for point in extra]
+
+
+def compile_ahead(points: Iterable[Mapping[str, Any]] | None = None, say: Callable[[str], None] | None = None) -> float:
+    """Solve every method once at each of ``points`` (default :func:`warm_up_points`) so that numba
+    compiles and caches every kernel; return the seconds it took. Results are discarded."""
+    from study.solvers import METHODS, solve_point
+
+    start = time.perf_counter()
+    for inputs in (warm_up_points() if points is None else list(points)):
+        for method in METHODS:
+            began = time.perf_counter()
+            solve_point(inputs, method)
+            if say:
+                say(f"  {method}: {time.perf_counter() - began:.1f} s")
+    return time.perf_counter() - start
+
+
+def ensure_compiled(inputs: Mapping[str, Any] | None = None, say: Callable[[str], None] = print) -> float | None:
+    """Compile ahead when some kernel is not in the cache, telling the user before and after; return
+    the seconds spent compiling, or None when everything was cached. ``inputs``: a point of the user's
+    study, added to the warm-up points."""
+    missing = uncached()
+    if not missing:
+        return None
+    say(f"compiling {len(missing)} solver kernels for their first use after installation or a change of the "
+        f"code (about {COMPILE_SECONDS} s on 2 cores, once: later runs load them from numba's cache; "
+        "`make setup` does this ahead)")
+    seconds = compile_ahead(warm_up_points([inputs] if inputs else []))
+    say(f"compiled in {seconds:.0f} s")
+    return seconds
