@@ -334,16 +334,20 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
 
 
 def test_the_window_grows_until_the_figures_converge_within_the_budget(default_study):
-    # configs/default.toml at 100 rpm, 10 000 lbf, e = 0.3, 9 ppg, no flow: the joints slide on the low side and
-    # after the fixed run (40 + 6 revolutions) the figures are just over the study's 1 %; the record grows by
-    # 6 revolutions at a time until they are within it, inside the default budget of 100 revolutions
-    point = _default_point(default_study, 100, 10, 0.3, 9, 0.0)
-    grown = solve_point(point, "reference")
-    assert grown.status == "ok", grown.message
-    assert grown.error_estimate <= 0.01 and grown.values["revolutions_simulated"] > 46
+    # configs/default.toml at 50 rpm, 5 000 lbf, e = 0.3, 9 ppg, no flow, a study tolerance of 10 %: the joints
+    # slide on the low side and settle slowly; after the fixed run (40 + 6 revolutions) the peak force's error is
+    # about 22 %, and the record grows by 6 revolutions at a time, the first half dropped while it drifts, until
+    # the figures are within the tolerance, inside the default budget of 100 revolutions
+    point = {**_default_point(default_study, 50, 5, 0.3, 9, 0.0), "tolerance": 0.1}
     fixed = solve_point({**point, "reference_max_revolutions": 46}, "reference")  # no room to grow
     assert fixed.values["revolutions_simulated"] == pytest.approx(46)
-    assert fixed.status == "not_converged" and fixed.error_estimate > 0.01
+    assert fixed.status == "not_converged" and fixed.error_estimate > 0.1
+    # it foresaw the revolutions the settling needs from how fast the state's changes shrink
+    needed = fixed.extras["revolutions_needed"]
+    assert 46 < needed <= ReferenceOptions.default("reference_max_revolutions")
+    grown = solve_point(point, "reference")
+    assert grown.status == "ok", grown.message
+    assert grown.error_estimate <= 0.1 and 46 < grown.values["revolutions_simulated"] <= needed + 6
     # the grown answer lies within the fixed one's stated error of it
     for name, parts in fixed.extras["convergence"].items():
         assert abs(fixed.values[name] / grown.values[name] - 1.0) <= parts["total"] + grown.error_estimate, name
