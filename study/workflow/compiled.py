@@ -39,14 +39,16 @@ COMPILE_SECONDS = 35
 
 
 def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
-    """Every cached numba kernel of ``modules``: 'module.function' -> dispatcher."""
+    """Every cached numba kernel of ``modules``: 'module.function' -> dispatcher (not those inlined into their
+    callers, ``inline="always"``, which are never compiled on their own)."""
     from numba.core.registry import CPUDispatcher
 
     found = {}
     for name in modules:
         module = importlib.import_module(name)
         for attr, value in vars(module).items():
-            if isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled:
+            if (isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled
+                    and value.targetoptions.get("inline", "never") == "never"):
                 found[f"{name}.{attr}"] = value
     return found
 
