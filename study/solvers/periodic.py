@@ -387,7 +387,7 @@ def screen_residual(scene: Scene, options: Options):
         """F(L) at ``spans``; with ``modes`` (see :func:`unit_state`) F + 1 from those modes alone."""
         spans = np.asarray(spans, dtype=float)
         if modes is None:
-            values = _screen_values(np.ascontiguousarray(spans.ravel()), all_modes[None, :], 1.0, table, state, closure)
+            values = _screen_batch(np.ascontiguousarray(spans.ravel()), all_modes.size, 1.0, table, state, closure)[0]
         else:
             per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
             values = _screen_values(np.ascontiguousarray(spans.ravel()),
@@ -405,7 +405,7 @@ def screen_residual(scene: Scene, options: Options):
         with the smaller weighted |G|."""
         args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
         poles = np.zeros(0) if poles is None else np.ascontiguousarray(poles, dtype=float)
-        out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations), poles,
+        out = _shrink_kernel(*args, all_modes.size, table, state, closure, float(rtol), int(iterations), poles,
                              float(rtol if pole_free_rtol is None else pole_free_rtol))
         return out[0], out[1], out[2], out[3], out[4:]
 
@@ -487,6 +487,22 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
 
 
 @numba.njit(cache=True, nogil=True)
+def _screen_batch(spans, n_odd, offset, table, state, closure):
+    """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') of :func:`_screen_state` at every span of ``spans`` [m] with the
+    odd modes 1, 3, …, 2 ``n_odd`` − 1, the modal sums of all spans at once in SIMD instructions
+    (:func:`beam.midspan_states`; equal to :func:`_screen_state` but for rounding)."""
+    durations, halves = np.empty(spans.size), np.empty(spans.size)
+    for i in range(spans.size):
+        durations[i], halves[i] = _pulse_one(spans[i], table)
+    ei, tension, mass, period, one_wall, code, tol, _ = state
+    y1, v1, curv1 = beam.midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol)
+    self_consistent, mass_factor, restitution, omega, _, _, _ = closure
+    factor = mass_factor * spans * (1.0 + restitution)
+    values = -factor * v1 - offset if self_consistent else -factor * omega * y1 - offset
+    return values, y1, v1, curv1
+
+
+@numba.njit(cache=True, nogil=True)
 def _screen_values(spans, modes, offset, table, state, closure):
     """The screening residual of :func:`_screen_state` at every span; ``modes`` one row for all spans or
     one row per span."""
@@ -498,34 +514,48 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
-def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations, poles,
+def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, n_odd, table, state, closure, rtol, iterations, poles,
                    pole_free_rtol):
     """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi, and
-    y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate)."""
-    out = np.empty((7, lo.size))
-    for i in range(lo.size):
-        a, b, fa, fb = lo[i], hi[i], f_lo[i], f_hi[i]
-        raw_a, raw_b, side = fa, fb, 0
-        state_a = state_b = (math.nan, math.nan, math.nan)
-        tol = rtol
-        for _ in range(iterations):
-            if tol != pole_free_rtol and b - a <= pole_free_rtol * abs(b):  # far from every pole?
-                first = np.searchsorted(poles, a - POLE_FREE_WINDOW * (b - a), side="right")
-                if first == poles.size or poles[first] >= b + POLE_FREE_WINDOW * (b - a):
-                    tol = pole_free_rtol
-            if bracket_done(a, b, fa, fb, tol):
-                break
-            x = falsi_point(a, b, fa, fb)
-            value, y1, v1, curv1 = _screen_state(x, modes[0], 1.0, table, state, closure)
-            g = value * (x - pole_lo[i]) * (pole_hi[i] - x)
-            a, b, fa, fb, raw_a, raw_b, side = keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, g)
-            if side == 1:
-                state_a = (y1, v1, curv1)
-            else:
-                state_b = (y1, v1, curv1)
-        out[0, i], out[1, i] = closer_end(a, b, fa, fb, raw_a, raw_b)
-        out[2, i], out[3, i] = a, b
-        out[4, i], out[5, i], out[6, i] = state_a if out[0, i] == a else state_b
+    y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate).
+
+    Every bracket takes the steps it would take alone, all brackets in lockstep: each round evaluates
+    the residual at the new points of the brackets still open in one call (:func:`_screen_batch`)."""
+    size = lo.size
+    a, b, fa, fb = lo.copy(), hi.copy(), f_lo.copy(), f_hi.copy()
+    raw_a, raw_b, side, tol = f_lo.copy(), f_hi.copy(), np.zeros(size, dtype=np.int64), np.full(size, rtol)
+    state_a, state_b = np.full((3, size), math.nan), np.full((3, size), math.nan)
+    open_ = np.arange(size)
+    points = np.empty(size)
+    for _ in range(iterations):
+        count = 0
+        for i in open_:
+            if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
+                first = np.searchsorted(poles, a[i] - POLE_FREE_WINDOW * (b[i] - a[i]), side="right")
+                if first == poles.size or poles[first] >= b[i] + POLE_FREE_WINDOW * (b[i] - a[i]):
+                    tol[i] = pole_free_rtol
+            if bracket_done(a[i], b[i], fa[i], fb[i], tol[i]):
+                continue
+            open_[count] = i
+            points[count] = falsi_point(a[i], b[i], fa[i], fb[i])
+            count += 1
+        if count == 0:
+            break
+        open_ = open_[:count].copy()
+        values, y1, v1, curv1 = _screen_batch(points[:count].copy(), n_odd, 1.0, table, state, closure)
+        for k in range(count):
+            i, x = open_[k], points[k]
+            g = values[k] * (x - pole_lo[i]) * (pole_hi[i] - x)
+            a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i] = keep_sign_change(
+                a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i], x, g)
+            target = state_a if side[i] == 1 else state_b
+            target[0, i], target[1, i], target[2, i] = y1[k], v1[k], curv1[k]
+    out = np.empty((7, size))
+    for i in range(size):
+        out[0, i], out[1, i] = closer_end(a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i])
+        out[2, i], out[3, i] = a[i], b[i]
+        chosen = state_a if out[0, i] == a[i] else state_b
+        out[4, i], out[5, i], out[6, i] = chosen[0, i], chosen[1, i], chosen[2, i]
     return out
 
 
