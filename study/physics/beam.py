@@ -372,7 +372,9 @@ def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall
     (1-D), ei, tension, mass, period as there; one_wall: the pattern; code: the load shape's
     (``_SHAPE_CODES``); tol: resonance_tol. ``consecutive``: the modes are 1, 3, 5, …, so sin and cos
     of β_n = n β_1 (the load factors) follow by rotation through 2β_1 instead of two transcendentals
-    per mode."""
+    per mode. Each mode's terms are :func:`_mode_term`'s, as in :func:`midspan_states` (many spans at once)."""
+    if not tl <= (period if one_wall else 0.5 * period):  # the pulse outlasts the (half) period
+        return math.nan, math.nan, math.nan
     inv_mass = 1.0 / mass
     k1 = math.pi / span  # k_n = n k_1
     weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
@@ -382,30 +384,18 @@ def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall
     curv = 0.0
     s_n = c_n = s_2 = c_2 = 0.0
     if consecutive and code != 0:
-        beta1 = k1 * half
-        s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
-        s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
+        s_n, c_n = sincos(k1 * half)  # sin, cos of n β_1 for the current odd n
+        s_2, c_2 = sincos(2.0 * k1 * half)
     for j in range(modes.size):
         n = modes[j]
-        k = n * k1
-        k2 = k * k
-        om2 = (ei * k2 + tension) * k2 * inv_mass
-        if not om2 > 0.0:
-            return math.nan, math.nan, math.nan
-        om = math.sqrt(om2)
-        bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
+        if not consecutive:
+            s_n, c_n = sincos(n * k1 * half)
+        q, qd, k2, shape, bad = _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code,
+                                           s_n, c_n)
         if bad:
             return math.nan, math.nan, math.nan
-        phi = 0.5 * om * tl
-        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
-        amp = _echo_amplitude(om * u_1, cos_phi)
-        q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-        qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
         if consecutive:
-            shape = _shape_factor(k * half, code, s_n, c_n)
             s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
-        else:
-            shape = _shape_factor(k * half, code)
         weight = weight_1 * shape
         y += weight * q
         v += weight * qd
@@ -449,16 +439,51 @@ def sincos(x):
     return sine, cosine
 
 
+@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
+    """One odd mode n's part of the midspan state (:func:`midspan_state_one`, without jumps or library calls):
+    (q(0) [s], q̇(0) [-], k_n² [1/m²], |g_n| [-], resonant or buckled?) for k_1 = π/L ``k1`` [1/m], ``half``
+    b [m], ``tl`` T_L [s], ``u_1`` = T_L/π, sin and cos of β = k_n b. The closed form of
+    :func:`modal_state_at_pulse_start`: κ = cot of the reduced angle (:func:`_echo_kappa`) as cos/sin,
+    A = cos φ/(1 − u²) (:func:`_echo_amplitude`, its sinc by the series where |1 − u| ≤ 2e-3), and
+    the load factor of :func:`_shape_factor`."""
+    k = n * k1
+    k2 = k * k
+    om2 = (ei * k2 + tension) * k2 * inv_mass
+    om = math.sqrt(abs(om2))
+    nu = om * period * (0.5 / math.pi)  # as _echo_kappa: κ near a resonance amplifies ν's rounding
+    d = nu - math.floor(nu + 0.5) if one_wall else nu - (2.0 * math.floor(0.5 * (nu - 1.0) + 0.5) + 1.0)
+    s_k, c_k = sincos((math.pi if one_wall else 0.5 * math.pi) * d)
+    bad = (not om2 > 0.0) | (not abs(d) > tol * max(1.0, nu))
+    kappa = c_k / s_k
+    sin_phi, cos_phi = sincos(0.5 * om * tl)
+    u = om * u_1
+    half_gap = 0.5 * (1.0 - u)
+    x = math.pi * half_gap  # near u = 1: (π/2) sinc(x)/(1 + u), sinc by its series (|x| ≤ π/1000)
+    near = 0.5 * math.pi * (1.0 - x * x * (1.0 / 6.0 - x * x / 120.0)) / (1.0 + u)
+    amp = cos_phi / ((1.0 - u) * (1.0 + u)) if abs(half_gap) > 1e-3 else near
+    q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
+    qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
+    beta = k * half
+    b2 = beta * beta
+    series = _PARABOLIC_SERIES
+    acc = (((((((series[0] * b2 + series[1]) * b2 + series[2]) * b2 + series[3]) * b2 + series[4]) * b2
+              + series[5]) * b2 + series[6]) * b2 + series[7]) * b2 + series[8]  # unrolled: no inner loop
+    parabolic = acc if abs(beta) < 0.5 else 3.0 * (sin_beta - beta * cos_beta) / (b2 * beta)
+    uniform = 1.0 if beta == 0.0 else sin_beta / beta
+    return q, qd, k2, 1.0 if code == 0 else uniform if code == 1 else parabolic, bad
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
 def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol):
     """:func:`midspan_state_one` at every span of ``spans`` [m] (with its T_L ``durations`` [s] and
     contact half-length ``halves`` [m]) over the odd modes 1, 3, …, 2 ``n_odd`` − 1, as three arrays
     y₁, v₁, y₁''; other arguments as there.
 
-    The same closed form and the same order of summation; the loop over spans is innermost and has no
-    jumps (a resonant or buckled mode, or a pulse longer than the (half) period, makes its span NaN by
-    arithmetic) and no library calls (:func:`sincos`; κ = cos/sin of the reduced angle), so it runs in
-    SIMD instructions, about 20 times faster than the scalar loop; the values differ from it by rounding."""
+    The same terms (:func:`_mode_term`) summed in the same order, so the same values to the last bit; the
+    loop over spans is innermost and has no jumps (a resonant or buckled mode, or a pulse longer than the
+    (half) period, makes its span NaN by arithmetic) and no library calls (:func:`sincos`), so it runs in
+    SIMD instructions, about 8 times faster than the scalar loop."""
     size = spans.size
     y, v, curv = np.zeros(size), np.zeros(size), np.zeros(size)  # three arrays, not rows of one: no alias
     k1, weight_1, u_1 = np.empty(size), np.empty(size), np.empty(size)
@@ -473,36 +498,12 @@ def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, o
         if not durations[i] <= longest:
             y[i] = v[i] = curv[i] = math.nan
     inv_mass = 1.0 / mass
-    scale = math.pi if one_wall else 0.5 * math.pi
-    series = _PARABOLIC_SERIES
     for j in range(n_odd):
         n = 2.0 * j + 1.0
         for i in range(size):
-            k = n * k1[i]
-            k2 = k * k
-            om2 = (ei * k2 + tension) * k2 * inv_mass
-            om = math.sqrt(abs(om2))
-            nu = om * period * (0.5 / math.pi)  # as _echo_kappa: κ near a resonance amplifies ν's rounding
-            d = nu - math.floor(nu + 0.5) if one_wall else nu - (2.0 * math.floor(0.5 * (nu - 1.0) + 0.5) + 1.0)
-            s_k, c_k = sincos(scale * d)
-            bad = (not om2 > 0.0) | (abs(d) <= tol * max(1.0, nu))
-            kappa = math.nan if bad else c_k / s_k
-            phi = 0.5 * om * durations[i]
-            sin_phi, cos_phi = sincos(phi)
-            u = om * u_1[i]
-            half_gap = 0.5 * (1.0 - u)
-            x = math.pi * half_gap  # near u = 1: (π/2) sinc(x)/(1 + u), sinc by its series (|x| ≤ π/1000)
-            near = 0.5 * math.pi * (1.0 - x * x * (1.0 / 6.0 - x * x / 120.0)) / (1.0 + u)
-            amp = cos_phi / ((1.0 - u) * (1.0 + u)) if abs(half_gap) > 1e-3 else near
-            q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-            qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
-            beta = k * halves[i]
-            b2 = beta * beta
-            acc = (((((((series[0] * b2 + series[1]) * b2 + series[2]) * b2 + series[3]) * b2 + series[4]) * b2
-                      + series[5]) * b2 + series[6]) * b2 + series[7]) * b2 + series[8]  # unrolled: one loop only
-            parabolic = acc if abs(beta) < 0.5 else 3.0 * (s_n[i] - beta * c_n[i]) / (b2 * beta)
-            uniform = 1.0 if beta == 0.0 else s_n[i] / beta
-            shape = 1.0 if code == 0 else uniform if code == 1 else parabolic
+            q, qd, k2, shape, bad = _mode_term(n, k1[i], halves[i], durations[i], u_1[i], ei, tension, inv_mass,
+                                               period, one_wall, tol, code, s_n[i], c_n[i])
+            q, qd = (math.nan, math.nan) if bad else (q, qd)
             s_n[i], c_n[i] = s_n[i] * c_2[i] + c_n[i] * s_2[i], c_n[i] * c_2[i] - s_n[i] * s_2[i]
             weight = weight_1[i] * shape
             y[i] += weight * q
