@@ -1221,6 +1221,16 @@ def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, im
             ws[kind][h] = w.real @ s + 1j * (w.imag @ s)
     tf = t.ravel()
     tm = tf - np.floor(tf / tau) * tau
+    steps = _steps_per_period(tm, tau)
+    if steps:  # t on a grid jτ/K: the sum over m is a discrete Fourier transform of length K
+        j = np.rint(tm * (steps / tau)).astype(np.int64) % steps
+        rows = m.astype(np.int64) % steps
+        out = {}
+        for kind in kinds:
+            folded = np.zeros((steps, x.size), dtype=complex)
+            np.add.at(folded, rows, ws[kind])
+            out[kind] = (np.fft.ifft(folded, axis=0) * steps)[j].real
+        return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
     out = {kind: np.empty((tf.size, x.size)) for kind in kinds}
     step = max(1, _SERIES_CHUNK // max(1, m.size))
     for i in range(0, tf.size, step):
@@ -1228,6 +1238,23 @@ def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, im
         for kind in kinds:
             out[kind][i:i + step] = (e @ ws[kind]).real
     return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
+
+
+#: Most points per period of a time grid that :func:`series_fields` sums by FFT.
+_MAX_FFT_STEPS = 1 << 16
+
+
+def _steps_per_period(tm, period) -> int:
+    """K when every time of ``tm`` [s] (in [0, τ)) lies within 1e-9 of a step on the grid jτ/K, K the period
+    ``period`` τ [s] over the step between the first two times (a uniform grid such as the term ratios'); 0
+    otherwise (or for fewer than 8 times, or K above :data:`_MAX_FFT_STEPS`)."""
+    if tm.size < 8 or not tm[1] > tm[0]:
+        return 0
+    steps = int(round(period / (tm[1] - tm[0])))
+    if not 0 < steps <= _MAX_FFT_STEPS:
+        return 0
+    phase = tm * (steps / period)
+    return steps if np.all(np.abs(phase - np.rint(phase)) <= 1e-9) else 0
 
 
 def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,

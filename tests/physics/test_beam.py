@@ -649,3 +649,19 @@ def test_midspan_states_of_many_spans_are_the_scalar_loop_s_to_the_last_bit(patt
     simd = np.array(bm.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
     scalar = bm._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
     assert np.isnan(scalar).sum() >= 18 and np.array_equal(simd, scalar, equal_nan=True)
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+def test_series_on_a_uniform_grid_by_fft_is_the_direct_sum(pattern):
+    # source: the direct sum over harmonics (the path taken when one time leaves the grid jτ/K)
+    tau = 0.2
+    t = np.linspace(0.0, tau if pattern == "one_wall" else tau / 2, 300, endpoint=False)
+    x = np.linspace(0.0, 5.0, 11)
+    args = dict(span_length=10.0, bending_stiffness=1.6e6, tension=4e4, mass=30.0, impulse=50.0, pulse_duration=2e-3,
+                period=tau, pattern=pattern, half_length=0.01, shape="parabolic", n_modes=21, harmonics=400)
+    kinds = ["deflection", "acceleration", "d4", "shear"]
+    assert bm._steps_per_period(t, tau) == (300 if pattern == "one_wall" else 600)
+    by_fft = bm.series_fields(x, t, kinds, **args)
+    direct = bm.series_fields(x, np.append(t, 0.123456789 * tau), kinds, **args)
+    for kind in kinds:
+        np.testing.assert_allclose(by_fft[kind], direct[kind][:-1], rtol=0, atol=1e-12 * np.abs(direct[kind]).max())
