@@ -748,6 +748,15 @@ def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall"
     return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 0.0, resonance_tol)[:, :-1]
 
 
+def dynamic_remainder(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
+    """q(t) − h(t)/ω² of :func:`modal_periodic_response` and :func:`pulse_train` on the grid t × ω [s]: each
+    mode's part left after the quasi-static split (docs/model.md §5), by the compiled loop of
+    :func:`periodic_displacement`. Arguments and shape as there; NaN where it is NaN."""
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
+    return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 1.0, resonance_tol)[:, :-1]
+
+
 def _modal_columns(t, omega, pulse_duration, period, pattern, factor, static, resonance_tol=1e-15):
     """(times × [modes, pulse]) of :func:`_periodic_displacement_kernel`: factor_n (q_n − static h/ω_n²)
     and h(t), on the flattened t (the one entry to the kernel)."""

@@ -791,10 +791,8 @@ def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
     t = time_grid(scene, impact.contact_duration, options)
     omega = natural_frequencies(scene, impact.span_length, n)
     g = beam.modal_load_factors(n, impact.span_length, impact.contact_half_length, options.load_shape)
-    q = beam.modal_periodic_response(t[:, None], omega, impact.contact_duration, scene.period,
-                                     scene.pattern).displacement
-    h = beam.pulse_train(t[:, None], impact.contact_duration, scene.period, scene.pattern)
-    remainder = np.nanmax(np.abs(q - h / omega**2), axis=0)
+    remainder = np.nanmax(np.abs(beam.dynamic_remainder(t, omega, impact.contact_duration, scene.period,
+                                                        scene.pattern)), axis=0)
     k_sq = (n * np.pi / impact.span_length) ** 2
     amplitude = abs(impact.impulse) * np.abs(g) / (0.5 * p["mass_per_length"] * impact.span_length) * remainder
     return float(r_o / inertia * p["bending_stiffness"] * np.sum(k_sq * amplitude))

@@ -665,3 +665,15 @@ def test_series_on_a_uniform_grid_by_fft_is_the_direct_sum(pattern):
     direct = bm.series_fields(x, np.append(t, 0.123456789 * tau), kinds, **args)
     for kind in kinds:
         np.testing.assert_allclose(by_fft[kind], direct[kind][:-1], rtol=0, atol=1e-12 * np.abs(direct[kind]).max())
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+def test_dynamic_remainder_is_the_response_less_its_quasi_static_part(pattern):
+    # source: modal_periodic_response and pulse_train (the complex closed form), q - h/omega^2
+    t = np.linspace(0.0, 0.2, 700)
+    omega = np.array([40.0, 310.0, 1570.0, 9000.0])
+    q = bm.modal_periodic_response(t[:, None], omega, 2e-3, 0.2, pattern).displacement
+    h = bm.pulse_train(t[:, None], 2e-3, 0.2, pattern)
+    expected = q - h / omega**2
+    np.testing.assert_allclose(bm.dynamic_remainder(t, omega, 2e-3, 0.2, pattern), expected, rtol=0,
+                               atol=1e-10 * np.abs(expected).max())
