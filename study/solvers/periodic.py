@@ -267,11 +267,10 @@ def _impacts_kernel(spans, durations, halves, max_iterations, state, modes, cont
     for i in range(size):
         span = spans[i]
         out[0, i], out[11, i], out[3, i] = span, 0.0, velocity[i]
-        # the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c
-        _, _, stiffness = hertz.contact_one(1.0, radius, hole, c * (math.pi / span) ** 2, compliance, table)
-        start = durations[i]
-        duration[i] = start if 0.0 < start < longest else hertz.lee_duration_one(mass_factor * span, velocity[i],
-                                                                                  stiffness)
+        duration[i] = durations[i]
+        if not 0.0 < duration[i] < longest:  # that of the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c
+            _, _, stiffness = hertz.contact_one(1.0, radius, hole, c * (math.pi / span) ** 2, compliance, table)
+            duration[i] = hertz.lee_duration_one(mass_factor * span, velocity[i], stiffness)
         half[i] = min(max(halves[i], 0.0), 0.45 * span)
     running = np.arange(size)
     for iteration in range(1, max_iterations + 1):
