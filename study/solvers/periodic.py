@@ -392,7 +392,7 @@ def screen_residual(scene: Scene, options: Options):
     interpolated in log L; the roots found with it are refined with the exact model afterwards.
     Returns a function of an array of spans (compiled, :func:`_screen_state`), or None when no span
     gives a valid pulse; its ``shrink`` shrinks sign-changing brackets of F times the distances to two
-    poles onto their roots in one compiled loop (:func:`_shrink_kernel`).
+    poles onto their roots in lockstep rounds of compiled loops (:func:`_shrink_points`, :func:`_shrink_update`).
     """
     grid = np.geomspace(options.min_span, options.max_span, 12)
     impacts = impacts_at(scene, grid, options, max_iterations=1)
@@ -406,14 +406,16 @@ def screen_residual(scene: Scene, options: Options):
     any_modes = state[:-1] + (False,)  # modes not 1, 3, 5, ...
 
     def pulse(spans):
-        """(T_L, b) interpolated at ``spans``."""
-        return (np.exp(np.interp(np.log(spans), table[0], table[1])), np.interp(np.log(spans), table[0], table[2]))
+        """(T_L, b) interpolated at ``spans`` (numpy's log and exp of whole arrays: SIMD)."""
+        log_spans = np.log(spans)
+        return np.exp(np.interp(log_spans, table[0], table[1])), np.interp(log_spans, table[0], table[2])
 
     def residual(spans, modes=None):
         """F(L) at ``spans``; with ``modes`` (see :func:`unit_state`) F + 1 from those modes alone."""
         spans = np.asarray(spans, dtype=float)
         if modes is None:
-            values = _screen_batch(np.ascontiguousarray(spans.ravel()), all_modes.size, 1.0, table, state, closure)[0]
+            flat = np.ascontiguousarray(spans.ravel())
+            values = _screen_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)[0]
         else:
             per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
             values = _screen_values(np.ascontiguousarray(spans.ravel()),
@@ -429,10 +431,22 @@ def screen_residual(scene: Scene, options: Options):
         (roots, G at the roots, final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as
         :func:`unit_state` with the screening pulse, NaN where not evaluated), the root being the end
         with the smaller weighted |G|."""
-        args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
+        a, b, fa, fb, pole_lo, pole_hi = (np.array(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi))
+        raw_a, raw_b, side, tol = fa.copy(), fb.copy(), np.zeros(a.size, dtype=np.int64), np.full(a.size, float(rtol))
+        states = np.full((2, 3, a.size), np.nan)  # y₁, v₁, y₁'' at the lower and the upper end
         poles = np.zeros(0) if poles is None else np.ascontiguousarray(poles, dtype=float)
-        out = _shrink_kernel(*args, all_modes.size, table, state, closure, float(rtol), int(iterations), poles,
-                             float(rtol if pole_free_rtol is None else pole_free_rtol))
+        free_rtol = float(rtol if pole_free_rtol is None else pole_free_rtol)
+        running = np.arange(a.size)
+        # every bracket takes the steps it would take alone, all in lockstep: each round evaluates the new
+        # points of the brackets still open at once (the pulse by numpy, the modal sums in one SIMD call)
+        for _ in range(int(iterations)):
+            running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol)
+            if running.size == 0:
+                break
+            values, y1, v1, curv1 = _screen_batch(points, *pulse(points), all_modes.size, 1.0, state, closure)
+            _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                           pole_hi)
+        out = _shrink_result(a, b, fa, fb, raw_a, raw_b, states)
         return out[0], out[1], out[2], out[3], out[4:]
 
     def residue(spans, modes, floor=0.0):
@@ -513,13 +527,11 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
 
 
 @numba.njit(cache=True, nogil=True)
-def _screen_batch(spans, n_odd, offset, table, state, closure):
+def _screen_batch(spans, durations, halves, n_odd, offset, state, closure):
     """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') of :func:`_screen_state` at every span of ``spans`` [m] with the
-    odd modes 1, 3, …, 2 ``n_odd`` − 1, the modal sums of all spans at once in SIMD instructions
+    screening pulse's T_L ``durations`` [s] and b ``halves`` [m] there (``pulse`` of :func:`screen_residual`)
+    and the odd modes 1, 3, …, 2 ``n_odd`` − 1, the modal sums of all spans at once in SIMD instructions
     (:func:`beam.midspan_states`; equal to :func:`_screen_state` but for rounding)."""
-    durations, halves = np.empty(spans.size), np.empty(spans.size)
-    for i in range(spans.size):
-        durations[i], halves[i] = _pulse_one(spans[i], table)
     ei, tension, mass, period, one_wall, code, tol, _ = state
     y1, v1, curv1 = beam.midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol)
     self_consistent, mass_factor, restitution, omega, _, _, _ = closure
@@ -540,48 +552,50 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
-def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, n_odd, table, state, closure, rtol, iterations, poles,
-                   pole_free_rtol):
-    """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi, and
-    y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate).
+def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol):
+    """One round of ``screen_residual(...).shrink`` for the brackets ``running``: each bracket's tolerance
+    (``pole_free_rtol`` once none of ``poles`` lies within :data:`POLE_FREE_WINDOW` bracket widths, updated in
+    ``tol``), and the brackets not yet done with their next point (regula falsi, :mod:`study.physics.roots`).
+    Returns (those brackets, their points)."""
+    still, points = np.empty(running.size, dtype=np.int64), np.empty(running.size)
+    count = 0
+    for i in running:
+        if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
+            first = np.searchsorted(poles, a[i] - POLE_FREE_WINDOW * (b[i] - a[i]), side="right")
+            if first == poles.size or poles[first] >= b[i] + POLE_FREE_WINDOW * (b[i] - a[i]):
+                tol[i] = pole_free_rtol
+        if bracket_done(a[i], b[i], fa[i], fb[i], tol[i]):
+            continue
+        still[count], points[count] = i, falsi_point(a[i], b[i], fa[i], fb[i])
+        count += 1
+    return still[:count].copy(), points[:count].copy()
 
-    Every bracket takes the steps it would take alone, all brackets in lockstep: each round evaluates
-    the residual at the new points of the brackets still open in one call (:func:`_screen_batch`)."""
-    size = lo.size
-    a, b, fa, fb = lo.copy(), hi.copy(), f_lo.copy(), f_hi.copy()
-    raw_a, raw_b, side, tol = f_lo.copy(), f_hi.copy(), np.zeros(size, dtype=np.int64), np.full(size, rtol)
-    state_a, state_b = np.full((3, size), math.nan), np.full((3, size), math.nan)
-    open_ = np.arange(size)
-    points = np.empty(size)
-    for _ in range(iterations):
-        count = 0
-        for i in open_:
-            if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
-                first = np.searchsorted(poles, a[i] - POLE_FREE_WINDOW * (b[i] - a[i]), side="right")
-                if first == poles.size or poles[first] >= b[i] + POLE_FREE_WINDOW * (b[i] - a[i]):
-                    tol[i] = pole_free_rtol
-            if bracket_done(a[i], b[i], fa[i], fb[i], tol[i]):
-                continue
-            open_[count] = i
-            points[count] = falsi_point(a[i], b[i], fa[i], fb[i])
-            count += 1
-        if count == 0:
-            break
-        open_ = open_[:count].copy()
-        values, y1, v1, curv1 = _screen_batch(points[:count].copy(), n_odd, 1.0, table, state, closure)
-        for k in range(count):
-            i, x = open_[k], points[k]
-            g = values[k] * (x - pole_lo[i]) * (pole_hi[i] - x)
-            a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i] = keep_sign_change(
-                a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i], x, g)
-            target = state_a if side[i] == 1 else state_b
-            target[0, i], target[1, i], target[2, i] = y1[k], v1[k], curv1[k]
-    out = np.empty((7, size))
-    for i in range(size):
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                   pole_hi):
+    """The brackets ``running`` after F = ``values`` at their ``points`` (G = F (L − pole_lo)(pole_hi − L)):
+    the end with G's sign moves there (Illinois weights, :func:`keep_sign_change`), and y₁, v₁, y₁'' there
+    are kept for that end (``states`` [0] lower, [1] upper)."""
+    for k in range(running.size):
+        i, x = running[k], points[k]
+        g = values[k] * (x - pole_lo[i]) * (pole_hi[i] - x)
+        a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i] = keep_sign_change(
+            a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i], x, g)
+        end = 0 if side[i] == 1 else 1
+        states[end, 0, i], states[end, 1, i], states[end, 2, i] = y1[k], v1[k], curv1[k]
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_result(a, b, fa, fb, raw_a, raw_b, states):
+    """Rows root, G at the root, final lo, final hi, and y₁, v₁, y₁'' at the root (NaN at an end no round
+    evaluated), the root being the end with the smaller weighted |G| (:func:`closer_end`)."""
+    out = np.empty((7, a.size))
+    for i in range(a.size):
         out[0, i], out[1, i] = closer_end(a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i])
         out[2, i], out[3, i] = a[i], b[i]
-        chosen = state_a if out[0, i] == a[i] else state_b
-        out[4, i], out[5, i], out[6, i] = chosen[0, i], chosen[1, i], chosen[2, i]
+        end = 0 if out[0, i] == a[i] else 1
+        out[4, i], out[5, i], out[6, i] = states[end, 0, i], states[end, 1, i], states[end, 2, i]
     return out
 
 
