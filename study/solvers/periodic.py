@@ -436,11 +436,11 @@ def screen_residual(scene: Scene, options: Options):
         states = np.full((2, 3, a.size), np.nan)  # y₁, v₁, y₁'' at the lower and the upper end
         poles = np.zeros(0) if poles is None else np.ascontiguousarray(poles, dtype=float)
         free_rtol = float(rtol if pole_free_rtol is None else pole_free_rtol)
-        running = np.arange(a.size)
+        running, below = np.arange(a.size), np.full(a.size, -1, dtype=np.int64)
         # every bracket takes the steps it would take alone, all in lockstep: each round evaluates the new
         # points of the brackets still open at once (the pulse by numpy, the modal sums in one SIMD call)
         for _ in range(int(iterations)):
-            running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol)
+            running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol, below)
             if running.size == 0:
                 break
             values, y1, v1, curv1 = _screen_batch(points, *pulse(points), all_modes.size, 1.0, state, closure)
@@ -552,16 +552,23 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
-def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol):
+def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
     """One round of ``screen_residual(...).shrink`` for the brackets ``running``: each bracket's tolerance
     (``pole_free_rtol`` once none of ``poles`` lies within :data:`POLE_FREE_WINDOW` bracket widths, updated in
     ``tol``), and the brackets not yet done with their next point (regula falsi, :mod:`study.physics.roots`).
+    ``below``: per bracket, how many poles lie at or below a − W (b − a) (W the window) at its last check, −1
+    before the first; that point only moves up as the bracket shrinks, so each check walks on from there.
     Returns (those brackets, their points)."""
     still, points = np.empty(running.size, dtype=np.int64), np.empty(running.size)
     count = 0
     for i in running:
         if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
-            first = np.searchsorted(poles, a[i] - POLE_FREE_WINDOW * (b[i] - a[i]), side="right")
+            left = a[i] - POLE_FREE_WINDOW * (b[i] - a[i])
+            if below[i] < 0:
+                below[i] = np.searchsorted(poles, left, side="right")
+            while below[i] < poles.size and poles[below[i]] <= left:
+                below[i] += 1
+            first = below[i]
             if first == poles.size or poles[first] >= b[i] + POLE_FREE_WINDOW * (b[i] - a[i]):
                 tol[i] = pole_free_rtol
         if bracket_done(a[i], b[i], fa[i], fb[i], tol[i]):
