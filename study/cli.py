@@ -14,7 +14,7 @@ from study import __version__
 from study.config import ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert, display_unit, pint_unit
-from study.workflow.compiled import compile_ahead, ensure_compiled, kernels, uncached
+from study.workflow.compiled import cached, compile_ahead, ensure_compiled, kernels, uncached
 from study.workflow.execute import Interrupted, SweepError, tell
 
 DEFAULT_CONFIG = "configs/default.toml"
@@ -105,7 +105,9 @@ def cmd_compile(args) -> int:
     print(f"compiling the solver kernels ahead ({len(missing)} of {len(kernels())} not in numba's cache); "
           "every method once on the warm-up points:")
     seconds = compile_ahead(say=print)
-    print(f"compiled in {seconds:.0f} s; kernels not in the cache now: {', '.join(uncached()) or 'none'}")
+    left = [name for name, dispatcher in kernels().items() if not cached(dispatcher)]
+    print(f"compiled in {seconds:.0f} s; not reached at the warm-up points (compiled on their first use): "
+          f"{', '.join(left) or 'none'}")
     return 0
 
 

@@ -14,13 +14,20 @@ def test_bench_reports_every_method_with_a_positive_time():
     assert len(bench_hertz_coefficients(count=10)) == 2
 
 
-def test_span_search_bench_reports_both_searches_on_the_same_points():
+def test_span_search_bench_reports_every_reading_and_both_searches_on_the_same_points():
+    from study.bench import PERIODIC_READINGS
+
     study = load(DEFAULT_CONFIG)
     small = study.__class__(**{**study.__dict__, "axes": {"rotary_speed": study.axes["rotary_speed"][-2:]}})
     lines, stats = bench_span_search(small, count=2, full_count=1)
     table = [line for line in lines if line.startswith("| ")]
-    assert len(table) == 4 and "every pole searched" in table[1] and table[2].endswith("x |")
-    assert stats["median"] > 0
+    readings = ["/".join(r) for r in PERIODIC_READINGS]
+    assert len(table) == 1 + len(readings) + 3 and "every pole searched" in table[-2] and table[-1].endswith("x |")
+    assert all(table[1 + i].startswith(f"| {name}") for i, name in enumerate(readings))
+    assert "default" in table[1] and ("statuses" in stats[readings[1]])
+    assert all(sum(stats[name]["statuses"].values()) == 2 and stats[name]["max"] >= stats[name]["median"] > 0
+               for name in readings)
+    assert stats["median"] == stats[readings[0]]["median"]
 
 
 def test_reference_bench_compares_the_compiled_integrator_with_rk45_on_the_same_equations():

@@ -372,7 +372,9 @@ def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall
     (1-D), ei, tension, mass, period as there; one_wall: the pattern; code: the load shape's
     (``_SHAPE_CODES``); tol: resonance_tol. ``consecutive``: the modes are 1, 3, 5, …, so sin and cos
     of β_n = n β_1 (the load factors) follow by rotation through 2β_1 instead of two transcendentals
-    per mode."""
+    per mode. Each mode's terms are :func:`_mode_term`'s, as in :func:`midspan_states` (many spans at once)."""
+    if not tl <= (period if one_wall else 0.5 * period):  # the pulse outlasts the (half) period
+        return math.nan, math.nan, math.nan
     inv_mass = 1.0 / mass
     k1 = math.pi / span  # k_n = n k_1
     weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
@@ -382,34 +384,131 @@ def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall
     curv = 0.0
     s_n = c_n = s_2 = c_2 = 0.0
     if consecutive and code != 0:
-        beta1 = k1 * half
-        s_n, c_n = math.sin(beta1), math.cos(beta1)  # sin, cos of n β_1 for the current odd n
-        s_2, c_2 = math.sin(2.0 * beta1), math.cos(2.0 * beta1)
+        s_n, c_n = sincos(k1 * half)  # sin, cos of n β_1 for the current odd n
+        s_2, c_2 = sincos(2.0 * k1 * half)
     for j in range(modes.size):
         n = modes[j]
-        k = n * k1
-        k2 = k * k
-        om2 = (ei * k2 + tension) * k2 * inv_mass
-        if not om2 > 0.0:
-            return math.nan, math.nan, math.nan
-        om = math.sqrt(om2)
-        bad, kappa = _echo_kappa(om, tl, period, one_wall, tol)
+        if not consecutive:
+            s_n, c_n = sincos(n * k1 * half)
+        q, qd, k2, shape, bad = _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code,
+                                           s_n, c_n)
         if bad:
             return math.nan, math.nan, math.nan
-        phi = 0.5 * om * tl
-        cos_phi, sin_phi = math.cos(phi), math.sin(phi)
-        amp = _echo_amplitude(om * u_1, cos_phi)
-        q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-        qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
         if consecutive:
-            shape = _shape_factor(k * half, code, s_n, c_n)
             s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
-        else:
-            shape = _shape_factor(k * half, code)
         weight = weight_1 * shape
         y += weight * q
         v += weight * qd
         curv -= weight * k2 * q
+    return y, v, curv
+
+
+# --- the midspan state of many spans at once, in SIMD instructions ----------------------------------
+#: π/2 in four parts of at most 27 significant bits (Cody & Waite's reduction): k times each of the first
+#: three is exact for |k| < 2^26, so x − k π/2 keeps its accuracy up to |x| ≈ 10^8.
+_PIO2_PARTS = (1.570796325802803, 9.920935739593517e-10, 5.721188709663575e-18, 1.6446256936324258e-26)
+#: Minimax coefficients of sin and cos on [−π/4, π/4] (fdlibm's __kernel_sin and __kernel_cos, Sun
+#: Microsystems 1993; error below 2^−58 on the interval).
+_SIN_POLY = (-1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04,
+             2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10)
+_COS_POLY = (4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05,
+             -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def sincos(x):
+    """(sin x, cos x) without a jump or a library call, so that a loop over arrays of x compiles to SIMD
+    instructions (the scalar library calls were most of the span search's time, docs/profile_fast.md):
+    x − kπ/2 reduced by :data:`_PIO2_PARTS`, the polynomials of :data:`_SIN_POLY` and :data:`_COS_POLY`
+    on [−π/4, π/4], the quadrant chosen by selects. Within 2 ulp of ``math.sin``/``math.cos`` (absolute,
+    for |sin|, |cos| ≤ 1) for |x| < 10^7 (tests/physics/test_beam.py); NaN for a NaN x."""
+    k = math.floor(x * 0.6366197723675814 + 0.5)
+    p1, p2, p3, p4 = _PIO2_PARTS
+    r = (((x - k * p1) - k * p2) - k * p3) - k * p4
+    z = r * r
+    s1, s2, s3, s4, s5, s6 = _SIN_POLY
+    c1, c2, c3, c4, c5, c6 = _COS_POLY
+    s = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * s6)))))
+    c = 1.0 - 0.5 * z + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * c6)))))
+    quadrant = k - 4.0 * math.floor(0.25 * k)  # 0, 1, 2, 3
+    odd = (quadrant == 1.0) | (quadrant == 3.0)
+    sine = c if odd else s
+    cosine = s if odd else c
+    sine = -sine if quadrant >= 2.0 else sine
+    cosine = -cosine if (quadrant == 1.0) | (quadrant == 2.0) else cosine
+    return sine, cosine
+
+
+@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
+    """One odd mode n's part of the midspan state (:func:`midspan_state_one`, without jumps or library calls):
+    (q(0) [s], q̇(0) [-], k_n² [1/m²], |g_n| [-], resonant or buckled?) for k_1 = π/L ``k1`` [1/m], ``half``
+    b [m], ``tl`` T_L [s], ``u_1`` = T_L/π, sin and cos of β = k_n b. The closed form of
+    :func:`modal_state_at_pulse_start`: κ = cot of the reduced angle (:func:`_echo_kappa`) as cos/sin,
+    A = cos φ/(1 − u²) (:func:`_echo_amplitude`, its sinc by the series where |1 − u| ≤ 2e-3), and
+    the load factor of :func:`_shape_factor`."""
+    k = n * k1
+    k2 = k * k
+    om2 = (ei * k2 + tension) * k2 * inv_mass
+    om = math.sqrt(abs(om2))
+    nu = om * period * (0.5 / math.pi)  # as _echo_kappa: κ near a resonance amplifies ν's rounding
+    d = nu - math.floor(nu + 0.5) if one_wall else nu - (2.0 * math.floor(0.5 * (nu - 1.0) + 0.5) + 1.0)
+    s_k, c_k = sincos((math.pi if one_wall else 0.5 * math.pi) * d)
+    bad = (not om2 > 0.0) | (not abs(d) > tol * max(1.0, nu))
+    kappa = c_k / s_k
+    sin_phi, cos_phi = sincos(0.5 * om * tl)
+    u = om * u_1
+    half_gap = 0.5 * (1.0 - u)
+    x = math.pi * half_gap  # near u = 1: (π/2) sinc(x)/(1 + u), sinc by its series (|x| ≤ π/1000)
+    near = 0.5 * math.pi * (1.0 - x * x * (1.0 / 6.0 - x * x / 120.0)) / (1.0 + u)
+    amp = cos_phi / ((1.0 - u) * (1.0 + u)) if abs(half_gap) > 1e-3 else near
+    q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
+    qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
+    beta = k * half
+    b2 = beta * beta
+    series = _PARABOLIC_SERIES
+    acc = (((((((series[0] * b2 + series[1]) * b2 + series[2]) * b2 + series[3]) * b2 + series[4]) * b2
+              + series[5]) * b2 + series[6]) * b2 + series[7]) * b2 + series[8]  # unrolled: no inner loop
+    parabolic = acc if abs(beta) < 0.5 else 3.0 * (sin_beta - beta * cos_beta) / (b2 * beta)
+    uniform = 1.0 if beta == 0.0 else sin_beta / beta
+    return q, qd, k2, 1.0 if code == 0 else uniform if code == 1 else parabolic, bad
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
+def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol):
+    """:func:`midspan_state_one` at every span of ``spans`` [m] (with its T_L ``durations`` [s] and
+    contact half-length ``halves`` [m]) over the odd modes 1, 3, …, 2 ``n_odd`` − 1, as three arrays
+    y₁, v₁, y₁''; other arguments as there.
+
+    The same terms (:func:`_mode_term`) summed in the same order, so the same values to the last bit; the
+    loop over spans is innermost and has no jumps (a resonant or buckled mode, or a pulse longer than the
+    (half) period, makes its span NaN by arithmetic) and no library calls (:func:`sincos`), so it runs in
+    SIMD instructions, about 8 times faster than the scalar loop."""
+    size = spans.size
+    y, v, curv = np.zeros(size), np.zeros(size), np.zeros(size)  # three arrays, not rows of one: no alias
+    k1, weight_1, u_1 = np.empty(size), np.empty(size), np.empty(size)
+    s_n, c_n, s_2, c_2 = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
+    longest = period if one_wall else 0.5 * period
+    for i in range(size):
+        k1[i] = math.pi / spans[i]
+        weight_1[i] = 2.0 / (mass * spans[i])
+        u_1[i] = durations[i] / math.pi
+        s_n[i], c_n[i] = sincos(k1[i] * halves[i])
+        s_2[i], c_2[i] = sincos(2.0 * k1[i] * halves[i])
+        if not durations[i] <= longest:
+            y[i] = v[i] = curv[i] = math.nan
+    inv_mass = 1.0 / mass
+    for j in range(n_odd):
+        n = 2.0 * j + 1.0
+        for i in range(size):
+            q, qd, k2, shape, bad = _mode_term(n, k1[i], halves[i], durations[i], u_1[i], ei, tension, inv_mass,
+                                               period, one_wall, tol, code, s_n[i], c_n[i])
+            q, qd = (math.nan, math.nan) if bad else (q, qd)
+            s_n[i], c_n[i] = s_n[i] * c_2[i] + c_n[i] * s_2[i], c_n[i] * c_2[i] - s_n[i] * s_2[i]
+            weight = weight_1[i] * shape
+            y[i] += weight * q
+            v[i] += weight * qd
+            curv[i] -= weight * k2 * q
     return y, v, curv
 
 
@@ -434,6 +533,11 @@ def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes
     span, tl, half = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (span_length, pulse_duration, half_length)))
     modes = np.asarray(modes, dtype=float)
     consecutive = modes.ndim <= 1 and np.array_equal(modes.ravel(), np.arange(1.0, 2.0 * modes.size, 2.0))
+    if consecutive:  # the SIMD loop over spans
+        return tuple(v.reshape(span.shape) for v in midspan_states(
+            np.ascontiguousarray(span.ravel()), np.ascontiguousarray(tl.ravel()), np.ascontiguousarray(half.ravel()),
+            modes.size, float(bending_stiffness), float(tension), float(mass), float(period), pattern == "one_wall",
+            _SHAPE_CODES[shape], float(resonance_tol)))
     if modes.ndim <= 1:
         table = modes.reshape(1, -1)
     else:
@@ -642,6 +746,15 @@ def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall"
     _check("pattern", pattern, IMPACT_PATTERNS)
     omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
     return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 0.0, resonance_tol)[:, :-1]
+
+
+def dynamic_remainder(t, omega_n, pulse_duration, period, pattern="one_wall", resonance_tol=1e-15):
+    """q(t) − h(t)/ω² of :func:`modal_periodic_response` and :func:`pulse_train` on the grid t × ω [s]: each
+    mode's part left after the quasi-static split (docs/model.md §5), by the compiled loop of
+    :func:`periodic_displacement`. Arguments and shape as there; NaN where it is NaN."""
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
+    return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 1.0, resonance_tol)[:, :-1]
 
 
 def _modal_columns(t, omega, pulse_duration, period, pattern, factor, static, resonance_tol=1e-15):
@@ -1117,6 +1230,16 @@ def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, im
             ws[kind][h] = w.real @ s + 1j * (w.imag @ s)
     tf = t.ravel()
     tm = tf - np.floor(tf / tau) * tau
+    steps = _steps_per_period(tm, tau)
+    if steps:  # t on a grid jτ/K: the sum over m is a discrete Fourier transform of length K
+        j = np.rint(tm * (steps / tau)).astype(np.int64) % steps
+        rows = m.astype(np.int64) % steps
+        out = {}
+        for kind in kinds:
+            folded = np.zeros((steps, x.size), dtype=complex)
+            np.add.at(folded, rows, ws[kind])
+            out[kind] = (np.fft.ifft(folded, axis=0) * steps)[j].real
+        return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
     out = {kind: np.empty((tf.size, x.size)) for kind in kinds}
     step = max(1, _SERIES_CHUNK // max(1, m.size))
     for i in range(0, tf.size, step):
@@ -1124,6 +1247,23 @@ def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, im
         for kind in kinds:
             out[kind][i:i + step] = (e @ ws[kind]).real
     return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
+
+
+#: Most points per period of a time grid that :func:`series_fields` sums by FFT.
+_MAX_FFT_STEPS = 1 << 16
+
+
+def _steps_per_period(tm, period) -> int:
+    """K when every time of ``tm`` [s] (in [0, τ)) lies within 1e-9 of a step on the grid jτ/K, K the period
+    ``period`` τ [s] over the step between the first two times (a uniform grid such as the term ratios'); 0
+    otherwise (or for fewer than 8 times, or K above :data:`_MAX_FFT_STEPS`)."""
+    if tm.size < 8 or not tm[1] > tm[0]:
+        return 0
+    steps = int(round(period / (tm[1] - tm[0])))
+    if not 0 < steps <= _MAX_FFT_STEPS:
+        return 0
+    phase = tm * (steps / period)
+    return steps if np.all(np.abs(phase - np.rint(phase)) <= 1e-9) else 0
 
 
 def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,

@@ -177,7 +177,7 @@ def impact_at(scene: Scene, span_length: float, options: Options, max_iterations
 def impacts_at(scene: Scene, spans, options: Options, max_iterations: int = 60, durations=None,
                halves=None) -> list[Impact]:
     """:func:`impact_at` at every span of ``spans`` [m] at once, in one compiled loop
-    (:func:`_impact_one`). durations [s], halves [m]: the starting T_L and b per span (None: the
+    (:func:`_impacts_kernel`). durations [s], halves [m]: the starting T_L and b per span (None: the
     defaults of :func:`impact_at`; a NaN duration: the default for that span). Returns one
     :class:`Impact` per span, in order."""
     spans = np.atleast_1d(np.asarray(spans, dtype=float))
@@ -218,7 +218,7 @@ def _impacts_of(scene: Scene, rows) -> list[Impact]:
     return out
 
 
-#: Why the T_L–curvature iteration of a span stopped (codes of :func:`_impact_one`), with the value
+#: Why the T_L–curvature iteration of a span stopped (codes of :func:`_impacts_kernel`), with the value
 #: each message shows.
 _PROBLEMS = {
     1: lambda value: f"pulse longer than the time between impacts (T_L = {value:.3g} s)",
@@ -248,66 +248,87 @@ def _kernel_args(scene: Scene, options: Options) -> tuple:
 
 
 @numba.njit(cache=True, nogil=True)
-def _impact_one(span, duration, half, max_iterations, state, modes, contact, closure):
-    """The T_L–κ fixed point of one span (compiled; :func:`impacts_at` documents it). ``duration``:
-    the starting T_L [s] (NaN or out of range: that of the assumed mode); ``half``: the starting b [m].
-    Returns an array (:data:`_ROWS`): the span, residual, impulse, V_p, κ, T_L, b, contact half-width,
-    Hertz stiffness, peak force, iterations, problem code (:data:`_PROBLEMS`; 0: none) and its value."""
+def _impacts_kernel(spans, durations, halves, max_iterations, state, modes, contact, closure):
+    """The T_L–κ fixed point of every span (compiled; :func:`impacts_at` documents it), all spans in
+    lockstep: each round evaluates the midspan states of the spans still iterating in one call
+    (:func:`beam.midspan_states`), then moves each span's iteration on as it would move alone.
+    ``durations``: the starting T_L [s] per span (NaN or out of range: that of the assumed mode);
+    ``halves``: the starting b [m]. Returns one column per span (:data:`_ROWS`): the span, residual,
+    impulse, V_p, κ, T_L, b, contact half-width, Hertz stiffness, peak force, iterations, problem code
+    (:data:`_PROBLEMS`; 0: none) and its value."""
     self_consistent, mass_factor, restitution, rotary_speed, c, longest, tol = closure
     radius, hole, compliance, table = contact
-    ei, tension, mass, period, one_wall, code, resonance_tol, consecutive = state
-    m_e = mass_factor * span
-    out = np.full(13, np.nan)
-    out[0], out[11] = span, 0.0
-    velocity = rotary_speed * c
-    # the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c
-    _, _, stiffness = hertz.contact_one(1.0, radius, hole, c * (math.pi / span) ** 2, compliance, table)
-    if not (duration > 0.0 and duration < longest):
-        duration = hertz.lee_duration_one(m_e, velocity, stiffness)
-    half = min(max(half, 0.0), 0.45 * span)
-    half_width = peak = math.nan
-    relaxation, last_step, previous, previous_step = 1.0, 0.0, math.nan, math.nan
-    out[3] = velocity
+    ei, tension, mass, period, one_wall, code, resonance_tol, _ = state
+    size = spans.size
+    out = np.full((13, size), np.nan)
+    duration, half, velocity = np.empty(size), np.empty(size), np.full(size, rotary_speed * c)
+    relaxation, last_step = np.ones(size), np.zeros(size)
+    previous, previous_step = np.full(size, math.nan), np.full(size, math.nan)
+    for i in range(size):
+        span = spans[i]
+        out[0, i], out[11, i], out[3, i] = span, 0.0, velocity[i]
+        duration[i] = durations[i]
+        if not 0.0 < duration[i] < longest:  # that of the assumed mode y = c sin(πx/L): κ = c (π/L)², V_p = Ω c
+            _, _, stiffness = hertz.contact_one(1.0, radius, hole, c * (math.pi / span) ** 2, compliance, table)
+            duration[i] = hertz.lee_duration_one(mass_factor * span, velocity[i], stiffness)
+        half[i] = min(max(halves[i], 0.0), 0.45 * span)
+    running = np.arange(size)
     for iteration in range(1, max_iterations + 1):
-        if not duration < longest:
-            out[11], out[12] = 1.0, duration
-            return out
-        y1, v1, curv1 = beam.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code,
-                                               resonance_tol, consecutive)
-        if not math.isfinite(y1):
-            out[11] = 2.0
-            return out
-        if self_consistent:
-            impulse, velocity = -c / y1, c * v1 / y1
-            residual = m_e * (1.0 + restitution) * velocity / impulse - 1.0
-        else:
-            impulse = m_e * (1.0 + restitution) * velocity
-            residual = -impulse * y1 / c - 1.0
-        curvature = impulse * curv1
-        out[1], out[2], out[3], out[4] = residual, impulse, velocity, curvature
-        if not (curvature > 0.0 and velocity > 0.0 and impulse > 0.0):
-            out[11] = 3.0 if curvature <= 0.0 else 4.0 if velocity <= 0.0 else 5.0
-            return out
-        peak = math.pi * impulse / (2.0 * duration)  # hertz.lee_peak_force
-        half, half_width, stiffness = hertz.contact_one(peak, radius, hole, curvature, compliance, table)
-        half = min(half, 0.45 * span)
-        mapped = hertz.lee_duration_one(m_e, velocity, stiffness)
-        step = mapped - duration
-        out[5], out[6], out[7], out[8], out[9], out[10] = duration, half, half_width, stiffness, peak, iteration
-        if abs(step) <= tol * mapped:
-            return out
-        if iteration == max_iterations:  # report the T_L the solution was computed with
+        count = 0
+        for i in running:
+            if not duration[i] < longest:
+                out[11, i], out[12, i] = 1.0, duration[i]
+                continue
+            running[count] = i
+            count += 1
+        running = running[:count].copy()
+        if count == 0:
             break
-        if last_step * step < 0:
-            relaxation *= 0.5
-        last_step = step
-        secant = math.nan
-        if math.isfinite(previous) and step != previous_step:
-            secant = duration - step * (duration - previous) / (step - previous_step)
-        previous, previous_step = duration, step
-        duration = secant if 0.0 < secant < longest else duration + relaxation * step
-    if max_iterations > 1:
-        out[11], out[12] = 6.0, max_iterations
+        y1s, v1s, curv1s = beam.midspan_states(spans[running], duration[running], half[running], modes.size, ei,
+                                               tension, mass, period, one_wall, code, resonance_tol)
+        count = 0
+        for k in range(running.size):
+            i, y1, v1, curv1 = running[k], y1s[k], v1s[k], curv1s[k]
+            span = spans[i]
+            m_e = mass_factor * span
+            if not math.isfinite(y1):
+                out[11, i] = 2.0
+                continue
+            if self_consistent:
+                impulse, velocity[i] = -c / y1, c * v1 / y1
+                residual = m_e * (1.0 + restitution) * velocity[i] / impulse - 1.0
+            else:
+                impulse = m_e * (1.0 + restitution) * velocity[i]
+                residual = -impulse * y1 / c - 1.0
+            curvature = impulse * curv1
+            out[1, i], out[2, i], out[3, i], out[4, i] = residual, impulse, velocity[i], curvature
+            if not (curvature > 0.0 and velocity[i] > 0.0 and impulse > 0.0):
+                out[11, i] = 3.0 if curvature <= 0.0 else 4.0 if velocity[i] <= 0.0 else 5.0
+                continue
+            peak = math.pi * impulse / (2.0 * duration[i])  # hertz.lee_peak_force
+            b, half_width, stiffness = hertz.contact_one(peak, radius, hole, curvature, compliance, table)
+            half[i] = min(b, 0.45 * span)
+            mapped = hertz.lee_duration_one(m_e, velocity[i], stiffness)
+            step = mapped - duration[i]
+            out[5, i], out[6, i], out[7, i], out[8, i], out[9, i], out[10, i] = (duration[i], half[i], half_width,
+                                                                                  stiffness, peak, iteration)
+            if abs(step) <= tol * mapped:
+                continue
+            if iteration == max_iterations:  # report the T_L the solution was computed with
+                if max_iterations > 1:
+                    out[11, i], out[12, i] = 6.0, max_iterations
+                continue
+            if last_step[i] * step < 0:
+                relaxation[i] *= 0.5
+            last_step[i] = step
+            secant = math.nan
+            if math.isfinite(previous[i]) and step != previous_step[i]:
+                secant = duration[i] - step * (duration[i] - previous[i]) / (step - previous_step[i])
+            previous[i], previous_step[i] = duration[i], step
+            duration[i] = secant if 0.0 < secant < longest else duration[i] + relaxation[i] * step
+            running[count] = i
+            count += 1
+        running = running[:count].copy()
     return out
 
 
@@ -317,45 +338,50 @@ _ROWS = ("span", "residual", "impulse", "velocity", "curvature", "duration", "ha
 
 
 @numba.njit(cache=True, nogil=True)
-def _impacts_kernel(spans, durations, halves, max_iterations, state, modes, contact, closure):
-    """:func:`_impact_one` at every span; one column per span."""
-    out = np.empty((13, spans.size))
-    for i in range(spans.size):
-        out[:, i] = _impact_one(spans[i], durations[i], halves[i], max_iterations, state, modes, contact, closure)
-    return out
-
-
-@numba.njit(cache=True, nogil=True)
 def _refine_kernel(approx, lo, hi, durations, halves, steps, state, modes, contact, closure):
-    """The secant iteration of :func:`refine_roots` for every root (compiled); one column per root."""
-    out = np.empty((13, approx.size))
-    for k in range(approx.size):
-        x0 = approx[k]
-        size = min(min(1e-6 * x0, 1e-3 * (hi[k] - x0)), 1e-3 * (x0 - lo[k]))
-        x1 = x0 + (size if hi[k] - x0 > x0 - lo[k] else -size)
-        last = _impact_one(x0, durations[k], halves[k], 60, state, modes, contact, closure)
-        if last[11] != 0.0 or not math.isfinite(last[1]):
-            out[:, k] = last
-            continue
-        here = _impact_one(x1, last[5], last[6], 60, state, modes, contact, closure)
-        moving = True
-        for _ in range(steps):
-            if here[11] != 0.0 or not math.isfinite(here[1]) or abs(here[1]) < 1e-10:
-                moving = False
-                break
-            slope = (here[1] - last[1]) / (x1 - x0) if x1 != x0 else 0.0
+    """The secant iteration of :func:`refine_roots` for every root (compiled), all roots in lockstep:
+    each round solves the T_L–κ fixed points of the roots still moving in one call
+    (:func:`_impacts_kernel`), then moves each root's secant as it would move alone; one column per root."""
+    size = approx.size
+    x0, x1 = approx.copy(), np.empty(size)
+    for k in range(size):
+        step = min(min(1e-6 * x0[k], 1e-3 * (hi[k] - x0[k])), 1e-3 * (x0[k] - lo[k]))
+        x1[k] = x0[k] + (step if hi[k] - x0[k] > x0[k] - lo[k] else -step)
+    last = _impacts_kernel(x0, durations, halves, 60, state, modes, contact, closure)
+    out = last.copy()  # the roots whose first span fails keep it
+    moving = np.ones(size, dtype=np.bool_)
+    running = np.array([k for k in range(size) if last[11, k] == 0.0 and math.isfinite(last[1, k])], dtype=np.int64)
+    started = running.copy()
+    here = np.full((13, size), math.nan)
+    if running.size:
+        here[:, running] = _impacts_kernel(x1[running], last[5, running], last[6, running], 60, state, modes,
+                                           contact, closure)
+    for _ in range(steps):
+        count = 0
+        for k in running:
+            if here[11, k] != 0.0 or not math.isfinite(here[1, k]) or abs(here[1, k]) < 1e-10:
+                moving[k] = False
+                continue
+            slope = (here[1, k] - last[1, k]) / (x1[k] - x0[k]) if x1[k] != x0[k] else 0.0
             if slope == 0.0:
-                break
-            x2 = x1 - here[1] / slope
+                continue
+            x2 = x1[k] - here[1, k] / slope
             if not lo[k] <= x2 <= hi[k]:
-                here[11] = 7.0
-                moving = False
-                break
-            x0, last, x1 = x1, here, x2
-            here = _impact_one(x1, last[5], last[6], 60, state, modes, contact, closure)
-        if moving and here[11] == 0.0 and abs(here[1]) > 1e-8:  # the steps ran out, or a flat secant
-            here[11], here[12] = 8.0, here[1]
-        out[:, k] = here
+                here[11, k] = 7.0
+                moving[k] = False
+                continue
+            x0[k], last[:, k], x1[k] = x1[k], here[:, k], x2
+            running[count] = k
+            count += 1
+        running = running[:count].copy()
+        if count == 0:
+            break
+        here[:, running] = _impacts_kernel(x1[running], last[5, running], last[6, running], 60, state, modes,
+                                           contact, closure)
+    for k in started:
+        if moving[k] and here[11, k] == 0.0 and abs(here[1, k]) > 1e-8:  # the steps ran out, or a flat secant
+            here[11, k], here[12, k] = 8.0, here[1, k]
+        out[:, k] = here[:, k]
     return out
 
 
@@ -366,7 +392,7 @@ def screen_residual(scene: Scene, options: Options):
     interpolated in log L; the roots found with it are refined with the exact model afterwards.
     Returns a function of an array of spans (compiled, :func:`_screen_state`), or None when no span
     gives a valid pulse; its ``shrink`` shrinks sign-changing brackets of F times the distances to two
-    poles onto their roots in one compiled loop (:func:`_shrink_kernel`).
+    poles onto their roots in lockstep rounds of compiled loops (:func:`_shrink_points`, :func:`_shrink_update`).
     """
     grid = np.geomspace(options.min_span, options.max_span, 12)
     impacts = impacts_at(scene, grid, options, max_iterations=1)
@@ -380,14 +406,16 @@ def screen_residual(scene: Scene, options: Options):
     any_modes = state[:-1] + (False,)  # modes not 1, 3, 5, ...
 
     def pulse(spans):
-        """(T_L, b) interpolated at ``spans``."""
-        return (np.exp(np.interp(np.log(spans), table[0], table[1])), np.interp(np.log(spans), table[0], table[2]))
+        """(T_L, b) interpolated at ``spans`` (numpy's log and exp of whole arrays: SIMD)."""
+        log_spans = np.log(spans)
+        return np.exp(np.interp(log_spans, table[0], table[1])), np.interp(log_spans, table[0], table[2])
 
     def residual(spans, modes=None):
         """F(L) at ``spans``; with ``modes`` (see :func:`unit_state`) F + 1 from those modes alone."""
         spans = np.asarray(spans, dtype=float)
         if modes is None:
-            values = _screen_values(np.ascontiguousarray(spans.ravel()), all_modes[None, :], 1.0, table, state, closure)
+            flat = np.ascontiguousarray(spans.ravel())
+            values = _screen_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)[0]
         else:
             per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
             values = _screen_values(np.ascontiguousarray(spans.ravel()),
@@ -403,10 +431,22 @@ def screen_residual(scene: Scene, options: Options):
         (roots, G at the roots, final lo, final hi, (3, n) y₁, v₁, y₁'' at the roots as
         :func:`unit_state` with the screening pulse, NaN where not evaluated), the root being the end
         with the smaller weighted |G|."""
-        args = [np.ascontiguousarray(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi)]
+        a, b, fa, fb, pole_lo, pole_hi = (np.array(v, dtype=float) for v in (lo, hi, f_lo, f_hi, pole_lo, pole_hi))
+        raw_a, raw_b, side, tol = fa.copy(), fb.copy(), np.zeros(a.size, dtype=np.int64), np.full(a.size, float(rtol))
+        states = np.full((2, 3, a.size), np.nan)  # y₁, v₁, y₁'' at the lower and the upper end
         poles = np.zeros(0) if poles is None else np.ascontiguousarray(poles, dtype=float)
-        out = _shrink_kernel(*args, all_modes[None, :], table, state, closure, float(rtol), int(iterations), poles,
-                             float(rtol if pole_free_rtol is None else pole_free_rtol))
+        free_rtol = float(rtol if pole_free_rtol is None else pole_free_rtol)
+        running, below = np.arange(a.size), np.full(a.size, -1, dtype=np.int64)
+        # every bracket takes the steps it would take alone, all in lockstep: each round evaluates the new
+        # points of the brackets still open at once (the pulse by numpy, the modal sums in one SIMD call)
+        for _ in range(int(iterations)):
+            running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol, below)
+            if running.size == 0:
+                break
+            values, y1, v1, curv1 = _screen_batch(points, *pulse(points), all_modes.size, 1.0, state, closure)
+            _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                           pole_hi)
+        out = _shrink_result(a, b, fa, fb, raw_a, raw_b, states)
         return out[0], out[1], out[2], out[3], out[4:]
 
     def residue(spans, modes, floor=0.0):
@@ -487,6 +527,20 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
 
 
 @numba.njit(cache=True, nogil=True)
+def _screen_batch(spans, durations, halves, n_odd, offset, state, closure):
+    """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') of :func:`_screen_state` at every span of ``spans`` [m] with the
+    screening pulse's T_L ``durations`` [s] and b ``halves`` [m] there (``pulse`` of :func:`screen_residual`)
+    and the odd modes 1, 3, …, 2 ``n_odd`` − 1, the modal sums of all spans at once in SIMD instructions
+    (:func:`beam.midspan_states`; equal to :func:`_screen_state` but for rounding)."""
+    ei, tension, mass, period, one_wall, code, tol, _ = state
+    y1, v1, curv1 = beam.midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol)
+    self_consistent, mass_factor, restitution, omega, _, _, _ = closure
+    factor = mass_factor * spans * (1.0 + restitution)
+    values = -factor * v1 - offset if self_consistent else -factor * omega * y1 - offset
+    return values, y1, v1, curv1
+
+
+@numba.njit(cache=True, nogil=True)
 def _screen_values(spans, modes, offset, table, state, closure):
     """The screening residual of :func:`_screen_state` at every span; ``modes`` one row for all spans or
     one row per span."""
@@ -498,34 +552,57 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
-def _shrink_kernel(lo, hi, f_lo, f_hi, pole_lo, pole_hi, modes, table, state, closure, rtol, iterations, poles,
-                   pole_free_rtol):
-    """The loop of ``screen_residual(...).shrink``: rows root, G at the root, final lo, final hi, and
-    y₁, v₁, y₁'' at the root (:func:`_screen_state`; NaN at an end the loop did not evaluate)."""
-    out = np.empty((7, lo.size))
-    for i in range(lo.size):
-        a, b, fa, fb = lo[i], hi[i], f_lo[i], f_hi[i]
-        raw_a, raw_b, side = fa, fb, 0
-        state_a = state_b = (math.nan, math.nan, math.nan)
-        tol = rtol
-        for _ in range(iterations):
-            if tol != pole_free_rtol and b - a <= pole_free_rtol * abs(b):  # far from every pole?
-                first = np.searchsorted(poles, a - POLE_FREE_WINDOW * (b - a), side="right")
-                if first == poles.size or poles[first] >= b + POLE_FREE_WINDOW * (b - a):
-                    tol = pole_free_rtol
-            if bracket_done(a, b, fa, fb, tol):
-                break
-            x = falsi_point(a, b, fa, fb)
-            value, y1, v1, curv1 = _screen_state(x, modes[0], 1.0, table, state, closure)
-            g = value * (x - pole_lo[i]) * (pole_hi[i] - x)
-            a, b, fa, fb, raw_a, raw_b, side = keep_sign_change(a, b, fa, fb, raw_a, raw_b, side, x, g)
-            if side == 1:
-                state_a = (y1, v1, curv1)
-            else:
-                state_b = (y1, v1, curv1)
-        out[0, i], out[1, i] = closer_end(a, b, fa, fb, raw_a, raw_b)
-        out[2, i], out[3, i] = a, b
-        out[4, i], out[5, i], out[6, i] = state_a if out[0, i] == a else state_b
+def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
+    """One round of ``screen_residual(...).shrink`` for the brackets ``running``: each bracket's tolerance
+    (``pole_free_rtol`` once none of ``poles`` lies within :data:`POLE_FREE_WINDOW` bracket widths, updated in
+    ``tol``), and the brackets not yet done with their next point (regula falsi, :mod:`study.physics.roots`).
+    ``below``: per bracket, how many poles lie at or below a − W (b − a) (W the window) at its last check, −1
+    before the first; that point only moves up as the bracket shrinks, so each check walks on from there.
+    Returns (those brackets, their points)."""
+    still, points = np.empty(running.size, dtype=np.int64), np.empty(running.size)
+    count = 0
+    for i in running:
+        if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
+            left = a[i] - POLE_FREE_WINDOW * (b[i] - a[i])
+            if below[i] < 0:
+                below[i] = np.searchsorted(poles, left, side="right")
+            while below[i] < poles.size and poles[below[i]] <= left:
+                below[i] += 1
+            first = below[i]
+            if first == poles.size or poles[first] >= b[i] + POLE_FREE_WINDOW * (b[i] - a[i]):
+                tol[i] = pole_free_rtol
+        if bracket_done(a[i], b[i], fa[i], fb[i], tol[i]):
+            continue
+        still[count], points[count] = i, falsi_point(a[i], b[i], fa[i], fb[i])
+        count += 1
+    return still[:count].copy(), points[:count].copy()
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                   pole_hi):
+    """The brackets ``running`` after F = ``values`` at their ``points`` (G = F (L − pole_lo)(pole_hi − L)):
+    the end with G's sign moves there (Illinois weights, :func:`keep_sign_change`), and y₁, v₁, y₁'' there
+    are kept for that end (``states`` [0] lower, [1] upper)."""
+    for k in range(running.size):
+        i, x = running[k], points[k]
+        g = values[k] * (x - pole_lo[i]) * (pole_hi[i] - x)
+        a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i] = keep_sign_change(
+            a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i], side[i], x, g)
+        end = 0 if side[i] == 1 else 1
+        states[end, 0, i], states[end, 1, i], states[end, 2, i] = y1[k], v1[k], curv1[k]
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_result(a, b, fa, fb, raw_a, raw_b, states):
+    """Rows root, G at the root, final lo, final hi, and y₁, v₁, y₁'' at the root (NaN at an end no round
+    evaluated), the root being the end with the smaller weighted |G| (:func:`closer_end`)."""
+    out = np.empty((7, a.size))
+    for i in range(a.size):
+        out[0, i], out[1, i] = closer_end(a[i], b[i], fa[i], fb[i], raw_a[i], raw_b[i])
+        out[2, i], out[3, i] = a[i], b[i]
+        end = 0 if out[0, i] == a[i] else 1
+        out[4, i], out[5, i], out[6, i] = states[end, 0, i], states[end, 1, i], states[end, 2, i]
     return out
 
 
@@ -734,10 +811,8 @@ def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
     t = time_grid(scene, impact.contact_duration, options)
     omega = natural_frequencies(scene, impact.span_length, n)
     g = beam.modal_load_factors(n, impact.span_length, impact.contact_half_length, options.load_shape)
-    q = beam.modal_periodic_response(t[:, None], omega, impact.contact_duration, scene.period,
-                                     scene.pattern).displacement
-    h = beam.pulse_train(t[:, None], impact.contact_duration, scene.period, scene.pattern)
-    remainder = np.nanmax(np.abs(q - h / omega**2), axis=0)
+    remainder = np.nanmax(np.abs(beam.dynamic_remainder(t, omega, impact.contact_duration, scene.period,
+                                                        scene.pattern)), axis=0)
     k_sq = (n * np.pi / impact.span_length) ** 2
     amplitude = abs(impact.impulse) * np.abs(g) / (0.5 * p["mass_per_length"] * impact.span_length) * remainder
     return float(r_o / inertia * p["bending_stiffness"] * np.sum(k_sq * amplitude))

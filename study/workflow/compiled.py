@@ -7,8 +7,8 @@ this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/perform
 
 - ``make setup`` runs ``study compile``: every method solved once on the warm-up points (the paper's
   example in two readings and the default study's first point), which leaves every kernel in the cache;
-- ``study point`` and ``study sweep`` check the cache first (:func:`uncached`, milliseconds) and, when a
-  kernel is missing (a fresh install that skipped ``make setup``, or a kernel's source changed), say that
+- ``study point`` and ``study sweep`` check the cache first (:func:`uncached`, milliseconds: the kernels the
+  last compile-ahead cached, :data:`RECORD`) and, when a kernel is missing (a fresh install that skipped ``make setup``, or a kernel's source changed), say that
   they are compiling, for how long it should take, and how long it took;
 - a sweep compiles in its own process before it starts its workers, which would otherwise each compile the
   same kernels at once.
@@ -17,16 +17,20 @@ this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/perform
 from __future__ import annotations
 
 import importlib
+import json
 import time
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
+from study.atomic import atomic_path
+
 #: Modules holding numba kernels compiled with ``cache=True``.
 KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.roots",
                   "study.solvers.event_driven", "study.solvers.periodic", "study.solvers.whirl_kernel")
-#: Kernels no method calls (the array form of a physics function, kept for its users and tests): compiled on
-#: their own first call, not checked.
-OFF_THE_SOLVER_PATH = ("study.physics.beam._loaded_spectrum_kernel",)
+#: The kernels the last compile-ahead left in the cache, kept beside them: the ones a run is checked for (a kernel
+#: no method reaches at the warm-up points — a physics function's array form kept for its users and tests, a path
+#: of a method those points do not take — compiles on its own first call, without a notice).
+RECORD = "study-compiled-kernels.json"
 #: The warm-up points: the first point of each of these configs of the project (``configs/``), with overrides:
 #: the paper's example in its default reading and in the one that finds spans, and the default study.
 WARM_UP_CONFIGS = (("paper.toml", {}),
@@ -39,14 +43,16 @@ COMPILE_SECONDS = 35
 
 
 def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
-    """Every cached numba kernel of ``modules``: 'module.function' -> dispatcher."""
+    """Every cached numba kernel of ``modules``: 'module.function' -> dispatcher (not those inlined into their
+    callers, ``inline="always"``, which are never compiled on their own)."""
     from numba.core.registry import CPUDispatcher
 
     found = {}
     for name in modules:
         module = importlib.import_module(name)
         for attr, value in vars(module).items():
-            if isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled:
+            if (isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled
+                    and value.targetoptions.get("inline", "never") == "never"):
                 found[f"{name}.{attr}"] = value
     return found
 
@@ -60,10 +66,27 @@ def cached(dispatcher) -> bool:
         return False
 
 
+def _record_path(found: dict[str, Any]) -> Path | None:
+    """Where :data:`RECORD` sits: numba's cache folder of the first kernel (``__pycache__`` beside the sources, or
+    under ``NUMBA_CACHE_DIR``)."""
+    for dispatcher in found.values():
+        try:
+            return Path(dispatcher._cache.cache_path) / RECORD
+        except Exception:  # noqa: BLE001 - no cache folder: nothing recorded
+            return None
+    return None
+
+
 def uncached(modules: Iterable[str] = KERNEL_MODULES) -> list[str]:
-    """The kernels ('module.function') the methods reach that a first call would compile."""
-    return [name for name, dispatcher in kernels(modules).items()
-            if name not in OFF_THE_SOLVER_PATH and not cached(dispatcher)]
+    """The kernels ('module.function') a run would compile: of those the last compile-ahead cached (all of them
+    before any), the ones not in the cache now."""
+    found = kernels(modules)
+    path = _record_path(found)
+    try:
+        wanted = set(json.loads(path.read_text())) if path else set(found)
+    except (OSError, ValueError):
+        wanted = set(found)
+    return [name for name, dispatcher in found.items() if name in wanted and not cached(dispatcher)]
 
 
 def warm_up_points(extra: Iterable[Mapping[str, Any]] = ()) -> list[dict[str, Any]]:
@@ -88,6 +111,14 @@ def compile_ahead(points: Iterable[Mapping[str, Any]] | None = None, say: Callab
             solve_point(inputs, method)
             if say:
                 say(f"  {method}: {time.perf_counter() - began:.1f} s")
+    found = kernels()
+    path = _record_path(found)
+    if path:
+        try:
+            with atomic_path(path) as tmp:
+                Path(tmp).write_text(json.dumps(sorted(name for name, d in found.items() if cached(d))))
+        except OSError:  # a read-only cache folder: every kernel stays checked
+            pass
     return time.perf_counter() - start
 
 

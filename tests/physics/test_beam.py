@@ -613,3 +613,67 @@ def test_loaded_pulse_spectrum_is_the_load_factor_times_the_spectrum(shape):
     want = np.abs(factors) * bm.pulse_spectrum(omega, tl)
     np.testing.assert_allclose(real, want.real, rtol=0, atol=1e-13)
     np.testing.assert_allclose(imag, want.imag, rtol=0, atol=1e-13)
+
+
+def test_sincos_is_the_library_s_sine_and_cosine_to_two_ulp():
+    # source: math.sin and math.cos (the C library); |sin|, |cos| <= 1, so 2 ulp of 1 absolute
+    import math
+
+    import numba
+
+    @numba.njit
+    def both(x):
+        out = np.empty((2, x.size))
+        for i in range(x.size):
+            out[0, i], out[1, i] = bm.sincos(x[i])
+        return out
+
+    rng = np.random.default_rng(7)
+    x = np.concatenate([rng.uniform(-1e7, 1e7, 20000), rng.uniform(-10, 10, 20000), rng.uniform(-1e-8, 1e-8, 100),
+                        np.arange(-8, 9) * np.pi / 4, [0.0]])
+    got = both(x)
+    np.testing.assert_allclose(got[0], [math.sin(v) for v in x], rtol=0, atol=4.5e-16)
+    np.testing.assert_allclose(got[1], [math.cos(v) for v in x], rtol=0, atol=4.5e-16)
+    assert np.all(np.isnan(both(np.array([np.nan]))))
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+@pytest.mark.parametrize("shape", ["point", "uniform", "parabolic"])
+def test_midspan_states_of_many_spans_are_the_scalar_loop_s_to_the_last_bit(pattern, shape):
+    # source: midspan_state_one, the scalar loop over the same terms in the same order
+    spans = np.geomspace(3.0, 300.0, 3001)
+    durations = np.where(spans < 100, 1.5e-3, 4e-3)
+    durations[::500] = 0.3  # longer than the half period: NaN
+    modes = np.arange(1.0, 42.0, 2.0)
+    args = (1.6e6, 4e4, 30.0, 0.2, pattern == "one_wall", bm._SHAPE_CODES[shape], 1e-15)
+    simd = np.array(bm.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
+    scalar = bm._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
+    assert np.isnan(scalar).sum() >= 18 and np.array_equal(simd, scalar, equal_nan=True)
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+def test_series_on_a_uniform_grid_by_fft_is_the_direct_sum(pattern):
+    # source: the direct sum over harmonics (the path taken when one time leaves the grid jτ/K)
+    tau = 0.2
+    t = np.linspace(0.0, tau if pattern == "one_wall" else tau / 2, 300, endpoint=False)
+    x = np.linspace(0.0, 5.0, 11)
+    args = dict(span_length=10.0, bending_stiffness=1.6e6, tension=4e4, mass=30.0, impulse=50.0, pulse_duration=2e-3,
+                period=tau, pattern=pattern, half_length=0.01, shape="parabolic", n_modes=21, harmonics=400)
+    kinds = ["deflection", "acceleration", "d4", "shear"]
+    assert bm._steps_per_period(t, tau) == (300 if pattern == "one_wall" else 600)
+    by_fft = bm.series_fields(x, t, kinds, **args)
+    direct = bm.series_fields(x, np.append(t, 0.123456789 * tau), kinds, **args)
+    for kind in kinds:
+        np.testing.assert_allclose(by_fft[kind], direct[kind][:-1], rtol=0, atol=1e-12 * np.abs(direct[kind]).max())
+
+
+@pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
+def test_dynamic_remainder_is_the_response_less_its_quasi_static_part(pattern):
+    # source: modal_periodic_response and pulse_train (the complex closed form), q - h/omega^2
+    t = np.linspace(0.0, 0.2, 700)
+    omega = np.array([40.0, 310.0, 1570.0, 9000.0])
+    q = bm.modal_periodic_response(t[:, None], omega, 2e-3, 0.2, pattern).displacement
+    h = bm.pulse_train(t[:, None], 2e-3, 0.2, pattern)
+    expected = q - h / omega**2
+    np.testing.assert_allclose(bm.dynamic_remainder(t, omega, 2e-3, 0.2, pattern), expected, rtol=0,
+                               atol=1e-10 * np.abs(expected).max())

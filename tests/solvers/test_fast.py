@@ -55,3 +55,76 @@ def test_stress_error_estimate_bounds_the_true_error(fixed_span, modes):
     assert true_error <= estimate
     if modes == 61:
         assert estimate < 0.05  # and it is not vacuous once the near-resonant mode is inside
+
+
+# --- regression panel: the fast method's outputs before its speed-up ------------------------------
+#: NOT a physics check: the outputs of the pre-optimisation code at commit 9265e11 (the fast method on
+#: configs/paper.toml with these four inputs changed, 41 modes), recorded once by running that code, so that
+#: a speed-up is seen to change no status, span, max normal stress or count. Rows: rotary speed [rpm], axial
+#: tension [lbf], restitution, mud density [ppg], impact pattern, closure, status, span [m], max normal stress
+#: [Pa] (NaN: none), roots of condition 2, valid spans.
+PANEL = [
+    (50, 5000, 0.2, 9, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 0, 0),
+    (60, 5000, 0.8, 12, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 35183, 0),
+    (70, 10000, 0.5, 10, 'one_wall', 'self_consistent', 'hertz_invalid', 16.578894044083647, 118799829.97195518, 30133, 2),
+    (90, 20000, 0.2, 12, 'one_wall', 'self_consistent', 'hertz_invalid', 15.394271790220515, 63256302.68407555, 22886, 2),
+    (100, 20000, 0.8, 9, 'one_wall', 'self_consistent', 'not_converged', 15.228938215022879, 81137813.5231145, 26095, 1),
+    (140, 5000, 0.2, 10, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 0, 0),
+    (180, 20000, 0.5, 9, 'one_wall', 'self_consistent', 'not_converged', 10.460936814418583, 323092743.03363204, 17849, 1),
+    (190, 30000, 0.2, 10, 'one_wall', 'self_consistent', 'ok', 10.100091847019515, 127853671.6672186, 14555, 2),
+    (240, 10000, 0.2, 9, 'one_wall', 'self_consistent', 'ok', 7.658988040027578, 139172800.03805643, 10299, 1),
+    (270, 20000, 0.5, 12, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 12765, 0),
+    (300, 10000, 0.5, 10, 'one_wall', 'self_consistent', 'ok', 6.712817536696624, 623858770.7190316, 13365, 2),
+    (300, 40000, 0.8, 12, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 12658, 0),
+    (50, 5000, 0.2, 9, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 3361, 0),
+    (60, 5000, 0.8, 12, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 3242, 0),
+    (70, 10000, 0.5, 10, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2970, 0),
+    (90, 20000, 0.2, 12, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2442, 0),
+    (100, 20000, 0.8, 9, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2569, 0),
+    (140, 5000, 0.2, 10, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 1727, 0),
+    (180, 20000, 0.5, 9, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2801, 0),
+    (190, 30000, 0.2, 10, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 1656, 0),
+    (240, 10000, 0.2, 9, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2396, 0),
+    (270, 20000, 0.5, 12, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2432, 0),
+    (300, 10000, 0.5, 10, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2290, 0),
+    (300, 40000, 0.8, 12, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 2118, 0),
+    (50, 5000, 0.2, 9, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 5438, 0),
+    (60, 5000, 0.8, 12, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 5593, 0),
+    (70, 10000, 0.5, 10, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 5143, 0),
+    (90, 20000, 0.2, 12, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 4228, 0),
+    (100, 20000, 0.8, 9, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 4584, 0),
+    (140, 5000, 0.2, 10, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 3504, 0),
+    (180, 20000, 0.5, 9, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 3160, 0),
+    (190, 30000, 0.2, 10, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 2936, 0),
+    (240, 10000, 0.2, 9, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 2570, 0),
+    (270, 20000, 0.5, 12, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 3287, 0),
+    (300, 10000, 0.5, 10, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 3831, 0),
+    (300, 40000, 0.8, 12, 'one_wall', 'prescribed', 'no_span', np.nan, np.nan, 4036, 0),
+    (50, 5000, 0.2, 9, 'alternating', 'self_consistent', 'not_converged', 18.43472975060826, 27895128.274802573, 21614, 10),
+    (60, 5000, 0.8, 12, 'alternating', 'self_consistent', 'hertz_invalid', 8.27074826780561, 133069933.78176871, 20793, 5),
+    (70, 10000, 0.5, 10, 'alternating', 'self_consistent', 'hertz_invalid', 16.49520262011599, 62478566.79579908, 18293, 4),
+    (90, 20000, 0.2, 12, 'alternating', 'self_consistent', 'hertz_invalid', 15.505895989362584, 66923116.5929316, 13929, 3),
+    (100, 20000, 0.8, 9, 'alternating', 'self_consistent', 'hertz_invalid', 15.916736016091559, 163878978.12331218, 16636, 1),
+    (140, 5000, 0.2, 10, 'alternating', 'self_consistent', 'ok', 9.778701692231067, 75943940.82831061, 8373, 6),
+    (180, 20000, 0.5, 9, 'alternating', 'self_consistent', 'ok', 9.909026301157418, 101947543.60766159, 10967, 4),
+    (190, 30000, 0.2, 10, 'alternating', 'self_consistent', 'not_converged', 5.017738222051189, 472752138.7455552, 6773, 3),
+    (240, 10000, 0.2, 9, 'alternating', 'self_consistent', 'hertz_invalid', 8.329455702571112, 373817070.56200504, 8225, 1),
+    (270, 20000, 0.5, 12, 'alternating', 'self_consistent', 'no_span', np.nan, np.nan, 7713, 0),
+    (300, 10000, 0.5, 10, 'alternating', 'self_consistent', 'no_span', np.nan, np.nan, 6060, 0),
+    (300, 40000, 0.8, 12, 'alternating', 'self_consistent', 'not_converged', 9.451555613974284, 1058823456.7603261, 4594, 1),
+]
+LBF, PPG = 4.4482216152605005, 119.82642731689667
+
+
+@pytest.mark.parametrize("rpm, tension, restitution, density, pattern, closure, status, span, stress, roots, valid",
+                         PANEL, ids=[f"{r[4]}-{r[5]}-{r[0]}rpm-{r[1]}lbf-e{r[2]}-{r[3]}ppg" for r in PANEL])
+def test_panel_of_points_keeps_the_pre_optimisation_outputs(paper_inputs, rpm, tension, restitution, density, pattern,
+                                                           closure, status, span, stress, roots, valid):
+    result = solve_point({**paper_inputs, "solver_method": "fast", "span_length": None, "impact_pattern": pattern,
+                          "closure": closure, "rotary_speed": rpm * RPM, "axial_tension": tension * LBF,
+                          "restitution": restitution, "mud_density": density * PPG})
+    values = result.values
+    assert result.status == status, result.message
+    assert (int(values["root_count"]), int(values["candidate_count"])) == (roots, valid)
+    np.testing.assert_allclose([values.get("span_length", np.nan), values.get("max_normal_stress", np.nan)],
+                               [span, stress], rtol=1e-9)

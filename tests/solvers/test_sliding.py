@@ -59,12 +59,8 @@ def test_friction_turns_the_resting_joint_aside(beam_on_one_support):
     assert np.arctan2(uz, uy) < -0.01  # turned against the pipe's rotation (the rotation carries the surface to +z)
 
 
-def test_whirl_about_the_rest_balances_its_energy():
-    # over a revolution of the steady state the work of the eccentric load and of the contacts (friction, the
-    # linearised contact) equals what the mud's quadratic drag D|u̇|u̇ dissipates: the drag was replaced by the
-    # viscous drag of equal dissipation on this motion (the equivalent linearisation), so the balance closes
-    state = sliding.steady_state(_default(100, 5))
-    model, window = state["model"], state["window"]
+def _energy(model, window):
+    """(work of the eccentric load and the contacts, the quadratic drag's dissipation) over the revolution [J]."""
     N = model.n_modes
     t, v = window.times, window.states[:, 2 * N:4 * N]
     load = np.concatenate((np.outer(np.cos(model.rotary_speed * t), model.eccentric),
@@ -72,31 +68,47 @@ def test_whirl_about_the_rest_balances_its_energy():
     contact = np.concatenate((window.forces[:, :, 0] @ model.phi, window.forces[:, :, 1] @ model.phi), axis=1)
     work_in = np.trapezoid(np.sum((load + contact) * v, axis=1), t)
     speed = np.hypot(v[:, :N] @ model.drag_shapes.T, v[:, N:] @ model.drag_shapes.T)  # |u̇| at the Gauss points
-    dissipated = np.trapezoid(model.drag * (speed**3) @ model.drag_weights, t)
+    return work_in, np.trapezoid(model.drag * (speed**3) @ model.drag_weights, t)
+
+
+def test_whirl_about_the_rest_balances_its_energy():
+    # over a revolution of the synchronous motion the work of the eccentric load and of the contacts (friction, the
+    # linearised contact) equals what the mud's quadratic drag D|u̇|u̇ dissipates: the drag was replaced by the
+    # viscous drag of equal dissipation on this motion (the equivalent linearisation), so the balance closes
+    state = sliding.steady_state(_default(100, 5))
+    model, rested, whirled = state["model"], state["rest"], state["whirl"]
+    first = {**whirled, "second": {h: np.zeros_like(a) for h, a in whirled["second"].items()},
+             "shift": {h: np.zeros_like(d) for h, d in whirled["shift"].items()}}
+    work_in, dissipated = _energy(model, sliding.revolution(model, rested, first)[0])
     assert work_in == pytest.approx(dissipated, rel=1e-6)
-    assert dissipated > 0 and state["whirl"]["change"] < 1e-10
+    assert dissipated > 0 and whirled["change"] < 1e-10
+    # the second-order motion on the wall's arc (0 and 2Ω) takes the drag at the synchronous motion's rate: the
+    # whole motion's balance is off by its share only
+    work_in, dissipated = _energy(model, state["window"])
+    assert work_in == pytest.approx(dissipated, rel=2e-3)
 
 
-def test_the_reference_model_stays_near_it_when_started_on_it():
-    # the reference model's equations (16 modes, Hertz, friction, drag) from the sliding state: three revolutions
-    # later its contact force swings through the sliding state's range within 5 % (the start on a straight tangent
-    # rather than the wall's arc jolts it once, and the ringing dies slowly)
-    inputs = _default(100, 5, ppg=12.0, reference_modes=16)
-    state = sliding.steady_state(inputs, modes=16)
-    model, window = state["model"], state["window"]
-    N = model.n_modes
-    start = np.zeros(4 * N + 4)
-    start[:4 * N] = window.states[0, :4 * N]
-    run = reference.Integrator(model, 1e-7, start)
-    run.active[:] = state["rest"]["touching"]
-    run.run(2 * model.period)
-    last = run.run(3 * model.period, record=True)
-    held = state["rest"]["touching"]
-    mine = window.forces[:, held, 2]
-    theirs = last.forces[:, held, 2]
-    assert np.max(theirs) == pytest.approx(np.max(mine), rel=0.05)
-    assert np.min(theirs) == pytest.approx(np.min(mine), rel=0.05)
-    assert np.all(last.onsets == 0)  # it stayed on the wall
+def test_with_viscous_damping_the_reference_model_settles_on_it():
+    # with the modes damped viscously (ζ = 5 %) the reference model's start-up ringing dies within its first
+    # revolutions, so after 120 it is in the steady state; the sliding state of the same equations is that state
+    # (measured: peak force 0.27 %, stresses 0.02-0.09 % apart; with the mud's quadratic drag alone the ringing
+    # decays algebraically, docs/reference_model.md §10)
+    inputs = {**_default(50, 10, ppg=12.0, flow=7.4), "reference_damping": "viscous", "damping_ratio": 0.05}
+    mine = sliding.solve(inputs)
+    theirs = reference.solve({**inputs, "reference_revolutions": 120})
+    assert mine.status == "ok" and theirs.values["whirl_class"] == reference.WHIRL_CLASSES["sliding"]
+    for name, tolerance in (("peak_contact_force", 0.01), ("max_normal_stress", 0.002),
+                            ("alternating_bending_stress", 0.002)):
+        assert mine.values[name] == pytest.approx(theirs.values[name], rel=tolerance), name
+
+
+def test_the_arc_gives_the_contact_force_its_second_harmonic():
+    # a joint sliding on its wall moves on an arc, inside the linear motion's tangent by r Δφ²/2: the force on it
+    # has a component at 2Ω (measured in the reference model at 480 revolutions: 2.69 N beside 16.9 N at Ω)
+    state = sliding.steady_state(_default(50, 10, ppg=12.0, flow=7.4))
+    force = state["window"].forces[:-1, 1, 2]
+    spectrum = np.abs(np.fft.rfft(force)) / force.size * 2
+    assert spectrum[2] / spectrum[1] == pytest.approx(2.69 / 16.87, rel=0.15)
 
 
 @pytest.mark.parametrize("inputs, why", [
@@ -116,7 +128,8 @@ def test_in_the_default_study_it_answers_the_slow_points_lying_on_the_wall():
     assert list(result.extras["methods_tried"]) == ["free-whirl", "sliding"]
     assert result.values["regime"] == 6 and result.values["contact_fraction"] == 1.0
     assert result.error_estimate < 0.01
-    # the reference model's default 40 revolutions, still ringing, overstate it (docs/reference_model.md §9:
-    # 98.7 N, 3032 psi, 757 psi at 40 revolutions; 81.6 N, 3012 psi, 733 psi at 120)
-    assert result.values["peak_contact_force"] < 81.6
-    assert result.values["alternating_bending_stress"] < 733 * 6894.757
+    # the reference model's revolutions walk towards it (docs/reference_model.md §10, measured: 102.7 N, 3036 psi,
+    # 761.3 psi at 40 revolutions; 84.7, 3015, 737.0 at 120; 77.5, 3001, 723.5 at 480)
+    assert result.values["peak_contact_force"] == pytest.approx(77.5, rel=0.025)
+    assert result.values["max_normal_stress"] == pytest.approx(3001 * 6894.757, rel=0.001)
+    assert result.values["alternating_bending_stress"] == pytest.approx(723.5 * 6894.757, rel=0.002)

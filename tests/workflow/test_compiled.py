@@ -46,3 +46,6 @@ def test_first_point_says_it_compiles_and_the_second_loads_the_cache(tmp_path):
     left = subprocess.run([sys.executable, "-c", "from study.workflow import compiled; print(compiled.uncached())"],
                           capture_output=True, text=True, env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)})
     assert left.stdout.strip() == "[]", left.stdout + left.stderr
+    # what the compile-ahead cached is recorded beside the cache: the kernels later runs are checked for
+    (record,) = tmp_path.rglob(compiled.RECORD)
+    assert "study.solvers.whirl_kernel.advance" in json.loads(record.read_text())
