@@ -271,7 +271,15 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     top = np.max(depth, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         secant = np.where(top > depth0, (top**1.5 - depth0**1.5) / (top - depth0) / (1.5 * np.sqrt(depth0)), 1.0)
-    sizes = dict(angle_swing=float(np.max(np.abs(swing))) if swing.size else 0.0,
+    # the second-order motion's share of the contact force: the next order is about the angle's swing times it
+    first = np.stack(((A[None, :N] * e[:, None]).real @ model.phi.T, (A[None, N:] * e[:, None]).real @ model.phi.T),
+                     axis=-1)  # the synchronous motion's displacements at the points, (R, P, 2)
+    first_order = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], first)
+                   - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    second_share = float(np.max(np.abs(fn[:, held] + np.einsum("rpi,pi->rp", first_order, n0)[:, held]))
+                         / max(float(np.max(fn)), 1e-300)) if np.any(held) else 0.0
+    sizes = dict(second_order=second_share,
+                 angle_swing=float(np.max(np.abs(swing))) if swing.size else 0.0,
                  secant_ratio=float(np.max(secant)) if secant.size else 1.0)
     peak = np.max(fn, axis=0)
     touching = held & np.all(fn > 0, axis=0)
@@ -378,7 +386,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     drag_values = values(inputs, rough_drag)
     contact_part = max(abs(other[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
     drag_part = max(abs(drag_values[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
-    linearisation = contact_part + drag_part + 0.5 * sizes["angle_swing"] ** 2
+    # the orders left out: the arc's third order, about the angle's swing times the second order's share of the force
+    linearisation = contact_part + drag_part + 0.5 * sizes["angle_swing"] ** 2 + sizes["angle_swing"] * sizes["second_order"]
     rested, whirled = state["rest"], state["whirl"]
     result.error_estimate = float(linearisation + truncation + whirled["change"])
     result.extras.update(touching_points=[float(x) for x in model.points[rested["touching"]]],
