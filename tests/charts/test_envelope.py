@@ -3,6 +3,7 @@
 import csv
 
 import numpy as np
+import xarray as xr
 import pytest
 from matplotlib.collections import LineCollection
 
@@ -79,3 +80,29 @@ def test_safe_ranges_per_load_and_the_csv(study, tmp_path):
         read = list(csv.DictReader(handle))
     assert len(read) == len(rows) and read[0]["safe"] in ("True", "False")
     assert list(read[0])[:2] == ["rotary speed [rpm]", "axial tension [lbf]"]
+
+
+def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_decision(study):
+    from study.charts.envelope import LIFE_SLOPE, MARGIN, decided_within_error, failures
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    ok = (ds.status == STATUS_CODES["ok"]) & (ds.yield_utilisation < 0.5) & (ds.fatigue_life > 50 * 1000 * 3600)
+    dims = ds.status.dims
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=xr.full_like(ds.status, np.nan, dtype=float))
+    index = np.argwhere(ok.transpose(*dims).values)  # points far inside every limit
+    first, second = tuple(index[0]), tuple(index[1])
+    for where, error in ((first, 0.05), (second, 0.45)):
+        ds.status.values[where] = STATUS_CODES["not_converged"]
+        ds.error_estimate.values[where] = error
+    # the second's life at stresses off by 2 x 45 %: (1.9)^5 = 25x shorter, but it stays above 1000 h only if
+    # more than 25x the target; make it 10x so the decision is open
+    ds.fatigue_life.values[second] = 10 * 1000 * 3600
+    decided = decided_within_error(ds).transpose(*dims)
+    assert bool(decided.values[first]) and not bool(decided.values[second])
+    assert (1 + MARGIN * 0.45) ** LIFE_SLOPE > 10  # why the second is open
+    fails, _ = failures(ds)
+    open_points = fails["no valid answer"].transpose(*dims)
+    assert int(decided.sum()) == 1 and int(open_points.sum()) == int((ds.status != 0).sum()) - 1
+    assert not bool(fails["no valid answer"].transpose(*dims).values[first]) and bool(open_points.values[second])
