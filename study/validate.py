@@ -450,7 +450,8 @@ def damped_section() -> list[str]:
                   "impact_pattern": "one_wall", "closure": "self_consistent"}
         ref = solve_point(inputs, "reference")
         r = ref.values
-        touches = ref.status == "ok" and r.get("peak_contact_force", 0.0) > 0
+        # an answer, converged or with its error stated (a chaotic bouncing's figures are statistics of a window)
+        touches = ref.status in ("ok", "not_converged") and r.get("peak_contact_force", 0.0) > 0
         quick, slow = solve_point(inputs, "fast"), solve_point(inputs, "damped")
         cell_fast, far_fast = _compared(quick, r if touches else None)
         cell_damped, far_damped = _compared(slow, r if touches else None)
@@ -465,9 +466,10 @@ def damped_section() -> list[str]:
         extra = (f"{d['equivalent_damping']:.4g}, {d['damping_ratio']:.3f}, "
                  f"{convert(d['end_moment_amplitude'], 'N*m', 'lbf*ft'):.4g}, {d['energy_residual']:.1e}"
                  if "energy_residual" in d else "-")
+        error = f" (error {ref.error_estimate:.0%})" if ref.error_estimate is not None and touches else ""
         lines.append(_row(rpm, f"{inclination}°", f"`{ref.status}` {whirls.get(r.get('whirl_class'), '?')}, "
                           f"{convert(r.get('peak_contact_force', 0.0), 'N', 'lbf'):.4g}, "
-                          f"{r.get('max_normal_stress', float('nan')) / psi:.4g}", cell_fast, cell_damped, extra))
+                          f"{r.get('max_normal_stress', float('nan')) / psi:.4g}{error}", cell_fast, cell_damped, extra))
     change = f"{100 * min(changes):+.0f} to {100 * max(changes):+.0f} %" if changes else "-"
     ratio = f"{min(stress_ratios):.3g}-{max(stress_ratios):.3g}" if stress_ratios else "-"
     lines += ["",
