@@ -310,7 +310,7 @@ STUDY_CONFIG = DEFAULT_CONFIG.with_name("default.toml")
 #: Run in a fresh process per method: the point solved once (its compiled kernels loaded), then again under
 #: tracemalloc, which sees every allocation of Python and numpy (numba's own arrays inside a kernel are not seen).
 _MEMORY_SCRIPT = """
-import json, resource, sys, tracemalloc
+import json, sys, tracemalloc
 from study.config import load
 from study.solvers import solve_point
 point = load(sys.argv[1], json.loads(sys.argv[3])).point()
@@ -319,7 +319,9 @@ tracemalloc.start()
 result = solve_point(point, sys.argv[2])
 peak = tracemalloc.get_traced_memory()[1]
 tracemalloc.stop()
-print(json.dumps(dict(peak=peak, process=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, status=result.status)))
+# this process's own high-water mark (VmHWM; ru_maxrss on Linux keeps the parent's across exec)
+hwm = next(int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM:"))
+print(json.dumps(dict(peak=peak, process=hwm, status=result.status)))
 """
 
 
@@ -532,7 +534,8 @@ def run_bench(out: str | None = None) -> str:
              "storage-bound)"),
             (load(SCREEN_CONFIG), 4_000, 3, False, "`configs/screen.toml` (method sdof, about 2 ms per point: compute-bound)"),
             (load(STUDY_CONFIG), 96, 1, True, "the default study `configs/default.toml` (method auto: the free whirl where "
-             "the pipe stays clear, the reference model where it touches; its rotary speeds resampled)")):
+             "the pipe stays clear, the sliding state where it lies on the wall, the reference model elsewhere; its "
+             "rotary speeds resampled)")):
         sweep_rows, notes = bench_sweep(config, points, repeat)
         lines += _table(f"Sweep of {what}, about {points} points: in process vs local dask workers (median of "
                         f"{repeat} run{'s' if repeat > 1 else ''} each)", sweep_rows, "s", 1.0)

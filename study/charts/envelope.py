@@ -220,13 +220,13 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
                title="cell (first limit broken)", title_fontsize=8)
     within = int(decided_within_error(ds, target_hours, criterion).sum())
-    context = [f"safe: every point ok, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
+    context = [f"safe: every point answered, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
                + (", outside ±15 % of the joint's critical speeds" if checked else
                   "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "
                   "mass_per_length)")]
     if within:
-        context.append(f"{within} points not converged to the study's tolerance counted: their limits hold or fail "
-                       f"with the stresses off by {MARGIN:g}x their error estimate")
+        context.append(f"answered: ok, or not converged to the study's tolerance but decided ({within} points: their "
+                       f"limits hold or fail with the stresses off by {MARGIN:g}x their error estimate)")
     context += p.context("every point must pass")
     _title(fig, "Safe operating envelope", context, 8.5)
     caption = (f"Where the pipe can run: green cells pass every limit at every value of the other swept inputs "
