@@ -511,7 +511,16 @@ def run_bench(out: str | None = None) -> str:
                         "no event-driven setting above is as accurate"))
     lines.append("")
     lines += bench_reference(point)[1]
-    lines += bench_reference_precision()[1]
+    precision_rows, precision_lines = bench_reference_precision()
+    lines += precision_lines
+    if out:
+        from study.charts.precision import work_precision_chart
+
+        chart = Path(out).with_name("work_precision_reference.png")
+        work_precision_chart(precision_rows, precision_lines[2].split(" (`")[0].replace("`", ""),
+                             title="Work and precision of the reference model (modes x rtol)",
+                             time_label="time per design point [ms]").savefig(chart, dpi=150)
+        lines += [f"Chart: `{chart.name}` beside this file.", ""]
     lines += bench_hierarchy()
     stability = timedomain.step_stability(case)
     lines += ["### Stability of the integrators against the contact stiffness", "",

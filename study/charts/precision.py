@@ -7,11 +7,13 @@ from matplotlib.figure import Figure
 MARKERS = {"fast": "o", "series": "s"}
 
 
-def work_precision_chart(rows, case: str) -> Figure:
+def work_precision_chart(rows, case: str, title: str = "Work and precision of the periodic methods",
+                         time_label: str = "time per evaluation [ms]") -> Figure:
     """Relative error of the max normal and shear stresses against time per evaluation, per method.
 
     rows: the dicts of :func:`study.solvers.series.convergence_table` (method, modes, harmonics,
-    wall_time [s], error, shear_error); case: a one-line description for the title.
+    wall_time [s], error, shear_error) or of :func:`study.bench.bench_reference_precision` (with rtol instead of
+    harmonics); case: a one-line description for the title.
     """
     figure = Figure(figsize=(9.0, 4.2), dpi=150, layout="constrained")
     axes = figure.subplots(1, 2, sharex=True)
@@ -21,14 +23,15 @@ def work_precision_chart(rows, case: str) -> Figure:
             ax.loglog([r["wall_time"] * 1e3 for r in mine], [max(r[key], 1e-16) for r in mine],
                       marker=MARKERS.get(method, "^"), label=method)
             for r in mine:
-                tag = f"N={r['modes']}" + (f", M={r['harmonics']}" if r["harmonics"] else "")
+                tag = (f"N={r['modes']}" + (f", M={r['harmonics']}" if r["harmonics"] else "")
+                       + (f", rtol {r['rtol']:g}" if r.get("rtol") else ""))
                 ax.annotate(tag, (r["wall_time"] * 1e3, max(r[key], 1e-16)), fontsize=6,
                             textcoords="offset points", xytext=(3, 3))
-        ax.set_xlabel("time per evaluation [ms]")
+        ax.set_xlabel(time_label)
         ax.set_ylabel(f"relative error, {label} [-]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    figure.suptitle("Work and precision of the periodic methods\n" + case, fontsize=9)
+    figure.suptitle(f"{title}\n" + case, fontsize=9)
     return figure
 
 

@@ -22,6 +22,17 @@ def test_chart_has_both_methods_log_axes_and_units():
     assert series_line.get_ydata()[0] == 1e-16
 
 
+def test_the_reference_model_chart_tags_each_point_with_modes_and_rtol():
+    rows = [{"method": "reference", "modes": n, "rtol": rtol, "harmonics": None, "wall_time": 0.1 * n,
+             "error": 0.1 / n, "shear_error": 0.2 / n} for n in (8, 16) for rtol in (1e-4, 1e-6)]
+    figure = work_precision_chart(rows, "case", title="Work and precision of the reference model",
+                                  time_label="time per design point [ms]")
+    tags = {t.get_text() for t in figure.axes[0].texts}
+    assert tags == {"N=8, rtol 0.0001", "N=8, rtol 1e-06", "N=16, rtol 0.0001", "N=16, rtol 1e-06"}
+    assert figure.axes[0].get_xlabel() == "time per design point [ms]"
+    assert figure.get_suptitle().startswith("Work and precision of the reference model")
+
+
 def test_time_domain_chart_marks_failures_and_labels_units():
     from study.charts.precision import time_domain_chart
 

@@ -70,7 +70,7 @@ def test_chunk_key_names_the_points_it_holds():
     assert chunk_key(keys[:3]) == chunk_key(keys[:3].copy()) != chunk_key(keys[1:4])
 
 
-@pytest.mark.parametrize("size, expected", [(10, 16), (1404, 44), (10**6, 512)])
+@pytest.mark.parametrize("size, expected", [(10, 8), (352, 11), (1404, 44), (10**6, 512)])
 def test_auto_chunk_size_depends_on_the_grid_alone(size, expected):
     assert auto_chunk_size(size) == expected
 
