@@ -542,9 +542,9 @@ def run_bench(out: str | None = None) -> str:
             (study, 10_000, 3, False, "`configs/paper.toml` (method core, about 0.2 ms per point: scheduling- and "
              "storage-bound)"),
             (load(SCREEN_CONFIG), 4_000, 3, False, "`configs/screen.toml` (method sdof, about 2 ms per point: compute-bound)"),
-            (load(STUDY_CONFIG), 96, 1, True, "the default study `configs/default.toml` (method auto: the free whirl where "
-             "the pipe stays clear, the sliding state where it lies on the wall, the reference model elsewhere; its "
-             "rotary speeds resampled)")):
+            (load(STUDY_CONFIG), 352, 1, True, "the default study `configs/default.toml` (method auto: the free whirl where "
+             "the pipe stays clear, the sliding state where it lies on the wall, the reference model elsewhere: its whole "
+             "grid)")):
         sweep_rows, notes = bench_sweep(config, points, repeat)
         lines += _table(f"Sweep of {what}, about {points} points: in process vs local dask workers (median of "
                         f"{repeat} run{'s' if repeat > 1 else ''} each)", sweep_rows, "s", 1.0)
