@@ -102,7 +102,11 @@ def _stress_margin(ds: xr.Dataset) -> xr.DataArray:
 def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
                          ) -> xr.DataArray:
     """True where a point not converged to the study's tolerance still counts (see the module docstring)."""
-    fails, _ = failures(ds, target_hours, criterion)
+    return _decided(ds, failures(ds, target_hours, criterion)[0])
+
+
+def _decided(ds: xr.Dataset, fails: dict[str, xr.DataArray]) -> xr.DataArray:
+    """:func:`decided_within_error` from the points' :func:`failures`."""
     return ~fails["no valid answer"] & ~ok_points(ds)
 
 
@@ -130,7 +134,7 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
     count = p.reduce(xr.ones_like(ok, dtype=int), "sum")
     ok_count = p.reduce(ok.astype(int), "sum")
-    within = p.reduce(decided_within_error(ds, target_hours, criterion).astype(int), "sum")
+    within = p.reduce(_decided(ds, fails).astype(int), "sum")
     counted = ~fails["no valid answer"]
     worst = {}
     for name, how, scale in (("yield_utilisation", "max", 1.0), ("endurance_utilisation", "max", 1.0),
@@ -219,7 +223,7 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
                title="cell (first limit broken)", title_fontsize=8)
-    within = int(decided_within_error(ds, target_hours, criterion).sum())
+    within = int(_decided(ds, fails).sum())
     context = [f"safe: every point answered, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
                + (", outside ±15 % of the joint's critical speeds" if checked else
                   "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "

@@ -41,6 +41,7 @@ from typing import Any, Mapping
 import numpy as np
 from scipy import optimize
 
+from study.physics import whirl as whirl_physics
 from study.solvers import reference
 from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
@@ -63,9 +64,8 @@ def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) ->
     safe = np.where(r > 0, r, 1.0)
     ny, nz = u[..., 0] / safe, u[..., 1] / safe
     fn = model.stiffness * depth**1.5
-    vt = -v[..., 0] * nz + v[..., 1] * ny
-    vs = vt + model.rotary_speed * model.radius
-    ft = -model.friction * fn * vs / np.sqrt(vs**2 + model.slip_velocity**2)
+    vs = whirl_physics.sliding_velocity(-v[..., 0] * nz + v[..., 1] * ny, model.rotary_speed, model.radius)
+    ft = -model.friction * fn * whirl_physics.friction_factor(vs, model.slip_velocity)
     return np.stack((-fn * ny - ft * nz, -fn * nz + ft * ny), axis=-1), fn
 
 
@@ -89,8 +89,9 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
     if np.max(beyond) > 1:
         touching[int(np.argmax(beyond))] = True
     forces, found = np.zeros((P, 2)), not touching.any()
-    slide = model.rotary_speed * model.radius
-    s = slide / np.sqrt(slide**2 + model.slip_velocity**2)  # the friction's regularised sign at rest
+    # the friction's regularised sign at rest
+    s = whirl_physics.friction_factor(whirl_physics.sliding_velocity(0.0, model.rotary_speed, model.radius),
+                                      model.slip_velocity)
     for _ in range(ACTIVE_SET_STEPS * P):
         idx = np.flatnonzero(touching)
         if idx.size == 0:
@@ -171,20 +172,13 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     stiff, damp = _linearised(model, rested["u"])
     stiff = stiff * contact_scale
     touching = rested["touching"]
-    # the contact terms in modal form, (2N, 2N): rows/columns y-modes then z-modes
-    contact = np.zeros((2 * N, 2 * N), complex)
-    for p in np.flatnonzero(touching):
-        k = stiff[p] + 1j * Om * damp[p]
-        outer = np.outer(model.phi[p], model.phi[p])
-        for a in range(2):
-            for b in range(2):
-                contact[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
-    base = np.diag(np.tile(model.omega**2 - Om**2 + 1j * Om * model.damping, 2)) + contact
+    held = np.flatnonzero(touching)
+    base = _dynamic_matrix(model, stiff, damp, held, 1)
     load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)  # (cos, sin) Ωt
     S, w = model.drag_shapes, model.drag_weights
     phase = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
     A = np.linalg.solve(base, load)
-    change, iteration = 0.0, 0
+    change, iteration, C = 0.0, 0, None
     if model.drag > 0:
         for iteration in range(1, ITERATIONS + 1):
             vel = 1j * Om * np.stack((S @ A[:N], S @ A[N:]))  # (2, G) complex velocity amplitudes
@@ -195,15 +189,13 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
             else:
                 c_eq = model.drag * np.mean(speed, axis=1)
             C = (S * (w * c_eq)[:, None]).T @ S / model.mass
-            system = base + 1j * Om * np.kron(np.eye(2), C)
-            new = np.linalg.solve(system, load)
+            new = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, 1, C), load)
             change = float(np.max(np.abs(new - A)) / max(np.max(np.abs(new)), 1e-300))
             A = new
             if change < SETTLED:
                 break
     # second order: a touching point moves on its wall's arc, inside the straight tangent of the linear motion by
     # r Δφ²/2 = r (|Φ|²/2 + Re(Φ² e^{2iΩt}/2))/2; the contact pulls it there, a load at 0 and 2Ω on the section
-    held = np.flatnonzero(touching)
     u0 = rested["u"][held]
     r0 = np.hypot(u0[:, 0], u0[:, 1])
     n0 = u0 / r0[:, None]
@@ -215,19 +207,28 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     for h, d in shift.items():
         pull = np.einsum("hij,hj->hi", stiff[held], n0) * d[:, None]  # K_c (d n̂0) per point, (H, 2)
         load_h = np.concatenate((model.phi[held].T @ pull[:, 0], model.phi[held].T @ pull[:, 1])) / model.mass
-        terms = np.zeros((2 * N, 2 * N), complex)
-        for i, p in enumerate(held):
-            k = stiff[p] + 1j * h * Om * damp[p]
-            outer = np.outer(model.phi[p], model.phi[p])
-            for a in range(2):
-                for b in range(2):
-                    terms[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
-        system_h = (np.diag(np.tile(model.omega**2 - (h * Om) ** 2 + 1j * h * Om * model.damping, 2)) + terms
-                    + (1j * h * Om * np.kron(np.eye(2), C) if model.drag > 0 and h else 0.0))
-        second[h] = np.linalg.solve(system_h, load_h.astype(complex))
+        second[h] = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, h, C if h else None),
+                                    load_h.astype(complex))
     return dict(amplitudes=A, iterations=iteration, change=change, stiffness=stiff, damping=damp,
-                second=second, shift={h: np.zeros(touching.size, complex) + 0 for h in shift} | {
-                    h: _spread(d, held, touching.size) for h, d in shift.items()})
+                second=second, shift={h: _spread(d, held, touching.size) for h, d in shift.items()})
+
+
+def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.ndarray, held: np.ndarray,
+                    harmonic: int, drag: np.ndarray | None = None) -> np.ndarray:
+    """The section's modal equations at the frequency harmonic × Ω, (2N, 2N) complex, rows and columns the
+    y-modes then the z-modes: ω² − (hΩ)² + ihΩ d_n, the touching points' linearised contact (stiffness and
+    damping, (P, 2, 2)), and the viscous drag ``drag`` (N, N) per modal mass where given."""
+    N, frequency = model.n_modes, harmonic * model.rotary_speed
+    matrix = np.diag(np.tile(model.omega**2 - frequency**2 + 1j * frequency * model.damping, 2))
+    for p in held:
+        k = stiff[p] + 1j * frequency * damp[p]
+        outer = np.outer(model.phi[p], model.phi[p])
+        for a in range(2):
+            for b in range(2):
+                matrix[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
+    if drag is not None:
+        matrix = matrix + 1j * frequency * np.kron(np.eye(2), drag)
+    return matrix
 
 
 def _spread(values: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
@@ -298,7 +299,7 @@ FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stres
 
 
 def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: float = 1.0,
-                 drag_rule: str = "dissipation", samples: int = SAMPLES) -> dict[str, Any]:
+                 drag_rule: str = "dissipation") -> dict[str, Any]:
     """The state on the wall with ``modes`` modes per direction: the model, the rest, the whirl (``contact_scale``
     as :func:`whirl`), one revolution and its sizes (:func:`revolution`) and, when the state is not this
     method's, ``why`` (text)."""
@@ -315,7 +316,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
         out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
         return out
     whirled = out["whirl"] = whirl(model, rested, contact_scale, drag_rule)
-    window, out["sizes"] = revolution(model, rested, whirled, samples)
+    window, out["sizes"] = revolution(model, rested, whirled)
     out["window"] = window
     N = model.n_modes
     reach = np.hypot(window.states[:, :N] @ model.phi.T, window.states[:, N:2 * N] @ model.phi.T)
@@ -366,27 +367,26 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if state["why"]:
         return finish("out_of_scope", f"{state['why']}: a higher model answers")
     vals.update(values(inputs, state))
-    coarse = steady_state(inputs, COARSE_MODES)
-    if coarse["why"]:
-        return finish("out_of_scope", f"with {COARSE_MODES} modes per direction {coarse['why']}: the state is not "
-                                      "resolved, a higher model answers")
-    rough = values(inputs, coarse)
-    truncation = max(abs(rough[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
-    # the linearisation: the same motion with the Hertz secant stiffness over the approach's swing instead of the
-    # tangent one, and the second-order part of the angle's swing on the wall (1 − cos a ≈ a²/2)
+    # the same state solved another way: with half the modes (the truncation), with the Hertz secant stiffness over
+    # the approach's swing instead of the tangent one and with the drag made viscous at the mean speed instead of by
+    # equal dissipation (the linearisation); each part of the error is the largest relative change of a figure
     sizes = state["sizes"]
-    secant = steady_state(inputs, contact_scale=sizes["secant_ratio"])
-    if secant["why"]:
-        return finish("out_of_scope", f"with the Hertz secant stiffness {secant['why']}: a higher model answers")
-    other = values(inputs, secant)
-    rough_drag = steady_state(inputs, drag_rule="mean_speed")
-    if rough_drag["why"]:
-        return finish("out_of_scope", f"with the drag made viscous at the mean speed {rough_drag['why']}: a higher "
-                                      "model answers")
-    drag_values = values(inputs, rough_drag)
-    contact_part = max(abs(other[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
-    drag_part = max(abs(drag_values[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
-    # the orders left out: the arc's third order, about the angle's swing times the second order's share of the force
+    variants = {"truncation": (dict(modes=COARSE_MODES), f"with {COARSE_MODES} modes per direction",
+                               ": the state is not resolved, a higher model answers"),
+                "contact": (dict(contact_scale=sizes["secant_ratio"]), "with the Hertz secant stiffness",
+                            ": a higher model answers"),
+                "drag": (dict(drag_rule="mean_speed"), "with the drag made viscous at the mean speed",
+                         ": a higher model answers")}
+    part = {}
+    for name, (options, how, consequence) in variants.items():
+        other = steady_state(inputs, **options)
+        if other["why"]:
+            return finish("out_of_scope", f"{how} {other['why']}{consequence}")
+        changed = values(inputs, other)
+        part[name] = max(abs(changed[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+    truncation, contact_part, drag_part = part["truncation"], part["contact"], part["drag"]
+    # the orders left out: the second-order part of the angle's swing on the wall (1 − cos a ≈ a²/2), and the arc's
+    # third order, about the angle's swing times the second order's share of the force
     linearisation = contact_part + drag_part + 0.5 * sizes["angle_swing"] ** 2 + sizes["angle_swing"] * sizes["second_order"]
     rested, whirled = state["rest"], state["whirl"]
     result.error_estimate = float(linearisation + truncation + whirled["change"])

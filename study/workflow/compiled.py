@@ -68,13 +68,12 @@ def cached(dispatcher) -> bool:
 
 def _record_path(found: dict[str, Any]) -> Path | None:
     """Where :data:`RECORD` sits: numba's cache folder of the first kernel (``__pycache__`` beside the sources, or
-    under ``NUMBA_CACHE_DIR``)."""
-    for dispatcher in found.values():
-        try:
-            return Path(dispatcher._cache.cache_path) / RECORD
-        except Exception:  # noqa: BLE001 - no cache folder: nothing recorded
-            return None
-    return None
+    under ``NUMBA_CACHE_DIR``); None without kernels or a cache folder."""
+    first = next(iter(found.values()), None)
+    try:
+        return Path(first._cache.cache_path) / RECORD if first is not None else None
+    except Exception:  # noqa: BLE001 - no cache folder: nothing recorded
+        return None
 
 
 def uncached(modules: Iterable[str] = KERNEL_MODULES) -> list[str]:
