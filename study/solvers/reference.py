@@ -35,7 +35,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
 "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
 :mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6) until the state at the revolution
-boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`) or
+boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`), the pipe bounces with
+stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
 (default 6; the period's multiple when periodic) is recorded and the outputs are taken over it.
 """
@@ -327,6 +328,27 @@ DRIFT_SIGNIFICANCE = 2.0
 MAX_SETTLE_RATIO = 0.99
 
 
+def stationary(peaks, impacts, states, scale, n: int) -> bool:
+    """Whether a motion that has not repeated is done with its transient: it bounces — contact onsets in at least a
+    third of the revolutions of each of the last two stretches of n revolutions —, the means of each revolution's
+    largest contact force and of its contact onsets over those two stretches differ by no more than
+    :data:`DRIFT_SIGNIFICANCE` of their combined standard errors (:func:`standard_error`), and the state's changes
+    from one revolution boundary to the next do not shrink beyond doubt (:func:`settle_ratio`): a chaotic
+    bouncing, whose statistics are stationary, and not a motion still settling towards a rest, a slide or a
+    cycle (docs/reference_model.md §3.1). The first n revolutions (the start-up, whose scatter would hide any
+    drift) are never in the two stretches: False before 3n revolutions."""
+    if len(peaks) < 3 * n or len(impacts) < 3 * n:
+        return False
+    for series in (impacts, peaks):
+        before, last = np.asarray(series[-2 * n:-n], float), np.asarray(series[-n:], float)
+        if series is impacts and min(np.count_nonzero(before), np.count_nonzero(last)) < n / 3:
+            return False  # too few strikes: lying or sliding on the wall, or clear of it, not bouncing
+        spread = np.hypot(*(standard_error(x) if np.ptp(x) > 0 else 0.0 for x in (before, last)))
+        if abs(np.mean(last) - np.mean(before)) > DRIFT_SIGNIFICANCE * spread:
+            return False
+    return not np.isfinite(settle_ratio(states, scale))
+
+
 def merge(windows: list[Window]) -> Window:
     """One window from consecutive ones (their recordings joined, their counts added)."""
     return Window(times=np.concatenate([w.times for w in windows]), states=np.concatenate([w.states for w in windows]),
@@ -466,14 +488,30 @@ def modal_error(model: WhirlModel, window: Window, tail: float, quarter: float, 
     return float(left * min(1.0, ratio**2))
 
 
+def uncorrected_means(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
+                      cycles: list[Mapping[str, Any]]) -> dict[str, float] | None:
+    """Where the quasi-static correction was applied to a pipe that strikes the wall (contact onsets in the
+    window), the stress figures (means over the cycles, as :func:`window_summary`) without it; else None. The
+    correction's size is not converged in the modes at such points (docs/reference_model.md §9), and the
+    difference is counted in the figures' modal error (:func:`convergence`)."""
+    if not cycles or not all(c["correction"] for c in cycles) or not np.any(window.onsets > 0):
+        return None
+    first = np.searchsorted(window.times, [c["start"] for c in cycles])
+    segments = list(zip(first, list(first[1:]) + [window.times.size]))
+    plain = stresses(inputs, model, window, correction=False, segments=segments)
+    return {name: float(np.mean([v[name] for v in plain])) for name in ("max_normal_stress", "alternating_bending_stress")}
+
+
 def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
-                stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None) -> dict:
+                stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None,
+                uncorrected: Mapping[str, float] | None = None) -> dict:
     """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
     larger of the standard error and the drift from the preceding stretch; the periodicity tolerance when the
     motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
     which is whole but with ``reference_damping = "viscous"``),
-    ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force); ``total`` their
-    sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
+    ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force; at least the relative
+    change of a stress figure without the quasi-static correction where ``uncorrected``,
+    :func:`uncorrected_means`, gives it); ``total`` their sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
     option = ReferenceOptions.from_inputs(inputs)
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
@@ -483,6 +521,9 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     normal = values["max_normal_stress"]
     bending_share = (normal - abs(inputs["axial_tension"]) / model.props["steel_area"]) / normal if normal > 0 else 0.0
     modes = {"peak_contact_force": 0.0, "max_normal_stress": tail * bending_share, "alternating_bending_stress": tail}
+    for name, plain in (uncorrected or {}).items():
+        if values[name] > 0:
+            modes[name] = max(modes[name], abs(1.0 - plain / values[name]))
     # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
     # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing
     scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"])}
@@ -496,7 +537,8 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
 
 
 def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
-    """Transient until periodic (or ``reference_revolutions``), then the recorded window, extended while its
+    """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
+    recorded window, extended while its
     figures have not converged (docs/reference_model.md §3.1).
 
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
@@ -511,7 +553,9 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
     of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
-    the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None).
+    the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
+    (the transient ended as the bouncing was found stationary), and where not periodic uncorrected
+    (:func:`uncorrected_means` of the window).
     """
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
@@ -535,19 +579,27 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     failure=f"{whirl_kernel.OUTCOMES[run.outcome]} {where}")
 
     kept: list[Window] = []  # the transient's last revolutions, recorded
+    peaks, impacts = [], []  # each revolution's largest contact force [N] and contact onsets
+    stationary_at = None
     for k in range(1, revolutions + 1):
-        keep = k > revolutions - n_window
+        # the last n_window revolutions are kept: the transient ends at the last, or bouncing from 3 n_window on
+        keep = k > min(2 * n_window, revolutions - n_window)
         cycle = run.run(k * tau, record=keep)
         if run.outcome != whirl_kernel.OK:
             return failed(f"in revolution {k}")
         if keep:
-            kept.append(cycle)
+            kept = (kept + [cycle])[-n_window:]
+        peaks.append(float(np.max(cycle.peak)) if cycle.peak.size else 0.0)
+        impacts.append(float(np.sum(cycle.onsets)))
         states.append(run.z[:4 * N].copy())
         if np.max(np.abs(states[-1]) / scale) == 0.0:  # nothing moves
             period = 1 if k >= 2 else None
         else:
             period = settled_period(states, scale, tol)
         if period is not None:
+            break
+        if k % n_window == 0 and stationary(peaks, impacts, states, scale, n_window):
+            stationary_at = k
             break
     done = len(states) - 1
     budget_spent, needed = False, float(done)
@@ -576,8 +628,10 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             ratio = settle_ratio(states, scale)
             stats = settling([v for _, v in window_cycles], preceding, ratio)
             window = merge([c for c, _ in window_cycles])
-            errors = convergence(inputs, model, window, window_summary([v for _, v in window_cycles], stats), stats,
-                                 periodic=False)
+            cycles = [v for _, v in window_cycles]
+            uncorrected = uncorrected_means(inputs, model, window, cycles)
+            errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
+                                 uncorrected=uncorrected)
             used = len(states) - 1
             more = 0.0  # the revolutions more that the figures over the tolerance need, as far as can be foreseen
             for name, e in errors.items():
@@ -600,9 +654,11 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 record[i] = (None, record[i][1])  # free the recordings no longer needed
         done = used - len(window_cycles)
     window = merge([c for c, _ in window_cycles])
-    return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
+    out = dict(uncorrected=uncorrected) if not period else {}
+    return out | dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
-                budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None)
+                budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
+                stationary=stationary_at is not None)
 
 
 # --- outputs -----------------------------------------------------------------------------------------
@@ -785,7 +841,9 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
-    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"])
+    uncorrected = run["uncorrected"] if "uncorrected" in run else uncorrected_means(inputs, model, window, cycles)
+    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"],
+                         uncorrected=uncorrected)
     correction = summary.pop("correction")
     quarter = summary.pop("modal_quarter_fraction")
     vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
@@ -810,6 +868,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                         for name, e in errors.items())
     messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
                 (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
+                 f"bouncing with stationary statistics after {run['revolutions']} revolutions (transient ended)"
+                 if run.get("stationary") and run["revolutions"] < option.reference_revolutions else
                  f"not periodic within {run['revolutions']} revolutions"),
                 f"figures: means over the window's {len(cycles)} cycle(s) of {cycle} of each cycle's largest value"
                 f" (largest seen: window_largest_*){stopped}",
@@ -817,6 +877,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 f"{float(option.reference_rtol):g}"
                 f"{' (with the quasi-static correction for the modes left out)' if correction else ''}",
                 f"error of each figure (its largest part): {figures}"]
+    if uncorrected:
+        messages.append("the quasi-static correction applied to a pipe that strikes the wall, its size not converged "
+                        f"in the modes: without it the max normal stress would be {uncorrected['max_normal_stress']:.4g}"
+                        f" Pa, the alternating stress {uncorrected['alternating_bending_stress']:.4g} Pa (counted in "
+                        "the modes part)")
     # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"

@@ -22,6 +22,7 @@ shear of a point contact jumps under the load, which the time domain's point con
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -91,8 +92,25 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
     """Deflection y [m] and moment −EI y'' [N m] on x [m] (shape times × x) from the samples, with
     the quasi-static correction for the contact forces (module docstring). ``modes``: mode numbers
     (N,) of the samples' coordinates; ``points``: contact points ξ_p (P,) as fractions of the span."""
-    x = np.asarray(x, float)
-    L, ei, tn = float(span_length), float(bending_stiffness), float(tension)
+    shapes, moment_modes, moment_static, deflection_static = field_shapes(
+        np.asarray(x, float).tobytes(), tuple(np.asarray(modes, float).tolist()),
+        tuple(np.asarray(points, float).tolist()), float(span_length), float(bending_stiffness), float(tension))
+    return {
+        "deflection": samples.q @ shapes + samples.forces @ deflection_static,
+        "moment": samples.q @ moment_modes + samples.forces @ moment_static,
+    }
+
+
+@functools.lru_cache(maxsize=16)
+def field_shapes(x: bytes, modes: tuple, points: tuple, span_length: float, bending_stiffness: float,
+                 tension: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The matrices :func:`fields` multiplies the samples by, on x [m] (given as the bytes of a float array,
+    to be hashable): the mode shapes sin k_n x (N, X), the modal moments EI k_n² sin k_n x (N, X), and per
+    unit contact force at each point (P, X) the static moment and deflection of the modes above N (module
+    docstring). Cached: a run evaluates the fields of every window of one model on the same stations, and the
+    deflection's static tail sums 4096 modes."""
+    x = np.frombuffer(x, float)
+    L, ei, tn = span_length, bending_stiffness, tension
     n = np.asarray(modes, float)
     k = n * np.pi / L
     shapes = np.sin(np.outer(k, x))  # (N, X)
@@ -104,7 +122,7 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
     kt = tail * np.pi / L
     deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ np.sin(np.outer(kt, x))
                          if tail.size else np.zeros((at.size, x.size)))
-    return {
-        "deflection": samples.q @ shapes + samples.forces @ deflection_static,
-        "moment": (samples.q * (ei * k**2)) @ shapes + samples.forces @ moment_static,
-    }
+    out = (shapes, shapes * (ei * k**2)[:, None], moment_static, deflection_static)
+    for array in out:
+        array.flags.writeable = False  # shared by every caller: read only
+    return out

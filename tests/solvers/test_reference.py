@@ -6,6 +6,7 @@ import pytest
 from study.physics import whirl
 from study.solvers import METHODS, reference, solve_point
 from study.solvers.options import ReferenceOptions
+from study.workflow.grid import Grid
 
 
 @pytest.fixture(scope="module")
@@ -312,20 +313,22 @@ def test_a_periodic_answer_states_a_small_error(base):
 def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scatter(default_study):
     # configs/default.toml at 150 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the tool joints bounce, not periodic;
     # the per-revolution maxima scatter (coefficient of variation about 0.25 for the force), so the largest seen
-    # grows with the window while the mean of the per-revolution maxima stays within its stated error
+    # is above the mean, and the mean of the per-revolution maxima stays within its stated error
     point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "reference_max_revolutions": 1}
-    short = reference.simulate({**point, "reference_window": 6})
-    long = reference.simulate({**point, "reference_window": 24})
+    # both windows after the same 12-revolution transient (where the short run finds the bouncing stationary)
+    short = reference.simulate({**point, "reference_window": 6, "reference_revolutions": 12})
+    long = reference.simulate({**point, "reference_window": 36, "reference_revolutions": 12})  # its window: 24
     assert short["verdict"] == long["verdict"] == "not_periodic"
     a = reference.settling(short["cycles"], short["preceding"])
     b = reference.settling(long["cycles"], long["preceding"])
     for name in reference.FIGURES:
-        assert b[name]["largest"] >= a[name]["largest"] > a[name]["value"], name
+        assert b[name]["largest"] > b[name]["value"] and a[name]["largest"] > a[name]["value"], name
         # the short window's stated error (standard error or drift) covers its distance from the long window's
         assert abs(a[name]["value"] / b[name]["value"] - 1.0) < 2.0 * a[name]["window"], name
     for name in ("max_normal_stress", "alternating_bending_stress"):
-        assert b[name]["window"] < 0.6 * a[name]["window"], name  # sqrt(6/24) = 0.5 expected
-    # the force wanders on a longer scale: its means over consecutive 24-revolution stretches differ by 11 %,
+        # standard errors: sqrt(6/24) = 0.5 expected, each estimated from few batches (about +-30 % on 6 values)
+        assert b[name]["error"] < 0.75 * a[name]["error"], name
+    # the force wanders on a longer scale: its means over consecutive 24-revolution stretches differ by 14 %,
     # and its error says so
     assert b["peak_contact_force"]["window"] > 0.05
     result = solve_point(point, "reference")
@@ -351,3 +354,67 @@ def test_the_window_grows_until_the_figures_converge_within_the_budget(default_s
     # the grown answer lies within the fixed one's stated error of it
     for name, parts in fixed.extras["convergence"].items():
         assert abs(fixed.values[name] / grown.values[name] - 1.0) <= parts["total"] + grown.error_estimate, name
+
+
+START_UP = [4900.0, 1200.0, 140.0, 9000.0, 30.0, 800.0]  # the first 6 revolutions: never in the test
+
+
+@pytest.mark.parametrize("case, peaks, impacts, shrink, expected", [
+    ("stationary scatter", [5.0, 9.0, 6.0, 8.0, 7.0, 6.0, 9.0, 5.0, 8.0, 6.0, 7.0, 7.0], [4, 6, 5] * 4, 1.0, True),
+    ("force drifting down", [12.0, 11.5, 11.0, 10.5, 10.0, 9.5, 9.0, 8.5, 8.0, 7.5, 7.0, 6.5], [4, 6, 5] * 4, 1.0,
+     False),
+    ("strikes in 1 of the last 6 revolutions", [5.0, 9.0, 6.0, 8.0, 7.0, 6.0, 9.0, 5.0, 8.0, 6.0, 7.0, 7.0],
+     [4, 6, 5, 4, 6, 5, 3, 0, 0, 0, 0, 0], 1.0, False),
+    ("state settling by 20 % a revolution", [5.0, 9.0, 6.0, 8.0, 7.0, 6.0, 9.0, 5.0, 8.0, 6.0, 7.0, 7.0],
+     [4, 6, 5] * 4, 0.8, False),
+])
+def test_the_transient_ends_where_bouncing_is_stationary(case, peaks, impacts, shrink, expected):
+    # constructed series after a wild start-up: per-revolution peak forces and onsets, and boundary states whose
+    # changes shrink by `shrink` a revolution (1: wandering, not settling)
+    rng = np.random.default_rng(1)
+    steps = [shrink**k * (1.0 + 0.1 * rng.standard_normal(4)) for k in range(18)]
+    states = np.cumsum([np.zeros(4)] + steps, axis=0)
+    assert reference.stationary(START_UP + peaks, [50] * 6 + impacts, states, np.ones(4), 6) is expected, case
+    assert not reference.stationary(peaks, impacts, states[:13], np.ones(4), 6)  # before 3 x 6 revolutions: never
+
+
+def test_sliding_after_a_violent_start_is_not_taken_for_stationary_bouncing(base):
+    # the paper's example in an 8-degree hole at 50 rpm: 50 and 26 strikes in the first two revolutions, then the
+    # joints lie on the wall and slide, the peak force drifting down slowly (140 -> 112 N over 30 revolutions):
+    # the transient runs its 40 revolutions
+    inputs = {**base, "rotary_speed": 50 * np.pi / 30, "inclination": np.radians(8)}
+    run = reference.simulate(inputs)
+    assert not run["stationary"] and run["revolutions"] == 40
+
+
+def test_a_stationary_bouncing_ends_its_transient_early_within_its_stated_error(default_study):
+    # configs/default.toml at 150 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the joints bounce chaotically from the
+    # first revolutions; the transient ends when two 6-revolution stretches agree (24 revolutions here, not 40),
+    # and the answer lies within the stated errors of a run whose transient is the full 40 revolutions (a 21-
+    # revolution window cannot end it early: 2 x 21 > 40)
+    point = _default_point(default_study, 150, 5, 0.7, 9, 0.0)
+    early = solve_point(point, "reference")
+    assert early.values["revolutions_simulated"] < 40 and "stationary statistics" in early.message
+    full = solve_point({**point, "reference_window": 21}, "reference")
+    assert full.values["revolutions_simulated"] == pytest.approx(40 + 21)
+    for name in reference.FIGURES:
+        off = abs(early.values[name] / full.values[name] - 1.0)
+        assert off < 2.0 * (early.extras["convergence"][name]["total"] + full.extras["convergence"][name]["total"]), name
+
+
+def test_the_quasi_static_correction_of_strikes_counts_its_own_size_in_the_error(default_study):
+    # configs/default.toml at 175 rpm, 5 000 lbf, e = 0.3, 12 ppg, no flow: the joints bounce in contacts of
+    # 15-20 ms (16 modes), long enough for the correction to apply, which multiplies the stresses several times
+    # and with 32 modes gave 86 against 28 MPa (docs/reference_model.md §9): its size is stated in the error
+    # the grid's own point (the sweep's inputs to the last bit: the bouncing is chaotic, and inputs 1e-9 apart
+    # sample its attractor differently)
+    grid = Grid(dict(default_study.inputs), dict(default_study.axes))
+    point = grid.point(162)
+    assert point["rotary_speed"] == pytest.approx(175 * np.pi / 30) and point["restitution"] == 0.3
+    result = solve_point(point, "reference")
+    assert result.extras["quasi_static_correction"] and "without it the max normal stress" in result.message
+    parts = result.extras["convergence"]
+    plain = float(result.message.split("without it the max normal stress would be ")[1].split(" Pa")[0])
+    assert plain < result.values["max_normal_stress"]
+    assert parts["max_normal_stress"]["modes"] >= 1.0 - plain / result.values["max_normal_stress"] - 1e-3
+    assert result.error_estimate >= parts["max_normal_stress"]["modes"]
