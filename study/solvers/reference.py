@@ -511,7 +511,8 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     which is whole but with ``reference_damping = "viscous"``),
     ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force; at least the relative
     change of a stress figure without the quasi-static correction where ``uncorrected``,
-    :func:`uncorrected_means`, gives it); ``total`` their sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
+    :func:`uncorrected_means`, gives it); ``total`` their sum. The alternating stress's error is relative to the
+    larger of it and the max bending stress."""
     option = ReferenceOptions.from_inputs(inputs)
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
