@@ -583,13 +583,14 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     peaks, impacts = [], []  # each revolution's largest contact force [N] and contact onsets
     stationary_at = None
     for k in range(1, revolutions + 1):
-        # the last n_window revolutions are kept: the transient ends at the last, or bouncing from 3 n_window on
-        keep = k > min(2 * n_window, revolutions - n_window)
+        # the last revolutions are kept: n_window where the transient ends at the last, 2 n_window where a
+        # stationary bouncing ends it (from 3 n_window on): those are its window and the stretch before it
+        keep = k > min(n_window, revolutions - n_window)
         cycle = run.run(k * tau, record=keep)
         if run.outcome != whirl_kernel.OK:
             return failed(f"in revolution {k}")
         if keep:
-            kept = (kept + [cycle])[-n_window:]
+            kept = (kept + [cycle])[-2 * n_window:]
         peaks.append(float(np.max(cycle.peak)) if cycle.peak.size else 0.0)
         impacts.append(float(np.sum(cycle.onsets)))
         states.append(run.z[:4 * N].copy())
@@ -612,17 +613,22 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 return failed("in the output window")
         window_cycles, preceding = list(zip(blocks, cycle_values(inputs, model, blocks))), []
     else:
-        # (cycle, its values) per recorded revolution
+        # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
+        # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
+        kept = kept if stationary_at else kept[-n_window:]
         record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
         first = 0  # the record's first revolution
+        grow = not stationary_at
         while True:
             added = []
-            for _ in range(n_window):
+            for _ in range(n_window if grow else 0):
                 added.append(run.run(run.t + tau, record=True))
                 if run.outcome != whirl_kernel.OK:
                     return failed("in the output window")
                 states.append(run.z[:4 * N].copy())
-            record += zip(added, cycle_values(inputs, model, added))
+            if added:
+                record += zip(added, cycle_values(inputs, model, added))
+            grow = True
             half = (len(record) - first) // 2
             preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
             window_cycles = record[len(record) - half:]
