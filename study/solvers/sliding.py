@@ -162,14 +162,15 @@ DRAG_RULES = ("dissipation", "mean_speed")
 
 
 def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: float = 1.0,
-          drag_rule: str = "dissipation") -> dict[str, Any]:
+          drag_rule: str = "dissipation", linear: tuple[np.ndarray, np.ndarray] | None = None) -> dict[str, Any]:
     """The synchronous response about the rest (module docstring): complex modal amplitudes A (2N,) of
     Re(A e^{iΩt}) [m], the second-order motion on the wall's arc (modal amplitudes at 0 and 2Ω, and the inward
     shift of each point), the drag iteration's count and last change; ``contact_scale`` multiplies the contacts'
     linearised stiffness and ``drag_rule`` (:data:`DRAG_RULES`) says how the drag is made viscous (the
-    linearisation's error is measured by changing them)."""
+    linearisation's error is measured by changing them); ``linear``: the contacts' linearisation about this rest
+    (:func:`_linearised`) where already made."""
     N, Om = model.n_modes, model.rotary_speed
-    stiff, damp = _linearised(model, rested["u"])
+    stiff, damp = linear if linear is not None else _linearised(model, rested["u"])
     stiff = stiff * contact_scale
     touching = rested["touching"]
     held = np.flatnonzero(touching)
@@ -189,7 +190,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
             else:
                 c_eq = model.drag * np.mean(speed, axis=1)
             C = (S * (w * c_eq)[:, None]).T @ S / model.mass
-            new = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, 1, C), load)
+            new = np.linalg.solve(_with_drag(base, Om, C), load)
             change = float(np.max(np.abs(new - A)) / max(np.max(np.abs(new)), 1e-300))
             A = new
             if change < SETTLED:
@@ -207,17 +208,18 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     for h, d in shift.items():
         pull = np.einsum("hij,hj->hi", stiff[held], n0) * d[:, None]  # K_c (d n̂0) per point, (H, 2)
         load_h = np.concatenate((model.phi[held].T @ pull[:, 0], model.phi[held].T @ pull[:, 1])) / model.mass
-        second[h] = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, h, C if h else None),
+        matrix = _dynamic_matrix(model, stiff, damp, held, h)
+        second[h] = np.linalg.solve(_with_drag(matrix, h * Om, C) if h and C is not None else matrix,
                                     load_h.astype(complex))
     return dict(amplitudes=A, iterations=iteration, change=change, stiffness=stiff, damping=damp,
                 second=second, shift={h: _spread(d, held, touching.size) for h, d in shift.items()})
 
 
 def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.ndarray, held: np.ndarray,
-                    harmonic: int, drag: np.ndarray | None = None) -> np.ndarray:
-    """The section's modal equations at the frequency harmonic × Ω, (2N, 2N) complex, rows and columns the
-    y-modes then the z-modes: ω² − (hΩ)² + ihΩ d_n, the touching points' linearised contact (stiffness and
-    damping, (P, 2, 2)), and the viscous drag ``drag`` (N, N) per modal mass where given."""
+                    harmonic: int) -> np.ndarray:
+    """The section's modal equations at the frequency harmonic × Ω without the drag, (2N, 2N) complex, rows and
+    columns the y-modes then the z-modes: ω² − (hΩ)² + ihΩ d_n and the touching points' linearised contact
+    (stiffness and damping, (P, 2, 2)); :func:`_with_drag` adds the drag."""
     N, frequency = model.n_modes, harmonic * model.rotary_speed
     matrix = np.diag(np.tile(model.omega**2 - frequency**2 + 1j * frequency * model.damping, 2))
     for p in held:
@@ -226,9 +228,19 @@ def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.nda
         for a in range(2):
             for b in range(2):
                 matrix[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
-    if drag is not None:
-        matrix = matrix + 1j * frequency * np.kron(np.eye(2), drag)
     return matrix
+
+
+def _with_drag(matrix: np.ndarray, frequency: float, drag: np.ndarray) -> np.ndarray:
+    """The modal equations ``matrix`` (2N, 2N) of :func:`_dynamic_matrix` at ``frequency`` [rad/s] with the viscous
+    drag ``drag`` (N, N) per modal mass, the same in both directions: + i frequency · drag on each direction's
+    block."""
+    N = drag.shape[0]
+    out = matrix.copy()
+    term = 1j * frequency * drag
+    out[:N, :N] += term
+    out[N:, N:] += term
+    return out
 
 
 def _spread(values: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
@@ -299,23 +311,30 @@ FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stres
 
 
 def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: float = 1.0,
-                 drag_rule: str = "dissipation") -> dict[str, Any]:
-    """The state on the wall with ``modes`` modes per direction: the model, the rest, the whirl (``contact_scale``
-    as :func:`whirl`), one revolution and its sizes (:func:`revolution`) and, when the state is not this
-    method's, ``why`` (text)."""
-    model = reference.build_model({**inputs, "reference_modes": modes})
-    out = dict(model=model, why=None)
-    if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
-        out["why"] = "buckled"
-        return out
-    rested = out["rest"] = rest(model)
-    if not rested["found"]:
-        out["why"] = "no equilibrium on the wall was found (the touching set did not settle)"
-        return out
-    if not np.any(rested["touching"]):
-        out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
-        return out
-    whirled = out["whirl"] = whirl(model, rested, contact_scale, drag_rule)
+                 drag_rule: str = "dissipation", like: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The state on the wall with ``modes`` modes per direction: the model, the rest, the contacts' linearisation
+    about it, the whirl (``contact_scale`` and ``drag_rule`` as :func:`whirl`), one revolution and its sizes
+    (:func:`revolution`) and, when the state is not this method's, ``why`` (text). ``like``: a state of the same
+    inputs and modes on the wall, whose model, rest and linearisation this one shares (they do not depend on
+    ``contact_scale`` or ``drag_rule``)."""
+    if like is not None:
+        model, rested, linear = like["model"], like["rest"], like["linear"]
+        out = dict(model=model, rest=rested, linear=linear, why=None)
+    else:
+        model = reference.build_model({**inputs, "reference_modes": modes})
+        out = dict(model=model, why=None)
+        if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
+            out["why"] = "buckled"
+            return out
+        rested = out["rest"] = rest(model)
+        if not rested["found"]:
+            out["why"] = "no equilibrium on the wall was found (the touching set did not settle)"
+            return out
+        if not np.any(rested["touching"]):
+            out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
+            return out
+        linear = out["linear"] = _linearised(model, rested["u"])
+    whirled = out["whirl"] = whirl(model, rested, contact_scale, drag_rule, linear)
     window, out["sizes"] = revolution(model, rested, whirled)
     out["window"] = window
     N = model.n_modes
@@ -333,16 +352,35 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
     return out
 
 
-def values(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, float]:
-    """The reference model's outputs (its own functions) on the revolution of ``state``."""
-    model, window = state["model"], state["window"]
-    vals = dict(reference.stresses(inputs, model, window, correction=reference.quasi_static_applies(model, window)))
-    measure = reference.whirl_measure(model, window)
-    spacing, _ = reference.contact_spacing(model, window)
-    vals.update(peak_contact_force=float(np.max(window.peak)), impacts_per_revolution=0.0, contact_fraction=1.0,
-                whirl_frequency_ratio=measure["whirl_frequency_ratio"], contact_spacing=spacing,
-                whirl_class=float(reference.WHIRL_CLASSES["sliding"]), regime=float(reference.REGIMES["sliding"]))
-    return vals
+def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[dict[str, float]]:
+    """The reference model's outputs (its own functions) on the revolution of each of ``states``, in order. The
+    states of one model with the same quasi-static correction have their stresses from one call on their
+    revolutions one after the other (``reference.stresses``' segments: the fields computed once for all)."""
+    out: list[dict[str, float] | None] = [None] * len(states)
+    groups: dict[tuple[int, bool], list[int]] = {}
+    for i, state in enumerate(states):
+        model, window = state["model"], state["window"]
+        groups.setdefault((id(model), reference.quasi_static_applies(model, window)), []).append(i)
+    for (_, correction), members in groups.items():
+        model = states[members[0]]["model"]
+        windows = [states[i]["window"] for i in members]
+        rows = np.cumsum([0] + [w.times.size for w in windows])
+        joined = reference.Window(times=np.concatenate([w.times for w in windows]),
+                                  states=np.concatenate([w.states for w in windows]),
+                                  forces=np.concatenate([w.forces for w in windows]), peak=windows[0].peak,
+                                  onsets=windows[0].onsets, contact_time=windows[0].contact_time,
+                                  any_contact_time=windows[0].any_contact_time, start=0.0, end=model.period)
+        stressed = reference.stresses(inputs, model, joined, correction=correction,
+                                      segments=list(zip(rows[:-1], rows[1:])))
+        for i, window, vals in zip(members, windows, stressed):
+            measure = reference.whirl_measure(model, window)
+            spacing, _ = reference.contact_spacing(model, window)
+            vals.update(peak_contact_force=float(np.max(window.peak)), impacts_per_revolution=0.0,
+                        contact_fraction=1.0, whirl_frequency_ratio=measure["whirl_frequency_ratio"],
+                        contact_spacing=spacing, whirl_class=float(reference.WHIRL_CLASSES["sliding"]),
+                        regime=float(reference.REGIMES["sliding"]))
+            out[i] = vals
+    return out
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -366,24 +404,25 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                                  f"{model.span:.4g} m section")
     if state["why"]:
         return finish("out_of_scope", f"{state['why']}: a higher model answers")
-    vals.update(values(inputs, state))
     # the same state solved another way: with half the modes (the truncation), with the Hertz secant stiffness over
     # the approach's swing instead of the tangent one and with the drag made viscous at the mean speed instead of by
     # equal dissipation (the linearisation); each part of the error is the largest relative change of a figure
     sizes = state["sizes"]
     variants = {"truncation": (dict(modes=COARSE_MODES), f"with {COARSE_MODES} modes per direction",
                                ": the state is not resolved, a higher model answers"),
-                "contact": (dict(contact_scale=sizes["secant_ratio"]), "with the Hertz secant stiffness",
+                "contact": (dict(contact_scale=sizes["secant_ratio"], like=state), "with the Hertz secant stiffness",
                             ": a higher model answers"),
-                "drag": (dict(drag_rule="mean_speed"), "with the drag made viscous at the mean speed",
+                "drag": (dict(drag_rule="mean_speed", like=state), "with the drag made viscous at the mean speed",
                          ": a higher model answers")}
-    part = {}
+    others = {}
     for name, (options, how, consequence) in variants.items():
-        other = steady_state(inputs, **options)
+        other = others[name] = steady_state(inputs, **options)
         if other["why"]:
             return finish("out_of_scope", f"{how} {other['why']}{consequence}")
-        changed = values(inputs, other)
-        part[name] = max(abs(changed[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+    mine, *changed = values(inputs, [state, *others.values()])
+    vals.update(mine)
+    part = {name: max(abs(other[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+            for name, other in zip(others, changed)}
     truncation, contact_part, drag_part = part["truncation"], part["contact"], part["drag"]
     # the orders left out: the second-order part of the angle's swing on the wall (1 − cos a ≈ a²/2), and the arc's
     # third order, about the angle's swing times the second order's share of the force

@@ -22,6 +22,7 @@ shear of a point contact jumps under the load, which the time domain's point con
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -94,17 +95,45 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
     x = np.asarray(x, float)
     L, ei, tn = float(span_length), float(bending_stiffness), float(tension)
     n = np.asarray(modes, float)
-    k = n * np.pi / L
-    shapes = np.sin(np.outer(k, x))  # (N, X)
     at = np.asarray(points, float) * L  # (P,)
-    kept = np.sin(np.outer(at, k)) * (2.0 / L)  # (P, N): (2/L) sin k_n x_p
-    moment_kept = (kept * (ei / (ei * k**2 + tn))) @ shapes  # (P, X): the kept modes' static moment
-    moment_static = beam.point_load_moment(x[None, :], at[:, None], L, ei, tn) - moment_kept
-    tail = np.arange(int(n.max()) + 1, STATIC_TAIL_MODES + 1, dtype=float)
-    kt = tail * np.pi / L
-    deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ np.sin(np.outer(kt, x))
-                         if tail.size else np.zeros((at.size, x.size)))
+    shapes, moment_static, deflection_static = _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
+    k = n * np.pi / L
     return {
         "deflection": samples.q @ shapes + samples.forces @ deflection_static,
         "moment": (samples.q * (ei * k**2)) @ shapes + samples.forces @ moment_static,
     }
+
+
+@functools.lru_cache(maxsize=8)
+def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes,
+                   x: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The parts of :func:`fields` that do not depend on the samples (arguments as there, the arrays as their
+    bytes, so that the calls on one model — both directions, several motions — compute them once): the mode
+    shapes sin k_n x (N, X), the static moment (P, X) and the static deflection (P, X) of the modes above N per
+    unit force at each point (module docstring)."""
+    n, at, x = np.frombuffer(modes), np.frombuffer(at), np.frombuffer(x)
+    k = n * np.pi / L
+    sines = _sines(L, x.tobytes())
+    whole = np.all((n == np.round(n)) & (n >= 1) & (n <= STATIC_TAIL_MODES))
+    shapes = sines[n.astype(int) - 1] if whole else np.sin(np.outer(k, x))  # (N, X)
+    kept = np.sin(np.outer(at, k)) * (2.0 / L)  # (P, N): (2/L) sin k_n x_p
+    moment_kept = (kept * (ei / (ei * k**2 + tn))) @ shapes  # (P, X): the kept modes' static moment
+    moment_static = beam.point_load_moment(x[None, :], at[:, None], L, ei, tn) - moment_kept
+    first = int(n.max()) + 1
+    tail = np.arange(first, STATIC_TAIL_MODES + 1, dtype=float)
+    kt = tail * np.pi / L
+    deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ sines[first - 1:]
+                         if tail.size else np.zeros((at.size, x.size)))
+    for array in (shapes, moment_static, deflection_static):
+        array.flags.writeable = False
+    return shapes, moment_static, deflection_static
+
+
+@functools.lru_cache(maxsize=4)
+def _sines(L: float, x: bytes) -> np.ndarray:
+    """sin k_n x (STATIC_TAIL_MODES, X) for every mode n = 1 … STATIC_TAIL_MODES, k_n = nπ/L, on the points
+    x [m] (as bytes): the same for every point of a study whose sections have one length."""
+    k = np.arange(1, STATIC_TAIL_MODES + 1, dtype=float) * np.pi / L
+    table = np.sin(np.outer(k, np.frombuffer(x)))
+    table.flags.writeable = False
+    return table
