@@ -53,6 +53,8 @@ SAMPLES = 256
 ITERATIONS, SETTLED = 50, 1e-10
 #: Changes of the touching set at most.
 ACTIVE_SET_STEPS = 10
+#: e^{iθ} at the phases over the cycle at which the drag's equal dissipation is averaged.
+PHASES = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
 
 
 def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -177,7 +179,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     base = _dynamic_matrix(model, stiff, damp, held, 1)
     load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)  # (cos, sin) Ωt
     S, w = model.drag_shapes, model.drag_weights
-    phase = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
+    phase = PHASES
     A = np.linalg.solve(base, load)
     change, iteration, C = 0.0, 0, None
     if model.drag > 0:
@@ -222,12 +224,11 @@ def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.nda
     (stiffness and damping, (P, 2, 2)); :func:`_with_drag` adds the drag."""
     N, frequency = model.n_modes, harmonic * model.rotary_speed
     matrix = np.diag(np.tile(model.omega**2 - frequency**2 + 1j * frequency * model.damping, 2))
+    blocks = matrix.reshape(2, N, 2, N)  # [a, n, b, m]: direction a's mode n, direction b's mode m
     for p in held:
         k = stiff[p] + 1j * frequency * damp[p]
         outer = np.outer(model.phi[p], model.phi[p])
-        for a in range(2):
-            for b in range(2):
-                matrix[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
+        blocks += k[:, None, :, None] * outer[None, :, None, :] / model.mass
     return matrix
 
 
@@ -250,6 +251,14 @@ def _spread(values: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
     return out
 
 
+def _per_point(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """Each point's 2×2 ``matrices`` (P, 2, 2) times its vectors ``vectors`` (..., P, 2) (as einsum "pij,...pj->...pi",
+    written out: a sixth of its time on a revolution)."""
+    y, z = vectors[..., 0], vectors[..., 1]
+    return np.stack((matrices[:, 0, 0] * y + matrices[:, 0, 1] * z, matrices[:, 1, 0] * y + matrices[:, 1, 1] * z),
+                    axis=-1)
+
+
 def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[str, Any],
                samples: int = SAMPLES) -> tuple[reference.Window, dict[str, float]]:
     """One revolution of the motion as the reference model's :class:`~study.solvers.reference.Window`, the
@@ -261,8 +270,9 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     e = np.exp(1j * Om * t)
     A, second = whirled["amplitudes"], whirled["second"]
     e2 = e**2
-    q = rested["state"][None, :] + second[0].real[None, :] + (A[None, :] * e[:, None] + second[2][None, :] * e2[:, None]).real
-    v = (1j * Om * (A[None, :] * e[:, None] + 2 * second[2][None, :] * e2[:, None])).real
+    synchronous = A[None, :] * e[:, None]  # (R, 2N) complex
+    q = rested["state"][None, :] + second[0].real[None, :] + (synchronous + second[2][None, :] * e2[:, None]).real
+    v = (1j * Om * (synchronous + 2 * second[2][None, :] * e2[:, None])).real
     u = np.stack((q[:, :N] @ model.phi.T, q[:, N:] @ model.phi.T), axis=-1)  # (R, P, 2)
     ud = np.stack((v[:, :N] @ model.phi.T, v[:, N:] @ model.phi.T), axis=-1)
     held = rested["touching"]
@@ -272,8 +282,8 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     t0 = np.stack((-n0[:, 1], n0[:, 0]), axis=-1)
     du = u - u0[None]
     inward = (whirled["shift"][0].real[None, :] + (whirled["shift"][2][None, :] * e2[:, None]).real)  # (R, P)
-    forces = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], du - inward[..., None] * n0[None])
-              - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    forces = (rested["forces"][None] - _per_point(whirled["stiffness"], du - inward[..., None] * n0[None])
+              - _per_point(whirled["damping"], ud))
     forces[:, ~held] = 0.0
     fn = -np.einsum("rpi,pi->rp", forces, n0)
     fn[:, ~held] = 0.0
@@ -285,10 +295,10 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     with np.errstate(divide="ignore", invalid="ignore"):
         secant = np.where(top > depth0, (top**1.5 - depth0**1.5) / (top - depth0) / (1.5 * np.sqrt(depth0)), 1.0)
     # the second-order motion's share of the contact force: the next order is about the angle's swing times it
-    first = np.stack(((A[None, :N] * e[:, None]).real @ model.phi.T, (A[None, N:] * e[:, None]).real @ model.phi.T),
+    first = np.stack((synchronous[:, :N].real @ model.phi.T, synchronous[:, N:].real @ model.phi.T),
                      axis=-1)  # the synchronous motion's displacements at the points, (R, P, 2)
-    first_order = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], first)
-                   - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    first_order = (rested["forces"][None] - _per_point(whirled["stiffness"], first)
+                   - _per_point(whirled["damping"], ud))
     second_share = float(np.max(np.abs(fn[:, held] + np.einsum("rpi,pi->rp", first_order, n0)[:, held]))
                          / max(float(np.max(fn)), 1e-300)) if np.any(held) else 0.0
     sizes = dict(second_order=second_share,
