@@ -100,17 +100,21 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
             found = True
             break
         Gaa = G[np.ix_(idx, idx)]
+        # the touching points' constants, taken out of the residual that the root finder calls many times
+        count, slide, stiffness, wall, unloaded = (idx.size, model.friction * s[idx, None], model.stiffness[idx],
+                                                   model.clearance[idx], free[idx])
 
         def force_of(x):  # unknowns per touching point: F_n and the angle of n̂ from the low side
-            fn, angle = x[:idx.size], x[idx.size:]
-            n = np.column_stack((np.cos(angle), np.sin(angle)))
-            t = np.column_stack((-np.sin(angle), np.cos(angle)))
-            return -(fn[:, None] * (n + model.friction * s[idx, None] * t)), fn, n
+            fn, angle = x[:count], x[count:]
+            cos, sin = np.cos(angle), np.sin(angle)
+            n, t = np.empty((count, 2)), np.empty((count, 2))
+            n[:, 0], n[:, 1], t[:, 0], t[:, 1] = cos, sin, -sin, cos
+            return -(fn[:, None] * (n + slide * t)), fn, n
 
         def residual(x):
             f, fn, n = force_of(x)
-            depth = np.sign(fn) * np.abs(fn / model.stiffness[idx]) ** (2.0 / 3.0)
-            return ((free[idx] + Gaa @ f - (model.clearance[idx] + depth)[:, None] * n) / model.clearance[idx, None]).ravel()
+            depth = np.sign(fn) * np.abs(fn / stiffness) ** (2.0 / 3.0)
+            return ((unloaded + Gaa @ f - (wall + depth)[:, None] * n) / wall[:, None]).ravel()
 
         # start: the touching points held at the wall's low side by rigid supports
         x0 = np.concatenate((np.linalg.solve(Gaa, free[idx, 0] - model.clearance[idx]), np.zeros(idx.size)))
