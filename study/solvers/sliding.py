@@ -432,6 +432,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     for name, (options, how, consequence) in variants.items():
         other = others[name] = steady_state(inputs, **options)
         if other["why"]:
+            vals.update(values(inputs, [state])[0])  # the answer's outputs, stated beside why it is not one
             return finish("out_of_scope", f"{how} {other['why']}{consequence}")
     mine, *changed = values(inputs, [state, *others.values()])
     vals.update(mine)

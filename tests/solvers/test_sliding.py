@@ -191,3 +191,21 @@ def test_a_panel_of_the_default_study_keeps_the_outputs_it_had(default_grid, ind
         assert result.error_estimate == pytest.approx(estimate, rel=1e-9)
         for name, value in zip(PANEL_FIGURES, figures):
             assert result.values[name] == pytest.approx(value, rel=1e-9), name
+
+
+def test_where_an_error_variant_is_not_this_state_the_answer_still_states_its_outputs(default_grid, monkeypatch):
+    # as at 56f73e1: the answer's outputs (its stresses, peak force) are in the result beside the variant's reason,
+    # here the drag variant made to say it is not this state at panel point 2 (its literals above)
+    solved = sliding.steady_state
+
+    def drag_variant_out(inputs, *args, **options):
+        state = solved(inputs, *args, **options)
+        return {**state, "why": "is made to bounce"} if options.get("drag_rule") == "mean_speed" else state
+
+    monkeypatch.setattr(sliding, "steady_state", drag_variant_out)
+    result = sliding.solve(default_grid.point(2))
+    assert result.status == "out_of_scope"
+    assert result.message == "with the drag made viscous at the mean speed is made to bounce: a higher model answers"
+    figures = PANEL[0].values[3]
+    for name, value in zip(PANEL_FIGURES, figures):
+        assert result.values[name] == pytest.approx(value, rel=1e-9), name
