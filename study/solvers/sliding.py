@@ -149,15 +149,15 @@ def _linearised(model: reference.WhirlModel, u0: np.ndarray) -> tuple[np.ndarray
     v0 = np.zeros_like(u0)
     du = 1e-7 * model.clearance
     dv = 1e-4 * model.slip_velocity
+    e = np.zeros((2, P, 2))  # a unit step of each point in y (e[0]) and in z (e[1])
+    e[0, :, 0] = e[1, :, 1] = 1.0
+    step_u, step_v = e * du[:, None], e * dv
+    # the eight displaced states at once (the force law acts point by point): u ± step in y and z, then u̇ ± step
+    f, _ = contact_forces(model, np.concatenate((u0 + step_u, u0 - step_u, np.broadcast_to(u0, (4, P, 2)))),
+                          np.concatenate((np.broadcast_to(v0, (4, P, 2)), v0 + step_v, v0 - step_v)))
     for j in range(2):
-        e = np.zeros((P, 2))
-        e[:, j] = 1.0
-        fp, _ = contact_forces(model, u0 + e * du[:, None], v0)
-        fm, _ = contact_forces(model, u0 - e * du[:, None], v0)
-        stiff[:, :, j] = -(fp - fm) / (2 * du[:, None])
-        fp, _ = contact_forces(model, u0, v0 + e * dv)
-        fm, _ = contact_forces(model, u0, v0 - e * dv)
-        damp[:, :, j] = -(fp - fm) / (2 * dv)
+        stiff[:, :, j] = -(f[j] - f[2 + j]) / (2 * du[:, None])
+        damp[:, :, j] = -(f[4 + j] - f[6 + j]) / (2 * dv)
     return stiff, damp
 
 
@@ -274,9 +274,9 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     e = np.exp(1j * Om * t)
     A, second = whirled["amplitudes"], whirled["second"]
     e2 = e**2
-    synchronous = A[None, :] * e[:, None]  # (R, 2N) complex
-    q = rested["state"][None, :] + second[0].real[None, :] + (synchronous + second[2][None, :] * e2[:, None]).real
-    v = (1j * Om * (synchronous + 2 * second[2][None, :] * e2[:, None])).real
+    synchronous, double = A[None, :] * e[:, None], second[2][None, :] * e2[:, None]  # (R, 2N) complex
+    q = rested["state"][None, :] + second[0].real[None, :] + (synchronous + double).real
+    v = -Om * (synchronous + 2 * double).imag  # Re(iΩ z) = −Ω Im z
     u = np.stack((q[:, :N] @ model.phi.T, q[:, N:] @ model.phi.T), axis=-1)  # (R, P, 2)
     ud = np.stack((v[:, :N] @ model.phi.T, v[:, N:] @ model.phi.T), axis=-1)
     held = rested["touching"]
