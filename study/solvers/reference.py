@@ -43,6 +43,7 @@ stationary statistics (:func:`stationary`, checked every ``reference_window`` re
 
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 from types import SimpleNamespace
@@ -153,6 +154,13 @@ def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.nda
     return x[order], kinds[order]
 
 
+@functools.lru_cache(maxsize=16)
+def gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of the Gauss–Legendre rule of ``points`` points on [−1, 1] (numpy's ``leggauss``, about
+    1 ms; cached: every model of a run of points has the same number of modes)."""
+    return np.polynomial.legendre.leggauss(points)
+
+
 def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     """The reference model of one design point (see the module docstring). Raises ValueError naming the
     field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
@@ -209,7 +217,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     if damping_model == "viscous":
         damping = 2.0 * float(option.damping_ratio) * omega
     G = 2 * N + 8
-    gx, gw = np.polynomial.legendre.leggauss(G)
+    gx, gw = gauss_legendre(G)
     shapes = np.sin(np.outer(0.5 * L * (gx + 1), k))
     drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
     e = float(inputs["restitution"])
@@ -758,10 +766,9 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         moment = np.hypot(my, mz)
         it, ix = np.unravel_index(np.argmax(moment), moment.shape)
         turn = model.rotary_speed * times
-        half = np.zeros(x.size)
-        for psi in np.linspace(0.0, np.pi, fibres, endpoint=False):  # ψ and ψ + π have the same half range
-            fibre = my * np.cos(turn + psi)[:, None] + mz * np.sin(turn + psi)[:, None]
-            half = np.maximum(half, 0.5 * (fibre.max(axis=0) - fibre.min(axis=0)))
+        psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
+        half = whirl_kernel.fibre_half_ranges(np.ascontiguousarray(my), np.ascontiguousarray(mz),
+                                              np.cos(turn[None, :] + psi[:, None]), np.sin(turn[None, :] + psi[:, None]))
         shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / np.diff(x)
         js = np.unravel_index(np.argmax(shear), shear.shape)
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment

@@ -53,6 +53,8 @@ SAMPLES = 256
 ITERATIONS, SETTLED = 50, 1e-10
 #: Changes of the touching set at most.
 ACTIVE_SET_STEPS = 10
+#: e^{iθ} at the phases over the cycle at which the drag's equal dissipation is averaged.
+PHASES = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
 
 
 def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -98,17 +100,21 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
             found = True
             break
         Gaa = G[np.ix_(idx, idx)]
+        # the touching points' constants, taken out of the residual that the root finder calls many times
+        count, slide, stiffness, wall, unloaded = (idx.size, model.friction * s[idx, None], model.stiffness[idx],
+                                                   model.clearance[idx], free[idx])
 
         def force_of(x):  # unknowns per touching point: F_n and the angle of n̂ from the low side
-            fn, angle = x[:idx.size], x[idx.size:]
-            n = np.column_stack((np.cos(angle), np.sin(angle)))
-            t = np.column_stack((-np.sin(angle), np.cos(angle)))
-            return -(fn[:, None] * (n + model.friction * s[idx, None] * t)), fn, n
+            fn, angle = x[:count], x[count:]
+            cos, sin = np.cos(angle), np.sin(angle)
+            n, t = np.empty((count, 2)), np.empty((count, 2))
+            n[:, 0], n[:, 1], t[:, 0], t[:, 1] = cos, sin, -sin, cos
+            return -(fn[:, None] * (n + slide * t)), fn, n
 
         def residual(x):
             f, fn, n = force_of(x)
-            depth = np.sign(fn) * np.abs(fn / model.stiffness[idx]) ** (2.0 / 3.0)
-            return ((free[idx] + Gaa @ f - (model.clearance[idx] + depth)[:, None] * n) / model.clearance[idx, None]).ravel()
+            depth = np.sign(fn) * np.abs(fn / stiffness) ** (2.0 / 3.0)
+            return ((unloaded + Gaa @ f - (wall + depth)[:, None] * n) / wall[:, None]).ravel()
 
         # start: the touching points held at the wall's low side by rigid supports
         x0 = np.concatenate((np.linalg.solve(Gaa, free[idx, 0] - model.clearance[idx]), np.zeros(idx.size)))
@@ -143,15 +149,15 @@ def _linearised(model: reference.WhirlModel, u0: np.ndarray) -> tuple[np.ndarray
     v0 = np.zeros_like(u0)
     du = 1e-7 * model.clearance
     dv = 1e-4 * model.slip_velocity
+    e = np.zeros((2, P, 2))  # a unit step of each point in y (e[0]) and in z (e[1])
+    e[0, :, 0] = e[1, :, 1] = 1.0
+    step_u, step_v = e * du[:, None], e * dv
+    # the eight displaced states at once (the force law acts point by point): u ± step in y and z, then u̇ ± step
+    f, _ = contact_forces(model, np.concatenate((u0 + step_u, u0 - step_u, np.broadcast_to(u0, (4, P, 2)))),
+                          np.concatenate((np.broadcast_to(v0, (4, P, 2)), v0 + step_v, v0 - step_v)))
     for j in range(2):
-        e = np.zeros((P, 2))
-        e[:, j] = 1.0
-        fp, _ = contact_forces(model, u0 + e * du[:, None], v0)
-        fm, _ = contact_forces(model, u0 - e * du[:, None], v0)
-        stiff[:, :, j] = -(fp - fm) / (2 * du[:, None])
-        fp, _ = contact_forces(model, u0, v0 + e * dv)
-        fm, _ = contact_forces(model, u0, v0 - e * dv)
-        damp[:, :, j] = -(fp - fm) / (2 * dv)
+        stiff[:, :, j] = -(f[j] - f[2 + j]) / (2 * du[:, None])
+        damp[:, :, j] = -(f[4 + j] - f[6 + j]) / (2 * dv)
     return stiff, damp
 
 
@@ -162,21 +168,22 @@ DRAG_RULES = ("dissipation", "mean_speed")
 
 
 def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: float = 1.0,
-          drag_rule: str = "dissipation") -> dict[str, Any]:
+          drag_rule: str = "dissipation", linear: tuple[np.ndarray, np.ndarray] | None = None) -> dict[str, Any]:
     """The synchronous response about the rest (module docstring): complex modal amplitudes A (2N,) of
     Re(A e^{iΩt}) [m], the second-order motion on the wall's arc (modal amplitudes at 0 and 2Ω, and the inward
     shift of each point), the drag iteration's count and last change; ``contact_scale`` multiplies the contacts'
     linearised stiffness and ``drag_rule`` (:data:`DRAG_RULES`) says how the drag is made viscous (the
-    linearisation's error is measured by changing them)."""
+    linearisation's error is measured by changing them); ``linear``: the contacts' linearisation about this rest
+    (:func:`_linearised`) where already made."""
     N, Om = model.n_modes, model.rotary_speed
-    stiff, damp = _linearised(model, rested["u"])
+    stiff, damp = linear if linear is not None else _linearised(model, rested["u"])
     stiff = stiff * contact_scale
     touching = rested["touching"]
     held = np.flatnonzero(touching)
     base = _dynamic_matrix(model, stiff, damp, held, 1)
     load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)  # (cos, sin) Ωt
     S, w = model.drag_shapes, model.drag_weights
-    phase = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
+    phase = PHASES
     A = np.linalg.solve(base, load)
     change, iteration, C = 0.0, 0, None
     if model.drag > 0:
@@ -189,7 +196,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
             else:
                 c_eq = model.drag * np.mean(speed, axis=1)
             C = (S * (w * c_eq)[:, None]).T @ S / model.mass
-            new = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, 1, C), load)
+            new = np.linalg.solve(_with_drag(base, Om, C), load)
             change = float(np.max(np.abs(new - A)) / max(np.max(np.abs(new)), 1e-300))
             A = new
             if change < SETTLED:
@@ -207,28 +214,38 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     for h, d in shift.items():
         pull = np.einsum("hij,hj->hi", stiff[held], n0) * d[:, None]  # K_c (d n̂0) per point, (H, 2)
         load_h = np.concatenate((model.phi[held].T @ pull[:, 0], model.phi[held].T @ pull[:, 1])) / model.mass
-        second[h] = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, h, C if h else None),
+        matrix = _dynamic_matrix(model, stiff, damp, held, h)
+        second[h] = np.linalg.solve(_with_drag(matrix, h * Om, C) if h and C is not None else matrix,
                                     load_h.astype(complex))
     return dict(amplitudes=A, iterations=iteration, change=change, stiffness=stiff, damping=damp,
                 second=second, shift={h: _spread(d, held, touching.size) for h, d in shift.items()})
 
 
 def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.ndarray, held: np.ndarray,
-                    harmonic: int, drag: np.ndarray | None = None) -> np.ndarray:
-    """The section's modal equations at the frequency harmonic × Ω, (2N, 2N) complex, rows and columns the
-    y-modes then the z-modes: ω² − (hΩ)² + ihΩ d_n, the touching points' linearised contact (stiffness and
-    damping, (P, 2, 2)), and the viscous drag ``drag`` (N, N) per modal mass where given."""
+                    harmonic: int) -> np.ndarray:
+    """The section's modal equations at the frequency harmonic × Ω without the drag, (2N, 2N) complex, rows and
+    columns the y-modes then the z-modes: ω² − (hΩ)² + ihΩ d_n and the touching points' linearised contact
+    (stiffness and damping, (P, 2, 2)); :func:`_with_drag` adds the drag."""
     N, frequency = model.n_modes, harmonic * model.rotary_speed
     matrix = np.diag(np.tile(model.omega**2 - frequency**2 + 1j * frequency * model.damping, 2))
+    blocks = matrix.reshape(2, N, 2, N)  # [a, n, b, m]: direction a's mode n, direction b's mode m
     for p in held:
         k = stiff[p] + 1j * frequency * damp[p]
         outer = np.outer(model.phi[p], model.phi[p])
-        for a in range(2):
-            for b in range(2):
-                matrix[a * N:(a + 1) * N, b * N:(b + 1) * N] += k[a, b] * outer / model.mass
-    if drag is not None:
-        matrix = matrix + 1j * frequency * np.kron(np.eye(2), drag)
+        blocks += k[:, None, :, None] * outer[None, :, None, :] / model.mass
     return matrix
+
+
+def _with_drag(matrix: np.ndarray, frequency: float, drag: np.ndarray) -> np.ndarray:
+    """The modal equations ``matrix`` (2N, 2N) of :func:`_dynamic_matrix` at ``frequency`` [rad/s] with the viscous
+    drag ``drag`` (N, N) per modal mass, the same in both directions: + i frequency · drag on each direction's
+    block."""
+    N = drag.shape[0]
+    out = matrix.copy()
+    term = 1j * frequency * drag
+    out[:N, :N] += term
+    out[N:, N:] += term
+    return out
 
 
 def _spread(values: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
@@ -236,6 +253,14 @@ def _spread(values: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
     out = np.zeros(size, complex)
     out[where] = values
     return out
+
+
+def _per_point(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """Each point's 2×2 ``matrices`` (P, 2, 2) times its vectors ``vectors`` (..., P, 2) (as einsum "pij,...pj->...pi",
+    written out: a sixth of its time on a revolution)."""
+    y, z = vectors[..., 0], vectors[..., 1]
+    return np.stack((matrices[:, 0, 0] * y + matrices[:, 0, 1] * z, matrices[:, 1, 0] * y + matrices[:, 1, 1] * z),
+                    axis=-1)
 
 
 def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[str, Any],
@@ -249,8 +274,9 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     e = np.exp(1j * Om * t)
     A, second = whirled["amplitudes"], whirled["second"]
     e2 = e**2
-    q = rested["state"][None, :] + second[0].real[None, :] + (A[None, :] * e[:, None] + second[2][None, :] * e2[:, None]).real
-    v = (1j * Om * (A[None, :] * e[:, None] + 2 * second[2][None, :] * e2[:, None])).real
+    synchronous, double = A[None, :] * e[:, None], second[2][None, :] * e2[:, None]  # (R, 2N) complex
+    q = rested["state"][None, :] + second[0].real[None, :] + (synchronous + double).real
+    v = -Om * (synchronous + 2 * double).imag  # Re(iΩ z) = −Ω Im z
     u = np.stack((q[:, :N] @ model.phi.T, q[:, N:] @ model.phi.T), axis=-1)  # (R, P, 2)
     ud = np.stack((v[:, :N] @ model.phi.T, v[:, N:] @ model.phi.T), axis=-1)
     held = rested["touching"]
@@ -260,8 +286,8 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     t0 = np.stack((-n0[:, 1], n0[:, 0]), axis=-1)
     du = u - u0[None]
     inward = (whirled["shift"][0].real[None, :] + (whirled["shift"][2][None, :] * e2[:, None]).real)  # (R, P)
-    forces = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], du - inward[..., None] * n0[None])
-              - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    forces = (rested["forces"][None] - _per_point(whirled["stiffness"], du - inward[..., None] * n0[None])
+              - _per_point(whirled["damping"], ud))
     forces[:, ~held] = 0.0
     fn = -np.einsum("rpi,pi->rp", forces, n0)
     fn[:, ~held] = 0.0
@@ -273,10 +299,10 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     with np.errstate(divide="ignore", invalid="ignore"):
         secant = np.where(top > depth0, (top**1.5 - depth0**1.5) / (top - depth0) / (1.5 * np.sqrt(depth0)), 1.0)
     # the second-order motion's share of the contact force: the next order is about the angle's swing times it
-    first = np.stack(((A[None, :N] * e[:, None]).real @ model.phi.T, (A[None, N:] * e[:, None]).real @ model.phi.T),
+    first = np.stack((synchronous[:, :N].real @ model.phi.T, synchronous[:, N:].real @ model.phi.T),
                      axis=-1)  # the synchronous motion's displacements at the points, (R, P, 2)
-    first_order = (rested["forces"][None] - np.einsum("pij,rpj->rpi", whirled["stiffness"], first)
-                   - np.einsum("pij,rpj->rpi", whirled["damping"], ud))
+    first_order = (rested["forces"][None] - _per_point(whirled["stiffness"], first)
+                   - _per_point(whirled["damping"], ud))
     second_share = float(np.max(np.abs(fn[:, held] + np.einsum("rpi,pi->rp", first_order, n0)[:, held]))
                          / max(float(np.max(fn)), 1e-300)) if np.any(held) else 0.0
     sizes = dict(second_order=second_share,
@@ -299,23 +325,30 @@ FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stres
 
 
 def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: float = 1.0,
-                 drag_rule: str = "dissipation") -> dict[str, Any]:
-    """The state on the wall with ``modes`` modes per direction: the model, the rest, the whirl (``contact_scale``
-    as :func:`whirl`), one revolution and its sizes (:func:`revolution`) and, when the state is not this
-    method's, ``why`` (text)."""
-    model = reference.build_model({**inputs, "reference_modes": modes})
-    out = dict(model=model, why=None)
-    if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
-        out["why"] = "buckled"
-        return out
-    rested = out["rest"] = rest(model)
-    if not rested["found"]:
-        out["why"] = "no equilibrium on the wall was found (the touching set did not settle)"
-        return out
-    if not np.any(rested["touching"]):
-        out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
-        return out
-    whirled = out["whirl"] = whirl(model, rested, contact_scale, drag_rule)
+                 drag_rule: str = "dissipation", like: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The state on the wall with ``modes`` modes per direction: the model, the rest, the contacts' linearisation
+    about it, the whirl (``contact_scale`` and ``drag_rule`` as :func:`whirl`), one revolution and its sizes
+    (:func:`revolution`) and, when the state is not this method's, ``why`` (text). ``like``: a state of the same
+    inputs and modes on the wall, whose model, rest and linearisation this one shares (they do not depend on
+    ``contact_scale`` or ``drag_rule``)."""
+    if like is not None:
+        model, rested, linear = like["model"], like["rest"], like["linear"]
+        out = dict(model=model, rest=rested, linear=linear, why=None)
+    else:
+        model = reference.build_model({**inputs, "reference_modes": modes})
+        out = dict(model=model, why=None)
+        if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
+            out["why"] = "buckled"
+            return out
+        rested = out["rest"] = rest(model)
+        if not rested["found"]:
+            out["why"] = "no equilibrium on the wall was found (the touching set did not settle)"
+            return out
+        if not np.any(rested["touching"]):
+            out["why"] = "the section at rest does not reach the wall (the free whirl's case)"
+            return out
+        linear = out["linear"] = _linearised(model, rested["u"])
+    whirled = out["whirl"] = whirl(model, rested, contact_scale, drag_rule, linear)
     window, out["sizes"] = revolution(model, rested, whirled)
     out["window"] = window
     N = model.n_modes
@@ -333,16 +366,35 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
     return out
 
 
-def values(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, float]:
-    """The reference model's outputs (its own functions) on the revolution of ``state``."""
-    model, window = state["model"], state["window"]
-    vals = dict(reference.stresses(inputs, model, window, correction=reference.quasi_static_applies(model, window)))
-    measure = reference.whirl_measure(model, window)
-    spacing, _ = reference.contact_spacing(model, window)
-    vals.update(peak_contact_force=float(np.max(window.peak)), impacts_per_revolution=0.0, contact_fraction=1.0,
-                whirl_frequency_ratio=measure["whirl_frequency_ratio"], contact_spacing=spacing,
-                whirl_class=float(reference.WHIRL_CLASSES["sliding"]), regime=float(reference.REGIMES["sliding"]))
-    return vals
+def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[dict[str, float]]:
+    """The reference model's outputs (its own functions) on the revolution of each of ``states``, in order. The
+    states of one model with the same quasi-static correction have their stresses from one call on their
+    revolutions one after the other (``reference.stresses``' segments: the fields computed once for all)."""
+    out: list[dict[str, float] | None] = [None] * len(states)
+    groups: dict[tuple[int, bool], list[int]] = {}
+    for i, state in enumerate(states):
+        model, window = state["model"], state["window"]
+        groups.setdefault((id(model), reference.quasi_static_applies(model, window)), []).append(i)
+    for (_, correction), members in groups.items():
+        model = states[members[0]]["model"]
+        windows = [states[i]["window"] for i in members]
+        rows = np.cumsum([0] + [w.times.size for w in windows])
+        joined = reference.Window(times=np.concatenate([w.times for w in windows]),
+                                  states=np.concatenate([w.states for w in windows]),
+                                  forces=np.concatenate([w.forces for w in windows]), peak=windows[0].peak,
+                                  onsets=windows[0].onsets, contact_time=windows[0].contact_time,
+                                  any_contact_time=windows[0].any_contact_time, start=0.0, end=model.period)
+        stressed = reference.stresses(inputs, model, joined, correction=correction,
+                                      segments=list(zip(rows[:-1], rows[1:])))
+        for i, window, vals in zip(members, windows, stressed):
+            measure = reference.whirl_measure(model, window)
+            spacing, _ = reference.contact_spacing(model, window)
+            vals.update(peak_contact_force=float(np.max(window.peak)), impacts_per_revolution=0.0,
+                        contact_fraction=1.0, whirl_frequency_ratio=measure["whirl_frequency_ratio"],
+                        contact_spacing=spacing, whirl_class=float(reference.WHIRL_CLASSES["sliding"]),
+                        regime=float(reference.REGIMES["sliding"]))
+            out[i] = vals
+    return out
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -366,24 +418,26 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                                  f"{model.span:.4g} m section")
     if state["why"]:
         return finish("out_of_scope", f"{state['why']}: a higher model answers")
-    vals.update(values(inputs, state))
     # the same state solved another way: with half the modes (the truncation), with the Hertz secant stiffness over
     # the approach's swing instead of the tangent one and with the drag made viscous at the mean speed instead of by
     # equal dissipation (the linearisation); each part of the error is the largest relative change of a figure
     sizes = state["sizes"]
     variants = {"truncation": (dict(modes=COARSE_MODES), f"with {COARSE_MODES} modes per direction",
                                ": the state is not resolved, a higher model answers"),
-                "contact": (dict(contact_scale=sizes["secant_ratio"]), "with the Hertz secant stiffness",
+                "contact": (dict(contact_scale=sizes["secant_ratio"], like=state), "with the Hertz secant stiffness",
                             ": a higher model answers"),
-                "drag": (dict(drag_rule="mean_speed"), "with the drag made viscous at the mean speed",
+                "drag": (dict(drag_rule="mean_speed", like=state), "with the drag made viscous at the mean speed",
                          ": a higher model answers")}
-    part = {}
+    others = {}
     for name, (options, how, consequence) in variants.items():
-        other = steady_state(inputs, **options)
+        other = others[name] = steady_state(inputs, **options)
         if other["why"]:
+            vals.update(values(inputs, [state])[0])  # the answer's outputs, stated beside why it is not one
             return finish("out_of_scope", f"{how} {other['why']}{consequence}")
-        changed = values(inputs, other)
-        part[name] = max(abs(changed[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+    mine, *changed = values(inputs, [state, *others.values()])
+    vals.update(mine)
+    part = {name: max(abs(other[k] - vals[k]) / max(abs(vals[k]), 1e-300) for k in FIGURES)
+            for name, other in zip(others, changed)}
     truncation, contact_part, drag_part = part["truncation"], part["contact"], part["drag"]
     # the orders left out: the second-order part of the angle's swing on the wall (1 − cos a ≈ a²/2), and the arc's
     # third order, about the angle's swing times the second order's share of the force

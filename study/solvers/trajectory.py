@@ -92,37 +92,48 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
     """Deflection y [m] and moment −EI y'' [N m] on x [m] (shape times × x) from the samples, with
     the quasi-static correction for the contact forces (module docstring). ``modes``: mode numbers
     (N,) of the samples' coordinates; ``points``: contact points ξ_p (P,) as fractions of the span."""
-    shapes, moment_modes, moment_static, deflection_static = field_shapes(
-        np.asarray(x, float).tobytes(), tuple(np.asarray(modes, float).tolist()),
-        tuple(np.asarray(points, float).tolist()), float(span_length), float(bending_stiffness), float(tension))
+    x = np.asarray(x, float)
+    L, ei, tn = float(span_length), float(bending_stiffness), float(tension)
+    n = np.asarray(modes, float)
+    at = np.asarray(points, float) * L  # (P,)
+    shapes, moment_static, deflection_static = _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
+    k = n * np.pi / L
     return {
         "deflection": samples.q @ shapes + samples.forces @ deflection_static,
-        "moment": samples.q @ moment_modes + samples.forces @ moment_static,
+        "moment": (samples.q * (ei * k**2)) @ shapes + samples.forces @ moment_static,
     }
 
 
-@functools.lru_cache(maxsize=16)
-def field_shapes(x: bytes, modes: tuple, points: tuple, span_length: float, bending_stiffness: float,
-                 tension: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The matrices :func:`fields` multiplies the samples by, on x [m] (given as the bytes of a float array,
-    to be hashable): the mode shapes sin k_n x (N, X), the modal moments EI k_n² sin k_n x (N, X), and per
-    unit contact force at each point (P, X) the static moment and deflection of the modes above N (module
-    docstring). Cached: a run evaluates the fields of every window of one model on the same stations, and the
-    deflection's static tail sums 4096 modes."""
-    x = np.frombuffer(x, float)
-    L, ei, tn = span_length, bending_stiffness, tension
-    n = np.asarray(modes, float)
+@functools.lru_cache(maxsize=8)
+def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes,
+                   x: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The parts of :func:`fields` that do not depend on the samples (arguments as there, the arrays as their
+    bytes, so that the calls on one model — both directions, several motions — compute them once): the mode
+    shapes sin k_n x (N, X), the static moment (P, X) and the static deflection (P, X) of the modes above N per
+    unit force at each point (module docstring)."""
+    n, at, x = np.frombuffer(modes), np.frombuffer(at), np.frombuffer(x)
     k = n * np.pi / L
-    shapes = np.sin(np.outer(k, x))  # (N, X)
-    at = np.asarray(points, float) * L  # (P,)
+    sines = _sines(L, x.tobytes())
+    whole = np.all((n == np.round(n)) & (n >= 1) & (n <= STATIC_TAIL_MODES))
+    shapes = sines[n.astype(int) - 1] if whole else np.sin(np.outer(k, x))  # (N, X)
     kept = np.sin(np.outer(at, k)) * (2.0 / L)  # (P, N): (2/L) sin k_n x_p
     moment_kept = (kept * (ei / (ei * k**2 + tn))) @ shapes  # (P, X): the kept modes' static moment
     moment_static = beam.point_load_moment(x[None, :], at[:, None], L, ei, tn) - moment_kept
-    tail = np.arange(int(n.max()) + 1, STATIC_TAIL_MODES + 1, dtype=float)
+    first = int(n.max()) + 1
+    tail = np.arange(first, STATIC_TAIL_MODES + 1, dtype=float)
     kt = tail * np.pi / L
-    deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ np.sin(np.outer(kt, x))
+    deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ sines[first - 1:]
                          if tail.size else np.zeros((at.size, x.size)))
-    out = (shapes, shapes * (ei * k**2)[:, None], moment_static, deflection_static)
-    for array in out:
-        array.flags.writeable = False  # shared by every caller: read only
-    return out
+    for array in (shapes, moment_static, deflection_static):
+        array.flags.writeable = False
+    return shapes, moment_static, deflection_static
+
+
+@functools.lru_cache(maxsize=4)
+def _sines(L: float, x: bytes) -> np.ndarray:
+    """sin k_n x (STATIC_TAIL_MODES, X) for every mode n = 1 … STATIC_TAIL_MODES, k_n = nπ/L, on the points
+    x [m] (as bytes): the same for every point of a study whose sections have one length."""
+    k = np.arange(1, STATIC_TAIL_MODES + 1, dtype=float) * np.pi / L
+    table = np.sin(np.outer(k, np.frombuffer(x)))
+    table.flags.writeable = False
+    return table

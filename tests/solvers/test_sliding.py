@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from study import config
+from study.workflow.grid import Grid
 from study.physics import whirl as whirl_physics
 from study.solvers import reference, sliding, solve_point
 
@@ -133,3 +134,78 @@ def test_in_the_default_study_it_answers_the_slow_points_lying_on_the_wall():
     assert result.values["peak_contact_force"] == pytest.approx(77.5, rel=0.025)
     assert result.values["max_normal_stress"] == pytest.approx(3001 * 6894.757, rel=0.001)
     assert result.values["alternating_bending_stress"] == pytest.approx(723.5 * 6894.757, rel=0.002)
+
+
+# A panel of the default study's grid (configs/default.toml, Grid.point(i)) held to the outputs of commit 56f73e1,
+# before the method was made cheaper (shared model, rest and linearisation across the error variants, the stresses
+# of the variants from one call, trajectory.fields' static parts cached): the speed-up must not change a value, a
+# status or a message. Literals printed by that commit's sliding.solve at these points.
+PANEL = [
+    pytest.param(2, "ok", 0.005705578852772462,
+                 (155.11939887497059, 13279134.103915108, 5403849.889998018, 0.036481100474067954, 80792.15547934567),
+                 "lying on the wall at 9.45 m, 18.9 m, sliding: 135.6 N at rest, ±17 N as the eccentric load turns; "
+                 "linearisation 0.0055 (contact 0.00061, drag 4e-05), 48 against 24 modes 0.00023, drag settled in 4 "
+                 "iterations", id="2: 50 rpm, 5 klbf, e 0.3, 12 ppg, no flow: ok"),
+    pytest.param(40, "ok", 0.0049303363670331534,
+                 (112.1436435363444, 20798649.853207584, 5037874.835464681, 0.03633005734427791, 78391.69790805096),
+                 "lying on the wall at 9.45 m, 18.9 m, sliding: 70.58 N at rest, ±38.2 N as the eccentric load turns; "
+                 "linearisation 0.0047 (contact 0.00066, drag 3.3e-05), 48 against 24 modes 0.00025, drag settled in 3 "
+                 "iterations", id="40: 75 rpm, 10 klbf, e 0.3, 9 ppg, no flow: ok"),
+    pytest.param(101, "ok", 0.008757765899453051,
+                 (296.5691215336105, 14149914.107190238, 5750118.74939841, 0.03709212023143554, 123774.93929481095),
+                 "lying on the wall at 9.45 m, 18.9 m, sliding: 149.6 N at rest, ±126 N as the eccentric load turns; "
+                 "linearisation 0.0076 (contact 0.0017, drag 4.6e-05), 48 against 24 modes 0.0011, drag settled in 4 "
+                 "iterations", id="101: 125 rpm, 5 klbf, e 0.7, 9 ppg, 7.4 ft/s: ok"),
+    pytest.param(0, "out_of_scope", 0.018814903542632374,
+                 (173.56333833637922, 13363374.795379773, 5486038.234489788, 0.036513647077900876, 84225.9762600765),
+                 "lying on the wall at 9.45 m, 18.9 m, sliding: 149.5 N at rest, ±19.5 N as the eccentric load turns; "
+                 "linearisation 0.019 (contact 0.0029, drag 0.0001), 48 against 24 modes 0.00024, drag settled in 4 "
+                 "iterations: error estimate 0.019 above the study's tolerance 0.01, a higher model answers",
+                 id="0: 50 rpm, 5 klbf, e 0.3, 9 ppg, no flow: error estimate above the tolerance"),
+    pytest.param(296, "out_of_scope", None, None,
+                 "the contact would open during the revolution at 9.45 m, 18.9 m (the turning eccentric load beats the "
+                 "weight on the wall): the pipe bounces: a higher model answers",
+                 id="296: 275 rpm, 10 klbf, e 0.3, 9 ppg, no flow: the contact opens (drag not settled in 50)"),
+    pytest.param(150, "out_of_scope", None, None,
+                 "the section at rest does not reach the wall (the free whirl's case): a higher model answers",
+                 id="150: 150 rpm, 20 klbf, e 0.7, 12 ppg, no flow: no touch"),
+]
+PANEL_FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_deflection",
+                 "max_shear_stress")
+
+
+@pytest.fixture(scope="module")
+def default_grid():
+    study = config.load(ROOT / "configs" / "default.toml")
+    return Grid(dict(study.inputs), dict(study.axes))
+
+
+@pytest.mark.parametrize("index, status, estimate, figures, message", PANEL)
+def test_a_panel_of_the_default_study_keeps_the_outputs_it_had(default_grid, index, status, estimate, figures,
+                                                                message):
+    result = sliding.solve(default_grid.point(index))
+    assert (result.status, result.message) == (status, message)
+    if estimate is None:
+        assert result.error_estimate is None
+    else:
+        assert result.error_estimate == pytest.approx(estimate, rel=1e-9)
+        for name, value in zip(PANEL_FIGURES, figures):
+            assert result.values[name] == pytest.approx(value, rel=1e-9), name
+
+
+def test_where_an_error_variant_is_not_this_state_the_answer_still_states_its_outputs(default_grid, monkeypatch):
+    # as at 56f73e1: the answer's outputs (its stresses, peak force) are in the result beside the variant's reason,
+    # here the drag variant made to say it is not this state at panel point 2 (its literals above)
+    solved = sliding.steady_state
+
+    def drag_variant_out(inputs, *args, **options):
+        state = solved(inputs, *args, **options)
+        return {**state, "why": "is made to bounce"} if options.get("drag_rule") == "mean_speed" else state
+
+    monkeypatch.setattr(sliding, "steady_state", drag_variant_out)
+    result = sliding.solve(default_grid.point(2))
+    assert result.status == "out_of_scope"
+    assert result.message == "with the drag made viscous at the mean speed is made to bounce: a higher model answers"
+    figures = PANEL[0].values[3]
+    for name, value in zip(PANEL_FIGURES, figures):
+        assert result.values[name] == pytest.approx(value, rel=1e-9), name
