@@ -457,8 +457,5 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                f"drag {drag_part:.2g}), "
                f"{model.n_modes} against {COARSE_MODES} modes {truncation:.2g}, drag settled in "
                f"{whirled['iterations']} iterations")
-    tolerance = study_tolerance(inputs)
-    if result.error_estimate > tolerance:
-        return finish("out_of_scope", f"{message}: error estimate {result.error_estimate:.2g} above the study's "
-                                      f"tolerance {tolerance:g}, a higher model answers")
+    # this is the state: above the study's tolerance the gate calls the answer not_converged, its values kept
     return finish("ok", message)

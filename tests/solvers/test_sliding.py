@@ -156,12 +156,14 @@ PANEL = [
                  "lying on the wall at 9.45 m, 18.9 m, sliding: 149.6 N at rest, ±126 N as the eccentric load turns; "
                  "linearisation 0.0076 (contact 0.0017, drag 4.6e-05), 48 against 24 modes 0.0011, drag settled in 4 "
                  "iterations", id="101: 125 rpm, 5 klbf, e 0.7, 9 ppg, 7.4 ft/s: ok"),
-    pytest.param(0, "out_of_scope", 0.018814903542632374,
+    # (at 56f73e1 the method called this one out_of_scope itself, "...: error estimate 0.019 above the study's
+    # tolerance 0.01, a higher model answers"; since then it answers and the gate calls it not_converged, the
+    # values and the estimate the same)
+    pytest.param(0, "ok", 0.018814903542632374,
                  (173.56333833637922, 13363374.795379773, 5486038.234489788, 0.036513647077900876, 84225.9762600765),
                  "lying on the wall at 9.45 m, 18.9 m, sliding: 149.5 N at rest, ±19.5 N as the eccentric load turns; "
                  "linearisation 0.019 (contact 0.0029, drag 0.0001), 48 against 24 modes 0.00024, drag settled in 4 "
-                 "iterations: error estimate 0.019 above the study's tolerance 0.01, a higher model answers",
-                 id="0: 50 rpm, 5 klbf, e 0.3, 9 ppg, no flow: error estimate above the tolerance"),
+                 "iterations", id="0: 50 rpm, 5 klbf, e 0.3, 9 ppg, no flow: error estimate above the tolerance"),
     pytest.param(296, "out_of_scope", None, None,
                  "the contact would open during the revolution at 9.45 m, 18.9 m (the turning eccentric load beats the "
                  "weight on the wall): the pipe bounces: a higher model answers",
@@ -209,3 +211,16 @@ def test_where_an_error_variant_is_not_this_state_the_answer_still_states_its_ou
     figures = PANEL[0].values[3]
     for name, value in zip(PANEL_FIGURES, figures):
         assert result.values[name] == pytest.approx(value, rel=1e-9), name
+
+
+def test_an_answer_above_the_tolerance_is_not_converged_and_stands_in_auto(default_grid):
+    # panel point 0 (50 rpm, 5 klbf, e 0.3, 9 ppg, no flow): the sliding state with an estimate of 1.9 %, above the
+    # study's 1 %; the reference model there ended 22 % from convergence after 46 revolutions, foreseeing about 163
+    # (docs/reference_model.md §10), so auto keeps the sliding answer, not_converged, and does not run it
+    point = default_grid.point(0)
+    alone = solve_point(point, "sliding")
+    assert alone.status == "not_converged" and alone.error_estimate == pytest.approx(0.018814903542632374, rel=1e-9)
+    assert alone.values["peak_contact_force"] == pytest.approx(PANEL[3].values[3][0], rel=1e-9)
+    chosen = solve_point(point, "auto")
+    assert chosen.method == "sliding" and chosen.status == "not_converged"
+    assert set(chosen.extras["methods_tried"]) == {"free-whirl", "sliding"}
