@@ -65,7 +65,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
     sag_modal = w_side * factors / mass / omega**2
     x = np.linspace(0.0, L, points)
     shapes = np.sin(np.outer(x, k))  # (X, N)
-    gx, gw = np.polynomial.legendre.leggauss(2 * modes + 8)
+    gx, gw = whirl.gauss_legendre(2 * modes + 8)
     gauss_x, gauss_w = 0.5 * L * (gx + 1.0), 0.5 * L * gw
     gauss_shapes = np.sin(np.outer(gauss_x, k))
     drag = props["drag_coefficient_per_length"]

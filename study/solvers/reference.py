@@ -43,7 +43,6 @@ stationary statistics (:func:`stationary`, checked every ``reference_window`` re
 
 from __future__ import annotations
 
-import functools
 import time
 from dataclasses import dataclass, field
 from types import SimpleNamespace
@@ -154,13 +153,6 @@ def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.nda
     return x[order], kinds[order]
 
 
-@functools.lru_cache(maxsize=16)
-def gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes and weights of the Gauss–Legendre rule of ``points`` points on [−1, 1] (numpy's ``leggauss``, about
-    1 ms; cached: every model of a run of points has the same number of modes)."""
-    return np.polynomial.legendre.leggauss(points)
-
-
 def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     """The reference model of one design point (see the module docstring). Raises ValueError naming the
     field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
@@ -217,7 +209,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     if damping_model == "viscous":
         damping = 2.0 * float(option.damping_ratio) * omega
     G = 2 * N + 8
-    gx, gw = gauss_legendre(G)
+    gx, gw = whirl.gauss_legendre(G)
     shapes = np.sin(np.outer(0.5 * L * (gx + 1), k))
     drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
     e = float(inputs["restitution"])

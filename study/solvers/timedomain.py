@@ -68,7 +68,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, oscillator, section
+from study.physics import hertz, oscillator, section, whirl
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
 from study.solvers.options import INTEGRATORS, TimeDomainOptions
 from study.solvers.result import PointResult
@@ -205,14 +205,14 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
                        damping_model=damping_model, scene=scene)
     D = props["drag_coefficient_per_length"]
     if damping_model == "linearised":
-        x, w = np.polynomial.legendre.leggauss(max(2 * N + 4, 16))
+        x, w = whirl.gauss_legendre(max(2 * N + 4, 16))
         x, w = 0.5 * L * (x + 1), 0.5 * L * w
         S = np.sin(np.pi * np.outer(x, modes) / L)
         ceq = 8.0 * D * model.rotary_speed * model.clearance / (3 * np.pi) * np.sin(np.pi * x / L)
         model.damping_matrix = (S * (w * ceq)[:, None]).T @ S
     elif damping_model == "drag":
         G = int(option.drag_points)
-        x, w = np.polynomial.legendre.leggauss(G)
+        x, w = whirl.gauss_legendre(G)
         model.drag, model.drag_weights = D, 0.5 * L * w
         model.drag_shapes = np.sin(np.pi * np.outer(0.5 * L * (x + 1), modes) / L)
     return model

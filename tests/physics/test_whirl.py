@@ -97,3 +97,13 @@ def test_side_load_is_the_buoyed_weight_component():
     # the displaced annulus takes off exactly the mud's share of the steel's own volume
     steel_volume = np.pi * (r_o**2 - r_i**2)
     assert buoyed == pytest.approx((m_p - rho * steel_volume) * 9.80665)
+
+
+@pytest.mark.parametrize("points", [4, 40])
+def test_gauss_legendre_rule_is_exact_to_its_degree_and_shared(points):
+    # an n-point Gauss-Legendre rule integrates x^(2n-1) and x^(2n-2) over [-1, 1] exactly (Abramowitz & Stegun
+    # 25.4.29): 0 and 2/(2n-1)
+    nodes, weights = whirl.gauss_legendre(points)
+    assert np.sum(weights * nodes ** (2 * points - 1)) == pytest.approx(0.0, abs=1e-13)
+    assert np.sum(weights * nodes ** (2 * points - 2)) == pytest.approx(2.0 / (2 * points - 1), rel=1e-12)
+    assert whirl.gauss_legendre(points)[0] is nodes and not nodes.flags.writeable  # computed once, read only
