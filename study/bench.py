@@ -417,12 +417,15 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     from dask.distributed import Client, LocalCluster
 
     grid = _grid_of_size(study, points)
+    mix = Counter()  # (method, status) of the points of the last run
 
     def timed(scheduler, workers):
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
             stored = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
             wall = time.perf_counter() - start
+            mix.clear()
+            mix.update(zip(stored["method"].tolist(), stored["status"].tolist()))
             return wall, float(stored["wall_time"].sum())
 
     runs = sorted(timed("synchronous", 1) for _ in range(repeat))
@@ -440,6 +443,8 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
                      f"runs {', '.join(f'{w:.3g}' for w, _ in runs)} s; in the median run points were solved in "
                      f"{solve:.3g} s of worker time, scheduling and storage overhead "
                      f"{1 - solve / (workers * wall):.0%} of {workers} x {wall:.3g} s")
+    notes.append("the points' methods and statuses: " + ", ".join(f"{method} {status} {count}" for (method, status), count
+                                                                 in sorted(mix.items())))
     return rows, notes
 
 
@@ -542,9 +547,9 @@ def run_bench(out: str | None = None) -> str:
             (study, 10_000, 3, False, "`configs/paper.toml` (method core, about 0.2 ms per point: scheduling- and "
              "storage-bound)"),
             (load(SCREEN_CONFIG), 4_000, 3, False, "`configs/screen.toml` (method sdof, about 2 ms per point: compute-bound)"),
-            (load(STUDY_CONFIG), 352, 1, True, "the default study `configs/default.toml` (method auto: the free whirl where "
-             "the pipe stays clear, the sliding state where it lies on the wall, the reference model elsewhere: its whole "
-             "grid)")):
+            (load(STUDY_CONFIG), 1408, 1, True, "the default study `configs/default.toml` (method auto: the free whirl "
+             "where the pipe stays clear, the sliding state where it lies on the wall, the reference model elsewhere), its "
+             "grid with 44 rotary speeds from 50 to 300 rpm instead of 11")):
         sweep_rows, notes = bench_sweep(config, points, repeat)
         lines += _table(f"Sweep of {what}, about {points} points: in process vs local dask workers (median of "
                         f"{repeat} run{'s' if repeat > 1 else ''} each)", sweep_rows, "s", 1.0)

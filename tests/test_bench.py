@@ -85,3 +85,16 @@ def test_reference_precision_bench_measures_errors_against_a_finer_run():
     assert all(r["wall_time"] > 0 and np.isfinite(r["error"]) and r["force_error"] >= 0 for r in rows)
     assert rows[0]["error"] > 0  # three modes are not six
     assert sum(line.startswith("| 3 |") for line in lines) == 2
+
+
+def test_sweep_bench_times_the_same_grid_three_ways_and_states_its_mix():
+    from study.bench import bench_sweep
+
+    rows, notes = bench_sweep(load(DEFAULT_CONFIG), points=20, repeat=1)
+    assert [label.split(" (")[0] for label, _ in rows] == ["in process", "1 worker", "2 workers"]
+    assert all(seconds > 0 for _, seconds in rows)
+    # every point of the last run counted by its method and status
+    mix = notes[-1]
+    assert mix.startswith("the points' methods and statuses: core ")
+    size = int(rows[0][0].split("(")[1].split()[0])
+    assert sum(int(part.rsplit(" ", 1)[1]) for part in mix.split(": ", 1)[1].split(", ")) == size
