@@ -21,8 +21,8 @@ import numpy as np
 from study import __version__
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, periodic, reference, series, solve_point, timedomain, whirl_kernel
-from study.workflow.execute import run_grid, warm_up
+from study.solvers import METHODS, STATUS_CODES, periodic, reference, series, solve_point, timedomain, whirl_kernel
+from study.workflow.execute import run_grid, warm_up, worker_environ
 from study.workflow.grid import Grid
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
@@ -414,8 +414,10 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     times into fresh folders). Returns the rows (label, median seconds) and notes with the measured
     scheduling overhead of the median run: 1 − (Σ per-point solve time)/(workers × wall time).
     """
+    import dask
     from dask.distributed import Client, LocalCluster
 
+    dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()})  # as a sweep's local workers
     grid = _grid_of_size(study, points)
     mix = Counter()  # (method, status) of the points of the last run
 
@@ -425,7 +427,9 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
             stored = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
             wall = time.perf_counter() - start
             mix.clear()
-            mix.update(zip(stored["method"].tolist(), stored["status"].tolist()))
+            names = {code: name for name, code in STATUS_CODES.items()}
+            mix.update((method, names.get(int(code), code)) for method, code in zip(stored["method"].tolist(),
+                                                                                 stored["status"].tolist()))
             return wall, float(stored["wall_time"].sum())
 
     runs = sorted(timed("synchronous", 1) for _ in range(repeat))

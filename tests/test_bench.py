@@ -4,7 +4,7 @@ import numpy as np
 
 from study.bench import DEFAULT_CONFIG, bench_hertz_coefficients, bench_methods, bench_span_search
 from study.config import load
-from study.solvers import METHODS
+from study.solvers import METHODS, STATUS_CODES
 
 
 def test_bench_reports_every_method_with_a_positive_time():
@@ -95,6 +95,9 @@ def test_sweep_bench_times_the_same_grid_three_ways_and_states_its_mix():
     assert all(seconds > 0 for _, seconds in rows)
     # every point of the last run counted by its method and status
     mix = notes[-1]
-    assert mix.startswith("the points' methods and statuses: core ")
+    assert mix.startswith("the points' methods and statuses: ")
+    parts = [part.split(" ") for part in mix.split(": ", 1)[1].split(", ")]
+    assert {method for method, _, _ in parts} == {"core"}
+    assert all(status in STATUS_CODES for _, status, _ in parts)  # named, not coded
     size = int(rows[0][0].split("(")[1].split()[0])
-    assert sum(int(part.rsplit(" ", 1)[1]) for part in mix.split(": ", 1)[1].split(", ")) == size
+    assert sum(int(count) for _, _, count in parts) == size

@@ -130,6 +130,23 @@ def test_local_cluster_of_worker_processes_gives_the_same_result(tmp_path, refer
             np.testing.assert_array_equal(ds[name].values, reference[name].values)
 
 
+def test_local_workers_keep_glibcs_dynamic_mmap_threshold_and_one_blas_thread():
+    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in a worker, which turns glibc's dynamic mmap threshold off:
+    # the workers solved the default study's points 1.22x slower than one process (docs/performance.md)
+    from dask.distributed import Client
+
+    from study.workflow.execute import _local_cluster
+
+    cluster = _local_cluster(1)
+    try:
+        with Client(cluster) as client:
+            (environ,) = client.run(lambda: {name: os.environ.get(name) for name in
+                                             ("MALLOC_TRIM_THRESHOLD_", "OPENBLAS_NUM_THREADS")}).values()
+    finally:
+        cluster.close()
+    assert environ == {"MALLOC_TRIM_THRESHOLD_": None, "OPENBLAS_NUM_THREADS": "1"}
+
+
 def test_methods_can_be_swept_side_by_side(tmp_path):
     # solver.method is a choice input, so it can be an axis (solver_method): each method's results over
     # the same grid; the output "method" names the method that solved each point.
