@@ -111,13 +111,15 @@ def _solve_log_c2(theta, guess):
     """p = log(1 − e²) of θ ∈ (0, π/2) by regula falsi (Illinois) to 1e-15 relative: on ±1e-3 |p| round
     ``guess`` when that brackets the root, else (or with a NaN guess) on the whole range
     1 − e² ∈ [1e-300, 1); θ beyond that range is clipped to 1 − e² = 1e-300."""
-    a, b = _P_MIN, -1e-300
+    a, b, fa, fb = _P_MIN, -1e-300, math.nan, math.nan
     if math.isfinite(guess):
         width = 1e-3 * abs(guess) + 1e-9
         lo, hi = guess - width, min(guess + width, -1e-300)
-        if _angle_residual(lo, theta) * _angle_residual(hi, theta) <= 0.0:
-            a, b = lo, hi
-    fa, fb = _angle_residual(a, theta), _angle_residual(b, theta)
+        f_lo, f_hi = _angle_residual(lo, theta), _angle_residual(hi, theta)
+        if f_lo * f_hi <= 0.0:  # the bracket's values are the first step's
+            a, b, fa, fb = lo, hi, f_lo, f_hi
+    if math.isnan(fa):
+        fa, fb = _angle_residual(a, theta), _angle_residual(b, theta)
     if a == _P_MIN and fa >= 0.0:
         return _P_MIN
     side = 0

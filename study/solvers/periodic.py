@@ -740,14 +740,24 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
         return keep
     spans, duration, half, impulse = spans[rows], duration[rows], half[rows], np.broadcast_to(impulse, keep.shape)[rows]
     span_t = scene.impact_interval
-    omega, weight = _midspan_weights(scene, spans, half, options)
     # coarse (sampling can miss a violation, never invent one): 48 times after the pulse, interleaved
     # so that the first dozen span the whole period, each root dropped at its first violation
     fractions = np.linspace(0.0, 1.0, 50)[1:-1].reshape(-1, 4).T.ravel()
     times = duration[:, None] + (span_t - duration[:, None]) * fractions[None, :]  # after the pulse, per root
     limit = c * 1.02 / np.abs(impulse)
-    largest = beam.largest_excursion(times, omega, duration, weight, scene.period, scene.pattern, limit=limit)
-    keep[rows] = largest <= limit  # NaN (a resonant mode): dropped
+    # the verdict of largest_excursion without its library calls where rounding cannot change it, it elsewhere
+    p = scene.props
+    verdict = beam.excursion_verdicts(times, spans, duration, half, odd_modes(options.modes).size,
+                                      p["bending_stiffness"], p["effective_tension"], p["mass_per_length"], scene.period,
+                                      scene.pattern, options.load_shape, limit=limit)
+    within = verdict == 0
+    unsure = np.nonzero(verdict < 0)[0]
+    if unsure.size:
+        omega, weight = _midspan_weights(scene, spans[unsure], half[unsure], options)
+        largest = beam.largest_excursion(times[unsure], omega, duration[unsure], weight, scene.period, scene.pattern,
+                                         limit=limit[unsure])
+        within[unsure] = largest <= limit[unsure]  # NaN (a resonant mode): dropped
+    keep[rows] = within
     return keep
 
 
