@@ -97,13 +97,23 @@ def _shape_functions(p):
 
 
 @numba.njit(cache=True, nogil=True)
-def _angle_residual(p, theta):
+def _angle_residual(p, theta, target):
     """Residual of θ(p) = θ on a log scale, increasing in p: log of 1 − cos θ = 2 sin²(θ/2) for
-    θ ≤ π/4 (resolves θ down to ~1e-149 rad), of cos θ above (resolves θ → π/2)."""
+    θ ≤ π/4 (resolves θ down to ~1e-149 rad), of cos θ above (resolves θ → π/2). ``target``: that log at
+    θ itself (:func:`_angle_target`), the same at every p of a solve."""
     cos_t, one_minus, _, _ = _shape_functions(p)
     if theta <= 0.25 * math.pi:
-        return math.log(one_minus) - (math.log(2.0) + 2.0 * math.log(math.sin(0.5 * theta)))
-    return math.log(math.cos(theta)) - math.log(cos_t)
+        return math.log(one_minus) - target
+    return target - math.log(cos_t)
+
+
+@numba.njit(cache=True, nogil=True)
+def _angle_target(theta):
+    """log(1 − cos θ) = log 2 + 2 log sin(θ/2) for θ ≤ π/4, log cos θ above: the θ side of
+    :func:`_angle_residual`."""
+    if theta <= 0.25 * math.pi:
+        return math.log(2.0) + 2.0 * math.log(math.sin(0.5 * theta))
+    return math.log(math.cos(theta))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -112,14 +122,15 @@ def _solve_log_c2(theta, guess):
     ``guess`` when that brackets the root, else (or with a NaN guess) on the whole range
     1 − e² ∈ [1e-300, 1); θ beyond that range is clipped to 1 − e² = 1e-300."""
     a, b, fa, fb = _P_MIN, -1e-300, math.nan, math.nan
+    target = _angle_target(theta)
     if math.isfinite(guess):
         width = 1e-3 * abs(guess) + 1e-9
         lo, hi = guess - width, min(guess + width, -1e-300)
-        f_lo, f_hi = _angle_residual(lo, theta), _angle_residual(hi, theta)
+        f_lo, f_hi = _angle_residual(lo, theta, target), _angle_residual(hi, theta, target)
         if f_lo * f_hi <= 0.0:  # the bracket's values are the first step's
             a, b, fa, fb = lo, hi, f_lo, f_hi
     if math.isnan(fa):
-        fa, fb = _angle_residual(a, theta), _angle_residual(b, theta)
+        fa, fb = _angle_residual(a, theta, target), _angle_residual(b, theta, target)
     if a == _P_MIN and fa >= 0.0:
         return _P_MIN
     side = 0
@@ -133,7 +144,7 @@ def _solve_log_c2(theta, guess):
             mid = 0.5 * (a + b)
             if not a < mid < b:
                 break
-        fm = _angle_residual(mid, theta)
+        fm = _angle_residual(mid, theta, target)
         if (fm < 0.0) == (fa < 0.0):  # the root is in [mid, b]
             if side == 1:
                 fb *= 0.5

@@ -791,14 +791,21 @@ def refine_roots(scene: Scene, options: Options, approx, brackets, steps: int = 
     to the nearer pole (a root pinned next to a pole); a root still off by more than 1e-8 in F when
     the steps run out, or whose secant leaves its bracket, carries the problem. Returns one
     :class:`Impact` per root, in order."""
+    rows = refined_rows(scene, options, approx, brackets, steps, durations, halves)
+    return _impacts_of(scene, rows) if rows.shape[1] else []
+
+
+def refined_rows(scene: Scene, options: Options, approx, brackets, steps: int = 8, durations=None,
+                 halves=None) -> np.ndarray:
+    """:func:`refine_roots` as the compiled kernel's columns (rows :data:`_ROWS`), before they become
+    :class:`Impact` records (:func:`_impacts_of`): the span search makes records of the sound ones only."""
     approx = np.atleast_1d(np.asarray(approx, dtype=float))
     if approx.size == 0:
-        return []
+        return np.zeros((len(_ROWS), 0))
     brackets = np.asarray(brackets, dtype=float).reshape(-1, 2)
     lo, hi = brackets.min(axis=1), brackets.max(axis=1)
-    rows = _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi),
+    return _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi),
                           *_starts(approx.shape, durations, halves), int(steps), *_kernel_args(scene, options))
-    return _impacts_of(scene, rows)
 
 
 def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
@@ -1067,11 +1074,12 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     survivors = search.roots[screened]
     candidates, reasons = [], {}
     durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
-    refined = refine_roots(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
-    sound = [impact for impact in refined if not impact.problems]
-    violations = iter(constraint_violations(scene, sound, options))
-    for root, impact in zip(survivors, refined):
-        problem = "; ".join(impact.problems) or next(violations)
+    rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
+    codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
+    sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
+    violations = zip(sound, constraint_violations(scene, sound, options))
+    for root, code, value in zip(survivors, codes, values):
+        impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
         if problem is None:
             candidates.append(impact)
         else:
