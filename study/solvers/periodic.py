@@ -109,10 +109,19 @@ def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[n
     highest = int(np.ceil(omega_max / scene.rotary_speed)) + 1
     forcing = resonant_harmonics(scene, highest) * scene.rotary_speed
     k_sq = (-tension + np.sqrt(tension**2 + 4.0 * ei * mass * forcing**2)) / (2.0 * ei)
-    spans = (modes[:, None] * np.pi / np.sqrt(k_sq[None, :]))
-    mode = np.broadcast_to(modes[:, None], spans.shape)
-    inside = (spans >= min_span) & (spans <= max_span)
-    spans, mode = spans[inside], mode[inside]
+    # each mode's spans fall as the harmonic rises: only the harmonics whose k² lies near (nπ/L)² for L in the
+    # range are computed (two either side of it; the test below is the exact one). Equal spans of two modes keep
+    # the order of their modes (a stable sort).
+    root_k = np.sqrt(k_sq)
+    first = np.maximum(np.searchsorted(k_sq, (modes * np.pi / max_span) ** 2) - 2, 0)
+    last = np.minimum(np.searchsorted(k_sq, (modes * np.pi / min_span) ** 2) + 2, k_sq.size)
+    spans, mode = [], []
+    for n, a, b in zip(modes, first, last):
+        row = n * np.pi / root_k[a:b][::-1]  # ascending: the sort below merges runs
+        row = row[(row >= min_span) & (row <= max_span)]
+        spans.append(row)
+        mode.append(np.full(row.size, n))
+    spans, mode = np.concatenate(spans), np.concatenate(mode)
     order = np.argsort(spans, kind="stable")
     return spans[order], mode[order]
 
@@ -494,7 +503,7 @@ def _pulse_one(span, table):
     return math.exp(interp_one(log_span, table[0], table[1])), interp_one(log_span, table[0], table[2])
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
 def _residues_kernel(spans, modes, table, state, closure, floors):
     """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
     :func:`_screen_state`; NaN, not computed, where a bound without trigonometry puts |R| below
@@ -507,7 +516,8 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
     self_consistent, mass_factor, restitution, omega_rot, _, interval, _ = closure
     shortest = math.exp(np.min(table[1]))
     out = np.empty(spans.size)
-    for i in range(spans.size):
+    omegas, scales = np.empty(spans.size), np.empty(spans.size)
+    for i in range(spans.size):  # the bound of every pole first, in SIMD instructions (no jump, no library call)
         span, n = spans[i], modes[i]
         k_sq = (n * math.pi / span) ** 2
         om_sq = (ei * k_sq + tension) * k_sq / mass
@@ -517,9 +527,11 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
         u = omega * shortest / math.pi
         bound = abs(scale) * (1.0 / (u * u - 1.0) if u * u > 2.0 else 1.0) * (
             0.5 if self_consistent else omega_rot / (2.0 * omega))
-        if bound < floors[i]:
-            out[i] = math.nan
+        omegas[i], scales[i], out[i] = omega, scale, math.nan if bound < floors[i] else 0.0
+    for i in range(spans.size):
+        if out[i] != 0.0:
             continue
+        span, n, omega, scale = spans[i], modes[i], omegas[i], scales[i]
         duration, half = _pulse_one(span, table)
         real, imag = beam.loaded_spectrum_one(omega, span, n, duration, half, code)  # |g_n| H(ω)
         out[i] = scale * (-0.5 * imag if self_consistent else omega_rot * real / (2.0 * omega))
