@@ -424,7 +424,7 @@ def screen_residual(scene: Scene, options: Options):
         spans = np.asarray(spans, dtype=float)
         if modes is None:
             flat = np.ascontiguousarray(spans.ravel())
-            values = _screen_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)[0]
+            values = _screen_values_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)
         else:
             per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
             values = _screen_values(np.ascontiguousarray(spans.ravel()),
@@ -550,6 +550,18 @@ def _screen_batch(spans, durations, halves, n_odd, offset, state, closure):
     factor = mass_factor * spans * (1.0 + restitution)
     values = -factor * v1 - offset if self_consistent else -factor * omega * y1 - offset
     return values, y1, v1, curv1
+
+
+@numba.njit(cache=True, nogil=True)
+def _screen_values_batch(spans, durations, halves, n_odd, offset, state, closure):
+    """The first of :func:`_screen_batch`'s arrays alone, to the last bit: the modal sum of y₁ (prescribed) or v₁
+    (self-consistent) only (:func:`beam.midspan_sums`)."""
+    ei, tension, mass, period, one_wall, code, tol, _ = state
+    self_consistent, mass_factor, restitution, omega, _, _, _ = closure
+    total = beam.midspan_sums(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol,
+                              self_consistent)
+    factor = mass_factor * spans * (1.0 + restitution)
+    return -factor * total - offset if self_consistent else -factor * omega * total - offset
 
 
 @numba.njit(cache=True, nogil=True)

@@ -683,6 +683,10 @@ def test_midspan_states_of_many_spans_are_the_scalar_loop_s_to_the_last_bit(patt
     simd = np.array(bm.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
     scalar = bm._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
     assert np.isnan(scalar).sum() >= 18 and np.array_equal(simd, scalar, equal_nan=True)
+    # and y1 or v1 alone (midspan_sums) is the same sum
+    for velocity, row in ((False, 0), (True, 1)):
+        alone = bm.midspan_sums(spans, durations, 0.002 * spans, modes.size, *args, velocity)
+        assert np.array_equal(alone, scalar[row], equal_nan=True)
 
 
 @pytest.mark.parametrize("pattern", ["one_wall", "alternating"])
