@@ -576,6 +576,39 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
+def _search_right(values, x, hint):
+    """``np.searchsorted(values, x, side="right")`` of ascending ``values`` and a finite x, galloping from index
+    ``hint`` (steps of 1, 2, 4, … towards the answer, then halving): a few comparisons when the answer is near
+    the hint, as it is for the span search's brackets taken in ascending order."""
+    n = values.size
+    hint = min(max(hint, 0), n)
+    step = 1
+    if hint < n and values[hint] <= x:  # the answer is above the hint
+        lo = hint + 1
+        hi = lo
+        while hi < n and values[hi] <= x:
+            lo = hi + 1
+            hi = lo + step
+            step *= 2
+        hi = min(hi, n)
+    else:  # at or below it
+        hi = hint
+        lo = hi
+        while lo > 0 and values[lo - 1] > x:
+            hi = lo - 1
+            lo = hi - step
+            step *= 2
+        lo = max(lo, 0)
+    while lo < hi:  # values[lo - 1] <= x (or lo = 0) and values[hi] > x (or hi = n)
+        mid = (lo + hi) // 2
+        if values[mid] <= x:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@numba.njit(cache=True, nogil=True)
 def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
     """One round of ``screen_residual(...).shrink`` for the brackets ``running``: each bracket's tolerance
     (``pole_free_rtol`` once none of ``poles`` lies within :data:`POLE_FREE_WINDOW` bracket widths, updated in
@@ -584,12 +617,12 @@ def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
     before the first; that point only moves up as the bracket shrinks, so each check walks on from there.
     Returns (those brackets, their points)."""
     still, points = np.empty(running.size, dtype=np.int64), np.empty(running.size)
-    count = 0
+    count, hint = 0, 0
     for i in running:
         if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
             left = a[i] - POLE_FREE_WINDOW * (b[i] - a[i])
-            if below[i] < 0:
-                below[i] = np.searchsorted(poles, left, side="right")
+            if below[i] < 0:  # the brackets come in ascending order: search on from the last one's place
+                below[i] = hint = _search_right(poles, left, hint)
             while below[i] < poles.size and poles[below[i]] <= left:
                 below[i] += 1
             first = below[i]
