@@ -440,13 +440,13 @@ def sincos(x):
 
 
 @numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
-def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
-    """One odd mode n's part of the midspan state (:func:`midspan_state_one`, without jumps or library calls):
-    (q(0) [s], q̇(0) [-], k_n² [1/m²], |g_n| [-], resonant or buckled?) for k_1 = π/L ``k1`` [1/m], ``half``
-    b [m], ``tl`` T_L [s], ``u_1`` = T_L/π, sin and cos of β = k_n b. The closed form of
+def _mode_factors(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
+    """The factors of one odd mode n's periodic response, without jumps or library calls: (ω_n [rad/s],
+    ν = ωτ/2π [-], κ [-], sin φ, cos φ (φ = ωT_L/2), A [-], |g_n| [-], k_n² [1/m²], resonant or buckled?) for
+    k_1 = π/L ``k1`` [1/m], ``half`` b [m], ``tl`` T_L [s], ``u_1`` = T_L/π, sin and cos of β = k_n b. As
     :func:`modal_state_at_pulse_start`: κ = cot of the reduced angle (:func:`_echo_kappa`) as cos/sin,
-    A = cos φ/(1 − u²) (:func:`_echo_amplitude`, its sinc by the series where |1 − u| ≤ 2e-3), and
-    the load factor of :func:`_shape_factor`."""
+    A = cos φ/(1 − u²) (:func:`_echo_amplitude`, its sinc by the series where |1 − u| ≤ 2e-3), and the
+    load factor of :func:`_shape_factor`."""
     k = n * k1
     k2 = k * k
     om2 = (ei * k2 + tension) * k2 * inv_mass
@@ -462,8 +462,6 @@ def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, to
     x = math.pi * half_gap  # near u = 1: (π/2) sinc(x)/(1 + u), sinc by its series (|x| ≤ π/1000)
     near = 0.5 * math.pi * (1.0 - x * x * (1.0 / 6.0 - x * x / 120.0)) / (1.0 + u)
     amp = cos_phi / ((1.0 - u) * (1.0 + u)) if abs(half_gap) > 1e-3 else near
-    q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-    qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
     beta = k * half
     b2 = beta * beta
     series = _PARABOLIC_SERIES
@@ -471,7 +469,36 @@ def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, to
               + series[5]) * b2 + series[6]) * b2 + series[7]) * b2 + series[8]  # unrolled: no inner loop
     parabolic = acc if abs(beta) < 0.5 else 3.0 * (sin_beta - beta * cos_beta) / (b2 * beta)
     uniform = 1.0 if beta == 0.0 else sin_beta / beta
-    return q, qd, k2, 1.0 if code == 0 else uniform if code == 1 else parabolic, bad
+    return om, nu, kappa, sin_phi, cos_phi, amp, 1.0 if code == 0 else uniform if code == 1 else parabolic, k2, bad
+
+
+@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
+    """One odd mode n's part of the midspan state (:func:`midspan_state_one`, without jumps or library calls):
+    (q(0) [s], q̇(0) [-], k_n² [1/m²], |g_n| [-], resonant or buckled?) from :func:`_mode_factors` (same
+    arguments), q(0) = A (κ cos φ + sin φ)/(2ω), q̇(0) = A (κ sin φ − cos φ)/2."""
+    om, _, kappa, sin_phi, cos_phi, amp, shape, k2, bad = _mode_factors(n, k1, half, tl, u_1, ei, tension, inv_mass,
+                                                                       period, one_wall, tol, code, sin_beta, cos_beta)
+    q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
+    qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
+    return q, qd, k2, shape, bad
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _span_factors(spans, durations, halves, mass):
+    """Per span, for the loops over modes of :func:`midspan_states` and :func:`excursion_verdicts`: k_1 = π/L
+    [1/m], the midspan weight 2/(M L) [1/kg], u_1 = T_L/π [s], and sin, cos of β_1 = k_1 b and of 2β_1 (the
+    odd modes' load factors by rotation)."""
+    size = spans.size
+    k1, weight_1, u_1 = np.empty(size), np.empty(size), np.empty(size)
+    s_n, c_n, s_2, c_2 = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
+    for i in range(size):
+        k1[i] = math.pi / spans[i]
+        weight_1[i] = 2.0 / (mass * spans[i])
+        u_1[i] = durations[i] / math.pi
+        s_n[i], c_n[i] = sincos(k1[i] * halves[i])
+        s_2[i], c_2[i] = sincos(2.0 * k1[i] * halves[i])
+    return k1, weight_1, u_1, s_n, c_n, s_2, c_2
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
@@ -486,15 +513,9 @@ def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, o
     SIMD instructions, about 8 times faster than the scalar loop."""
     size = spans.size
     y, v, curv = np.zeros(size), np.zeros(size), np.zeros(size)  # three arrays, not rows of one: no alias
-    k1, weight_1, u_1 = np.empty(size), np.empty(size), np.empty(size)
-    s_n, c_n, s_2, c_2 = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
+    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
     longest = period if one_wall else 0.5 * period
     for i in range(size):
-        k1[i] = math.pi / spans[i]
-        weight_1[i] = 2.0 / (mass * spans[i])
-        u_1[i] = durations[i] / math.pi
-        s_n[i], c_n[i] = sincos(k1[i] * halves[i])
-        s_2[i], c_2[i] = sincos(2.0 * k1[i] * halves[i])
         if not durations[i] <= longest:
             y[i] = v[i] = curv[i] = math.nan
     inv_mass = 1.0 / mass
@@ -510,6 +531,42 @@ def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, o
             v[i] += weight * qd
             curv[i] -= weight * k2 * q
     return y, v, curv
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
+                      period, one_wall, tol, code, velocity):
+    """The modal sum of :func:`midspan_sums` into ``out``, the loop over spans innermost (as :func:`midspan_states`)."""
+    for j in range(n_odd):
+        n = 2.0 * j + 1.0
+        for i in range(out.size):
+            q, qd, _, shape, bad = _mode_term(n, k1[i], halves[i], durations[i], u_1[i], ei, tension, inv_mass,
+                                              period, one_wall, tol, code, s_n[i], c_n[i])
+            term = math.nan if bad else qd if velocity else q
+            s_n[i], c_n[i] = s_n[i] * c_2[i] + c_n[i] * s_2[i], c_n[i] * c_2[i] - s_n[i] * s_2[i]
+            out[i] += weight_1[i] * shape * term
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def midspan_sums(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol, velocity):
+    """y₁ (``velocity`` False) or v₁ (True) of :func:`midspan_states` alone, the same terms in the same order (so
+    the same values to the last bit), without the arithmetic of the other two: about an eighth less time (the
+    span search's samples need the closure residual only)."""
+    size = spans.size
+    out = np.zeros(size)
+    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
+    longest = period if one_wall else 0.5 * period
+    for i in range(size):
+        if not durations[i] <= longest:
+            out[i] = math.nan
+    inv_mass = 1.0 / mass
+    if velocity:  # two call sites with a constant each: the compiler drops the other quantity's arithmetic
+        _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
+                          period, one_wall, tol, code, True)
+    else:
+        _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
+                          period, one_wall, tol, code, False)
+    return out
 
 
 def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes, bending_stiffness, tension,
@@ -715,6 +772,106 @@ def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_
                                                float(resonance_tol),
                                                np.ascontiguousarray(np.broadcast_to(limit, omega.shape[:1])))
     return (largest, index) if where else largest
+
+
+#: Relative rounding allowance of :func:`excursion_verdicts` per unit of each term's size (a few hundred times
+#: the double precision's 1.1e-16: the library's and :func:`sincos`'s last bits, the phase rotation of
+#: :func:`largest_excursion` over its runs of 32 steps, and the sum of a few dozen terms).
+_VERDICT_ROUNDING = 1e-13
+#: Times of :func:`excursion_verdicts` summed at once: a whole number of SIMD blocks (a loop of fewer ran without
+#: SIMD instructions).
+_VERDICT_BLOCK = 8
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _verdicts_kernel(t, spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol, limit,
+                     first):
+    rows, count = t.shape
+    out = np.full(rows, -1, dtype=np.int8)
+    p = period if one_wall else 0.5 * period
+    tm = np.empty((rows, count))
+    t_max, margin = np.zeros(rows), np.zeros(rows)
+    usable = np.ones(rows, dtype=np.bool_)
+    for r in range(rows):
+        for i in range(count):
+            tm[r, i] = t[r, i] - math.floor(t[r, i] / p) * p
+            usable[r] = usable[r] and tm[r, i] > durations[r]  # after the pulse
+            t_max[r] = max(t_max[r], tm[r, i])
+        usable[r] = usable[r] and durations[r] <= p and durations[r] > 0.0 and spans[r] > 0.0
+    # the modes' factors of every row, the loop over rows innermost (SIMD, as midspan_states)
+    om, phi, kappa, fw = np.empty((n_odd, rows)), np.empty((n_odd, rows)), np.empty((n_odd, rows)), np.empty((n_odd, rows))
+    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
+    inv_mass = 1.0 / mass
+    small = 1e-2 * _VERDICT_ROUNDING
+    for j in range(n_odd):
+        n = 2.0 * j + 1.0
+        for r in range(rows):
+            w, nu, kap, _, _, amp, shape, _, bad = _mode_factors(n, k1[r], halves[r], durations[r], u_1[r], ei, tension,
+                                                                 inv_mass, period, one_wall, tol, code, s_n[r], c_n[r])
+            s_n[r], c_n[r] = s_n[r] * c_2[r] + c_n[r] * s_2[r], c_n[r] * c_2[r] - s_n[r] * s_2[r]
+            f = weight_1[r] * shape * 0.5 * amp / w
+            om[j, r], phi[j, r], kappa[j, r], fw[j, r] = w, 0.5 * w * durations[r], kap, f
+            term = abs(f) * ((1.0 + abs(kap)) * (small * w * t_max[r] + _VERDICT_ROUNDING)
+                             + small * math.pi * (1.0 + kap * kap) * (nu + 1.0))
+            margin[r] += math.nan if bad else term
+    y, times = np.empty(count + _VERDICT_BLOCK), np.empty(count + _VERDICT_BLOCK)
+    for r in range(rows):
+        if not (usable[r] and math.isfinite(margin[r])):
+            continue  # undecided: largest_excursion says
+        out[r] = 0
+        start = 0
+        for stop in (min(first, count), count):  # the first times, then (if none is past the limit) the rest
+            if stop <= start:
+                continue
+            # whole blocks (_VERDICT_BLOCK), the last time repeated: the largest |y| is unchanged
+            size = -(-(stop - start) // _VERDICT_BLOCK) * _VERDICT_BLOCK
+            for i in range(size):
+                times[i] = tm[r, min(start + i, stop - 1)]
+            sums = y[:size]
+            sums[:] = 0.0
+            for j in range(n_odd):
+                w, ph, kap, f = om[j, r], phi[j, r], kappa[j, r], fw[j, r]
+                for i in range(sums.size):
+                    s, c = sincos(w * times[i] - ph)
+                    sums[i] += f * (s + kap * c)
+            for i in range(size):
+                largest = abs(sums[i])
+                if largest - margin[r] > limit[r]:
+                    out[r] = 1
+                elif not largest + margin[r] <= limit[r] and out[r] == 0:
+                    out[r] = -1
+            if out[r] == 1:
+                break
+            start = stop
+    return out
+
+
+def excursion_verdicts(t, spans, durations, halves, n_odd, bending_stiffness, tension, mass, period,
+                       pattern="one_wall", shape="point", resonance_tol=1e-15, limit=None, first=8):
+    """Whether the midspan's deflection per unit impulse exceeds ``limit`` at any of the times ``t`` after the
+    pulse, per row: 1 it does, 0 it does not, −1 undecided — the verdict of :func:`largest_excursion`
+    (``largest_excursion(...) > limit``, its weights 2|g_n|/(M L) of the odd modes 1, 3, …, 2 ``n_odd`` − 1 at
+    x = L/2) without its library calls, decided only where the two cannot disagree.
+
+    t [s] of shape (R, T); spans L [m], durations T_L [s], halves b [m] and limit [m/(N s)] of shape (R,); the
+    rest as :func:`midspan_states`. The modal sum of each time is evaluated with :func:`sincos`, the modes'
+    factors as :func:`_mode_term`, so each term differs from :func:`largest_excursion`'s by rounding only;
+    a row is decided where its largest |y| is farther from ``limit`` than a bound on that rounding, summed over
+    the modes: |f_n| [(1 + |κ_n|)(ε ω_n t + ε₀) + ε π (1 + κ_n²)(ν_n + 1)], f_n = w_n A_n/(2ω_n), ε₀ =
+    :data:`_VERDICT_ROUNDING` and ε = ε₀/100 [-] per radian of phase ω_n t and per unit of ν_n = ω_n τ/2π (κ's
+    sensitivity to it near a resonance). Undecided: a row within that bound of its limit, with a resonant or
+    buckled mode, a pulse longer than the (half) period or a time inside the pulse — ask
+    :func:`largest_excursion`. The first ``first`` times are summed first, and a row past its limit there
+    stops; put the times most likely to exceed first."""
+    _check("pattern", pattern, IMPACT_PATTERNS)
+    _check("shape", shape, LOAD_SHAPES)
+    t = np.ascontiguousarray(np.asarray(t, dtype=float))
+    rows = t.shape[0]
+    spans, durations, halves, limit = (np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (rows,)))
+                                       for v in (spans, durations, halves, np.inf if limit is None else limit))
+    return _verdicts_kernel(t, spans, durations, halves, int(n_odd), float(bending_stiffness), float(tension),
+                            float(mass), float(period), pattern == "one_wall", _SHAPE_CODES[shape],
+                            float(resonance_tol), limit, int(first))
 
 
 @numba.njit(cache=True, nogil=True)

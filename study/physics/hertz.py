@@ -97,33 +97,50 @@ def _shape_functions(p):
 
 
 @numba.njit(cache=True, nogil=True)
-def _angle_residual(p, theta):
+def _angle_residual(p, theta, target):
     """Residual of θ(p) = θ on a log scale, increasing in p: log of 1 − cos θ = 2 sin²(θ/2) for
-    θ ≤ π/4 (resolves θ down to ~1e-149 rad), of cos θ above (resolves θ → π/2)."""
-    cos_t, one_minus, _, _ = _shape_functions(p)
+    θ ≤ π/4 (resolves θ down to ~1e-149 rad), of cos θ above (resolves θ → π/2). ``target``: that log at
+    θ itself (:func:`_angle_target`), the same at every p of a solve. Returns (residual, K(e), E(e))."""
+    cos_t, one_minus, kk, ee = _shape_functions(p)
     if theta <= 0.25 * math.pi:
-        return math.log(one_minus) - (math.log(2.0) + 2.0 * math.log(math.sin(0.5 * theta)))
-    return math.log(math.cos(theta)) - math.log(cos_t)
+        return math.log(one_minus) - target, kk, ee
+    return target - math.log(cos_t), kk, ee
+
+
+@numba.njit(cache=True, nogil=True)
+def _angle_target(theta):
+    """log(1 − cos θ) = log 2 + 2 log sin(θ/2) for θ ≤ π/4, log cos θ above: the θ side of
+    :func:`_angle_residual`."""
+    if theta <= 0.25 * math.pi:
+        return math.log(2.0) + 2.0 * math.log(math.sin(0.5 * theta))
+    return math.log(math.cos(theta))
 
 
 @numba.njit(cache=True, nogil=True)
 def _solve_log_c2(theta, guess):
     """p = log(1 − e²) of θ ∈ (0, π/2) by regula falsi (Illinois) to 1e-15 relative: on ±1e-3 |p| round
     ``guess`` when that brackets the root, else (or with a NaN guess) on the whole range
-    1 − e² ∈ [1e-300, 1); θ beyond that range is clipped to 1 − e² = 1e-300."""
-    a, b = _P_MIN, -1e-300
+    1 − e² ∈ [1e-300, 1); θ beyond that range is clipped to 1 − e² = 1e-300. Returns (p, K(e), E(e)), the
+    elliptic integrals as evaluated at that p during the solve."""
+    a, b, fa, fb = _P_MIN, -1e-300, math.nan, math.nan
+    kk_a = ee_a = kk_b = ee_b = math.nan
+    target = _angle_target(theta)
     if math.isfinite(guess):
         width = 1e-3 * abs(guess) + 1e-9
         lo, hi = guess - width, min(guess + width, -1e-300)
-        if _angle_residual(lo, theta) * _angle_residual(hi, theta) <= 0.0:
-            a, b = lo, hi
-    fa, fb = _angle_residual(a, theta), _angle_residual(b, theta)
+        f_lo, kk_lo, ee_lo = _angle_residual(lo, theta, target)
+        f_hi, kk_hi, ee_hi = _angle_residual(hi, theta, target)
+        if f_lo * f_hi <= 0.0:  # the bracket's values are the first step's
+            a, b, fa, fb, kk_a, ee_a, kk_b, ee_b = lo, hi, f_lo, f_hi, kk_lo, ee_lo, kk_hi, ee_hi
+    if math.isnan(fa):
+        fa, kk_a, ee_a = _angle_residual(a, theta, target)
+        fb, kk_b, ee_b = _angle_residual(b, theta, target)
     if a == _P_MIN and fa >= 0.0:
-        return _P_MIN
+        return _P_MIN, kk_a, ee_a
     side = 0
     for _ in range(400):
         if fa == 0.0:
-            return a
+            return a, kk_a, ee_a
         if fb == 0.0 or b - a <= 1e-15 * abs(b):
             break
         mid = b - fb * (b - a) / (fb - fa)
@@ -131,16 +148,16 @@ def _solve_log_c2(theta, guess):
             mid = 0.5 * (a + b)
             if not a < mid < b:
                 break
-        fm = _angle_residual(mid, theta)
+        fm, kk_m, ee_m = _angle_residual(mid, theta, target)
         if (fm < 0.0) == (fa < 0.0):  # the root is in [mid, b]
             if side == 1:
                 fb *= 0.5
-            a, fa, side = mid, fm, 1
+            a, fa, side, kk_a, ee_a = mid, fm, 1, kk_m, ee_m
         else:
             if side == -1:
                 fa *= 0.5
-            b, fb, side = mid, fm, -1
-    return a if abs(fa) < abs(fb) else b
+            b, fb, side, kk_b, ee_b = mid, fm, -1, kk_m, ee_m
+    return (a, kk_a, ee_a) if abs(fa) < abs(fb) else (b, kk_b, ee_b)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -161,8 +178,7 @@ def _coefficients_one(t, guess):
         return 1.0, 1.0, 1.0
     if t <= 0.0:  # line contact: the ellipse is unbounded
         return math.inf, 0.0, 0.0
-    p = _solve_log_c2(t, guess)
-    _, _, kk, ee = _shape_functions(p)
+    p, kk, ee = _solve_log_c2(t, guess)
     m = np.cbrt(2.0 * ee / math.pi) * math.exp(-p / 3.0)  # m³ = 2E/(π(1 − e²))
     return m, m * math.exp(0.5 * p), 2.0 * kk / (math.pi * m)  # n = m √(1 − e²)
 
@@ -195,7 +211,7 @@ def _log_c2(theta, full_bracket=False):
         return theta * 0.0  # nan stays nan
     if theta <= 0.0:
         return -np.inf
-    return _solve_log_c2(float(theta), np.nan if full_bracket else _guess_log_c2(theta))
+    return _solve_log_c2(float(theta), np.nan if full_bracket else _guess_log_c2(theta))[0]
 
 
 @lru_cache(maxsize=1)

@@ -109,10 +109,19 @@ def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[n
     highest = int(np.ceil(omega_max / scene.rotary_speed)) + 1
     forcing = resonant_harmonics(scene, highest) * scene.rotary_speed
     k_sq = (-tension + np.sqrt(tension**2 + 4.0 * ei * mass * forcing**2)) / (2.0 * ei)
-    spans = (modes[:, None] * np.pi / np.sqrt(k_sq[None, :]))
-    mode = np.broadcast_to(modes[:, None], spans.shape)
-    inside = (spans >= min_span) & (spans <= max_span)
-    spans, mode = spans[inside], mode[inside]
+    # each mode's spans fall as the harmonic rises: only the harmonics whose k² lies near (nπ/L)² for L in the
+    # range are computed (two either side of it; the test below is the exact one). Equal spans of two modes keep
+    # the order of their modes (a stable sort).
+    root_k = np.sqrt(k_sq)
+    first = np.maximum(np.searchsorted(k_sq, (modes * np.pi / max_span) ** 2) - 2, 0)
+    last = np.minimum(np.searchsorted(k_sq, (modes * np.pi / min_span) ** 2) + 2, k_sq.size)
+    spans, mode = [], []
+    for n, a, b in zip(modes, first, last):
+        row = n * np.pi / root_k[a:b][::-1]  # ascending: the sort below merges runs
+        row = row[(row >= min_span) & (row <= max_span)]
+        spans.append(row)
+        mode.append(np.full(row.size, n))
+    spans, mode = np.concatenate(spans), np.concatenate(mode)
     order = np.argsort(spans, kind="stable")
     return spans[order], mode[order]
 
@@ -415,7 +424,7 @@ def screen_residual(scene: Scene, options: Options):
         spans = np.asarray(spans, dtype=float)
         if modes is None:
             flat = np.ascontiguousarray(spans.ravel())
-            values = _screen_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)[0]
+            values = _screen_values_batch(flat, *pulse(flat), all_modes.size, 1.0, state, closure)
         else:
             per_span = np.broadcast_to(np.asarray(modes, dtype=float), spans.shape + np.shape(modes)[-1:])
             values = _screen_values(np.ascontiguousarray(spans.ravel()),
@@ -494,7 +503,7 @@ def _pulse_one(span, table):
     return math.exp(interp_one(log_span, table[0], table[1])), interp_one(log_span, table[0], table[2])
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
 def _residues_kernel(spans, modes, table, state, closure, floors):
     """``screen_residual(...).residue`` at every pole (compiled): spans L_p [m], modes n, the rest as
     :func:`_screen_state`; NaN, not computed, where a bound without trigonometry puts |R| below
@@ -507,7 +516,8 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
     self_consistent, mass_factor, restitution, omega_rot, _, interval, _ = closure
     shortest = math.exp(np.min(table[1]))
     out = np.empty(spans.size)
-    for i in range(spans.size):
+    omegas, scales = np.empty(spans.size), np.empty(spans.size)
+    for i in range(spans.size):  # the bound of every pole first, in SIMD instructions (no jump, no library call)
         span, n = spans[i], modes[i]
         k_sq = (n * math.pi / span) ** 2
         om_sq = (ei * k_sq + tension) * k_sq / mass
@@ -517,9 +527,11 @@ def _residues_kernel(spans, modes, table, state, closure, floors):
         u = omega * shortest / math.pi
         bound = abs(scale) * (1.0 / (u * u - 1.0) if u * u > 2.0 else 1.0) * (
             0.5 if self_consistent else omega_rot / (2.0 * omega))
-        if bound < floors[i]:
-            out[i] = math.nan
+        omegas[i], scales[i], out[i] = omega, scale, math.nan if bound < floors[i] else 0.0
+    for i in range(spans.size):
+        if out[i] != 0.0:
             continue
+        span, n, omega, scale = spans[i], modes[i], omegas[i], scales[i]
         duration, half = _pulse_one(span, table)
         real, imag = beam.loaded_spectrum_one(omega, span, n, duration, half, code)  # |g_n| H(ω)
         out[i] = scale * (-0.5 * imag if self_consistent else omega_rot * real / (2.0 * omega))
@@ -541,6 +553,18 @@ def _screen_batch(spans, durations, halves, n_odd, offset, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
+def _screen_values_batch(spans, durations, halves, n_odd, offset, state, closure):
+    """The first of :func:`_screen_batch`'s arrays alone, to the last bit: the modal sum of y₁ (prescribed) or v₁
+    (self-consistent) only (:func:`beam.midspan_sums`)."""
+    ei, tension, mass, period, one_wall, code, tol, _ = state
+    self_consistent, mass_factor, restitution, omega, _, _, _ = closure
+    total = beam.midspan_sums(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol,
+                              self_consistent)
+    factor = mass_factor * spans * (1.0 + restitution)
+    return -factor * total - offset if self_consistent else -factor * omega * total - offset
+
+
+@numba.njit(cache=True, nogil=True)
 def _screen_values(spans, modes, offset, table, state, closure):
     """The screening residual of :func:`_screen_state` at every span; ``modes`` one row for all spans or
     one row per span."""
@@ -552,6 +576,39 @@ def _screen_values(spans, modes, offset, table, state, closure):
 
 
 @numba.njit(cache=True, nogil=True)
+def _search_right(values, x, hint):
+    """``np.searchsorted(values, x, side="right")`` of ascending ``values`` and a finite x, galloping from index
+    ``hint`` (steps of 1, 2, 4, … towards the answer, then halving): a few comparisons when the answer is near
+    the hint, as it is for the span search's brackets taken in ascending order."""
+    n = values.size
+    hint = min(max(hint, 0), n)
+    step = 1
+    if hint < n and values[hint] <= x:  # the answer is above the hint
+        lo = hint + 1
+        hi = lo
+        while hi < n and values[hi] <= x:
+            lo = hi + 1
+            hi = lo + step
+            step *= 2
+        hi = min(hi, n)
+    else:  # at or below it
+        hi = hint
+        lo = hi
+        while lo > 0 and values[lo - 1] > x:
+            hi = lo - 1
+            lo = hi - step
+            step *= 2
+        lo = max(lo, 0)
+    while lo < hi:  # values[lo - 1] <= x (or lo = 0) and values[hi] > x (or hi = n)
+        mid = (lo + hi) // 2
+        if values[mid] <= x:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@numba.njit(cache=True, nogil=True)
 def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
     """One round of ``screen_residual(...).shrink`` for the brackets ``running``: each bracket's tolerance
     (``pole_free_rtol`` once none of ``poles`` lies within :data:`POLE_FREE_WINDOW` bracket widths, updated in
@@ -560,12 +617,12 @@ def _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below):
     before the first; that point only moves up as the bracket shrinks, so each check walks on from there.
     Returns (those brackets, their points)."""
     still, points = np.empty(running.size, dtype=np.int64), np.empty(running.size)
-    count = 0
+    count, hint = 0, 0
     for i in running:
         if tol[i] != pole_free_rtol and b[i] - a[i] <= pole_free_rtol * abs(b[i]):  # far from every pole?
             left = a[i] - POLE_FREE_WINDOW * (b[i] - a[i])
-            if below[i] < 0:
-                below[i] = np.searchsorted(poles, left, side="right")
+            if below[i] < 0:  # the brackets come in ascending order: search on from the last one's place
+                below[i] = hint = _search_right(poles, left, hint)
             while below[i] < poles.size and poles[below[i]] <= left:
                 below[i] += 1
             first = below[i]
@@ -740,14 +797,24 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
         return keep
     spans, duration, half, impulse = spans[rows], duration[rows], half[rows], np.broadcast_to(impulse, keep.shape)[rows]
     span_t = scene.impact_interval
-    omega, weight = _midspan_weights(scene, spans, half, options)
     # coarse (sampling can miss a violation, never invent one): 48 times after the pulse, interleaved
     # so that the first dozen span the whole period, each root dropped at its first violation
     fractions = np.linspace(0.0, 1.0, 50)[1:-1].reshape(-1, 4).T.ravel()
     times = duration[:, None] + (span_t - duration[:, None]) * fractions[None, :]  # after the pulse, per root
     limit = c * 1.02 / np.abs(impulse)
-    largest = beam.largest_excursion(times, omega, duration, weight, scene.period, scene.pattern, limit=limit)
-    keep[rows] = largest <= limit  # NaN (a resonant mode): dropped
+    # the verdict of largest_excursion without its library calls where rounding cannot change it, it elsewhere
+    p = scene.props
+    verdict = beam.excursion_verdicts(times, spans, duration, half, odd_modes(options.modes).size,
+                                      p["bending_stiffness"], p["effective_tension"], p["mass_per_length"], scene.period,
+                                      scene.pattern, options.load_shape, limit=limit)
+    within = verdict == 0
+    unsure = np.nonzero(verdict < 0)[0]
+    if unsure.size:
+        omega, weight = _midspan_weights(scene, spans[unsure], half[unsure], options)
+        largest = beam.largest_excursion(times[unsure], omega, duration[unsure], weight, scene.period, scene.pattern,
+                                         limit=limit[unsure])
+        within[unsure] = largest <= limit[unsure]  # NaN (a resonant mode): dropped
+    keep[rows] = within
     return keep
 
 
@@ -781,14 +848,21 @@ def refine_roots(scene: Scene, options: Options, approx, brackets, steps: int = 
     to the nearer pole (a root pinned next to a pole); a root still off by more than 1e-8 in F when
     the steps run out, or whose secant leaves its bracket, carries the problem. Returns one
     :class:`Impact` per root, in order."""
+    rows = refined_rows(scene, options, approx, brackets, steps, durations, halves)
+    return _impacts_of(scene, rows) if rows.shape[1] else []
+
+
+def refined_rows(scene: Scene, options: Options, approx, brackets, steps: int = 8, durations=None,
+                 halves=None) -> np.ndarray:
+    """:func:`refine_roots` as the compiled kernel's columns (rows :data:`_ROWS`), before they become
+    :class:`Impact` records (:func:`_impacts_of`): the span search makes records of the sound ones only."""
     approx = np.atleast_1d(np.asarray(approx, dtype=float))
     if approx.size == 0:
-        return []
+        return np.zeros((len(_ROWS), 0))
     brackets = np.asarray(brackets, dtype=float).reshape(-1, 2)
     lo, hi = brackets.min(axis=1), brackets.max(axis=1)
-    rows = _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi),
+    return _refine_kernel(np.ascontiguousarray(approx), np.ascontiguousarray(lo), np.ascontiguousarray(hi),
                           *_starts(approx.shape, durations, halves), int(steps), *_kernel_args(scene, options))
-    return _impacts_of(scene, rows)
 
 
 def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
@@ -1057,11 +1131,12 @@ def find_span(scene: Scene, options: Options) -> SpanChoice:
     survivors = search.roots[screened]
     candidates, reasons = [], {}
     durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
-    refined = refine_roots(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
-    sound = [impact for impact in refined if not impact.problems]
-    violations = iter(constraint_violations(scene, sound, options))
-    for root, impact in zip(survivors, refined):
-        problem = "; ".join(impact.problems) or next(violations)
+    rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
+    codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
+    sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
+    violations = zip(sound, constraint_violations(scene, sound, options))
+    for root, code, value in zip(survivors, codes, values):
+        impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
         if problem is None:
             candidates.append(impact)
         else:

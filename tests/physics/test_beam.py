@@ -555,6 +555,40 @@ def test_largest_excursion_with_a_limit_stops_a_row_at_its_first_time_above_it(p
     assert got[0] < full[0] or np.argmax(excursion[0]) == first[0]
 
 
+@pytest.mark.parametrize("shape", SHAPES)
+@pytest.mark.parametrize("pattern", PATTERNS)
+def test_excursion_verdicts_are_the_largest_excursion_s_wherever_they_decide(pattern, shape):
+    # source: largest_excursion (the library's sin and cos) with the midspan weights 2 g_n/(M L) of the odd
+    # modes (modal_load_factors x sin(n pi/2)) and natural_frequencies; limits spread round each row's
+    # maximum, and within 1e-15 of it (rounding: there the verdict must be left to largest_excursion, undecided)
+    from study.physics import section
+    rng = np.random.default_rng(5)
+    ei, tension, mass, tau, n_odd = 1.6e6, 4e4, 30.0, 0.2, 11
+    R = 400
+    spans = rng.uniform(5.0, 40.0, R)
+    tl = rng.uniform(5e-4, 0.02, R)
+    half = rng.uniform(0.0, 0.2, R)
+    fractions = rng.uniform(0.0, 1.0, (R, 24))
+    end = tau if pattern == "one_wall" else tau / 2
+    t = tl[:, None] + (end - tl[:, None]) * np.clip(fractions, 1e-6, 1 - 1e-6)
+    modes = np.arange(1, 2 * n_odd, 2.0)
+    omega = section.natural_frequencies(spans, ei, tension, mass, modes)
+    weight = 2 * bm.modal_load_factors(modes, spans, half, shape) * np.where(modes % 4 == 1, 1.0, -1.0) / (
+        mass * spans[:, None])
+    full = bm.largest_excursion(t, omega, tl, weight, tau, pattern)
+    limit = full * np.concatenate([rng.uniform(0.3, 1.7, R - 40), 1 + rng.choice([-1, 1], 40) * 1e-15 * rng.uniform(
+        0.1, 1.0, 40)])
+    verdict = bm.excursion_verdicts(t, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape, limit=limit)
+    decided = verdict >= 0
+    np.testing.assert_array_equal(verdict[decided] == 1, (full > limit)[decided])
+    assert decided[:R - 40].mean() > 0.99  # far from the limit it decides
+    assert not decided[R - 40:].any()  # within rounding of it, it does not
+    inside = t.copy()
+    inside[0, 3] = 0.5 * tl[0]  # a time inside the pulse: undecided
+    assert bm.excursion_verdicts(inside, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape,
+                                 limit=limit)[0] == -1
+
+
 @pytest.mark.parametrize("pattern", PATTERNS)
 @pytest.mark.parametrize("tl", [1e-3, 0.03])
 def test_compiled_periodic_displacement_equals_the_closed_form(pattern, tl):
@@ -649,6 +683,10 @@ def test_midspan_states_of_many_spans_are_the_scalar_loop_s_to_the_last_bit(patt
     simd = np.array(bm.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
     scalar = bm._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
     assert np.isnan(scalar).sum() >= 18 and np.array_equal(simd, scalar, equal_nan=True)
+    # and y1 or v1 alone (midspan_sums) is the same sum
+    for velocity, row in ((False, 0), (True, 1)):
+        alone = bm.midspan_sums(spans, durations, 0.002 * spans, modes.size, *args, velocity)
+        assert np.array_equal(alone, scalar[row], equal_nan=True)
 
 
 @pytest.mark.parametrize("pattern", ["one_wall", "alternating"])

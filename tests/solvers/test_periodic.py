@@ -32,6 +32,17 @@ def test_poles_are_where_a_natural_frequency_meets_a_harmonic(paper_inputs, patt
     assert np.all(hit.any(axis=1))
 
 
+def test_galloping_search_is_numpy_s_searchsorted():
+    # source: np.searchsorted(side="right"), over arrays with repeated values, keys outside and on the values,
+    # and hints anywhere (before, inside, past the end)
+    rng = np.random.default_rng(0)
+    for _ in range(3000):
+        values = np.sort(rng.integers(0, 20, rng.integers(0, 40)).astype(float))
+        x = float(rng.integers(-2, 23)) + rng.choice([0.0, 0.5])
+        hint = int(rng.integers(-3, values.size + 4))
+        assert periodic._search_right(values, x, hint) == np.searchsorted(values, x, side="right")
+
+
 def test_roots_lie_between_poles_and_zero_the_screening_residual(paper_inputs):
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=11, min_span=20.0, max_span=120.0)
