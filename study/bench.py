@@ -22,7 +22,7 @@ from study import __version__
 from study.config import load
 from study.physics import hertz
 from study.solvers import METHODS, STATUS_CODES, periodic, reference, series, solve_point, timedomain, whirl_kernel
-from study.workflow.execute import run_grid, warm_up, worker_environ
+from study.workflow.execute import run_grid, use_worker_environ, warm_up
 from study.workflow.grid import Grid
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
@@ -414,10 +414,9 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     times into fresh folders). Returns the rows (label, median seconds) and notes with the measured
     scheduling overhead of the median run: 1 − (Σ per-point solve time)/(workers × wall time).
     """
-    import dask
     from dask.distributed import Client, LocalCluster
 
-    dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()})  # as a sweep's local workers
+    use_worker_environ()  # as a sweep's local workers
     grid = _grid_of_size(study, points)
     mix = Counter()  # (method, status) of the points of the last run
 

@@ -337,12 +337,12 @@ def stationary(peaks, impacts, states, scale, n: int) -> bool:
     bouncing, whose statistics are stationary, and not a motion still settling towards a rest, a slide or a
     cycle (docs/reference_model.md §3.1). The first n revolutions (the start-up, whose scatter would hide any
     drift) are never in the two stretches: False before 3n revolutions."""
-    if len(peaks) < 3 * n or len(impacts) < 3 * n:
+    if len(peaks) < 3 * n:
         return False
+    if min(np.count_nonzero(impacts[-2 * n:-n]), np.count_nonzero(impacts[-n:])) < n / 3:
+        return False  # too few strikes: lying or sliding on the wall, or clear of it, not bouncing
     for series in (impacts, peaks):
         before, last = np.asarray(series[-2 * n:-n], float), np.asarray(series[-n:], float)
-        if series is impacts and min(np.count_nonzero(before), np.count_nonzero(last)) < n / 3:
-            return False  # too few strikes: lying or sliding on the wall, or clear of it, not bouncing
         spread = np.hypot(*(standard_error(x) if np.ptp(x) > 0 else 0.0 for x in (before, last)))
         if abs(np.mean(last) - np.mean(before)) > DRIFT_SIGNIFICANCE * spread:
             return False
@@ -555,8 +555,8 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
     the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
-    (the transient ended as the bouncing was found stationary), and where not periodic uncorrected
-    (:func:`uncorrected_means` of the window).
+    (the transient ended as the bouncing was found stationary), uncorrected (:func:`uncorrected_means` of the
+    window).
     """
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
@@ -581,7 +581,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
 
     kept: list[Window] = []  # the transient's last revolutions, recorded
     peaks, impacts = [], []  # each revolution's largest contact force [N] and contact onsets
-    stationary_at = None
+    bouncing = False  # the transient ended on stationary bouncing
     for k in range(1, revolutions + 1):
         # the last revolutions are kept: n_window where the transient ends at the last, 2 n_window where a
         # stationary bouncing ends it (from 3 n_window on): those are its window and the stretch before it
@@ -601,7 +601,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
         if period is not None:
             break
         if k % n_window == 0 and stationary(peaks, impacts, states, scale, n_window):
-            stationary_at = k
+            bouncing = True
             break
     done = len(states) - 1
     budget_spent, needed = False, float(done)
@@ -611,14 +611,15 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             blocks.append(run.run(run.t + period * tau, record=True))
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
-        window_cycles, preceding = list(zip(blocks, cycle_values(inputs, model, blocks))), []
+        window_cycles, preceding, window = list(zip(blocks, cycle_values(inputs, model, blocks))), [], merge(blocks)
+        uncorrected = uncorrected_means(inputs, model, window, [v for _, v in window_cycles])
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
-        kept = kept if stationary_at else kept[-n_window:]
+        kept = kept if bouncing else kept[-n_window:]
         record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
         first = 0  # the record's first revolution
-        grow = not stationary_at
+        grow = not bouncing
         while True:
             added = []
             for _ in range(n_window if grow else 0):
@@ -660,12 +661,10 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             for i in range(first):
                 record[i] = (None, record[i][1])  # free the recordings no longer needed
         done = used - len(window_cycles)
-    window = merge([c for c, _ in window_cycles])
-    out = dict(uncorrected=uncorrected) if not period else {}
-    return out | dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
+    return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
                 budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
-                stationary=stationary_at is not None)
+                stationary=bouncing, uncorrected=uncorrected)
 
 
 # --- outputs -----------------------------------------------------------------------------------------
@@ -847,7 +846,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
-    uncorrected = run["uncorrected"] if "uncorrected" in run else uncorrected_means(inputs, model, window, cycles)
+    uncorrected = run["uncorrected"]
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"],
                          uncorrected=uncorrected)
     correction = summary.pop("correction")

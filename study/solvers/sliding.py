@@ -379,12 +379,7 @@ def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[d
         model = states[members[0]]["model"]
         windows = [states[i]["window"] for i in members]
         rows = np.cumsum([0] + [w.times.size for w in windows])
-        joined = reference.Window(times=np.concatenate([w.times for w in windows]),
-                                  states=np.concatenate([w.states for w in windows]),
-                                  forces=np.concatenate([w.forces for w in windows]), peak=windows[0].peak,
-                                  onsets=windows[0].onsets, contact_time=windows[0].contact_time,
-                                  any_contact_time=windows[0].any_contact_time, start=0.0, end=model.period)
-        stressed = reference.stresses(inputs, model, joined, correction=correction,
+        stressed = reference.stresses(inputs, model, reference.merge(windows), correction=correction,
                                       segments=list(zip(rows[:-1], rows[1:])))
         for i, window, vals in zip(members, windows, stressed):
             measure = reference.whirl_measure(model, window)

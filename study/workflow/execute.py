@@ -126,19 +126,21 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     return stored.columns(keys)
 
 
-def worker_environ() -> dict:
-    """The environment dask's nanny sets in a local worker process before it starts
-    (``distributed.nanny.pre-spawn-environ``: one BLAS/OpenMP thread) without ``MALLOC_TRIM_THRESHOLD_``. Dask sets
-    glibc's trim threshold to 64 KiB so that freed memory goes back to the system; setting it also turns glibc's
-    dynamic mmap threshold off, so every numpy temporary above 128 KiB is a fresh mmap paid in page faults: a
-    worker solved the default study's points 1.22x slower than this process (its numpy parts 1.6x), and 0.94x
-    without it (docs/performance.md). A sweep's worker holds a few hundred MiB at most; nothing to give back."""
+def use_worker_environ() -> None:
+    """Start this process's local dask workers without ``MALLOC_TRIM_THRESHOLD_`` in their environment, the rest
+    of what dask's nanny sets there (``distributed.nanny.pre-spawn-environ``: one BLAS/OpenMP thread) kept. Dask
+    sets glibc's trim threshold to 64 KiB so that freed memory goes back to the system; setting it also turns
+    glibc's dynamic mmap threshold off, so every numpy temporary above 128 KiB is a fresh mmap paid in page
+    faults: a worker solved the default study's points 1.22x slower than this process (its numpy parts 1.6x), and
+    0.94x without it (docs/large_sweep.md). A sweep's worker holds a few hundred MiB at most; nothing to give
+    back. Set for the process, not in a context: each nanny reads it when it is made and keeps it for its
+    restarts."""
     import dask
     import distributed  # noqa: F401 - its defaults are in dask's config once imported
 
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", default={}) or {})
     environ.pop("MALLOC_TRIM_THRESHOLD_", None)
-    return environ
+    dask.config.set({"distributed.nanny.pre-spawn-environ": environ})
 
 
 def _local_cluster(workers: int, attempts: int = 3):
@@ -152,12 +154,10 @@ def _local_cluster(workers: int, attempts: int = 3):
     import signal
     import threading
 
-    import dask
     from dask.distributed import LocalCluster
     from distributed.deploy.spec import SpecCluster
 
-    # read by each nanny when it is made and kept for its restarts (set for this process, not in a context)
-    dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()})
+    use_worker_environ()
 
     before = set(SpecCluster._instances)
     for attempt in range(attempts):

@@ -146,3 +146,7 @@ def test_fibre_half_ranges_are_the_turning_fibres_half_ranges():
     my, mz = rng.standard_normal((2, 400, 7))
     direct = np.max([0.5 * np.ptp(my * c[:, None] + mz * s[:, None], axis=0) for c, s in zip(cos, sin)], axis=0)
     np.testing.assert_array_equal(whirl_kernel.fibre_half_ranges(my, mz, cos, sin), direct)
+    my[5, 2] = np.nan  # a NaN moment gives its station NaN, as numpy's max and min do
+    direct = np.max([0.5 * np.ptp(my * c[:, None] + mz * s[:, None], axis=0) for c, s in zip(cos, sin)], axis=0)
+    np.testing.assert_array_equal(whirl_kernel.fibre_half_ranges(my, mz, cos, sin), direct)
+    assert np.isnan(direct[2]) and np.isfinite(np.delete(direct, 2)).all()
