@@ -51,7 +51,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, section, whirl
-from study.solvers import trajectory, whirl_kernel
+from study.solvers import stress_kernel, trajectory, whirl_kernel
 from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
@@ -754,29 +754,26 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         times = window.times[rows]
         my, mz = fields[0]["moment"][rows], fields[1]["moment"][rows]
         uy, uz = fields[0]["deflection"][rows], fields[1]["deflection"][rows]
-        moment = np.hypot(my, mz)
-        it, ix = np.unravel_index(np.argmax(moment), moment.shape)
         turn = model.rotary_speed * times
         psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
-        half = whirl_kernel.fibre_half_ranges(np.ascontiguousarray(my), np.ascontiguousarray(mz),
-                                              np.cos(turn[None, :] + psi[:, None]), np.sin(turn[None, :] + psi[:, None]))
-        shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / np.diff(x)
-        js = np.unravel_index(np.argmax(shear), shear.shape)
+        largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
+            *(np.ascontiguousarray(f) for f in (my, mz, uy, uz)), x, np.cos(turn), np.sin(turn), np.cos(psi),
+            np.sin(psi))
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
         shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
         full = np.hypot(qy @ shapes, qz @ shapes)
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        outs.append(dict(max_deflection=float(np.max(np.hypot(uy, uz))),
-                         max_bending_stress=float(moment[it, ix] * scale),
-                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
+        outs.append(dict(max_deflection=float(deflection),
+                         max_bending_stress=float(largest * scale),
+                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
                          max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),
                          alternating_bending_stress=float(np.max(half) * scale),
                          alternating_bending_stress_x=float(x[int(np.argmax(half))]),
-                         max_shear_stress=float(2.0 * shear[js] / area),
-                         max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
-                         max_shear_stress_t=float(times[js[0]] - times[0]),
+                         max_shear_stress=float(2.0 * shear / area),
+                         max_shear_stress_x=float(0.5 * (x[jx] + x[jx + 1])),
+                         max_shear_stress_t=float(times[jt] - times[0]),
                          modal_tail_fraction=float(tail / full) if full > 0 else 0.0,
                          modal_quarter_fraction=float(below / full) if full > 0 else 0.0))
     return outs if segments is not None else outs[0]
