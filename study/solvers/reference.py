@@ -757,8 +757,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         turn = model.rotary_speed * times
         psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
         largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
-            *(np.ascontiguousarray(f) for f in (my, mz, uy, uz)), x, np.cos(turn), np.sin(turn), np.cos(psi),
-            np.sin(psi))
+            my, mz, uy, uz, x, np.cos(turn), np.sin(turn), np.cos(psi), np.sin(psi))
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
         shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
