@@ -273,9 +273,9 @@ class Integrator:
         tau = self.model.period
         revs = max((t_end - self.t) / tau, 1e-9)
         cap = int(rows_per_revolution * 16 * revs) + 16 if record else 1
-        rec_t = np.zeros(cap)
-        rec_z = np.zeros((cap, self.z.size))
-        rec_f = np.zeros((cap, P, 3))
+        rec_t = np.empty(cap)  # rows written by the kernel before they are read (the first n_rec)
+        rec_z = np.empty((cap, self.z.size))
+        rec_f = np.empty((cap, P, 3))
         rec_dt = np.array([tau / rows_per_revolution, tau / (16 * rows_per_revolution)])
         start = self.t
         t, h, outcome, n_rec, steps = whirl_kernel.advance(
@@ -284,8 +284,9 @@ class Integrator:
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
         self.work += stats
-        return Window(times=rec_t[:n_rec], states=rec_z[:n_rec], forces=rec_f[:n_rec], peak=peak, onsets=onsets,
-                      contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
+        # the rows written, copied: the buffers (room for a contact all the way) are freed
+        return Window(times=rec_t[:n_rec].copy(), states=rec_z[:n_rec].copy(), forces=rec_f[:n_rec].copy(), peak=peak,
+                      onsets=onsets, contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
 
 
 INITIAL_CHOICES = ReferenceOptions.choices("reference_initial")
