@@ -630,6 +630,9 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 states.append(run.z[:4 * N].copy())
             if added:
                 record += zip(added, cycle_values(inputs, model, added))
+                live = record[first:]  # the cycles still recorded: one decision on the correction for them all
+                if len({values["correction"] for _, values in live}) > 1:
+                    record[first:] = zip([c for c, _ in live], cycle_values(inputs, model, [c for c, _ in live]))
             grow = True
             half = (len(record) - first) // 2
             preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
