@@ -133,7 +133,7 @@ def use_worker_environ() -> None:
     sets glibc's trim threshold to 64 KiB so that freed memory goes back to the system; setting it also turns
     glibc's dynamic mmap threshold off, so every numpy temporary above 128 KiB is a fresh mmap paid in page
     faults: a worker solved the default study's points 1.22x slower than this process (its numpy parts 1.6x), and
-    0.94x without it (docs/large_sweep.md). A sweep's worker holds a few hundred MiB at most; nothing to give
+    0.94x without it (docs/workers.md). A sweep's worker holds a few hundred MiB at most; nothing to give
     back. Set for the process, not in a context: each nanny reads it when it is made and keeps it for its
     restarts."""
     import dask
