@@ -32,7 +32,10 @@ solution where the undamped one's dropped drag is not small (``terms_not_small``
 
 from __future__ import annotations
 
+import copy
+import sys
 import time
+from collections import OrderedDict
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -97,6 +100,35 @@ MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
 }
 
 
+#: The answers of rungs whose method declares inputs it does not depend on (its module's ``INDEPENDENT_OF``), kept
+#: by the other inputs, at most this many in a process (the least recently used dropped): a sweep over the
+#: restitution solves the free whirl and the sliding state once for all its values.
+MEMO_SIZE = 4096
+_memo: OrderedDict[tuple, PointResult] = OrderedDict()
+
+
+def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
+    """``method(inputs)``, or a copy of its answer at inputs that differ only in what the method does not depend on
+    (:data:`MEMO_SIZE`); the copy's ``wall_time`` is what the copy took."""
+    ignored = getattr(sys.modules[method.__module__], "INDEPENDENT_OF", ())
+    if not ignored:
+        return method(inputs)
+    start = time.perf_counter()
+    key = (method.__module__, method.__qualname__,
+           tuple(sorted((name, repr(value)) for name, value in inputs.items() if name not in ignored)))
+    kept = _memo.get(key)
+    if kept is None:
+        result = method(inputs)
+        _memo[key] = copy.deepcopy(result)  # as answered, before the gate and the climb add to it
+        if len(_memo) > MEMO_SIZE:
+            _memo.popitem(last=False)
+        return result
+    _memo.move_to_end(key)
+    result = copy.deepcopy(kept)
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
 def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     start = time.perf_counter()
@@ -104,7 +136,7 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
             continue
-        tried.append(gate.admit(method(prepare(inputs)), inputs))
+        tried.append(gate.admit(solve_rung(method, prepare(inputs)), inputs))
         if tried[-1].status == "ok":
             break
     result = tried[-1]

@@ -47,6 +47,10 @@ from study.solvers.options import study_tolerance
 from study.solvers.result import PointResult
 
 METHOD = "sliding"
+#: Inputs the answer does not depend on: the contacts are held, with no Hunt–Crossley term (it depends on an onset a
+#: held contact never had), so the restitution never enters. ``auto`` reuses one answer across them (a test holds
+#: the claim).
+INDEPENDENT_OF = ("restitution",)
 #: Samples over the revolution for the outputs and the drag's equal dissipation.
 SAMPLES = 256
 #: Fixed-point iterations on the drag at most, and the relative change of A that ends them.

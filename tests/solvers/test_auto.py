@@ -138,3 +138,58 @@ def test_a_sliding_answer_near_the_tolerance_stands_and_a_far_one_goes_up(estima
     answer = PointResult(method="sliding", status="not_converged", error_estimate=estimate)
     assert auto.MENDS["reference"](answer, {}) is goes_up
     assert auto.MENDS["reference"](PointResult(method="sliding", status="out_of_scope"), {}) is True
+
+
+def _default_points(step):
+    from study.workflow.grid import Grid
+
+    study = config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml")
+    grid = Grid(dict(study.inputs), dict(study.axes))
+    return list(grid.points(range(0, grid.size, step))), study.axes
+
+
+@pytest.mark.parametrize("module", ["freewhirl", "sliding"])
+def test_a_method_does_not_depend_on_the_inputs_it_says_it_does_not(module):
+    # INDEPENDENT_OF is a claim about the physics (the free whirl touches nothing, the sliding state's held contacts
+    # have no Hunt-Crossley term): at 16 points of configs/default.toml each such input moved to its axis' other end
+    # gives the same answer to the bit, status, message, values and error estimate
+    import importlib
+
+    method = importlib.import_module(f"study.solvers.{module}")
+    points, axes = _default_points(22)
+    for name in method.INDEPENDENT_OF:
+        for point in points:
+            other = {**point, name: axes[name][0] if point[name] != axes[name][0] else axes[name][-1]}
+            a, b = method.solve(point), method.solve(other)
+            assert (a.status, a.message, a.error_estimate) == (b.status, b.message, b.error_estimate), name
+            assert a.values.keys() == b.values.keys()
+            np.testing.assert_array_equal([a.values[k] for k in a.values], [b.values[k] for k in a.values])
+
+
+def test_auto_solves_the_cheap_rungs_once_across_the_inputs_they_do_not_depend_on(monkeypatch):
+    # two points that differ only in the restitution: the free whirl and the sliding state are solved once, the
+    # second point's answers copies of the first's; the reference model (which the restitution enters) twice
+    from study.solvers import auto, freewhirl, reference, sliding
+
+    calls = {"free-whirl": 0, "sliding": 0, "reference": 0}
+
+    def counted(name, solve):
+        def run(inputs):
+            calls[name] += 1
+            return solve(inputs)
+        run.__module__ = solve.__module__
+        return run
+
+    ladder = {name: (counted(name, solve), prepare) for name, (solve, prepare) in auto.LADDERS["auto"].items()}
+    monkeypatch.setitem(auto.LADDERS, "auto", ladder)
+    points, _ = _default_points(1)
+    bouncing = next(p for p in points[::16] if auto.solve(p).method == "reference")  # climbs every rung
+    auto._memo.clear()
+    calls.update({name: 0 for name in calls})
+    first = auto.solve({**bouncing, "restitution": 0.3})
+    second = auto.solve({**bouncing, "restitution": 0.7})
+    assert calls == {"free-whirl": 1, "sliding": 1, "reference": 2}
+    assert first.extras["methods_tried"]["sliding"] == second.extras["methods_tried"]["sliding"]
+    assert first.values["peak_contact_force"] != second.values["peak_contact_force"]  # the reference's own answers
+    assert freewhirl.INDEPENDENT_OF == sliding.INDEPENDENT_OF == ("restitution",)
+    assert not hasattr(reference, "INDEPENDENT_OF")
