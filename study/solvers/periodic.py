@@ -704,13 +704,36 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     its sign changes are shrunk by regula falsi, to :data:`ROOT_RTOL` where no pole is near and to
     1e-10 where one is. A sign change that converges onto no pole but the interval's own is a root (G
     is continuous there); one with a narrow pole in its last bracket is a root only where |F| has
-    fallen far below its values at the samples.
+    fallen far below its values at the samples. (:func:`search_intervals`, then :func:`roots_between`
+    over all its intervals.)
     """
+    intervals = search_intervals(scene, options)
+    return roots_between(intervals, 0, intervals.lo.size, options)
+
+
+@dataclass
+class SearchIntervals:
+    """The span search's intervals between consecutive wide poles (and the ends of the search range), ascending,
+    with what sampling them needs (:func:`search_intervals`)."""
+
+    poles: np.ndarray  #: every pole in the range [m], ascending (the narrow ones included)
+    lo: np.ndarray  #: each interval's lower end [m]
+    hi: np.ndarray  #: each interval's upper end [m]
+    residue_lo: np.ndarray  #: the residue [m] of the pole at lo (NaN: the end of the search range)
+    residue_hi: np.ndarray  #: the residue [m] of the pole at hi (NaN: the end of the search range)
+    residual: Any = None  #: the screening residual (:func:`screen_residual`); None: no span gives a valid pulse
+    narrow_count: int = 0  #: poles not searched, their resonance narrower than ``Options.resonance_width``
+
+
+def search_intervals(scene: Scene, options: Options) -> SearchIntervals:
+    """The poles in [min_span, max_span], their residues, and the intervals between the wide ones
+    (steps 1–2 of :func:`find_roots`): no interval when no span gives a valid pulse."""
     modes = odd_modes(options.modes)
     poles, pole_modes = resonances(scene, modes, options.min_span, options.max_span)
     residual = screen_residual(scene, options)
     if residual is None:
-        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
+        empty = np.zeros(0)
+        return SearchIntervals(poles, empty, empty, empty, empty)
     floors = options.resonance_width * poles  # resonance_widths, from the same residues (NaN: narrow for sure)
     residues = residual.residue(poles, pole_modes.astype(float), floors) if poles.size else np.zeros(0)
     wide = np.abs(residues) >= floors
@@ -719,15 +742,28 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     edge_residues = np.concatenate([[np.nan], edge_residues, [np.nan]])  # NaN: the search range's end, no pole
     lo, hi = edges[:-1], edges[1:]
     keep = hi > lo * (1 + 1e-12)
-    lo, hi, residue_lo, residue_hi = lo[keep], hi[keep], edge_residues[:-1][keep], edge_residues[1:][keep]
+    return SearchIntervals(poles, lo[keep], hi[keep], edge_residues[:-1][keep], edge_residues[1:][keep], residual,
+                           int(np.count_nonzero(~wide)))
+
+
+def roots_between(intervals: SearchIntervals, first: int, stop: int, options: Options) -> SpanSearch:
+    """The roots of condition 2 in the intervals ``first`` to ``stop`` − 1 of ``intervals`` (steps 3 of
+    :func:`find_roots`: sampled, bracketed and shrunk), ascending. Each interval's roots depend on that
+    interval alone, so the search can be taken a run of intervals at a time."""
+    lo, hi = intervals.lo[first:stop], intervals.hi[first:stop]
+    residue_lo, residue_hi = intervals.residue_lo[first:stop], intervals.residue_hi[first:stop]
+    poles, residual = intervals.poles, intervals.residual
+    if lo.size == 0:
+        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), residual,
+                          narrow_count=intervals.narrow_count, states=np.zeros((3, 0)))
     width = hi - lo
     # samples strictly inside each interval, denser towards the poles where F changes fastest; at a
     # pole G is R (b − a) in closed form, at an end of the search range F is computed just inside it
     fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
     ends_lo, ends_hi = np.isnan(residue_lo), np.isnan(residue_hi)
     start = np.where(ends_lo, lo * (1.0 + 1e-12), lo)
-    stop = np.where(ends_hi, hi * (1.0 - 1e-12), hi)
-    spans = np.column_stack([start, lo[:, None] + width[:, None] * fractions[None, :], stop])
+    stop_ = np.where(ends_hi, hi * (1.0 - 1e-12), hi)
+    spans = np.column_stack([start, lo[:, None] + width[:, None] * fractions[None, :], stop_])
     inside = np.zeros(spans.shape, dtype=bool)
     inside[:, 1:-1], inside[:, 0], inside[:, -1] = True, ends_lo, ends_hi
     values = np.full(spans.shape, np.inf)  # F (infinite at the poles)
@@ -738,29 +774,29 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     smooth[:, -1] = np.where(ends_hi, smooth[:, -1], -residue_hi * width)
     i, j = np.nonzero(np.sign(smooth[:, :-1]) * np.sign(smooth[:, 1:]) < 0)
     brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
-    intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
+    between = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
     # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
     # crawling along the pole's hyperbola
     roots, states = np.array([]), np.zeros((3, 0))
     if len(i):  # the ends' values are the samples'
         roots, root_values, final_lo, final_hi, states = residual.shrink(
-            brackets[:, 0], brackets[:, 1], smooth[i, j], smooth[i, j + 1], intervals[:, 0], intervals[:, 1],
+            brackets[:, 0], brackets[:, 1], smooth[i, j], smooth[i, j + 1], between[:, 0], between[:, 1],
             poles=poles, pole_free_rtol=ROOT_RTOL)
         # G is continuous between poles and at the wide ones around the interval: a sign change left in a
         # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
         # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
         # far below its value at the samples.
         margin = 1e-12 * final_hi
-        start = np.maximum(final_lo - margin, intervals[:, 0] * (1 + 2e-12))  # the interval's own poles
-        stop = np.minimum(final_hi + margin, intervals[:, 1] * (1 - 2e-12))  # (merged within 1e-12) excluded
-        unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop, side="right")
+        start = np.maximum(final_lo - margin, between[:, 0] * (1 + 2e-12))  # the interval's own poles
+        stop_ = np.minimum(final_hi + margin, between[:, 1] * (1 - 2e-12))  # (merged within 1e-12) excluded
+        unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop_, side="right")
         ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        distances = (roots - intervals[:, 0]) * (intervals[:, 1] - roots)
+        distances = (roots - between[:, 0]) * (between[:, 1] - roots)
         with np.errstate(divide="ignore", invalid="ignore"):
             real = ~unsure | (np.abs(root_values / distances) < 1e-3 * ends)
-        roots, intervals, states = roots[real], intervals[real], states[:, real]
-    return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
-                      narrow_count=int(np.count_nonzero(~wide)), states=states)
+        roots, between, states = roots[real], between[real], states[:, real]
+    return SpanSearch(roots=roots, brackets=between.reshape(-1, 2), pole_count=int(poles.size), residual=residual,
+                      narrow_count=intervals.narrow_count, states=states)
 
 
 def _merged_poles(poles, residues):
@@ -1113,39 +1149,68 @@ def _extremes_kernel(values, columns):
 class SpanChoice:
     """Outcome of the span search of one design point ."""
 
-    search: SpanSearch
+    search: SpanSearch  #: the roots found in the searched part of the range, [min_span, ``searched_to``]
     survivors: np.ndarray
     candidates: list  #: refined impacts satisfying every constraint, ascending span
     reasons: dict  #: short reason → roots rejected for it
     summary: str
     options: Options  #: the options used (max_span capped below buckling)
+    searched_to: float = np.nan  #: the upper end [m] of the part of the range searched (max_span: all of it)
 
 
-def find_span(scene: Scene, options: Options) -> SpanChoice:
+#: Intervals between wide poles in the first run of :func:`find_span`'s search when it stops at the first valid
+#: span; each later run is twice as long as the one before (so a search that finds nothing takes a few runs).
+FIRST_RUN = 1024
+
+
+def find_span(scene: Scene, options: Options, first: bool = False) -> SpanChoice:
     """Span search, midspan screen, exact refinement and condition 1 (all from :mod:`periodic`).
 
-    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`).
+    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`). With
+    ``first`` the intervals between wide poles are taken in ascending runs (:data:`FIRST_RUN`, then doubling),
+    each searched, screened, refined and checked whole, and the search stops after the run in which a span first
+    satisfies every constraint: each root's outcome depends on its own interval alone and a refined root stays
+    in its interval, so the smallest valid span is the one the whole search finds, while the roots, rejections
+    and valid spans counted are those of [min_span, ``searched_to``] only.
     """
-    search = find_roots(scene, options)
-    screened = midspan_screen(scene, options, search)
-    survivors = search.roots[screened]
-    candidates, reasons = [], {}
-    durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
-    rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
-    codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
-    sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
-    violations = zip(sound, constraint_violations(scene, sound, options))
-    for root, code, value in zip(survivors, codes, values):
-        impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
-        if problem is None:
-            candidates.append(impact)
-        else:
-            reasons.setdefault(_reason(problem), []).append(root)
+    intervals = search_intervals(scene, options)
+    runs, candidates, reasons, start, size = [], [], {}, 0, FIRST_RUN
+    while True:
+        stop = intervals.lo.size if not first else min(start + size, intervals.lo.size)
+        search = roots_between(intervals, start, stop, options)
+        screened = midspan_screen(scene, options, search)
+        survivors = search.roots[screened]
+        durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
+        rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations,
+                            halves=halves)
+        codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
+        sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
+        violations = zip(sound, constraint_violations(scene, sound, options))
+        for root, code, value in zip(survivors, codes, values):
+            impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
+            if problem is None:
+                candidates.append(impact)
+            else:
+                reasons.setdefault(_reason(problem), []).append(root)
+        runs.append((search, survivors))
+        start, size = stop, 2 * size
+        if start >= intervals.lo.size or candidates:
+            break
+    searched_to = float(intervals.hi[start - 1]) if 0 < start < intervals.lo.size else options.max_span
+    search = SpanSearch(np.concatenate([r.roots for r, _ in runs]), np.concatenate([r.brackets for r, _ in runs]),
+                        runs[0][0].pole_count, intervals.residual, intervals.narrow_count,
+                        np.concatenate([r.states for r, _ in runs], axis=1))
+    survivors = np.concatenate([s for _, s in runs])
     candidates = distinct_spans(candidates)
-    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count - search.narrow_count} poles "
-               f"in [{options.min_span:.4g}, {options.max_span:.4g}] m ({search.narrow_count} resonances narrower "
-               f"than {options.resonance_width:.2g} L not searched); {survivors.size} pass the midspan screen")
-    return SpanChoice(search, survivors, candidates, reasons, summary, options)
+    poles = (f"{search.pole_count - search.narrow_count} poles in [{options.min_span:.4g}, {options.max_span:.4g}] m "
+             f"({search.narrow_count} resonances narrower than {options.resonance_width:.2g} L not searched)")
+    if searched_to >= options.max_span:
+        summary = f"{search.roots.size} roots of condition 2 between {poles}"
+    else:
+        summary = (f"{search.roots.size} roots of condition 2 in [{options.min_span:.4g}, {searched_to:.4g}] m, where "
+                   f"the search stopped past the first valid span (of {poles})")
+    summary += f"; {survivors.size} pass the midspan screen"
+    return SpanChoice(search, survivors, candidates, reasons, summary, options, searched_to)
 
 
 #: Relative distance below which two refined spans are one root (reached from two brackets' screening roots).
@@ -1220,7 +1285,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.message = too_many
         result.wall_time = time.perf_counter() - start
         return result
-    choice = find_span(scene, options)
+    choice = find_span(scene, options, first=True)
     result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
                          narrow_count=float(choice.search.narrow_count), candidate_count=float(len(choice.candidates)))
     result.extras.update(closure=scene.closure, impact_pattern=scene.pattern,

@@ -346,3 +346,37 @@ def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
     known = ~np.isnan(search.states[0])
     assert search.states.shape == (3, search.roots.size) and np.mean(known) > 0.9
     np.testing.assert_allclose(search.states[:, known], expected[:, known], rtol=1e-12, atol=0)
+
+
+def test_roots_between_runs_of_intervals_are_the_search_over_all_of_them(paper_inputs):
+    # source: the definition - each interval's roots depend on that interval alone, so the search over two runs
+    # of intervals is find_roots over all of them, root for root
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=150.0)
+    options = periodic.Options(modes=11, min_span=5.0, max_span=40.0)
+    intervals = periodic.search_intervals(scene, options)
+    whole = periodic.find_roots(scene, options)
+    assert whole.roots.size > 20 and intervals.lo.size > 20
+    assert np.all(intervals.hi > intervals.lo) and np.all(intervals.lo[1:] == intervals.hi[:-1])
+    half = intervals.lo.size // 2
+    parts = [periodic.roots_between(intervals, 0, half, options),
+             periodic.roots_between(intervals, half, intervals.lo.size, options)]
+    np.testing.assert_array_equal(np.concatenate([p.roots for p in parts]), whole.roots)
+    np.testing.assert_array_equal(np.concatenate([p.brackets for p in parts]), whole.brackets)
+    assert np.all(parts[0].brackets[:, 1] <= intervals.hi[half - 1]) and np.all(parts[1].roots > intervals.hi[half - 1])
+
+
+def test_search_that_stops_at_the_first_valid_span_reports_the_same_smallest_span(paper_inputs, monkeypatch):
+    # source: the definition (docs/model.md §4.5) - stopping after the run of intervals that holds the first valid
+    # span finds the smallest valid span of the whole search; its roots are the whole search's up to where it
+    # stopped, and it counts fewer (runs of 16, 32, 64, ... of the 1242 intervals here: it stops at 1008)
+    monkeypatch.setattr(periodic, "FIRST_RUN", 16)
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=300.0)
+    options = periodic.Options(modes=11, max_span=60.0)
+    whole, first = periodic.find_span(scene, options), periodic.find_span(scene, options, first=True)
+    assert len(whole.candidates) >= 2 and whole.searched_to == options.max_span
+    assert first.candidates[0].span_length == whole.candidates[0].span_length
+    assert first.searched_to < options.max_span and "the search stopped past the first valid span" in first.summary
+    assert 1 <= len(first.candidates) <= len(whole.candidates)
+    assert 0 < first.search.roots.size < whole.search.roots.size
+    np.testing.assert_array_equal(first.search.roots, whole.search.roots[:first.search.roots.size])
+    assert np.all(first.search.roots <= first.searched_to)
