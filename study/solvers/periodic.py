@@ -448,9 +448,13 @@ def screen_residual(scene: Scene, options: Options):
         running, below = np.arange(a.size), np.full(a.size, -1, dtype=np.int64)
         # every bracket takes the steps it would take alone, all in lockstep: each round evaluates the new
         # points of the brackets still open at once (the pulse by numpy, the modal sums in one SIMD call)
-        for _ in range(int(iterations)):
+        for done in range(int(iterations)):
             running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol, below)
             if running.size == 0:
+                break
+            if running.size <= SHRINK_TAIL:  # the few brackets left (next to a pole) in one compiled loop
+                _shrink_tail(running, points, int(iterations) - done, a, b, fa, fb, raw_a, raw_b, side, tol, states,
+                             pole_lo, pole_hi, poles, free_rtol, below, table, all_modes.size, state, closure)
                 break
             values, y1, v1, curv1 = _screen_batch(points, *pulse(points), all_modes.size, 1.0, state, closure)
             _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
@@ -650,6 +654,30 @@ def _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, 
         states[end, 0, i], states[end, 1, i], states[end, 2, i] = y1[k], v1[k], curv1[k]
 
 
+#: Brackets left below which ``screen_residual(...).shrink`` takes its remaining rounds in one compiled loop
+#: (:func:`_shrink_tail`): the brackets next to a pole, shrunk to 1e-10, take up to 40 rounds of a few hundred.
+SHRINK_TAIL = 1024
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_tail(running, points, rounds, a, b, fa, fb, raw_a, raw_b, side, tol, states, pole_lo, pole_hi, poles,
+                 pole_free_rtol, below, table, n_odd, state, closure):
+    """The last ``rounds`` rounds of ``screen_residual(...).shrink`` from the brackets ``running`` and their next
+    ``points`` on, in one compiled loop: each round the screening pulse at the points (:func:`_pulse_one`), the
+    residual and midspan state there (:func:`_screen_batch`), the brackets moved (:func:`_shrink_update`) and
+    their next points (:func:`_shrink_points`)."""
+    for _ in range(rounds):
+        if running.size == 0:
+            break
+        durations, halves = np.empty(points.size), np.empty(points.size)
+        for k in range(points.size):
+            durations[k], halves[k] = _pulse_one(points[k], table)
+        values, y1, v1, curv1 = _screen_batch(points, durations, halves, n_odd, 1.0, state, closure)
+        _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                       pole_hi)
+        running, points = _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below)
+
+
 @numba.njit(cache=True, nogil=True)
 def _shrink_result(a, b, fa, fb, raw_a, raw_b, states):
     """Rows root, G at the root, final lo, final hi, and y₁, v₁, y₁'' at the root (NaN at an end no round
@@ -756,47 +784,98 @@ def roots_between(intervals: SearchIntervals, first: int, stop: int, options: Op
     if lo.size == 0:
         return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), residual,
                           narrow_count=intervals.narrow_count, states=np.zeros((3, 0)))
-    width = hi - lo
     # samples strictly inside each interval, denser towards the poles where F changes fastest; at a
     # pole G is R (b − a) in closed form, at an end of the search range F is computed just inside it
     fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
-    ends_lo, ends_hi = np.isnan(residue_lo), np.isnan(residue_hi)
-    start = np.where(ends_lo, lo * (1.0 + 1e-12), lo)
-    stop_ = np.where(ends_hi, hi * (1.0 - 1e-12), hi)
-    spans = np.column_stack([start, lo[:, None] + width[:, None] * fractions[None, :], stop_])
-    inside = np.zeros(spans.shape, dtype=bool)
-    inside[:, 1:-1], inside[:, 0], inside[:, -1] = True, ends_lo, ends_hi
-    values = np.full(spans.shape, np.inf)  # F (infinite at the poles)
-    values[inside] = residual(spans[inside])
-    with np.errstate(invalid="ignore"):  # inf x 0 at the poles, replaced next
-        smooth = values * (spans - lo[:, None]) * (hi[:, None] - spans)  # G
-    smooth[:, 0] = np.where(ends_lo, smooth[:, 0], residue_lo * width)
-    smooth[:, -1] = np.where(ends_hi, smooth[:, -1], -residue_hi * width)
-    i, j = np.nonzero(np.sign(smooth[:, :-1]) * np.sign(smooth[:, 1:]) < 0)
-    brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
-    between = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
+    spans, inside = _sample_spans(lo, hi, residue_lo, residue_hi, fractions)
+    brackets = _sign_changes(spans, residual(inside), lo, hi, residue_lo, residue_hi)
+    if brackets.shape[1] == 0:
+        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), residual,
+                          narrow_count=intervals.narrow_count, states=np.zeros((3, 0)))
     # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
     # crawling along the pole's hyperbola
-    roots, states = np.array([]), np.zeros((3, 0))
-    if len(i):  # the ends' values are the samples'
-        roots, root_values, final_lo, final_hi, states = residual.shrink(
-            brackets[:, 0], brackets[:, 1], smooth[i, j], smooth[i, j + 1], between[:, 0], between[:, 1],
-            poles=poles, pole_free_rtol=ROOT_RTOL)
-        # G is continuous between poles and at the wide ones around the interval: a sign change left in a
-        # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
-        # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
-        # far below its value at the samples.
-        margin = 1e-12 * final_hi
-        start = np.maximum(final_lo - margin, between[:, 0] * (1 + 2e-12))  # the interval's own poles
-        stop_ = np.minimum(final_hi + margin, between[:, 1] * (1 - 2e-12))  # (merged within 1e-12) excluded
-        unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop_, side="right")
-        ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        distances = (roots - between[:, 0]) * (between[:, 1] - roots)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            real = ~unsure | (np.abs(root_values / distances) < 1e-3 * ends)
-        roots, between, states = roots[real], between[real], states[:, real]
-    return SpanSearch(roots=roots, brackets=between.reshape(-1, 2), pole_count=int(poles.size), residual=residual,
-                      narrow_count=intervals.narrow_count, states=states)
+    roots, root_values, final_lo, final_hi, states = residual.shrink(*brackets[:6], poles=poles,
+                                                                     pole_free_rtol=ROOT_RTOL)
+    # G is continuous between poles and at the wide ones around the interval: a sign change left in a
+    # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
+    # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
+    # far below its value at the samples.
+    real = _real_roots(roots, root_values, final_lo, final_hi, brackets[4], brackets[5], brackets[6], poles)
+    between = np.stack([brackets[4][real], brackets[5][real]], axis=1)
+    return SpanSearch(roots=roots[real], brackets=between, pole_count=int(poles.size), residual=residual,
+                      narrow_count=intervals.narrow_count, states=states[:, real])
+
+
+@numba.njit(cache=True, nogil=True)
+def _sample_spans(lo, hi, residue_lo, residue_hi, fractions):
+    """The samples of :func:`roots_between`, (intervals, samples + 2) [m]: each interval's ends (its poles;
+    the search range's ends, NaN residue, moved 1e-12 inside) and lo + (hi − lo) ``fractions`` between them;
+    and, flat in row order, those where F is computed (all but the poles)."""
+    n, m = lo.size, fractions.size
+    spans = np.empty((n, m + 2))
+    inside = np.empty(n * (m + 2))
+    count = 0
+    for i in range(n):
+        width = hi[i] - lo[i]
+        spans[i, 0] = lo[i] * (1.0 + 1e-12) if math.isnan(residue_lo[i]) else lo[i]
+        spans[i, m + 1] = hi[i] * (1.0 - 1e-12) if math.isnan(residue_hi[i]) else hi[i]
+        for j in range(m):
+            spans[i, j + 1] = lo[i] + width * fractions[j]
+        for j in range(m + 2):
+            if 0 < j < m + 1 or (j == 0 and math.isnan(residue_lo[i])) or (j == m + 1 and math.isnan(residue_hi[i])):
+                inside[count] = spans[i, j]
+                count += 1
+    return spans, inside[:count].copy()
+
+
+@numba.njit(cache=True, nogil=True)
+def _sign_changes(spans, inside_values, lo, hi, residue_lo, residue_hi):
+    """The sign changes of G = F (L − lo)(hi − L) between consecutive samples of :func:`_sample_spans` (F at its
+    flat ``inside`` spans; at a pole G is R (hi − lo) and −R (hi − lo), R its residue). Rows: bracket lo, hi [m],
+    G there, the interval's lo, hi [m], and the smaller |F| at the bracket's two samples (infinite at a pole)."""
+    n, m = spans.shape
+    g, f = np.empty(m), np.empty(m)
+    out = np.empty((7, n * (m - 1)))
+    count, k = 0, 0
+    for i in range(n):
+        width = hi[i] - lo[i]
+        for j in range(m):
+            pole = (j == 0 and not math.isnan(residue_lo[i])) or (j == m - 1 and not math.isnan(residue_hi[i]))
+            if pole:
+                f[j] = math.inf
+                g[j] = residue_lo[i] * width if j == 0 else -residue_hi[i] * width
+            else:
+                f[j] = inside_values[k]
+                g[j] = f[j] * (spans[i, j] - lo[i]) * (hi[i] - spans[i, j])
+                k += 1
+        for j in range(m - 1):
+            if (g[j] > 0.0 and g[j + 1] < 0.0) or (g[j] < 0.0 and g[j + 1] > 0.0):
+                out[0, count], out[1, count], out[2, count], out[3, count] = spans[i, j], spans[i, j + 1], g[j], g[j + 1]
+                out[4, count], out[5, count], out[6, count] = lo[i], hi[i], min(abs(f[j]), abs(f[j + 1]))
+                count += 1
+    return out[:, :count].copy()
+
+
+@numba.njit(cache=True, nogil=True)
+def _real_roots(roots, root_values, final_lo, final_hi, lo, hi, ends, poles):
+    """Which shrunk sign changes of G are roots (:func:`roots_between`): those whose last bracket [final_lo,
+    final_hi] (widened by 1e-12, the interval [lo, hi]'s own poles excluded) holds no pole of ``poles`` (sorted),
+    and those where |F| = |G|/((L − lo)(hi − L)) has fallen below 1e-3 of ``ends`` (the smaller |F| at the
+    bracket's samples). The brackets come in ascending order, so the poles are walked through once."""
+    out = np.empty(roots.size, dtype=np.bool_)
+    k = np.searchsorted(poles, lo[0]) if roots.size else 0
+    for r in range(roots.size):
+        margin = 1e-12 * final_hi[r]
+        start = max(final_lo[r] - margin, lo[r] * (1 + 2e-12))
+        stop = min(final_hi[r] + margin, hi[r] * (1 - 2e-12))
+        while k > 0 and poles[k - 1] >= start:
+            k -= 1
+        while k < poles.size and poles[k] < start:
+            k += 1
+        unsure = k < poles.size and poles[k] <= stop
+        distance = (roots[r] - lo[r]) * (hi[r] - roots[r])
+        out[r] = not unsure or abs(root_values[r] / distance) < 1e-3 * ends[r]
+    return out
 
 
 def _merged_poles(poles, residues):
