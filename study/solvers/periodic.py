@@ -1281,13 +1281,15 @@ def find_span(scene: Scene, options: Options, first: bool = False) -> SpanChoice
                         np.concatenate([r.states for r, _ in runs], axis=1))
     survivors = np.concatenate([s for _, s in runs])
     candidates = distinct_spans(candidates)
-    poles = (f"{search.pole_count - search.narrow_count} poles in [{options.min_span:.4g}, {options.max_span:.4g}] m "
-             f"({search.narrow_count} resonances narrower than {options.resonance_width:.2g} L not searched)")
+    poles, narrow = search.pole_count - search.narrow_count, (f"{search.narrow_count} resonances narrower than "
+                                                               f"{options.resonance_width:.2g} L not searched")
     if searched_to >= options.max_span:
-        summary = f"{search.roots.size} roots of condition 2 between {poles}"
+        summary = (f"{search.roots.size} roots of condition 2 between {poles} poles in [{options.min_span:.4g}, "
+                   f"{options.max_span:.4g}] m ({narrow})")
     else:
         summary = (f"{search.roots.size} roots of condition 2 in [{options.min_span:.4g}, {searched_to:.4g}] m, where "
-                   f"the search stopped past the first valid span (of {poles})")
+                   f"the search stopped past the first valid span ({poles} poles in [{options.min_span:.4g}, "
+                   f"{options.max_span:.4g}] m, {narrow})")
     summary += f"; {survivors.size} pass the midspan screen"
     return SpanChoice(search, survivors, candidates, reasons, summary, options, searched_to)
 
