@@ -448,9 +448,13 @@ def screen_residual(scene: Scene, options: Options):
         running, below = np.arange(a.size), np.full(a.size, -1, dtype=np.int64)
         # every bracket takes the steps it would take alone, all in lockstep: each round evaluates the new
         # points of the brackets still open at once (the pulse by numpy, the modal sums in one SIMD call)
-        for _ in range(int(iterations)):
+        for done in range(int(iterations)):
             running, points = _shrink_points(a, b, fa, fb, tol, running, poles, free_rtol, below)
             if running.size == 0:
+                break
+            if running.size <= SHRINK_TAIL:  # the few brackets left (next to a pole) in one compiled loop
+                _shrink_tail(running, points, int(iterations) - done, a, b, fa, fb, raw_a, raw_b, side, tol, states,
+                             pole_lo, pole_hi, poles, free_rtol, below, table, all_modes.size, state, closure)
                 break
             values, y1, v1, curv1 = _screen_batch(points, *pulse(points), all_modes.size, 1.0, state, closure)
             _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
@@ -650,6 +654,30 @@ def _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, 
         states[end, 0, i], states[end, 1, i], states[end, 2, i] = y1[k], v1[k], curv1[k]
 
 
+#: Brackets left below which ``screen_residual(...).shrink`` takes its remaining rounds in one compiled loop
+#: (:func:`_shrink_tail`): the brackets next to a pole, shrunk to 1e-10, take up to 40 rounds of a few hundred.
+SHRINK_TAIL = 1024
+
+
+@numba.njit(cache=True, nogil=True)
+def _shrink_tail(running, points, rounds, a, b, fa, fb, raw_a, raw_b, side, tol, states, pole_lo, pole_hi, poles,
+                 pole_free_rtol, below, table, n_odd, state, closure):
+    """The last ``rounds`` rounds of ``screen_residual(...).shrink`` from the brackets ``running`` and their next
+    ``points`` on, in one compiled loop: each round the screening pulse at the points (:func:`_pulse_one`), the
+    residual and midspan state there (:func:`_screen_batch`), the brackets moved (:func:`_shrink_update`) and
+    their next points (:func:`_shrink_points`)."""
+    for _ in range(rounds):
+        if running.size == 0:
+            break
+        durations, halves = np.empty(points.size), np.empty(points.size)
+        for k in range(points.size):
+            durations[k], halves[k] = _pulse_one(points[k], table)
+        values, y1, v1, curv1 = _screen_batch(points, durations, halves, n_odd, 1.0, state, closure)
+        _shrink_update(running, points, values, y1, v1, curv1, a, b, fa, fb, raw_a, raw_b, side, states, pole_lo,
+                       pole_hi)
+        running, points = _shrink_points(a, b, fa, fb, tol, running, poles, pole_free_rtol, below)
+
+
 @numba.njit(cache=True, nogil=True)
 def _shrink_result(a, b, fa, fb, raw_a, raw_b, states):
     """Rows root, G at the root, final lo, final hi, and y₁, v₁, y₁'' at the root (NaN at an end no round
@@ -704,13 +732,36 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     its sign changes are shrunk by regula falsi, to :data:`ROOT_RTOL` where no pole is near and to
     1e-10 where one is. A sign change that converges onto no pole but the interval's own is a root (G
     is continuous there); one with a narrow pole in its last bracket is a root only where |F| has
-    fallen far below its values at the samples.
+    fallen far below its values at the samples. (:func:`search_intervals`, then :func:`roots_between`
+    over all its intervals.)
     """
+    intervals = search_intervals(scene, options)
+    return roots_between(intervals, 0, intervals.lo.size, options)
+
+
+@dataclass
+class SearchIntervals:
+    """The span search's intervals between consecutive wide poles (and the ends of the search range), ascending,
+    with what sampling them needs (:func:`search_intervals`)."""
+
+    poles: np.ndarray  #: every pole in the range [m], ascending (the narrow ones included)
+    lo: np.ndarray  #: each interval's lower end [m]
+    hi: np.ndarray  #: each interval's upper end [m]
+    residue_lo: np.ndarray  #: the residue [m] of the pole at lo (NaN: the end of the search range)
+    residue_hi: np.ndarray  #: the residue [m] of the pole at hi (NaN: the end of the search range)
+    residual: Any = None  #: the screening residual (:func:`screen_residual`); None: no span gives a valid pulse
+    narrow_count: int = 0  #: poles not searched, their resonance narrower than ``Options.resonance_width``
+
+
+def search_intervals(scene: Scene, options: Options) -> SearchIntervals:
+    """The poles in [min_span, max_span], their residues, and the intervals between the wide ones
+    (steps 1–2 of :func:`find_roots`): no interval when no span gives a valid pulse."""
     modes = odd_modes(options.modes)
     poles, pole_modes = resonances(scene, modes, options.min_span, options.max_span)
     residual = screen_residual(scene, options)
     if residual is None:
-        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), None)
+        empty = np.zeros(0)
+        return SearchIntervals(poles, empty, empty, empty, empty)
     floors = options.resonance_width * poles  # resonance_widths, from the same residues (NaN: narrow for sure)
     residues = residual.residue(poles, pole_modes.astype(float), floors) if poles.size else np.zeros(0)
     wide = np.abs(residues) >= floors
@@ -719,48 +770,112 @@ def find_roots(scene: Scene, options: Options) -> SpanSearch:
     edge_residues = np.concatenate([[np.nan], edge_residues, [np.nan]])  # NaN: the search range's end, no pole
     lo, hi = edges[:-1], edges[1:]
     keep = hi > lo * (1 + 1e-12)
-    lo, hi, residue_lo, residue_hi = lo[keep], hi[keep], edge_residues[:-1][keep], edge_residues[1:][keep]
-    width = hi - lo
+    return SearchIntervals(poles, lo[keep], hi[keep], edge_residues[:-1][keep], edge_residues[1:][keep], residual,
+                           int(np.count_nonzero(~wide)))
+
+
+def roots_between(intervals: SearchIntervals, first: int, stop: int, options: Options) -> SpanSearch:
+    """The roots of condition 2 in the intervals ``first`` to ``stop`` − 1 of ``intervals`` (steps 3 of
+    :func:`find_roots`: sampled, bracketed and shrunk), ascending. Each interval's roots depend on that
+    interval alone, so the search can be taken a run of intervals at a time."""
+    lo, hi = intervals.lo[first:stop], intervals.hi[first:stop]
+    residue_lo, residue_hi = intervals.residue_lo[first:stop], intervals.residue_hi[first:stop]
+    poles, residual = intervals.poles, intervals.residual
+    if lo.size == 0:
+        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), residual,
+                          narrow_count=intervals.narrow_count, states=np.zeros((3, 0)))
     # samples strictly inside each interval, denser towards the poles where F changes fastest; at a
     # pole G is R (b − a) in closed form, at an end of the search range F is computed just inside it
     fractions = 0.5 - 0.5 * np.cos(np.pi * (np.arange(options.samples) + 0.5) / options.samples)
-    ends_lo, ends_hi = np.isnan(residue_lo), np.isnan(residue_hi)
-    start = np.where(ends_lo, lo * (1.0 + 1e-12), lo)
-    stop = np.where(ends_hi, hi * (1.0 - 1e-12), hi)
-    spans = np.column_stack([start, lo[:, None] + width[:, None] * fractions[None, :], stop])
-    inside = np.zeros(spans.shape, dtype=bool)
-    inside[:, 1:-1], inside[:, 0], inside[:, -1] = True, ends_lo, ends_hi
-    values = np.full(spans.shape, np.inf)  # F (infinite at the poles)
-    values[inside] = residual(spans[inside])
-    with np.errstate(invalid="ignore"):  # inf x 0 at the poles, replaced next
-        smooth = values * (spans - lo[:, None]) * (hi[:, None] - spans)  # G
-    smooth[:, 0] = np.where(ends_lo, smooth[:, 0], residue_lo * width)
-    smooth[:, -1] = np.where(ends_hi, smooth[:, -1], -residue_hi * width)
-    i, j = np.nonzero(np.sign(smooth[:, :-1]) * np.sign(smooth[:, 1:]) < 0)
-    brackets = np.stack([spans[i, j], spans[i, j + 1]], axis=1)
-    intervals = np.stack([lo[i], hi[i]], axis=1)  # the interval between the two wide poles around each root
+    spans, inside = _sample_spans(lo, hi, residue_lo, residue_hi, fractions)
+    brackets = _sign_changes(spans, residual(inside), lo, hi, residue_lo, residue_hi)
+    if brackets.shape[1] == 0:
+        return SpanSearch(np.array([]), np.zeros((0, 2)), int(poles.size), residual,
+                          narrow_count=intervals.narrow_count, states=np.zeros((3, 0)))
     # regula falsi on G: no singularity at the ends, so it converges in a few steps instead of
     # crawling along the pole's hyperbola
-    roots, states = np.array([]), np.zeros((3, 0))
-    if len(i):  # the ends' values are the samples'
-        roots, root_values, final_lo, final_hi, states = residual.shrink(
-            brackets[:, 0], brackets[:, 1], smooth[i, j], smooth[i, j + 1], intervals[:, 0], intervals[:, 1],
-            poles=poles, pole_free_rtol=ROOT_RTOL)
-        # G is continuous between poles and at the wide ones around the interval: a sign change left in a
-        # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
-        # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
-        # far below its value at the samples.
-        margin = 1e-12 * final_hi
-        start = np.maximum(final_lo - margin, intervals[:, 0] * (1 + 2e-12))  # the interval's own poles
-        stop = np.minimum(final_hi + margin, intervals[:, 1] * (1 - 2e-12))  # (merged within 1e-12) excluded
-        unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop, side="right")
-        ends = np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))
-        distances = (roots - intervals[:, 0]) * (intervals[:, 1] - roots)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            real = ~unsure | (np.abs(root_values / distances) < 1e-3 * ends)
-        roots, intervals, states = roots[real], intervals[real], states[:, real]
-    return SpanSearch(roots=roots, brackets=intervals, pole_count=int(poles.size), residual=residual,
-                      narrow_count=int(np.count_nonzero(~wide)), states=states)
+    roots, root_values, final_lo, final_hi, states = residual.shrink(*brackets[:6], poles=poles,
+                                                                     pole_free_rtol=ROOT_RTOL)
+    # G is continuous between poles and at the wide ones around the interval: a sign change left in a
+    # bracket free of every other pole (the narrow ones included) is a root. One with a narrow pole
+    # inside may have converged onto the pole, where |F| grows: it is a root only if |F| there is
+    # far below its value at the samples.
+    real = _real_roots(roots, root_values, final_lo, final_hi, brackets[4], brackets[5], brackets[6], poles)
+    between = np.stack([brackets[4][real], brackets[5][real]], axis=1)
+    return SpanSearch(roots=roots[real], brackets=between, pole_count=int(poles.size), residual=residual,
+                      narrow_count=intervals.narrow_count, states=states[:, real])
+
+
+@numba.njit(cache=True, nogil=True)
+def _sample_spans(lo, hi, residue_lo, residue_hi, fractions):
+    """The samples of :func:`roots_between`, (intervals, samples + 2) [m]: each interval's ends (its poles;
+    the search range's ends, NaN residue, moved 1e-12 inside) and lo + (hi − lo) ``fractions`` between them;
+    and, flat in row order, those where F is computed (all but the poles)."""
+    n, m = lo.size, fractions.size
+    spans = np.empty((n, m + 2))
+    inside = np.empty(n * (m + 2))
+    count = 0
+    for i in range(n):
+        width = hi[i] - lo[i]
+        spans[i, 0] = lo[i] * (1.0 + 1e-12) if math.isnan(residue_lo[i]) else lo[i]
+        spans[i, m + 1] = hi[i] * (1.0 - 1e-12) if math.isnan(residue_hi[i]) else hi[i]
+        for j in range(m):
+            spans[i, j + 1] = lo[i] + width * fractions[j]
+        for j in range(m + 2):
+            if 0 < j < m + 1 or (j == 0 and math.isnan(residue_lo[i])) or (j == m + 1 and math.isnan(residue_hi[i])):
+                inside[count] = spans[i, j]
+                count += 1
+    return spans, inside[:count].copy()
+
+
+@numba.njit(cache=True, nogil=True)
+def _sign_changes(spans, inside_values, lo, hi, residue_lo, residue_hi):
+    """The sign changes of G = F (L − lo)(hi − L) between consecutive samples of :func:`_sample_spans` (F at its
+    flat ``inside`` spans; at a pole G is R (hi − lo) and −R (hi − lo), R its residue). Rows: bracket lo, hi [m],
+    G there, the interval's lo, hi [m], and the smaller |F| at the bracket's two samples (infinite at a pole)."""
+    n, m = spans.shape
+    g, f = np.empty(m), np.empty(m)
+    out = np.empty((7, n * (m - 1)))
+    count, k = 0, 0
+    for i in range(n):
+        width = hi[i] - lo[i]
+        for j in range(m):
+            pole = (j == 0 and not math.isnan(residue_lo[i])) or (j == m - 1 and not math.isnan(residue_hi[i]))
+            if pole:
+                f[j] = math.inf
+                g[j] = residue_lo[i] * width if j == 0 else -residue_hi[i] * width
+            else:
+                f[j] = inside_values[k]
+                g[j] = f[j] * (spans[i, j] - lo[i]) * (hi[i] - spans[i, j])
+                k += 1
+        for j in range(m - 1):
+            if (g[j] > 0.0 and g[j + 1] < 0.0) or (g[j] < 0.0 and g[j + 1] > 0.0):
+                out[0, count], out[1, count], out[2, count], out[3, count] = spans[i, j], spans[i, j + 1], g[j], g[j + 1]
+                out[4, count], out[5, count], out[6, count] = lo[i], hi[i], min(abs(f[j]), abs(f[j + 1]))
+                count += 1
+    return out[:, :count].copy()
+
+
+@numba.njit(cache=True, nogil=True)
+def _real_roots(roots, root_values, final_lo, final_hi, lo, hi, ends, poles):
+    """Which shrunk sign changes of G are roots (:func:`roots_between`): those whose last bracket [final_lo,
+    final_hi] (widened by 1e-12, the interval [lo, hi]'s own poles excluded) holds no pole of ``poles`` (sorted),
+    and those where |F| = |G|/((L − lo)(hi − L)) has fallen below 1e-3 of ``ends`` (the smaller |F| at the
+    bracket's samples). The brackets come in ascending order, so the poles are walked through once."""
+    out = np.empty(roots.size, dtype=np.bool_)
+    k = np.searchsorted(poles, lo[0]) if roots.size else 0
+    for r in range(roots.size):
+        margin = 1e-12 * final_hi[r]
+        start = max(final_lo[r] - margin, lo[r] * (1 + 2e-12))
+        stop = min(final_hi[r] + margin, hi[r] * (1 - 2e-12))
+        while k > 0 and poles[k - 1] >= start:
+            k -= 1
+        while k < poles.size and poles[k] < start:
+            k += 1
+        unsure = k < poles.size and poles[k] <= stop
+        distance = (roots[r] - lo[r]) * (hi[r] - roots[r])
+        out[r] = not unsure or abs(root_values[r] / distance) < 1e-3 * ends[r]
+    return out
 
 
 def _merged_poles(poles, residues):
@@ -1113,39 +1228,70 @@ def _extremes_kernel(values, columns):
 class SpanChoice:
     """Outcome of the span search of one design point ."""
 
-    search: SpanSearch
+    search: SpanSearch  #: the roots found in the searched part of the range, [min_span, ``searched_to``]
     survivors: np.ndarray
     candidates: list  #: refined impacts satisfying every constraint, ascending span
     reasons: dict  #: short reason → roots rejected for it
     summary: str
     options: Options  #: the options used (max_span capped below buckling)
+    searched_to: float = np.nan  #: the upper end [m] of the part of the range searched (max_span: all of it)
 
 
-def find_span(scene: Scene, options: Options) -> SpanChoice:
+#: Intervals between wide poles in the first run of :func:`find_span`'s search when it stops at the first valid
+#: span; each later run is twice as long as the one before (so a search that finds nothing takes a few runs).
+FIRST_RUN = 1024
+
+
+def find_span(scene: Scene, options: Options, first: bool = False) -> SpanChoice:
     """Span search, midspan screen, exact refinement and condition 1 (all from :mod:`periodic`).
 
-    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`).
+    ``options.max_span`` is used as given (cap it below buckling first, see :func:`design_point`). With
+    ``first`` the intervals between wide poles are taken in ascending runs (:data:`FIRST_RUN`, then doubling),
+    each searched, screened, refined and checked whole, and the search stops after the run in which a span first
+    satisfies every constraint: each root's outcome depends on its own interval alone and a refined root stays
+    in its interval, so the smallest valid span is the one the whole search finds, while the roots, rejections
+    and valid spans counted are those of [min_span, ``searched_to``] only.
     """
-    search = find_roots(scene, options)
-    screened = midspan_screen(scene, options, search)
-    survivors = search.roots[screened]
-    candidates, reasons = [], {}
-    durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
-    rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations, halves=halves)
-    codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
-    sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
-    violations = zip(sound, constraint_violations(scene, sound, options))
-    for root, code, value in zip(survivors, codes, values):
-        impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
-        if problem is None:
-            candidates.append(impact)
-        else:
-            reasons.setdefault(_reason(problem), []).append(root)
+    intervals = search_intervals(scene, options)
+    runs, candidates, reasons, start, size = [], [], {}, 0, FIRST_RUN
+    while True:
+        stop = intervals.lo.size if not first else min(start + size, intervals.lo.size)
+        search = roots_between(intervals, start, stop, options)
+        screened = midspan_screen(scene, options, search)
+        survivors = search.roots[screened]
+        durations, halves = search.residual.pulse(survivors) if survivors.size else ([], [])
+        rows = refined_rows(scene, options, survivors, search.brackets[screened], durations=durations,
+                            halves=halves)
+        codes, values = rows[_ROWS.index("problem")], rows[_ROWS.index("value")]
+        sound = _impacts_of(scene, rows[:, codes == 0])  # records of the roots refined without a problem
+        violations = zip(sound, constraint_violations(scene, sound, options))
+        for root, code, value in zip(survivors, codes, values):
+            impact, problem = next(violations) if code == 0 else (None, _PROBLEMS[int(code)](value))
+            if problem is None:
+                candidates.append(impact)
+            else:
+                reasons.setdefault(_reason(problem), []).append(root)
+        runs.append((search, survivors))
+        start, size = stop, 2 * size
+        if start >= intervals.lo.size or candidates:
+            break
+    searched_to = float(intervals.hi[start - 1]) if 0 < start < intervals.lo.size else options.max_span
+    search = SpanSearch(np.concatenate([r.roots for r, _ in runs]), np.concatenate([r.brackets for r, _ in runs]),
+                        runs[0][0].pole_count, intervals.residual, intervals.narrow_count,
+                        np.concatenate([r.states for r, _ in runs], axis=1))
+    survivors = np.concatenate([s for _, s in runs])
     candidates = distinct_spans(candidates)
-    summary = (f"{search.roots.size} roots of condition 2 between {search.pole_count - search.narrow_count} poles "
-               f"in [{options.min_span:.4g}, {options.max_span:.4g}] m ({search.narrow_count} resonances narrower "
-               f"than {options.resonance_width:.2g} L not searched); {survivors.size} pass the midspan screen")
-    return SpanChoice(search, survivors, candidates, reasons, summary, options)
+    poles, narrow = search.pole_count - search.narrow_count, (f"{search.narrow_count} resonances narrower than "
+                                                               f"{options.resonance_width:.2g} L not searched")
+    if searched_to >= options.max_span:
+        summary = (f"{search.roots.size} roots of condition 2 between {poles} poles in [{options.min_span:.4g}, "
+                   f"{options.max_span:.4g}] m ({narrow})")
+    else:
+        summary = (f"{search.roots.size} roots of condition 2 in [{options.min_span:.4g}, {searched_to:.4g}] m, where "
+                   f"the search stopped past the first valid span ({poles} poles in [{options.min_span:.4g}, "
+                   f"{options.max_span:.4g}] m, {narrow})")
+    summary += f"; {survivors.size} pass the midspan screen"
+    return SpanChoice(search, survivors, candidates, reasons, summary, options, searched_to)
 
 
 #: Relative distance below which two refined spans are one root (reached from two brackets' screening roots).
@@ -1220,7 +1366,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.message = too_many
         result.wall_time = time.perf_counter() - start
         return result
-    choice = find_span(scene, options)
+    choice = find_span(scene, options, first=True)
     result.values.update(root_count=float(choice.search.roots.size), pole_count=float(choice.search.pole_count),
                          narrow_count=float(choice.search.narrow_count), candidate_count=float(len(choice.candidates)))
     result.extras.update(closure=scene.closure, impact_pattern=scene.pattern,

@@ -104,10 +104,12 @@ OUTPUTS = {
     "peak_contact_force": ("N", "peak contact force of the impact pulse"),
     "contact_half_length": ("m", "contact-ellipse semi-axis along the pipe at peak force"),
     "contact_half_width": ("m", "contact-ellipse semi-axis around the pipe at peak force"),
-    "root_count": ("1", "roots of condition 2 (midspan at the wall at contact) in the search range"),
+    "root_count": ("1", "roots of condition 2 (midspan at the wall at contact) in the part of the search range "
+                       "searched (fast, series: all of it where no span is valid, else up to the first valid span)"),
     "pole_count": ("1", "resonant spans (poles of the periodic response) in the search range"),
     "narrow_count": ("1", "resonances narrower than solver.resonance_width, not searched"),
-    "candidate_count": ("1", "spans that satisfy every constraint"),
+    "candidate_count": ("1", "spans that satisfy every constraint in the part of the search range searched "
+                            "(at least 1 exactly where a span is reported)"),
     "equivalent_damping": ("N s m-2", "uniform viscous damping dissipating what the mud's drag does (damped)"),
     "damping_ratio": ("1", "damping ratio of the first mode under the equivalent damping (damped)"),
     "end_moment_amplitude": ("N m", "largest end moment that keeps the damped motion in phase with the impact"),

@@ -346,3 +346,91 @@ def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
     known = ~np.isnan(search.states[0])
     assert search.states.shape == (3, search.roots.size) and np.mean(known) > 0.9
     np.testing.assert_allclose(search.states[:, known], expected[:, known], rtol=1e-12, atol=0)
+
+
+def test_roots_between_runs_of_intervals_are_the_search_over_all_of_them(paper_inputs):
+    # source: the definition - each interval's roots depend on that interval alone, so the search over two runs
+    # of intervals is find_roots over all of them, root for root
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=150.0)
+    options = periodic.Options(modes=11, min_span=5.0, max_span=40.0)
+    intervals = periodic.search_intervals(scene, options)
+    whole = periodic.find_roots(scene, options)
+    assert whole.roots.size > 20 and intervals.lo.size > 20
+    assert np.all(intervals.hi > intervals.lo) and np.all(intervals.lo[1:] == intervals.hi[:-1])
+    half = intervals.lo.size // 2
+    parts = [periodic.roots_between(intervals, 0, half, options),
+             periodic.roots_between(intervals, half, intervals.lo.size, options)]
+    np.testing.assert_array_equal(np.concatenate([p.roots for p in parts]), whole.roots)
+    np.testing.assert_array_equal(np.concatenate([p.brackets for p in parts]), whole.brackets)
+    assert np.all(parts[0].brackets[:, 1] <= intervals.hi[half - 1]) and np.all(parts[1].roots > intervals.hi[half - 1])
+
+
+def test_search_that_stops_at_the_first_valid_span_reports_the_same_smallest_span(paper_inputs, monkeypatch):
+    # source: the definition (docs/model.md §4.5) - stopping after the run of intervals that holds the first valid
+    # span finds the smallest valid span of the whole search; its roots are the whole search's up to where it
+    # stopped, and it counts fewer (runs of 16, 32, 64, ... of the 1242 intervals here: it stops at 1008)
+    monkeypatch.setattr(periodic, "FIRST_RUN", 16)
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=300.0)
+    options = periodic.Options(modes=11, max_span=60.0)
+    whole, first = periodic.find_span(scene, options), periodic.find_span(scene, options, first=True)
+    assert len(whole.candidates) >= 2 and whole.searched_to == options.max_span
+    assert first.candidates[0].span_length == whole.candidates[0].span_length
+    assert first.searched_to < options.max_span and "the search stopped past the first valid span" in first.summary
+    assert 1 <= len(first.candidates) <= len(whole.candidates)
+    assert 0 < first.search.roots.size < whole.search.roots.size
+    np.testing.assert_array_equal(first.search.roots, whole.search.roots[:first.search.roots.size])
+    assert np.all(first.search.roots <= first.searched_to)
+
+
+def test_sign_changes_and_real_roots_are_the_numpy_formulas():
+    # source: the numpy expressions they replace (G = F (L - lo)(hi - L), its ends R (hi - lo) and -R (hi - lo) at a
+    # pole; a root is unsure where a pole lies in its widened last bracket), on random intervals and poles
+    rng = np.random.default_rng(3)
+    edges = np.cumsum(rng.uniform(0.5, 1.5, 41)) + 3.0
+    lo, hi = edges[:-1], edges[1:]
+    residue_lo, residue_hi = rng.normal(size=40), rng.normal(size=40)
+    residue_lo[0], residue_hi[-1] = np.nan, np.nan  # the search range's ends
+    fractions = np.array([0.1, 0.4, 0.8])
+    spans, inside = periodic._sample_spans(lo, hi, residue_lo, residue_hi, fractions)
+    assert spans.shape == (40, 5) and inside.size == 40 * 3 + 2
+    np.testing.assert_array_equal(spans[:, 1:-1], lo[:, None] + (hi - lo)[:, None] * fractions)
+    assert spans[0, 0] == lo[0] * (1 + 1e-12) and spans[-1, -1] == hi[-1] * (1 - 1e-12)
+    f = rng.normal(size=inside.size)
+    values = np.full(spans.shape, np.inf)
+    mask = np.ones(spans.shape, dtype=bool)
+    mask[1:, 0], mask[:-1, -1] = False, False
+    values[mask] = f
+    with np.errstate(invalid="ignore"):
+        g = values * (spans - lo[:, None]) * (hi[:, None] - spans)
+    g[1:, 0], g[:-1, -1] = (residue_lo * (hi - lo))[1:], (-residue_hi * (hi - lo))[:-1]
+    i, j = np.nonzero(np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0)
+    out = periodic._sign_changes(spans, f, lo, hi, residue_lo, residue_hi)
+    assert i.size > 20
+    np.testing.assert_array_equal(out, [spans[i, j], spans[i, j + 1], g[i, j], g[i, j + 1], lo[i], hi[i],
+                                        np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))])
+    roots = 0.5 * (out[0] + out[1])
+    poles = np.sort(np.concatenate([edges, rng.uniform(edges[0], edges[-1], 200)]))
+    start = np.maximum(out[0] - 1e-12 * out[1], out[4] * (1 + 2e-12))
+    stop = np.minimum(out[1] + 1e-12 * out[1], out[5] * (1 - 2e-12))
+    unsure = np.searchsorted(poles, start, side="left") < np.searchsorted(poles, stop, side="right")
+    root_values = rng.normal(size=roots.size) * 1e-3
+    with np.errstate(divide="ignore"):
+        real = ~unsure | (np.abs(root_values / ((roots - out[4]) * (out[5] - roots))) < 1e-3 * out[6])
+    assert unsure.any() and (~unsure).any()
+    np.testing.assert_array_equal(periodic._real_roots(roots, root_values, out[0], out[1], out[4], out[5], out[6],
+                                                       poles), real)
+
+
+def test_shrink_tail_in_one_compiled_loop_shrinks_as_the_rounds_one_by_one(paper_inputs, monkeypatch):
+    # source: the definition - the compiled tail takes the same regula falsi steps; only the pulse's log and exp
+    # (the C library's instead of numpy's) may differ in the last bits
+    scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=150.0)
+    options = periodic.Options(modes=11, min_span=5.0, max_span=40.0)
+    monkeypatch.setattr(periodic, "SHRINK_TAIL", 0)
+    rounds = periodic.find_roots(scene, options)
+    monkeypatch.setattr(periodic, "SHRINK_TAIL", 10**9)
+    tail = periodic.find_roots(scene, options)
+    assert rounds.roots.size > 20
+    np.testing.assert_array_equal(tail.brackets, rounds.brackets)
+    np.testing.assert_allclose(tail.roots, rounds.roots, rtol=1e-12)
+    np.testing.assert_allclose(tail.states, rounds.states, rtol=1e-9)
