@@ -22,6 +22,7 @@ from study import __version__
 from study.config import load
 from study.physics import hertz
 from study.solvers import METHODS, STATUS_CODES, periodic, reference, series, solve_point, timedomain, whirl_kernel
+from study.solvers.auto import clear_memo
 from study.workflow.execute import run_grid, use_worker_environ, warm_up
 from study.workflow.grid import Grid
 
@@ -420,7 +421,9 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     grid = _grid_of_size(study, points)
     mix = Counter()  # (method, status) of the points of the last run
 
-    def timed(scheduler, workers):
+    def timed(scheduler, workers, client=None):
+        # every run from nothing: auto's memo of rung answers emptied in this process and the workers
+        (client.run if client else lambda f: f())(clear_memo)
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
             stored = run_grid(grid, Path(tmp), scheduler=scheduler, workers=workers, progress=False)
@@ -439,7 +442,7 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
                           silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
             client.run(warm_up)  # worker start-up: processes and their imports
             startup = time.perf_counter() - start
-            runs = sorted(timed(cluster.scheduler_address, workers) for _ in range(repeat))
+            runs = sorted(timed(cluster.scheduler_address, workers, client) for _ in range(repeat))
         wall, solve = runs[len(runs) // 2]
         rows.append((f"{workers} worker{'s' if workers > 1 else ''} ({grid.size} points)", wall))
         notes.append(f"{workers} worker(s): cluster start-up with imports {startup:.2g} s (not in the table); "

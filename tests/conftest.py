@@ -9,6 +9,6 @@ def fresh_auto_memo():
     is never answered from another test's run."""
     from study.solvers import auto
 
-    auto._memo.clear()
+    auto.clear_memo()
     yield
-    auto._memo.clear()
+    auto.clear_memo()

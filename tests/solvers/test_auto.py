@@ -184,7 +184,7 @@ def test_auto_solves_the_cheap_rungs_once_across_the_inputs_they_do_not_depend_o
     monkeypatch.setitem(auto.LADDERS, "auto", ladder)
     points, _ = _default_points(1)
     bouncing = next(p for p in points[::16] if auto.solve(p).method == "reference")  # climbs every rung
-    auto._memo.clear()
+    auto.clear_memo()
     calls.update({name: 0 for name in calls})
     first = auto.solve({**bouncing, "restitution": 0.3})
     second = auto.solve({**bouncing, "restitution": 0.7})
