@@ -605,7 +605,7 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             # a flight's rows at their times inside the step, from the continuous extension (the forces are 0):
             # a Lawson step in flight may be far longer than the rows' spacing
             tr = last_rec + rec_dt[0]
-            while tr < t + h and n_rec < rec_t.size:
+            while t + h - tr > 1e-6 * rec_dt[0] and n_rec < rec_t.size:  # not the step's end: recorded as such
                 _lawson_dense(z, vend, kv, shift, h, (tr - t) / h, omega2, damp, N, rec_z[n_rec])
                 rec_t[n_rec] = tr
                 rec_f[n_rec, :, :] = 0.0
