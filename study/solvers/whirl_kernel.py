@@ -261,6 +261,61 @@ def _propagate(B, x, out, N):
         out[i] = x[i]
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _store_propagator(ex, i, m, a, b, c, e, det):
+    """e^{sL} = [[a, b], [c, e]] into ex[0, i, m] and its inverse [[e, −b], [−c, a]]/det into ex[1, i, m]."""
+    ex[0, i, m, 0] = a
+    ex[0, i, m, 1] = b
+    ex[0, i, m, 2] = c
+    ex[0, i, m, 3] = e
+    ex[1, i, m, 0] = e / det
+    ex[1, i, m, 1] = -b / det
+    ex[1, i, m, 2] = -c / det
+    ex[1, i, m, 3] = a / det
+
+
+@numba.njit(cache=True, nogil=True)
+def _stage_propagators(omega2, damp, h, ex, N):
+    """e^{±c hL} of every mode at the Dormand–Prince nodes c = 1/5, 3/10, 4/5, 8/9, 1 into ex (2, 5, N, 4)
+    (:func:`_propagator`). For an underdamped mode the cosines, sines and decays of c = 2/10, 3/10, 8/10 and 1 are
+    built from those of 1/10 by the angle-addition formulas (two sines and cosines a mode instead of five; the
+    trigonometric functions were most of the Lawson step's cost beside the right-hand side)."""
+    for m in range(N):
+        w2, d = omega2[m], damp[m]
+        beta = 0.5 * d
+        mu2 = w2 - beta * beta
+        if mu2 <= 0.0:
+            for i in range(5):
+                a, b, c, e, det = _propagator(w2, d, _C[i + 1] * h)
+                _store_propagator(ex, i, m, a, b, c, e, det)
+            continue
+        mu = np.sqrt(mu2)
+        x = 0.1 * mu * h
+        c1, s1 = np.cos(x), np.sin(x)
+        g1 = np.exp(-0.1 * beta * h) if beta != 0.0 else 1.0
+        c2, s2, g2 = c1 * c1 - s1 * s1, 2.0 * s1 * c1, g1 * g1  # 2/10
+        c3, s3, g3 = c2 * c1 - s2 * s1, s2 * c1 + c2 * s1, g2 * g1  # 3/10
+        c4, s4, g4 = c2 * c2 - s2 * s2, 2.0 * s2 * c2, g2 * g2
+        c8, s8, g8 = c4 * c4 - s4 * s4, 2.0 * s4 * c4, g4 * g4  # 8/10
+        c10, s10, g10 = c8 * c2 - s8 * s2, s8 * c2 + c8 * s2, g8 * g2  # 1
+        x9 = mu * h * (8.0 / 9.0)
+        c9, s9 = np.cos(x9), np.sin(x9)
+        g9 = np.exp(-beta * h * (8.0 / 9.0)) if beta != 0.0 else 1.0
+        for i in range(5):
+            if i == 0:
+                C, S, g = c2, s2, g2
+            elif i == 1:
+                C, S, g = c3, s3, g3
+            elif i == 2:
+                C, S, g = c8, s8, g8
+            elif i == 3:
+                C, S, g = c9, s9, g9
+            else:
+                C, S, g = c10, s10, g10
+            S /= mu
+            _store_propagator(ex, i, m, g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g)
+
+
 @numba.njit(cache=True, nogil=True)
 def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale, rtol, N):
     """One Lawson (integrating-factor) Dormand–Prince step from (t, z) with k[0] = N(t, z) given (the nonlinear
@@ -278,19 +333,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
     :func:`_step`, on the embedded difference mapped to t + h."""
     omega2, damp = sy[0], sy[1]
     n = z.size
-    for i in range(5):
-        s = _C[i + 1] * h
-        for m in range(N):
-            a, b, c, e, det = _propagator(omega2[m], damp[m], s)
-            ex[0, i, m, 0] = a
-            ex[0, i, m, 1] = b
-            ex[0, i, m, 2] = c
-            ex[0, i, m, 3] = e
-            # e^{−sL}, the inverse: [[e, −b], [−c, a]] / det
-            ex[1, i, m, 0] = e / det
-            ex[1, i, m, 1] = -b / det
-            ex[1, i, m, 2] = -c / det
-            ex[1, i, m, 3] = a / det
+    _stage_propagators(omega2, damp, h, ex, N)
     # the static deflection under N_0 (whose q entries are 0: q' = q̇ is all linear); w_0 = z − u_s
     for i in range(n):
         shift[i] = 0.0
