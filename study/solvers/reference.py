@@ -34,7 +34,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 
 Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
 "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
-:mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6) until the state at the revolution
+:mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6, in its Lawson form between contacts:
+``reference_integrator``) until the state at the revolution
 boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`), the pipe bounces with
 stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
@@ -248,7 +249,8 @@ class Window:
 
 
 class Integrator:
-    """Runs the compiled kernel on a model, keeping the contact state between calls."""
+    """Runs the compiled kernel on a model, keeping the contact state between calls; ``scheme`` one of
+    :data:`SCHEMES` (option ``reference_integrator``: :func:`whirl_kernel.advance`). Raises ValueError for another."""
 
     def __init__(self, model: WhirlModel, rtol: float = 1e-6, state=None,
                  scheme: str = ReferenceOptions.default("reference_integrator")):

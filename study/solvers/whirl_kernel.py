@@ -9,6 +9,12 @@ controller of Gustafsson (ACM TOMS 17, 533–554, 1991, doi:10.1145/210232.21024
 Wanner's DOPRI5 (Hairer, Nørsett & Wanner 1993, §II.4; *Solving ODEs II*, §IV.2): it keeps the step
 steady where stability rather than accuracy limits it, as in a held contact.
 
+Between contacts the pair is taken in its Lawson (integrating-factor) form (:func:`_lawson_step`; Lawson, SIAM J.
+Numer. Anal. 4, 372–380, 1967, doi:10.1137/0704033; Hochbruck & Ostermann, Acta Numerica 19, 209–286, 2010,
+doi:10.1017/S0962492910000048): each mode's linear part −ω_n² q − d_n q̇ is carried by its closed-form flow, so the
+free ringing of the high modes that an impact excites costs no steps; while a contact is open the wall's stiffness
+sets the step and the plain pair is cheaper (``scheme`` of :func:`advance`; docs/reference_model.md §4, §6).
+
 Every switch of a contact force is located: a step that ends with a contact point inside the wall by
 more than ``ONSET_TOLERANCE`` of its clearance, or past the end of a contact force by more than that
 (the penetration back below zero, or the bracket of the normal force below it), is redone, cut to
