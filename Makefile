@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
 RUNS   ?= 10
 
-.PHONY: help setup test sweep charts bench validate faults clean chromium
+.PHONY: help setup test sweep charts bench bench-large validate faults clean chromium
 
 help:
 	@echo "make setup     install into .venv and compile the solver kernels ahead (every target does it first)"
@@ -14,6 +14,7 @@ help:
 	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
 	@echo "make charts    redraw the charts of the default study"
 	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
+	@echo "make bench-large  the measured sweep of 10^5 points, about 20 minutes (docs/large_sweep.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
 	@echo "make faults    kill sweeps and their workers at random moments RUNS=$(RUNS) times (docs/reliability.md)"
 	@echo "make clean     remove outputs and the virtual environment"
@@ -41,6 +42,9 @@ charts: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/study bench --out docs/performance.md
+
+bench-large: $(STAMP)
+	$(BIN)/study bench --large --out docs/large_sweep.md
 
 validate: $(STAMP)
 	$(BIN)/study validate --out docs/validation.md

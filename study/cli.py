@@ -112,9 +112,9 @@ def cmd_compile(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from study.bench import run_bench
+    from study.bench import bench_large_sweep, run_bench
 
-    print(run_bench(args.out))
+    print(bench_large_sweep(out=args.out) if args.large else run_bench(args.out))
     return 0
 
 
@@ -167,6 +167,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="benchmark the methods side by side")
     p.add_argument("--out", default=None, help="also write the report to this markdown file")
+    p.add_argument("--large", action="store_true",
+                   help="instead, the measured sweep of configs/dense.toml's 103 424 points (about 20 minutes)")
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("validate", help="compare with the printed numbers of the sources")

@@ -52,7 +52,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, section, whirl
-from study.solvers import trajectory, whirl_kernel
+from study.solvers import stress_kernel, trajectory, whirl_kernel
 from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
@@ -284,9 +284,9 @@ class Integrator:
         tau = self.model.period
         revs = max((t_end - self.t) / tau, 1e-9)
         cap = int(rows_per_revolution * 16 * revs) + 16 if record else 1
-        rec_t = np.zeros(cap)
-        rec_z = np.zeros((cap, self.z.size))
-        rec_f = np.zeros((cap, P, 3))
+        rec_t = np.empty(cap)  # rows written by the kernel before they are read (the first n_rec)
+        rec_z = np.empty((cap, self.z.size))
+        rec_f = np.empty((cap, P, 3))
         rec_dt = np.array([tau / rows_per_revolution, tau / (16 * rows_per_revolution)])
         start = self.t
         t, h, outcome, n_rec, steps = whirl_kernel.advance(
@@ -295,8 +295,9 @@ class Integrator:
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
         self.work += stats
-        return Window(times=rec_t[:n_rec], states=rec_z[:n_rec], forces=rec_f[:n_rec], peak=peak, onsets=onsets,
-                      contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
+        # the rows written, copied: the buffers (room for a contact all the way) are freed
+        return Window(times=rec_t[:n_rec].copy(), states=rec_z[:n_rec].copy(), forces=rec_f[:n_rec].copy(), peak=peak,
+                      onsets=onsets, contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
 
 
 INITIAL_CHOICES = ReferenceOptions.choices("reference_initial")
@@ -640,6 +641,9 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 states.append(run.z[:4 * N].copy())
             if added:
                 record += zip(added, cycle_values(inputs, model, added))
+                live = record[first:]  # the cycles still recorded: one decision on the correction for them all
+                if len({values["correction"] for _, values in live}) > 1:
+                    record[first:] = zip([c for c, _ in live], cycle_values(inputs, model, [c for c, _ in live]))
             grow = True
             half = (len(record) - first) // 2
             preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
@@ -765,29 +769,25 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         times = window.times[rows]
         my, mz = fields[0]["moment"][rows], fields[1]["moment"][rows]
         uy, uz = fields[0]["deflection"][rows], fields[1]["deflection"][rows]
-        moment = np.hypot(my, mz)
-        it, ix = np.unravel_index(np.argmax(moment), moment.shape)
         turn = model.rotary_speed * times
         psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
-        half = whirl_kernel.fibre_half_ranges(np.ascontiguousarray(my), np.ascontiguousarray(mz),
-                                              np.cos(turn[None, :] + psi[:, None]), np.sin(turn[None, :] + psi[:, None]))
-        shear = np.hypot(np.diff(my, axis=1), np.diff(mz, axis=1)) / np.diff(x)
-        js = np.unravel_index(np.argmax(shear), shear.shape)
+        largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
+            my, mz, uy, uz, x, np.cos(turn), np.sin(turn), np.cos(psi), np.sin(psi))
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
         shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
         full = np.hypot(qy @ shapes, qz @ shapes)
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        outs.append(dict(max_deflection=float(np.max(np.hypot(uy, uz))),
-                         max_bending_stress=float(moment[it, ix] * scale),
-                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + moment[it, ix] * scale),
+        outs.append(dict(max_deflection=float(deflection),
+                         max_bending_stress=float(largest * scale),
+                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
                          max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),
                          alternating_bending_stress=float(np.max(half) * scale),
                          alternating_bending_stress_x=float(x[int(np.argmax(half))]),
-                         max_shear_stress=float(2.0 * shear[js] / area),
-                         max_shear_stress_x=float(0.5 * (x[js[1]] + x[js[1] + 1])),
-                         max_shear_stress_t=float(times[js[0]] - times[0]),
+                         max_shear_stress=float(2.0 * shear / area),
+                         max_shear_stress_x=float(0.5 * (x[jx] + x[jx + 1])),
+                         max_shear_stress_t=float(times[jt] - times[0]),
                          modal_tail_fraction=float(tail / full) if full > 0 else 0.0,
                          modal_quarter_fraction=float(below / full) if full > 0 else 0.0))
     return outs if segments is not None else outs[0]

@@ -96,21 +96,19 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
     L, ei, tn = float(span_length), float(bending_stiffness), float(tension)
     n = np.asarray(modes, float)
     at = np.asarray(points, float) * L  # (P,)
-    shapes, moment_static, deflection_static = _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
-    k = n * np.pi / L
-    return {
-        "deflection": samples.q @ shapes + samples.forces @ deflection_static,
-        "moment": (samples.q * (ei * k**2)) @ shapes + samples.forces @ moment_static,
-    }
+    modal, static = _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
+    both = samples.q @ modal  # one product for both fields: (T, 2X), deflection then moment
+    both += samples.forces @ static
+    return {"deflection": both[:, :x.size], "moment": both[:, x.size:]}
 
 
 @functools.lru_cache(maxsize=8)
-def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes,
-                   x: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes, x: bytes) -> tuple[np.ndarray, np.ndarray]:
     """The parts of :func:`fields` that do not depend on the samples (arguments as there, the arrays as their
-    bytes, so that the calls on one model — both directions, several motions — compute them once): the mode
-    shapes sin k_n x (N, X), the static moment (P, X) and the static deflection (P, X) of the modes above N per
-    unit force at each point (module docstring)."""
+    bytes, so that the calls on one model — both directions, several motions — compute them once), each the
+    deflection's beside the moment's: the modes' shapes [sin k_n x, EI k_n² sin k_n x] (N, 2X) and, per unit
+    force at each point, the static deflection and moment of the modes above N [y_s, m_s] (P, 2X) (module
+    docstring)."""
     n, at, x = np.frombuffer(modes), np.frombuffer(at), np.frombuffer(x)
     k = n * np.pi / L
     sines = _sines(L, x.tobytes())
@@ -124,9 +122,11 @@ def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes,
     kt = tail * np.pi / L
     deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ sines[first - 1:]
                          if tail.size else np.zeros((at.size, x.size)))
-    for array in (shapes, moment_static, deflection_static):
+    modal = np.hstack([shapes, shapes * (ei * k**2)[:, None]])
+    static = np.hstack([deflection_static, moment_static])
+    for array in (modal, static):
         array.flags.writeable = False
-    return shapes, moment_static, deflection_static
+    return modal, static
 
 
 @functools.lru_cache(maxsize=4)

@@ -26,7 +26,8 @@ from study.atomic import atomic_path
 
 #: Modules holding numba kernels compiled with ``cache=True``.
 KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.roots",
-                  "study.solvers.event_driven", "study.solvers.periodic", "study.solvers.whirl_kernel")
+                  "study.solvers.event_driven", "study.solvers.periodic", "study.solvers.stress_kernel",
+                  "study.solvers.whirl_kernel")
 #: The kernels the last compile-ahead left in the cache, kept beside them: the ones a run is checked for (a kernel
 #: no method reaches at the warm-up points — a physics function's array form kept for its users and tests, a path
 #: of a method those points do not take — compiles on its own first call, without a notice).

@@ -71,7 +71,8 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     scheduler : None or "" for a local process pool, "synchronous" for this process, otherwise
         the address of a running dask.distributed scheduler (e.g. "tcp://10.0.0.5:8786").
     workers : local worker processes (0: one per core).
-    chunk_size : points per task (0: :func:`auto_chunk_size` of the grid); never depends on ``workers``.
+    chunk_size : points per task (0: :func:`auto_chunk_size` of the grid, its last quarter's tasks tapered,
+        :func:`study.workflow.grid.chunks`); never depends on ``workers``.
     on_chunk : called with the number of chunks done after each one is stored (tests use it).
     say : prints a line for the user (a damaged chunk found and removed).
     Raises :class:`SweepError` when a chunk cannot be written, :class:`Interrupted` on Ctrl-C.
@@ -87,7 +88,7 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     if len(todo) < grid.size:
         say(f"reusing {grid.size - len(todo)} of {grid.size} points stored in {store}")
     tasks = [(indices, store / f"{chunk_key(keys[indices])}.npz")
-             for indices in chunks(todo, chunk_size or auto_chunk_size(grid.size))]
+             for indices in chunks(todo, chunk_size or auto_chunk_size(grid.size), taper=not chunk_size)]
 
     from tqdm import tqdm
 
@@ -132,7 +133,7 @@ def use_worker_environ() -> None:
     sets glibc's trim threshold to 64 KiB so that freed memory goes back to the system; setting it also turns
     glibc's dynamic mmap threshold off, so every numpy temporary above 128 KiB is a fresh mmap paid in page
     faults: a worker solved the default study's points 1.22x slower than this process (its numpy parts 1.6x), and
-    0.94x without it (docs/large_sweep.md). A sweep's worker holds a few hundred MiB at most; nothing to give
+    0.94x without it (docs/workers.md). A sweep's worker holds a few hundred MiB at most; nothing to give
     back. Set for the process, not in a context: each nanny reads it when it is made and keeps it for its
     restarts."""
     import dask

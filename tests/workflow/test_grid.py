@@ -80,6 +80,20 @@ def test_chunks_are_runs_of_the_given_indices():
     assert [c.tolist() for c in chunks(indices, 2)] == [[0, 3], [4, 7], [9]]
 
 
+@pytest.mark.parametrize("size, chunk_size", [(1408, 44), (100, 8), (7, 3), (103_424, 512)])
+def test_chunks_taper_over_the_last_quarter_and_cover_every_index_once(size, chunk_size):
+    indices = np.arange(size) * 3
+    assert [r.size for r in chunks(indices, chunk_size)] == [r.size for r in np.array_split(  # a chunk size asked
+        indices, range(chunk_size, size, chunk_size))]  # for is kept
+    runs = list(chunks(indices, chunk_size, taper=True))
+    np.testing.assert_array_equal(np.concatenate(runs), indices)
+    last = size - size // 4  # the last quarter's points go in chunks a quarter the size
+    starts = np.cumsum([0] + [r.size for r in runs[:-1]])
+    for start, run in zip(starts, runs):
+        assert run.size <= (chunk_size if start < last else max(1, chunk_size // 4))
+    assert runs[0].size == min(chunk_size, size)
+
+
 def test_points_of_a_stepped_range_are_those_points():
     # a range with a step (every k-th point) gives those points, not the first len(range) ones
     grid = Grid(base={"a": 1.0}, axes={"x": np.arange(4.0), "y": np.arange(3.0)})

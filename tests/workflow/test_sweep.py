@@ -132,7 +132,7 @@ def test_local_cluster_of_worker_processes_gives_the_same_result(tmp_path, refer
 
 def test_local_workers_keep_glibcs_dynamic_mmap_threshold_and_one_blas_thread():
     # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in a worker, which turns glibc's dynamic mmap threshold off:
-    # the workers solved the default study's points 1.22x slower than one process (docs/large_sweep.md)
+    # the workers solved the default study's points 1.22x slower than one process (docs/workers.md)
     from dask.distributed import Client
 
     from study.workflow.execute import _local_cluster
