@@ -149,7 +149,7 @@ def test_a_free_modal_oscillator_is_exact_at_large_steps(paper_inputs, ratio):
     # highest, against the matrix exponential of [[0, 1], [−ω², −2ζω]] (scipy.linalg.expm; Moler & Van Loan 2003,
     # doi:10.1137/S00361445024180): exact to rounding (the Dormand–Prince pair on the whole right-hand side is held
     # within its stability interval, 3.3/ω_max: undamped, 51 129 steps and 7.9e-5 of c at rtol 1e-6, measured; this
-    # one about 150 steps and 4.5e-13 of c)
+    # one about 170 steps and 4.4e-13 of c)
     from scipy.linalg import expm
 
     model = _clear_of_the_wall(paper_inputs, reference_damping="viscous" if ratio else "none", damping_ratio=ratio)
