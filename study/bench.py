@@ -237,6 +237,108 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_r
     return rows, lines
 
 
+def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("default.toml"),
+                            results: str | Path = "outputs/default/results.nc", count: int = 20, rounds: int = 3,
+                            schemes=("dopri5", "lawson-flight", "lawson", "dopri5@7e-7")) -> tuple[list[dict], list[str]]:
+    """The reference model's integrator schemes (``reference_integrator``; a scheme ``name@rtol`` at another
+    ``reference_rtol``) on ``count`` bouncing points of a study (the points of ``config`` that its sweep's dataset
+    ``results`` says ``reference`` answered with a bouncing whirl, spread evenly over them), each point solved
+    ``rounds`` times by every scheme in one process after a warm-up, the order of the schemes alternating. Per point
+    and scheme: the fastest wall time of the solve and of its integrator (``Integrator.run``), the kernel's counts
+    (:data:`whirl_kernel.N_STATS`), the design figures and their stated errors. Returns the rows and the report's
+    lines: each scheme against the first (time, evaluations, figures' differences over their combined stated
+    errors). docs/reference_model.md §6."""
+    import xarray as xr
+
+    study = load(config)
+    with xr.open_dataset(results) as ds:
+        if ds.attrs.get("config_hash") != study.config_hash:
+            raise ValueError(f"results = {results}: not a sweep of {config} (its config_hash differs)")
+        answered = (ds["method"].values.ravel() == "reference") & (
+            ds["whirl_class"].values.ravel() == reference.WHIRL_CLASSES["bouncing"])
+    grid = Grid(dict(study.inputs), dict(study.axes))
+    found = np.flatnonzero(answered)
+    picked = found[np.linspace(0, found.size - 1, min(count, found.size)).round().astype(int)]
+    timer = {"run": 0.0, "work": None}
+    plain_run, plain_simulate = reference.Integrator.run, reference.simulate
+
+    def timed_run(self, *args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return plain_run(self, *args, **kwargs)
+        finally:
+            timer["run"] += time.perf_counter() - start
+
+    def counted_simulate(inputs, model=None):
+        out = plain_simulate(inputs, model)
+        timer["work"] = out["integrator"].work.copy()
+        return out
+
+    def solve(point, scheme):
+        name, _, rtol = scheme.partition("@")
+        timer.update(run=0.0, work=None)
+        start = time.perf_counter()
+        result = reference.solve({**point, "reference_integrator": name, **({"reference_rtol": float(rtol)} if rtol else {})})
+        wall = time.perf_counter() - start
+        conv = result.extras.get("convergence", {})
+        return dict(wall=wall, integrator=timer["run"], work=timer["work"], whirl=result.extras.get("whirl"),
+                    values={k: result.values.get(k) for k in reference.FIGURES},
+                    errors={k: v["total"] for k, v in conv.items()},
+                    residual=result.extras.get("energy_budget", {}).get("residual", float("nan")))
+
+    reference.Integrator.run, reference.simulate = timed_run, counted_simulate
+    try:
+        points = [grid.point(int(i)) for i in picked]
+        for scheme in schemes:
+            solve(points[0], scheme)  # compiled kernels loaded
+        rows = []
+        for k, point in enumerate(points):
+            runs = {s: [] for s in schemes}
+            for r in range(rounds):
+                for scheme in (schemes if (k + r) % 2 == 0 else schemes[::-1]):
+                    runs[scheme].append(solve(point, scheme))
+            rows.append(dict(index=int(picked[k]), point=point, runs=runs))
+    finally:
+        reference.Integrator.run, reference.simulate = plain_run, plain_simulate
+
+    def best(row, scheme, key):
+        return min(run[key] for run in row["runs"][scheme])
+
+    first = schemes[0]
+    lines = ["### Reference model: integrator schemes at bouncing points", "",
+             f"{len(rows)} of the {found.size} bouncing points `reference` answered in `{results}`, {rounds} solves of each by "
+             f"each scheme, alternating, in one process after a warm-up (`study.bench.bench_reference_schemes`); the "
+             "fastest solve. Figures: the difference from the first scheme's over the two stated errors combined "
+             "(root sum of squares).", "",
+             "| scheme | point [ms] median | speed-up median (range) | integrator [ms] median | speed-up median (range) "
+             "| evaluations median | fewer median (range) | peak force: diff median, max; within 1x, 2x | max normal "
+             "stress | alternating stress | energy residual max |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for scheme in schemes:
+        wall = np.array([best(r, scheme, "wall") for r in rows])
+        integ = np.array([best(r, scheme, "integrator") for r in rows])
+        rhs = np.array([r["runs"][scheme][0]["work"][whirl_kernel.S_RHS] for r in rows])
+        base_wall = np.array([best(r, first, "wall") for r in rows])
+        base_integ = np.array([best(r, first, "integrator") for r in rows])
+        base_rhs = np.array([r["runs"][first][0]["work"][whirl_kernel.S_RHS] for r in rows])
+        cells = []
+        for name in reference.FIGURES:
+            rel, z = [], []
+            for r in rows:
+                a, b = r["runs"][first][0], r["runs"][scheme][0]
+                rel.append(abs(b["values"][name] / a["values"][name] - 1.0))
+                z.append(rel[-1] / max(np.hypot(a["errors"][name], b["errors"][name]), 1e-300))
+            rel, z = np.array(rel), np.array(z)
+            cells.append(f"{np.median(rel):.1%}, {np.max(rel):.0%}; {np.sum(z <= 1)}, {np.sum(z <= 2)} of {z.size}")
+        residual = max(abs(r["runs"][scheme][0]["residual"]) for r in rows)
+        speed, ispeed, fewer = base_wall / wall, base_integ / integ, base_rhs / rhs
+        lines.append(f"| {scheme} | {np.median(wall) * 1e3:.1f} | {np.median(speed):.2f} ({speed.min():.2f}–{speed.max():.2f}) "
+                     f"| {np.median(integ) * 1e3:.1f} | {np.median(ispeed):.2f} ({ispeed.min():.2f}–{ispeed.max():.2f}) "
+                     f"| {np.median(rhs):.0f} | {np.median(fewer):.2f} ({fewer.min():.2f}–{fewer.max():.2f}) | "
+                     + " | ".join(cells) + f" | {residual:.1e} |")
+    lines.append("")
+    return rows, lines
+
+
 #: A contact point of the default study (configs/default.toml: 75 rpm, 10 000 lbf, e = 0.3, 12 ppg, 7.4 ft/s; the
 #: tool joints slide on the low side) for the reference model's work and precision.
 REFERENCE_PRECISION_POINT = dict(rotary_speed=75 * np.pi / 30, axial_tension=10_000 * 4.4482216152605,

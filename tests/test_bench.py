@@ -103,6 +103,39 @@ def test_sweep_bench_times_the_same_grid_three_ways_and_states_its_mix():
     assert sum(int(count) for _, _, count in parts) == size
 
 
+def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_points(tmp_path):
+    # a sweep's dataset reduced to what the bench reads: one bouncing point (default grid, 300 rpm, 5 000 lbf, e 0.3,
+    # 9 ppg, no flow) that reference answered; the bench solves it by each scheme and states each against the first
+    import pytest
+    import xarray as xr
+
+    from study.bench import bench_reference_schemes
+    from study.solvers import reference
+
+    config = DEFAULT_CONFIG.with_name("default.toml")
+    study = load(config)
+    shape = tuple(len(v) for v in study.axes.values())
+    method = np.full(shape, "free-whirl", dtype="<U10")
+    whirl = np.full(shape, np.nan)
+    where = (shape[0] - 1, 0, 0, 0, 0)
+    method[where], whirl[where] = "reference", reference.WHIRL_CLASSES["bouncing"]
+    dims = list(study.axes)
+    ds = xr.Dataset({"method": (dims, method), "whirl_class": (dims, whirl)}, attrs={"config_hash": study.config_hash})
+    ds.to_netcdf(tmp_path / "results.nc")
+    rows, lines = bench_reference_schemes(config, tmp_path / "results.nc", count=3, rounds=1,
+                                          schemes=("dopri5", "lawson-flight"))
+    assert [r["index"] for r in rows] == [int(np.ravel_multi_index(where, shape))]
+    runs = rows[0]["runs"]
+    assert runs["dopri5"][0]["whirl"] == "bouncing" and runs["dopri5"][0]["wall"] > runs["dopri5"][0]["integrator"] > 0
+    table = [line for line in lines if line.startswith("| ")]
+    assert table[1].startswith("| dopri5 |") and table[2].startswith("| lawson-flight |")
+    assert "1.00 (1.00–1.00)" in table[1] and "1 of 1" in table[2]
+    ds.attrs["config_hash"] = "another study"
+    ds.to_netcdf(tmp_path / "other.nc")
+    with pytest.raises(ValueError, match="config_hash"):
+        bench_reference_schemes(config, tmp_path / "other.nc", count=1, rounds=1)
+
+
 def test_large_sweep_bench_sweeps_the_config_and_accounts_for_every_point(tmp_path):
     # the default study on a 6-point grid (the dense config's 103 424 points are make bench-large's): the report
     # states the grid, the time against issue 23's target, and every point under its method and status

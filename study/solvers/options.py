@@ -187,6 +187,10 @@ class CrosscheckOptions(MethodOptions):
     check_tolerance: float = 0.02  #: relative difference accepted between the real contact and the periodic solution
 
 
+#: Schemes of the reference model's compiled integrator (option ``reference_integrator``).
+INTEGRATOR_SCHEMES = ("lawson", "lawson-flight", "dopri5")
+
+
 @dataclass(frozen=True)
 class ReferenceOptions(MethodOptions):
     """Options of the ``reference`` method (docs/reference_model.md)."""
@@ -204,6 +208,9 @@ class ReferenceOptions(MethodOptions):
     reference_initial: str = option("forced", ("forced", "rest"))
     contact_law: str = option("hertz", ("hertz", "penalty"))
     reference_rtol: float = 1e-6  #: relative tolerance of the compiled integrator
+    #: the compiled integrator's scheme: the Lawson (integrating-factor) form of Dormand–Prince 5(4), exact on the
+    #: modes' linear part, or Dormand–Prince 5(4) on the whole right-hand side (whirl_kernel.advance)
+    reference_integrator: str = option("lawson-flight", INTEGRATOR_SCHEMES)
     reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]

@@ -34,7 +34,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 
 Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
 "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
-:mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6) until the state at the revolution
+:mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6, in its Lawson form between contacts:
+``reference_integrator``) until the state at the revolution
 boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`), the pipe bounces with
 stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
@@ -60,6 +61,9 @@ from study.solvers.timedomain import calibrated_hysteresis, settled_period
 METHOD = "reference"
 DAMPING_CHOICES = ReferenceOptions.choices("reference_damping")
 CONTACT_LAWS = ReferenceOptions.choices("contact_law")
+SCHEMES = ReferenceOptions.choices("reference_integrator")
+#: the kernel's code of each scheme (whirl_kernel.advance)
+SCHEME_CODES = {"dopri5": whirl_kernel.DOPRI5, "lawson": whirl_kernel.LAWSON, "lawson-flight": whirl_kernel.LAWSON_FLIGHT}
 #: Default regularisation velocity of the Coulomb friction [m/s]: 1/250 of the 4½-in body's surface
 #: speed at 100 rpm; tested not to change the outputs beyond 2 % when divided by ten.
 SLIP_VELOCITY = ReferenceOptions.default("slip_velocity")
@@ -245,10 +249,15 @@ class Window:
 
 
 class Integrator:
-    """Runs the compiled kernel on a model, keeping the contact state between calls."""
+    """Runs the compiled kernel on a model, keeping the contact state between calls; ``scheme`` one of
+    :data:`SCHEMES` (option ``reference_integrator``: :func:`whirl_kernel.advance`). Raises ValueError for another."""
 
-    def __init__(self, model: WhirlModel, rtol: float = 1e-6, state=None):
+    def __init__(self, model: WhirlModel, rtol: float = 1e-6, state=None,
+                 scheme: str = ReferenceOptions.default("reference_integrator")):
+        if scheme not in SCHEMES:
+            raise ValueError(f"reference_integrator = {scheme!r}; allowed: {', '.join(SCHEMES)}")
         self.model = model
+        self.scheme = SCHEME_CODES[scheme]
         self.sy = model.system()
         N, P = model.n_modes, model.points.size
         self.z = np.zeros(4 * N + 4) if state is None else np.array(state, float)
@@ -259,9 +268,11 @@ class Integrator:
         # error scale weighted by 1/n^2: the bending moment weighs mode n by k_n^2, so its error is kept even
         self.scale = model.state_scale() * np.tile(1.0 / model.modes.astype(float) ** 2, 4)
         self.h = model.period / 1000.0
-        # and within the stability interval of Dormand-Prince on the imaginary axis (about 3.3/omega): the error
-        # estimate alone lets an undamped high mode ring at the edge of it
-        self.h_max = min(model.period / 64.0, STABLE_STEP / float(np.max(model.omega)))
+        # and, for Dormand-Prince on the whole right-hand side, within its stability interval on the imaginary axis
+        # (about 3.3/omega): the error estimate alone lets an undamped high mode ring at the edge of it. The Lawson
+        # form takes the modes' free motion exactly, at any step
+        self.h_stable = STABLE_STEP / float(np.max(model.omega))
+        self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         self.steps = 0
         self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK
@@ -280,7 +291,7 @@ class Integrator:
         start = self.t
         t, h, outcome, n_rec, steps = whirl_kernel.advance(
             self.t, t_end, self.z, self.active, self.chi, self.h, self.sy, self.rtol, self.scale, self.h_max,
-            max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0)
+            max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0, self.scheme, self.h_stable)
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
         self.work += stats
@@ -562,7 +573,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
     start = initial_state(model, option.reference_initial)
-    run = Integrator(model, float(option.reference_rtol), start)
+    run = Integrator(model, float(option.reference_rtol), start, option.reference_integrator)
     tau = model.period
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
@@ -957,10 +968,11 @@ def penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: fl
 
 
 def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
-    """The compiled integrator over ``revolutions`` from the centred pipe at rest: wall_time [s],
-    outcome, steps, final_state, work (the kernel's counts, :data:`whirl_kernel.N_STATS`)."""
+    """The compiled integrator (its scheme ``reference_integrator`` of the inputs) over ``revolutions`` from the
+    centred pipe at rest: wall_time [s], outcome, steps, final_state, work (the kernel's counts,
+    :data:`whirl_kernel.N_STATS`)."""
     model = build_model(inputs)
-    run = Integrator(model, rtol)
+    run = Integrator(model, rtol, scheme=ReferenceOptions.from_inputs(inputs).reference_integrator)
     start = time.perf_counter()
     run.run(revolutions * model.period)
     return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),

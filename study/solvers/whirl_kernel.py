@@ -9,6 +9,12 @@ controller of Gustafsson (ACM TOMS 17, 533–554, 1991, doi:10.1145/210232.21024
 Wanner's DOPRI5 (Hairer, Nørsett & Wanner 1993, §II.4; *Solving ODEs II*, §IV.2): it keeps the step
 steady where stability rather than accuracy limits it, as in a held contact.
 
+Between contacts the pair is taken in its Lawson (integrating-factor) form (:func:`_lawson_step`; Lawson, SIAM J.
+Numer. Anal. 4, 372–380, 1967, doi:10.1137/0704033; Hochbruck & Ostermann, Acta Numerica 19, 209–286, 2010,
+doi:10.1017/S0962492910000048): each mode's linear part −ω_n² q − d_n q̇ is carried by its closed-form flow, so the
+free ringing of the high modes that an impact excites costs no steps; while a contact is open the wall's stiffness
+sets the step and the plain pair is cheaper (``scheme`` of :func:`advance`; docs/reference_model.md §4, §6).
+
 Every switch of a contact force is located: a step that ends with a contact point inside the wall by
 more than ``ONSET_TOLERANCE`` of its clearance, or past the end of a contact force by more than that
 (the penetration back below zero, or the bracket of the normal force below it), is redone, cut to
@@ -53,9 +59,13 @@ OUTCOMES = {OK: "ok", BLOWN_UP: "non-finite state or deflection above 100 cleara
             STEP_UNDERFLOW: "step size underflow", TOO_MANY_STEPS: "step budget exhausted"}
 #: Entries of the ``stats`` array of :func:`advance` (its work, for profiling; docs/reference_model.md §6):
 #: time with any contact [s], accepted steps, steps rejected by the error test, steps redone to locate the
-#: onset or end of a contact force, right-hand-side evaluations, steps shortened to the predicted time of an onset.
-S_CONTACT_TIME, S_ACCEPTED, S_ERROR_REJECTED, S_SWITCH_REDONE, S_RHS, S_CAPPED = range(6)
-N_STATS = 6
+#: onset or end of a contact force, right-hand-side evaluations, steps shortened to the predicted time of an onset,
+#: accepted steps with a contact open.
+S_CONTACT_TIME, S_ACCEPTED, S_ERROR_REJECTED, S_SWITCH_REDONE, S_RHS, S_CAPPED, S_CONTACT_STEPS = range(7)
+N_STATS = 7
+#: Schemes of :func:`advance`: Dormand–Prince on the whole right-hand side; its Lawson form at every step; the
+#: Lawson form between contacts and Dormand–Prince while one is open.
+DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
@@ -93,8 +103,9 @@ def point_state(z, phi, p, N):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def rhs(t, z, chi, out, fc, pen, scratch, sy):
-    """ż into ``out``; contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
+def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
+    """ż into ``out`` (without ``linear``, only its nonlinear part N(t, z), ż − Lz: the modal terms q̇ and
+    −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
     and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (2, G) holds the drag points' velocities.
 
     sy = (omega2, damping, eccentric, side, S^T (N, G), w, phi, clearance, radius, K, kp, cp, fpar).
@@ -109,12 +120,18 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy):
     for n in range(N):
         vy = z[2 * N + n]
         vz = z[3 * N + n]
-        out[n] = vy
-        out[N + n] = vz
         fy = ecc[n] * co + side[n]
         fz = ecc[n] * si
-        out[2 * N + n] = -omega2[n] * z[n] - damp[n] * vy + fy
-        out[3 * N + n] = -omega2[n] * z[N + n] - damp[n] * vz + fz
+        if linear:
+            out[n] = vy
+            out[N + n] = vz
+            out[2 * N + n] = -omega2[n] * z[n] - damp[n] * vy + fy
+            out[3 * N + n] = -omega2[n] * z[N + n] - damp[n] * vz + fz
+        else:
+            out[n] = 0.0
+            out[N + n] = 0.0
+            out[2 * N + n] = fy
+            out[3 * N + n] = fz
         p_load += fy * vy + fz * vz
     out[4 * N] = p_load / inv_m
     p_drag = 0.0
@@ -211,6 +228,187 @@ def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     return np.sqrt(err / (4 * N))
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _propagator(w2, d, s):
+    """e^{sL} of one mode's linear part, q̈ = −ω² q − d q̇, on (q, q̇): the damped oscillator's free motion over
+    the time s [s] (any sign) in closed form, (a, b, c, e) of [[a, b], [c, e]], and its determinant e^{−d s}.
+    With β = d/2 and μ² = ω² − β²: e^{−βs} [[C + βS, S], [−ω² S, C − βS]], C = cos μs, S = sin(μs)/μ (cosh and
+    sinh of |μ| s overdamped, C = 1, S = s critically damped)."""
+    beta = 0.5 * d
+    mu2 = w2 - beta * beta
+    if mu2 > 0.0:
+        mu = np.sqrt(mu2)
+        C = np.cos(mu * s)
+        S = np.sin(mu * s) / mu
+    elif mu2 < 0.0:
+        kappa = np.sqrt(-mu2)
+        C = np.cosh(kappa * s)
+        S = np.sinh(kappa * s) / kappa
+    else:
+        C = 1.0
+        S = s
+    g = np.exp(-beta * s) if beta != 0.0 else 1.0
+    return g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _propagate(B, x, out, N):
+    """out = e^{sL} x with B (N, 4) the modes' blocks (:func:`_propagator`): (q_y, q̇_y) and (q_z, q̇_z) of each
+    mode by its block, the energy integrals unchanged (L = 0 there). ``out`` may be ``x``."""
+    for m in range(N):
+        a, b, c, e = B[m, 0], B[m, 1], B[m, 2], B[m, 3]
+        q, v = x[m], x[2 * N + m]
+        out[m] = a * q + b * v
+        out[2 * N + m] = c * q + e * v
+        q, v = x[N + m], x[3 * N + m]
+        out[N + m] = a * q + b * v
+        out[3 * N + m] = c * q + e * v
+    for i in range(4 * N, x.size):
+        out[i] = x[i]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _store_propagator(ex, i, m, a, b, c, e, det):
+    """e^{sL} = [[a, b], [c, e]] into ex[0, i, m] and its inverse [[e, −b], [−c, a]]/det into ex[1, i, m]."""
+    ex[0, i, m, 0] = a
+    ex[0, i, m, 1] = b
+    ex[0, i, m, 2] = c
+    ex[0, i, m, 3] = e
+    ex[1, i, m, 0] = e / det
+    ex[1, i, m, 1] = -b / det
+    ex[1, i, m, 2] = -c / det
+    ex[1, i, m, 3] = a / det
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _turn(a, b):
+    """(cos, sin, decay) of the sum of two angles and decay times from theirs (angle addition)."""
+    return a[0] * b[0] - a[1] * b[1], a[1] * b[0] + a[0] * b[1], a[2] * b[2]
+
+
+@numba.njit(cache=True, nogil=True)
+def _stage_propagators(omega2, damp, h, ex, N):
+    """e^{±c hL} of every mode at the Dormand–Prince nodes c = 1/5, 3/10, 4/5, 8/9, 1 into ex (2, 5, N, 4)
+    (:func:`_propagator`). For an underdamped mode the cosines, sines and decays at the nodes (18, 27, 72, 80 and
+    90 times h/90) are built from those at h/90 by the angle-addition formulas: one sine and cosine a mode instead
+    of five (the trigonometric functions were most of the Lawson step's cost beside the right-hand side; the
+    products keep them to about 100 rounding errors, 1e-14)."""
+    for m in range(N):
+        w2, d = omega2[m], damp[m]
+        beta = 0.5 * d
+        mu2 = w2 - beta * beta
+        if mu2 <= 0.0:
+            for i in range(5):
+                a, b, c, e, det = _propagator(w2, d, _C[i + 1] * h)
+                _store_propagator(ex, i, m, a, b, c, e, det)
+            continue
+        mu = np.sqrt(mu2)
+        x = mu * h / 90.0
+        p1 = (np.cos(x), np.sin(x), np.exp(-beta * h / 90.0) if beta != 0.0 else 1.0)
+        p2 = _turn(p1, p1)
+        p8 = _turn(_turn(p2, p2), _turn(p2, p2))
+        p16 = _turn(p8, p8)
+        p64 = _turn(_turn(p16, p16), _turn(p16, p16))
+        p18 = _turn(p16, p2)
+        p80 = _turn(p64, p16)
+        for i in range(5):
+            if i == 0:
+                C, S, g = p18  # 1/5
+            elif i == 1:
+                C, S, g = _turn(p18, _turn(p8, p1))  # 3/10
+            elif i == 2:
+                C, S, g = _turn(p64, p8)  # 4/5
+            elif i == 3:
+                C, S, g = p80  # 8/9
+            else:
+                C, S, g = _turn(p80, _turn(p8, p2))  # 1
+            S /= mu
+            _store_propagator(ex, i, m, g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g)
+
+
+@numba.njit(cache=True, nogil=True)
+def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale, rtol, N):
+    """One Lawson (integrating-factor) Dormand–Prince step from (t, z) with k[0] = N(t, z) given (the nonlinear
+    part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
+    doi:10.1017/S0962492910000048), taken about the step's first force: the free motion under the constant
+    force N_0 = k[0] is the free motion about the static deflection u_s = −L⁻¹N_0 (q_s = f/ω² per mode, into
+    ``shift``), so with w = u − u_s, w' = Lw + N(t, w + u_s) − N_0 exactly, and the Dormand–Prince pair is
+    applied to v(τ) = e^{−τL} w(t + τ): stage s is U_s = u_s + e^{c_s hL}[w_0 + h Σ_j a_sj e^{−c_j hL}(N_j − N_0)].
+    The modes' free motion is exact at any step, and so is a rest under constant forces, which the plain
+    Lawson form is not (its N_0 turns in e^{−τL} at the modes' frequencies; a contact held against the modes'
+    stiffness is such a balance). The stages' N in ``k`` (k[6] the next step's first, FSAL), the images
+    e^{−c hL}(N − N_0) in ``kv``, the 5th-order state into ``znew`` and its image e^{−hL}(znew − u_s) into
+    ``vend`` (with ``kv`` and ``shift`` the continuous extension), the forces and penetrations at the step's
+    end in ``fc`` and ``pen``; ``ex`` (2, 5, N, 4) receives the blocks e^{±c hL}. Returns the error norm as
+    :func:`_step`, on the embedded difference mapped to t + h."""
+    omega2, damp = sy[0], sy[1]
+    n = z.size
+    _stage_propagators(omega2, damp, h, ex, N)
+    # the static deflection under N_0 (whose q entries are 0: q' = q̇ is all linear); w_0 = z − u_s
+    for i in range(n):
+        shift[i] = 0.0
+    for m in range(N):
+        if omega2[m] > 0.0:
+            shift[m] = k[0, 2 * N + m] / omega2[m]
+            shift[N + m] = k[0, 3 * N + m] / omega2[m]
+    for i in range(n):
+        kv[0, i] = 0.0 if i < 4 * N else k[0, i]  # the energy integrals (L = 0) are not shifted
+    for s in range(1, 6):
+        for i in range(n):
+            acc = 0.0
+            for j in range(s):
+                acc += _A[s, j] * kv[j, i]
+            stage[i] = z[i] - shift[i] + h * acc
+        _propagate(ex[0, s - 1], stage, stage, N)
+        for i in range(n):
+            stage[i] += shift[i]
+        rhs(t + _C[s] * h, stage, chi, k[s], fc, pen, scratch, sy, False)
+        for i in range(n):
+            kv[s, i] = k[s, i] - k[0, i] if i < 4 * N else k[s, i]
+        _propagate(ex[1, s - 1], kv[s], kv[s], N)
+    for i in range(n):
+        vend[i] = z[i] - shift[i] + h * (_A[6, 0] * kv[0, i] + _A[6, 2] * kv[2, i] + _A[6, 3] * kv[3, i]
+                                         + _A[6, 4] * kv[4, i] + _A[6, 5] * kv[5, i])
+    _propagate(ex[0, 4], vend, znew, N)
+    for i in range(n):
+        znew[i] += shift[i]
+    rhs(t + h, znew, chi, k[6], fc, pen, scratch, sy, False)
+    for i in range(n):
+        kv[6, i] = k[6, i] - k[0, i] if i < 4 * N else k[6, i]
+    _propagate(ex[1, 4], kv[6], kv[6], N)
+    for i in range(n):
+        stage[i] = h * (_E[0] * kv[0, i] + _E[2] * kv[2, i] + _E[3] * kv[3, i] + _E[4] * kv[4, i]
+                        + _E[5] * kv[5, i] + _E[6] * kv[6, i])
+    _propagate(ex[0, 4], stage, stage, N)
+    err = 0.0
+    for i in range(4 * N):
+        sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
+        err += (stage[i] / sc) ** 2
+    return np.sqrt(err / (4 * N))
+
+
+@numba.njit(cache=True, nogil=True)
+def _lawson_dense(z, vend, kv, shift, h, th, omega2, damp, N, out):
+    """The state at θ of a Lawson step (:func:`_lawson_step`: start z, its end's image ``vend``, stages ``kv``,
+    static deflection ``shift``) into ``out``: the Dormand–Prince continuous extension in the step's start frame
+    (Hairer, Nørsett & Wanner 1993 §II.6), mapped by e^{θhL}, plus the static deflection."""
+    s = 1.0 - th
+    for i in range(z.size):
+        r0 = z[i] - shift[i]
+        r1 = vend[i] - r0
+        r2 = h * kv[0, i] - r1
+        r3 = r1 - h * kv[6, i] - r2
+        r4 = h * (_D[0] * kv[0, i] + _D[2] * kv[2, i] + _D[3] * kv[3, i] + _D[4] * kv[4, i] + _D[5] * kv[5, i]
+                  + _D[6] * kv[6, i])
+        out[i] = r0 + th * (r1 + s * (r2 + th * (r3 + s * r4)))
+    for m in range(N):
+        a, b, c, e, _ = _propagator(omega2[m], damp[m], th * h)
+        for j in range(2):
+            q, v = out[j * N + m], out[(2 + j) * N + m]
+            out[j * N + m] = a * q + b * v + shift[j * N + m]
+            out[(2 + j) * N + m] = c * q + e * v
+
+
 @numba.njit(cache=True, nogil=True)
 def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
     """Where the contact force switches, as a fraction of the clearance: the penetration δ/c for an onset;
@@ -226,39 +424,54 @@ def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
 
 
 @numba.njit(cache=True, nogil=True)
-def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, target, within):
+def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, target, within, lawson, omega2, damp,
+                     shift):
     """The fraction θ of the step at which :func:`_contact_function` of point p, on the step's continuous
     extension, reaches ``target`` within ``within`` (on one side of it at the start, on the other at the end):
-    regula falsi with the Illinois modification."""
-    # the extension's coefficients projected on the point: y, z, ẏ, ż (Hairer, Nørsett & Wanner 1993 §II.6)
-    r = np.zeros((4, 5))
-    for c in range(4):
-        y0 = 0.0
-        y1 = 0.0
-        f0 = 0.0
-        f6 = 0.0
-        dsum = 0.0
-        for m in range(N):
-            i = c * N + m
-            y0 += phi[p, m] * z[i]
-            y1 += phi[p, m] * znew[i]
-            f0 += phi[p, m] * k[0, i]
-            f6 += phi[p, m] * k[6, i]
-            dsum += phi[p, m] * (_D[0] * k[0, i] + _D[2] * k[2, i] + _D[3] * k[3, i] + _D[4] * k[4, i]
-                                 + _D[5] * k[5, i] + _D[6] * k[6, i])
-        r[c, 0] = y0
-        r[c, 1] = y1 - y0
-        r[c, 2] = h * f0 - r[c, 1]
-        r[c, 3] = r[c, 1] - h * f6 - r[c, 2]
-        r[c, 4] = h * dsum
-    v = np.empty(4)
+    regula falsi with the Illinois modification. With ``lawson`` the extension is that of the Lawson step
+    (:func:`_lawson_step`; ``znew`` its end and ``k`` its stages in the frame of the step's start, about the
+    static deflection ``shift``) mapped by e^{θhL} (ω² ``omega2``, ``damp`` d of the modes)."""
+    if lawson:
+        # every dynamic entry's extension in the start's frame: e^{θhL} is applied per mode at each θ
+        r = np.zeros((4 * N, 5))
+        for i in range(4 * N):
+            r[i, 0] = z[i] - shift[i]
+            r[i, 1] = znew[i] - r[i, 0]
+            r[i, 2] = h * k[0, i] - r[i, 1]
+            r[i, 3] = r[i, 1] - h * k[6, i] - r[i, 2]
+            r[i, 4] = h * (_D[0] * k[0, i] + _D[2] * k[2, i] + _D[3] * k[3, i] + _D[4] * k[4, i]
+                           + _D[5] * k[5, i] + _D[6] * k[6, i])
+        v = np.empty(4 * N)
+    else:
+        # the extension's coefficients projected on the point: y, z, ẏ, ż (Hairer, Nørsett & Wanner 1993 §II.6)
+        r = np.zeros((4, 5))
+        for c in range(4):
+            y0 = 0.0
+            y1 = 0.0
+            f0 = 0.0
+            f6 = 0.0
+            dsum = 0.0
+            for m in range(N):
+                i = c * N + m
+                y0 += phi[p, m] * z[i]
+                y1 += phi[p, m] * znew[i]
+                f0 += phi[p, m] * k[0, i]
+                f6 += phi[p, m] * k[6, i]
+                dsum += phi[p, m] * (_D[0] * k[0, i] + _D[2] * k[2, i] + _D[3] * k[3, i] + _D[4] * k[4, i]
+                                     + _D[5] * k[5, i] + _D[6] * k[6, i])
+            r[c, 0] = y0
+            r[c, 1] = y1 - y0
+            r[c, 2] = h * f0 - r[c, 1]
+            r[c, 3] = r[c, 1] - h * f6 - r[c, 2]
+            r[c, 4] = h * dsum
+        v = np.empty(4)
     lo, hi = 0.0, 1.0
-    glo = _switch_gap(r, v, 0.0, cl, law, chi, kp, cp, ending, target)
-    ghi = _switch_gap(r, v, 1.0, cl, law, chi, kp, cp, ending, target)
+    glo = _switch_gap(r, v, 0.0, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift)
+    ghi = _switch_gap(r, v, 1.0, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift)
     side = 0
     for _ in range(60):
         th = (lo * ghi - hi * glo) / (ghi - glo)
-        g = _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target)
+        g = _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift)
         if abs(g) < within:
             return th
         if (g > 0.0) == (ghi > 0.0):
@@ -277,18 +490,40 @@ def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, tar
 
 
 @numba.njit(cache=True, nogil=True)
-def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target):
-    """:func:`_contact_function` − target on the continuous extension (coefficients r, (4, 5)) at θ."""
+def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift):
+    """:func:`_contact_function` − target on the continuous extension at θ: coefficients r (4, 5) projected on
+    the point, or with ``lawson`` (4N, 5) of every dynamic entry in the step's start frame about the static
+    deflection ``shift``, mapped by e^{θhL}."""
     s = 1.0 - th
-    for c in range(4):
+    for c in range(v.size):
         v[c] = r[c, 0] + th * (r[c, 1] + s * (r[c, 2] + th * (r[c, 3] + s * r[c, 4])))
-    return _contact_function(v[0], v[1], v[2], v[3], cl, law, chi, kp, cp, ending) - target
+    if not lawson:
+        return _contact_function(v[0], v[1], v[2], v[3], cl, law, chi, kp, cp, ending) - target
+    y = 0.0
+    w = 0.0
+    yd = 0.0
+    wd = 0.0
+    for m in range(N):
+        a, b, c, e, _ = _propagator(omega2[m], damp[m], th * h)
+        f = phi[p, m]
+        y += f * (a * v[m] + b * v[2 * N + m] + shift[m])
+        yd += f * (c * v[m] + e * v[2 * N + m])
+        w += f * (a * v[N + m] + b * v[3 * N + m] + shift[N + m])
+        wd += f * (c * v[N + m] + e * v[3 * N + m])
+    return _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending) - target
 
 
 @numba.njit(cache=True, nogil=True)
 def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
-            stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec):
+            stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec, scheme, h_stable):
     """Integrate from t to t_end. Returns (t, h, outcome, n_rec, steps).
+
+    ``scheme`` (:data:`SCHEMES`): ``DOPRI5`` the Dormand–Prince pair on the whole right-hand side
+    (:func:`_step`), ``LAWSON`` its Lawson form (:func:`_lawson_step`, the modes' linear part exact) at every
+    step, ``LAWSON_FLIGHT`` the Lawson form while no contact is open and Dormand–Prince while one is (a step
+    never crosses a switch, so each step is one or the other; the first stage carried over is converted, f =
+    Lz + N). The contact bookkeeping, the step cap and the counts are the same. A Dormand–Prince step is no
+    longer than ``h_stable`` (its stability on the modes' frequencies), a Lawson step no longer than ``h_max``.
 
     ``active``/``chi`` (P,): contact state, updated. ``scale`` (4N,): error scale of the dynamic
     entries (c for q, Ωc for q̇); error per entry (z5 − z4)/(rtol (scale + |z|)), RMS ≤ 1 accepted.
@@ -306,6 +541,10 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     P = phi.shape[0]
     n = z.size
     k = np.empty((7, n))
+    kv = np.empty((7, n))  # the Lawson step's stages in the frame of its start
+    ex = np.empty((2, 5, N, 4))  # and its propagators e^{±c hL}
+    vend = np.empty(n)
+    shift = np.empty(n)
     stage = np.empty(n)
     znew = np.empty(n)
     fc = np.empty((P, 3))
@@ -313,7 +552,9 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     pen = np.empty((P, 2))
     pen_end = np.empty((P, 2))
     scratch = np.empty((2, wts.size))
-    rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t)
+    # the form of the first stage k[0]: the whole ż (Dormand–Prince) or its nonlinear part N (Lawson)
+    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not np.any(active))
+    rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)
     stats[S_RHS] += 1
     last_rec = -1e300
     steps = 0
@@ -337,7 +578,16 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         steps += 1
         if steps > max_steps:
             return t, h, TOO_MANY_STEPS, n_rec, steps
-        h = min(h, h_max, t_end - t)
+        lawson = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not any_open)
+        if lawson != nonlinear:  # k[0] into this step's form: f = Lz + N
+            sign = -1.0 if lawson else 1.0
+            for m in range(N):
+                for j in range(2):
+                    q, v = z[j * N + m], z[(2 + j) * N + m]
+                    k[0, j * N + m] += sign * v
+                    k[0, (2 + j) * N + m] += sign * (-omega2[m] * q - damp[m] * v)
+            nonlinear = lawson
+        h = min(h, h_max if lawson else min(h_max, h_stable), t_end - t)
         # cap at the predicted onset of a point moving towards the wall
         for p in range(P):
             if not active[p]:
@@ -353,7 +603,11 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         for _attempt in range(60):
             if h < h_floor:
                 return t, h, STEP_UNDERFLOW, n_rec, steps
-            err = _step(t, z, h, chi, sys_t, k, stage, znew, fc, pen, scratch, scale, rtol, N)
+            if lawson:
+                err = _lawson_step(t, z, h, chi, sys_t, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale,
+                                   rtol, N)
+            else:
+                err = _step(t, z, h, chi, sys_t, k, stage, znew, fc, pen, scratch, scale, rtol, N)
             stats[S_RHS] += 6
             if not np.isfinite(err):
                 h *= 0.1
@@ -375,12 +629,14 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
                     y, w, yd, wd = point_state(znew, phi, p, N)
                     f1 = _contact_function(y, w, yd, wd, cl[p], law, chi[p], kp[p], cpen[p], True)
                     if f1 < -ONSET_TOLERANCE:
-                        th = _switch_fraction(z, znew, k, h, phi, p, N, cl[p], law, chi[p], kp[p], cpen[p], True,
-                                              -0.5 * ONSET_TOLERANCE, 0.25 * ONSET_TOLERANCE)
+                        th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
+                                              law, chi[p], kp[p], cpen[p], True, -0.5 * ONSET_TOLERANCE,
+                                              0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift)
                         cut = min(cut, max(th, 0.02))
                 elif pen[p, 0] > ONSET_TOLERANCE * cl[p] and pen_end[p, 0] < 0.0:
-                    th = _switch_fraction(z, znew, k, h, phi, p, N, cl[p], law, 0.0, kp[p], cpen[p], False,
-                                          0.5 * ONSET_TOLERANCE, 0.25 * ONSET_TOLERANCE)
+                    th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
+                                          law, 0.0, kp[p], cpen[p], False, 0.5 * ONSET_TOLERANCE,
+                                          0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift)
                     cut = min(cut, max(th, 0.02))
             if cut < 2.0:
                 h *= cut
@@ -394,9 +650,21 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         stats[S_ACCEPTED] += 1
         if any_open:
             stats[S_CONTACT_TIME] += h
+            stats[S_CONTACT_STEPS] += 1
         for p in range(P):
             if active[p]:
                 contact_time[p] += h
+        if record and lawson and not any_open:
+            # a flight's rows at their times inside the step, from the continuous extension (the forces are 0):
+            # a Lawson step in flight may be far longer than the rows' spacing
+            tr = last_rec + rec_dt[0]
+            while t + h - tr > 1e-6 * rec_dt[0] and n_rec < rec_t.size:  # not the step's end: recorded as such
+                _lawson_dense(z, vend, kv, shift, h, (tr - t) / h, omega2, damp, N, rec_z[n_rec])
+                rec_t[n_rec] = tr
+                rec_f[n_rec, :, :] = 0.0
+                n_rec += 1
+                last_rec = tr
+                tr += rec_dt[0]
         t = t + h if h < t_end - t else t_end
         for i in range(n):
             z[i] = znew[i]
@@ -415,7 +683,7 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
                 onsets[p] += 1
                 opened = True
         if opened:  # the new chi changes the force at the step's end
-            rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t)
+            rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)
             stats[S_RHS] += 1
         for p in range(P):
             if fc_end[p, 2] > peak[p]:

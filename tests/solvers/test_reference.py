@@ -438,3 +438,11 @@ def test_the_quasi_static_correction_of_strikes_counts_its_own_size_in_the_error
         assert parts[name]["modes"] >= 1.0 - plain[name] / value - 1e-12, name
     # not where the correction was not applied, nor where nothing strikes
     assert reference.uncorrected_means(point, model, window, [dict(c, correction=False) for c in corrected]) is None
+
+
+def test_an_unknown_integrator_scheme_is_refused_naming_the_option(base):
+    model = reference.build_model({**base, "reference_modes": 2})
+    with pytest.raises(ValueError, match="reference_integrator = 'rk4'; allowed: lawson, lawson-flight, dopri5"):
+        reference.Integrator(model, 1e-6, scheme="rk4")
+    result = solve_point({**base, "reference_integrator": "rk4"}, "reference")  # a point's bad input: its status
+    assert result.status == "failed" and "reference_integrator = 'rk4'; allowed:" in result.message
