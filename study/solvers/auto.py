@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import copy
 import sys
+import threading
 import time
 from collections import OrderedDict
 from typing import Any, Callable, Mapping
@@ -105,11 +106,13 @@ MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
 #: restitution solves the free whirl and the sliding state once for all its values.
 MEMO_SIZE = 4096
 _memo: OrderedDict[tuple, PointResult] = OrderedDict()
+_memo_lock = threading.Lock()  # a worker may run several threads
 
 
 def clear_memo() -> None:
     """Empty the memo of rung answers (:data:`MEMO_SIZE`): a benchmark's runs each start from nothing."""
-    _memo.clear()
+    with _memo_lock:
+        _memo.clear()
 
 
 def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
@@ -121,14 +124,17 @@ def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
     start = time.perf_counter()
     key = (method.__module__, method.__qualname__,
            tuple(sorted((name, repr(value)) for name, value in inputs.items() if name not in ignored)))
-    kept = _memo.get(key)
+    with _memo_lock:
+        kept = _memo.get(key)
+        if kept is not None:
+            _memo.move_to_end(key)
     if kept is None:
         result = method(inputs)
-        _memo[key] = copy.deepcopy(result)  # as answered, before the gate and the climb add to it
-        if len(_memo) > MEMO_SIZE:
-            _memo.popitem(last=False)
+        with _memo_lock:
+            _memo[key] = copy.deepcopy(result)  # as answered, before the gate and the climb add to it
+            if len(_memo) > MEMO_SIZE:
+                _memo.popitem(last=False)
         return result
-    _memo.move_to_end(key)
     result = copy.deepcopy(kept)
     result.wall_time = time.perf_counter() - start
     return result
