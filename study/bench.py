@@ -717,8 +717,8 @@ def bench_large_sweep(config: str | Path = LARGE_CONFIG, workers: int = 2, out: 
              f"on {os.cpu_count()} cores, Python {platform.python_version()}: `{Path(config).name}` swept as "
              f"`study sweep` does, on {workers} local dask workers, into a fresh folder (the kernels compiled ahead).", "",
              f"**Grid:** {size} points, " + " × ".join(f"{len(v)} {name}" for name, v in study.axes.items()) + ".", "",
-             f"**Time:** the sweep (every point solved and the dataset written) **{sweep / 60:.0f} min "
-             f"{sweep % 60:.0f} s**; the report's charts {charts:.0f} s more. The points' own times sum to "
+             f"**Time:** the sweep (every point solved and the dataset written) **{int(sweep // 60)} min "
+             f"{int(sweep % 60)} s**; the report's charts {charts:.0f} s more. The points' own times sum to "
              f"{wall.sum():.0f} s of worker time ({wall.sum() / (workers * sweep):.0%} of {workers} x the sweep). "
              f"Issue 23's target, 10^5 points in {LARGE_TARGET / 60:.0f} minutes: {verdict}.", "",
              "**Where the time went** (the points' own `wall_time`):", "",

@@ -1,5 +1,7 @@
 """study bench (study.bench): the benchmark's pieces run and report every method (no timing asserted)."""
 
+import re
+
 import numpy as np
 
 from study.bench import DEFAULT_CONFIG, bench_hertz_coefficients, bench_methods, bench_span_search
@@ -149,6 +151,7 @@ def test_large_sweep_bench_sweeps_the_config_and_accounts_for_every_point(tmp_pa
     assert (tmp_path / "large.md").read_text() == report
     assert "**Grid:** 6 points, 3 rotary_speed × 2 restitution." in report
     assert f"10^5 points in {LARGE_TARGET / 60:.0f} minutes: not judged on 6 points" in report
+    assert re.search(r"\*\*0 min \d{1,2} s\*\*", report)  # whole minutes, then the seconds left (under 60)
     rows = [line.split(" | ") for line in report.splitlines() if line.startswith("| `")]
     assert sum(int(row[1]) for row in rows) == 6
     for row in rows:  # the statuses' counts add up to the method's points
