@@ -22,6 +22,9 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 - ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
   second to seconds; it mends whatever the cheaper rungs could not answer.
 
+The free whirl and the sliding state depend on no restitution (``INDEPENDENT_OF`` in their modules): their answers
+are kept by the other inputs (:func:`solve_rung`), so a sweep over the restitution solves them once.
+
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
 where the section whirls clear of it, and where both touch its forces and stresses are off by factors. It keeps
