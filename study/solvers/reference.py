@@ -763,16 +763,18 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     k = model.modes * np.pi / L
     upper = model.modes > N // 2
     second = (model.modes > N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
+    turn = model.rotary_speed * window.times
+    cos_turn, sin_turn = np.cos(turn), np.sin(turn)
+    psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
+    cos_fibre, sin_fibre = np.cos(psi), np.sin(psi)
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
         times = window.times[rows]
         my, mz = fields[0]["moment"][rows], fields[1]["moment"][rows]
         uy, uz = fields[0]["deflection"][rows], fields[1]["deflection"][rows]
-        turn = model.rotary_speed * times
-        psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
         largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
-            my, mz, uy, uz, x, np.cos(turn), np.sin(turn), np.cos(psi), np.sin(psi))
+            my, mz, uy, uz, x, cos_turn[rows], sin_turn[rows], cos_fibre, sin_fibre)
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
         shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
