@@ -68,6 +68,9 @@ N_STATS = 7
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
+#: Floating-point licence of the right-hand side's sums: fused multiply-adds and reordered sums (vectorised), which
+#: change its last bits only; no licence on NaN or infinity, which the integrator tests for.
+SUMS = {"contract", "reassoc"}
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
 #: smallest and largest step ratio.
 PI_BETA, SAFETY, SHRINK_LIMIT, GROW_LIMIT = 0.04, 0.9, 0.2, 5.0
@@ -87,7 +90,7 @@ _D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -1069
                701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423])
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, fastmath=SUMS)
 def point_state(z, phi, p, N):
     """(y, z, ẏ, ż) of contact point p from the state."""
     y = 0.0
@@ -102,15 +105,38 @@ def point_state(z, phi, p, N):
     return y, w, yd, wd
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True)
+def drag_halves(S):
+    """The drag shapes S (G, N) at symmetric points (Gauss–Legendre nodes: x_{G−1−g} = L − x_g) as :func:`rhs` sums
+    them: SH (N, ⌈G/2⌉), the left half's rows transposed, and each mode's parity, +1 where its shape is symmetric
+    about midspan (sin k_n(L − x) = sin k_n x, odd n) and −1 where antisymmetric (even n), read from the first and
+    last rows (sin k_n x_0 ≠ 0 for the modes of a rule with more points than modes)."""
+    G, N = S.shape
+    Hm = (G + 1) // 2
+    SH = np.empty((N, Hm))
+    parity = np.empty(N)
+    for n in range(N):
+        for g in range(Hm):
+            SH[n, g] = S[g, n]
+        parity[n] = 1.0 if abs(S[G - 1, n] - S[0, n]) <= abs(S[G - 1, n] + S[0, n]) else -1.0
+    return SH, parity
+
+
+@numba.njit(cache=True, nogil=True, fastmath=SUMS, inline="always")
 def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     """ż into ``out`` (without ``linear``, only its nonlinear part N(t, z), ż − Lz: the modal terms q̇ and
     −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
-    and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (2, G) holds the drag points' velocities.
+    and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (6, G) holds the drag points' velocities and
+    their half sums.
 
-    sy = (omega2, damping, eccentric, side, S^T (N, G), w, phi, clearance, radius, K, kp, cp, fpar).
+    sy = (omega2, damping, eccentric, side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,)):
+    the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
+    parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
+    there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
+    mode's drag the sum over the pairs of its shape times the pair's forces added (symmetric) or subtracted —
+    half the multiplications of the sums over all G points (:func:`drag_halves`).
     """
-    omega2, damp, ecc, side, ST, wts, phi, cl, rc, K, kp, cpen, fpar = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity = sy
     N = omega2.size
     G = wts.size
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
@@ -136,31 +162,70 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     out[4 * N] = p_load / inv_m
     p_drag = 0.0
     if D > 0.0:
-        # the drag points' velocities u̇_g = Σ_n S_gn q̇_n, then the drag force per modal mass on them, then
-        # its projection on the modes: loops over the G points run along contiguous rows of S^T
+        # the drag points' velocities u̇_g = Σ_n S_gn q̇_n by pairs (E ± O at g and G − 1 − g), the drag force per
+        # modal mass on them, then its projection on the modes by pairs: loops over the points run along
+        # contiguous rows of SH
+        Hm = SH.shape[1]
+        H = G // 2
         uy = scratch[0]
         uz = scratch[1]
-        for g in range(G):
-            uy[g] = 0.0
-            uz[g] = 0.0
+        ey = scratch[2]
+        ez = scratch[3]
+        oy = scratch[4]
+        oz = scratch[5]
+        for g in range(Hm):
+            ey[g] = 0.0
+            ez[g] = 0.0
+            oy[g] = 0.0
+            oz[g] = 0.0
         for n in range(N):
             vy = z[2 * N + n]
             vz = z[3 * N + n]
-            for g in range(G):
-                uy[g] += ST[n, g] * vy
-                uz[g] += ST[n, g] * vz
+            if parity[n] > 0.0:
+                for g in range(Hm):
+                    ey[g] += SH[n, g] * vy
+                    ez[g] += SH[n, g] * vz
+            else:
+                for g in range(Hm):
+                    oy[g] += SH[n, g] * vy
+                    oz[g] += SH[n, g] * vz
+        for g in range(H):
+            m = G - 1 - g
+            uy[g] = ey[g] + oy[g]
+            uz[g] = ez[g] + oz[g]
+            uy[m] = ey[g] - oy[g]
+            uz[m] = ez[g] - oz[g]
+        if Hm > H:  # an odd rule's midspan point, its own mirror
+            uy[H] = ey[H] + oy[H]
+            uz[H] = ez[H] + oz[H]
         for g in range(G):
             sp = np.sqrt(uy[g] * uy[g] + uz[g] * uz[g])
             c = D * sp * wts[g]
             p_drag += c * sp * sp
             uy[g] *= c * inv_m
             uz[g] *= c * inv_m
+        for g in range(H):  # the pairs' forces added (ey, ez) and subtracted (oy, oz)
+            m = G - 1 - g
+            ey[g] = uy[g] + uy[m]
+            ez[g] = uz[g] + uz[m]
+            oy[g] = uy[g] - uy[m]
+            oz[g] = uz[g] - uz[m]
+        if Hm > H:
+            ey[H] = uy[H]
+            ez[H] = uz[H]
+            oy[H] = uy[H]
+            oz[H] = uz[H]
         for n in range(N):
             ay = 0.0
             az = 0.0
-            for g in range(G):
-                ay += ST[n, g] * uy[g]
-                az += ST[n, g] * uz[g]
+            if parity[n] > 0.0:
+                for g in range(Hm):
+                    ay += SH[n, g] * ey[g]
+                    az += SH[n, g] * ez[g]
+            else:
+                for g in range(Hm):
+                    ay += SH[n, g] * oy[g]
+                    az += SH[n, g] * oz[g]
             out[2 * N + n] -= ay
             out[3 * N + n] -= az
     out[4 * N + 2] = p_drag
@@ -202,7 +267,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     out[4 * N + 3] = p_loss
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, fastmath=SUMS)
 def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
     derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
@@ -326,7 +391,7 @@ def _stage_propagators(omega2, damp, h, ex, N):
             _store_propagator(ex, i, m, g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, fastmath=SUMS)
 def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale, rtol, N):
     """One Lawson (integrating-factor) Dormand–Prince step from (t, z) with k[0] = N(t, z) given (the nonlinear
     part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
@@ -533,8 +598,8 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     remains. ``sy`` as for :func:`rhs`, with the drag shapes S (G, N) (transposed here).
     """
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
-    ST = np.ascontiguousarray(S.T)
-    sys_t = (omega2, damp, ecc, side, ST, wts, phi, cl, rc, K, kp, cpen, fpar)
+    SH, parity = drag_halves(S)
+    sys_t = (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity)
     hyst = fpar[6]
     law = int(fpar[5])
     N = omega2.size
@@ -551,7 +616,7 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     fc_end = np.empty((P, 3))
     pen = np.empty((P, 2))
     pen_end = np.empty((P, 2))
-    scratch = np.empty((2, wts.size))
+    scratch = np.empty((6, wts.size))
     # the form of the first stage k[0]: the whole ż (Dormand–Prince) or its nonlinear part N (Lawson)
     nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not np.any(active))
     rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)

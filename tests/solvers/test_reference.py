@@ -326,8 +326,13 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
         # the short window's stated error (standard error or drift) covers its distance from the long window's
         assert abs(a[name]["value"] / b[name]["value"] - 1.0) < 2.0 * a[name]["window"], name
     for name in ("max_normal_stress", "alternating_bending_stress"):
-        # standard errors: sqrt(6/24) = 0.5 expected, each estimated from few batches (about +-30 % on 6 values)
-        assert b[name]["error"] < 0.75 * a[name]["error"], name
+        # standard errors: sqrt(6/24) = 0.5 expected of a 6-revolution window's; each 6-revolution estimate rests on
+        # few batches (about +-30 %), so the 24-revolution window's is held against the mean of its own four
+        # 6-revolution stretches' estimates (about +-15 %), not against one realisation's
+        x = np.array([cycle[name] for cycle in long["cycles"]])
+        assert x.size == 24
+        sixes = np.mean([reference.standard_error(x[i:i + 6]) / np.mean(x[i:i + 6]) for i in range(0, 24, 6)])
+        assert b[name]["error"] < 0.75 * sixes, name
     # the force wanders on a longer scale: its means over consecutive 24-revolution stretches differ by 14 %,
     # and its error says so
     assert b["peak_contact_force"]["window"] > 0.05
