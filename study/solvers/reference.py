@@ -754,7 +754,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     fields = []
     for j in range(2):
-        forces = window.forces[:, :, j] if correction else np.zeros_like(window.forces[:, :, j])
+        forces = window.forces[:, :, j] if correction else None  # without it, the modes alone
         samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=forces)
         fields.append(trajectory.fields(samples, x, model.modes, model.points / L, L, ei, tn))
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0

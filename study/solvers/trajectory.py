@@ -91,29 +91,46 @@ def fields(samples: Samples, x, modes, points, span_length: float, bending_stiff
            tension: float) -> dict[str, np.ndarray]:
     """Deflection y [m] and moment −EI y'' [N m] on x [m] (shape times × x) from the samples, with
     the quasi-static correction for the contact forces (module docstring). ``modes``: mode numbers
-    (N,) of the samples' coordinates; ``points``: contact points ξ_p (P,) as fractions of the span."""
+    (N,) of the samples' coordinates; ``points``: contact points ξ_p (P,) as fractions of the span. Samples whose
+    ``forces`` are None are taken without the correction (the modes alone)."""
     x = np.asarray(x, float)
     L, ei, tn = float(span_length), float(bending_stiffness), float(tension)
     n = np.asarray(modes, float)
     at = np.asarray(points, float) * L  # (P,)
-    modal, static = _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
-    both = samples.q @ modal  # one product for both fields: (T, 2X), deflection then moment
-    both += samples.forces @ static
+    both = samples.q @ _modal_fields(L, ei, n.tobytes(), x.tobytes())  # one product for both fields: (T, 2X)
+    if samples.forces is not None:
+        both += samples.forces @ _static_fields(L, ei, tn, n.tobytes(), at.tobytes(), x.tobytes())
     return {"deflection": both[:, :x.size], "moment": both[:, x.size:]}
 
 
 @functools.lru_cache(maxsize=8)
-def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes, x: bytes) -> tuple[np.ndarray, np.ndarray]:
-    """The parts of :func:`fields` that do not depend on the samples (arguments as there, the arrays as their
-    bytes, so that the calls on one model — both directions, several motions — compute them once), each the
-    deflection's beside the moment's: the modes' shapes [sin k_n x, EI k_n² sin k_n x] (N, 2X) and, per unit
-    force at each point, the static deflection and moment of the modes above N [y_s, m_s] (P, 2X) (module
-    docstring)."""
+def _modal_fields(L: float, ei: float, modes: bytes, x: bytes) -> np.ndarray:
+    """The modes' shapes beside their moments, [sin k_n x, EI k_n² sin k_n x] (N, 2X), for :func:`fields` (arguments
+    as there, the arrays as their bytes: the same for every point of a study whose sections have one length and
+    stiffness)."""
+    n, x = np.frombuffer(modes), np.frombuffer(x)
+    k = n * np.pi / L
+    shapes = _shapes(L, n, x)
+    modal = np.hstack([shapes, shapes * (ei * k**2)[:, None]])
+    modal.flags.writeable = False
+    return modal
+
+
+def _shapes(L: float, n: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """sin k_n x (N, X) of the modes n on the points x [m], from the table of :func:`_sines` where it holds them."""
+    whole = np.all((n == np.round(n)) & (n >= 1) & (n <= STATIC_TAIL_MODES))
+    return _sines(L, x.tobytes())[n.astype(int) - 1] if whole else np.sin(np.outer(n * np.pi / L, x))
+
+
+@functools.lru_cache(maxsize=8)
+def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes, x: bytes) -> np.ndarray:
+    """Per unit force at each point, the static deflection and moment of the modes above N, [y_s, m_s] (P, 2X), for
+    :func:`fields`' quasi-static correction (arguments as there, the arrays as their bytes, so that the calls on one
+    model — both directions, several motions — compute it once; module docstring)."""
     n, at, x = np.frombuffer(modes), np.frombuffer(at), np.frombuffer(x)
     k = n * np.pi / L
     sines = _sines(L, x.tobytes())
-    whole = np.all((n == np.round(n)) & (n >= 1) & (n <= STATIC_TAIL_MODES))
-    shapes = sines[n.astype(int) - 1] if whole else np.sin(np.outer(k, x))  # (N, X)
+    shapes = _shapes(L, n, x)  # (N, X)
     kept = np.sin(np.outer(at, k)) * (2.0 / L)  # (P, N): (2/L) sin k_n x_p
     moment_kept = (kept * (ei / (ei * k**2 + tn))) @ shapes  # (P, X): the kept modes' static moment
     moment_static = beam.point_load_moment(x[None, :], at[:, None], L, ei, tn) - moment_kept
@@ -122,11 +139,9 @@ def _static_fields(L: float, ei: float, tn: float, modes: bytes, at: bytes, x: b
     kt = tail * np.pi / L
     deflection_static = ((np.sin(np.outer(at, kt)) * (2.0 / L) / (ei * kt**4 + tn * kt**2)) @ sines[first - 1:]
                          if tail.size else np.zeros((at.size, x.size)))
-    modal = np.hstack([shapes, shapes * (ei * k**2)[:, None]])
     static = np.hstack([deflection_static, moment_static])
-    for array in (modal, static):
-        array.flags.writeable = False
-    return modal, static
+    static.flags.writeable = False
+    return static
 
 
 @functools.lru_cache(maxsize=4)
