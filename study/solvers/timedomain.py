@@ -601,16 +601,19 @@ def contact_resolution(model: ModalModel, samples: trajectory.Samples) -> str | 
 
 
 def settled_period(states, scale, tol):
-    """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier."""
-    S = np.asarray(states) / scale
-    diff = {}
-    for n in range(1, MAX_PERIOD + 1):
-        if len(S) < n + 2:
-            return None
-        diff[n] = max(np.max(np.abs(S[-1] - S[-1 - n])), np.max(np.abs(S[-2] - S[-2 - n])))
+    """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier (``states`` a
+    sequence of boundary states, oldest first; ``scale`` their entries' units; ``tol`` in those units)."""
+    if len(states) < 3:
+        return None
+    S = np.asarray(states[-(MAX_PERIOD + 2):]) / scale  # the last ten are all it reads
+    count = min(MAX_PERIOD, len(S) - 2)
+    # every gap at once: diff[n - 1] = the larger of |S[-1] − S[-1 − n]| and |S[-2] − S[-2 − n]|, n = 1 … count
+    back = np.arange(count)
+    diff = np.maximum(np.max(np.abs(S[-1] - S[-2 - back]), axis=1), np.max(np.abs(S[-2] - S[-3 - back]), axis=1))
+    for n in range(1, count + 1):
         # a longer period only if no divisor is nearly periodic too: a transient decaying with a
         # negative Floquet multiplier closes its 2-revolution gap first
-        if diff[n] < tol and all(diff[d] > 10 * diff[n] for d in range(1, n) if n % d == 0):
+        if diff[n - 1] < tol and all(diff[d - 1] > 10 * diff[n - 1] for d in range(1, n) if n % d == 0):
             return n
     return None
 

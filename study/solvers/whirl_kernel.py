@@ -339,10 +339,11 @@ def _store_propagator(ex, i, m, a, b, c, e, det):
     ex[0, i, m, 1] = b
     ex[0, i, m, 2] = c
     ex[0, i, m, 3] = e
-    ex[1, i, m, 0] = e / det
-    ex[1, i, m, 1] = -b / det
-    ex[1, i, m, 2] = -c / det
-    ex[1, i, m, 3] = a / det
+    inv = 1.0 / det  # one division, not four (det = 1 exactly without modal damping: the same numbers)
+    ex[1, i, m, 0] = e * inv
+    ex[1, i, m, 1] = -b * inv
+    ex[1, i, m, 2] = -c * inv
+    ex[1, i, m, 3] = a * inv
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
