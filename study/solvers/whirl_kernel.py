@@ -267,11 +267,22 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     out[4 * N + 3] = p_loss
 
 
+@numba.njit(cache=True, nogil=True, fastmath=SUMS, inline="always")
+def _error_norm(difference, z, znew, scale, rtol, N):
+    """The step's error norm: RMS over the 4N dynamic entries of the embedded difference (z5 − z4) over
+    rtol (scale + max(|z|, |z_new|)); a step is accepted at 1 or less."""
+    err = 0.0
+    for i in range(4 * N):
+        sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
+        err += (difference[i] / sc) ** 2
+    return np.sqrt(err / (4 * N))
+
+
 @numba.njit(cache=True, nogil=True, fastmath=SUMS)
 def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
     derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
-    and ``pen``. Returns the error norm: RMS over the 4N dynamic entries of (z5 − z4)/(rtol (scale + |z|))."""
+    and ``pen``; ``stage`` ends holding the embedded difference z5 − z4. Returns its error norm (:func:`_error_norm`)."""
     n = z.size
     for s in range(1, 6):
         for i in range(n):
@@ -284,13 +295,10 @@ def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
         znew[i] = z[i] + h * (_A[6, 0] * k[0, i] + _A[6, 2] * k[2, i] + _A[6, 3] * k[3, i]
                               + _A[6, 4] * k[4, i] + _A[6, 5] * k[5, i])
     rhs(t + h, znew, chi, k[6], fc, pen, scratch, sy)
-    err = 0.0
     for i in range(4 * N):
-        e = h * (_E[0] * k[0, i] + _E[2] * k[2, i] + _E[3] * k[3, i] + _E[4] * k[4, i] + _E[5] * k[5, i]
-                 + _E[6] * k[6, i])
-        sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
-        err += (e / sc) ** 2
-    return np.sqrt(err / (4 * N))
+        stage[i] = h * (_E[0] * k[0, i] + _E[2] * k[2, i] + _E[3] * k[3, i] + _E[4] * k[4, i] + _E[5] * k[5, i]
+                        + _E[6] * k[6, i])
+    return _error_norm(stage, z, znew, scale, rtol, N)
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -446,11 +454,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
         stage[i] = h * (_E[0] * kv[0, i] + _E[2] * kv[2, i] + _E[3] * kv[3, i] + _E[4] * kv[4, i]
                         + _E[5] * kv[5, i] + _E[6] * kv[6, i])
     _propagate(ex[0, 4], stage, stage, N)
-    err = 0.0
-    for i in range(4 * N):
-        sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
-        err += (stage[i] / sc) ** 2
-    return np.sqrt(err / (4 * N))
+    return _error_norm(stage, z, znew, scale, rtol, N)
 
 
 @numba.njit(cache=True, nogil=True)
