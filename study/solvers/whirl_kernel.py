@@ -69,7 +69,10 @@ DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
 #: Floating-point licence of the right-hand side's sums: fused multiply-adds and reordered sums (vectorised), which
-#: change its last bits only; no licence on NaN or infinity, which the integrator tests for.
+#: change its last bits only; no licence on NaN or infinity, which the integrator tests for. Every function that
+#: :func:`rhs` is inlined into carries it too (the steps and :func:`advance`): an inlined body compiled under the
+#: licence of whichever caller numba compiled first made the bits, and so a chaotic motion, depend on the order of
+#: compilation (a fresh install's answers differed from a long-used one's).
 SUMS = {"contract", "reassoc"}
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
 #: smallest and largest step ratio.
@@ -583,7 +586,7 @@ def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, 
     return _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending) - target
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, fastmath=SUMS)
 def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec, scheme, h_stable):
     """Integrate from t to t_end. Returns (t, h, outcome, n_rec, steps).

@@ -317,7 +317,7 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
     point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "reference_max_revolutions": 1}
     # both windows after the same 12-revolution transient (where the short run finds the bouncing stationary)
     short = reference.simulate({**point, "reference_window": 6, "reference_revolutions": 12})
-    long = reference.simulate({**point, "reference_window": 36, "reference_revolutions": 12})  # its window: 24
+    long = reference.simulate({**point, "reference_window": 72, "reference_revolutions": 12})  # its window: 42
     assert short["verdict"] == long["verdict"] == "not_periodic"
     a = reference.settling(short["cycles"], short["preceding"])
     b = reference.settling(long["cycles"], long["preceding"])
@@ -326,15 +326,16 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
         # the short window's stated error (standard error or drift) covers its distance from the long window's
         assert abs(a[name]["value"] / b[name]["value"] - 1.0) < 2.0 * a[name]["window"], name
     for name in ("max_normal_stress", "alternating_bending_stress"):
-        # standard errors: sqrt(6/24) = 0.5 expected of a 6-revolution window's; each 6-revolution estimate rests on
-        # few batches (about +-30 %), so the 24-revolution window's is held against the mean of its own four
-        # 6-revolution stretches' estimates (about +-15 %), not against one realisation's
+        # standard errors: sqrt(6/42) = 0.38 expected of a 6-revolution window's for independent revolutions, more
+        # for correlated ones (0.49-0.50 measured); each 6-revolution estimate rests on few batches (about +-30 %),
+        # so the long window's is held against the mean of its own seven 6-revolution stretches' estimates, not
+        # against one realisation's (which scattered from 0.33 to 1.2 with the last bits of the arithmetic)
         x = np.array([cycle[name] for cycle in long["cycles"]])
-        assert x.size == 24
-        sixes = np.mean([reference.standard_error(x[i:i + 6]) / np.mean(x[i:i + 6]) for i in range(0, 24, 6)])
+        assert x.size >= 36
+        sixes = np.mean([reference.standard_error(x[i:i + 6]) / np.mean(x[i:i + 6]) for i in range(0, x.size - 5, 6)])
         assert b[name]["error"] < 0.75 * sixes, name
-    # the force wanders on a longer scale: its means over consecutive 24-revolution stretches differ by 14 %,
-    # and its error says so
+    # the force wanders on a longer scale: its means over consecutive long stretches differ by more than 5 %, and
+    # its error says so
     assert b["peak_contact_force"]["window"] > 0.05
     result = solve_point(point, "reference")
     assert result.status == "not_converged" and result.extras["whirl"] == "bouncing"
