@@ -68,12 +68,10 @@ N_STATS = 7
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
-#: Floating-point licence of the right-hand side's sums: fused multiply-adds and reordered sums (vectorised), which
-#: change its last bits only; no licence on NaN or infinity, which the integrator tests for. Every function that
-#: :func:`rhs` is inlined into carries it too (the steps and :func:`advance`): an inlined body compiled under the
-#: licence of whichever caller numba compiled first made the bits, and so a chaotic motion, depend on the order of
-#: compilation (a fresh install's answers differed from a long-used one's).
-SUMS = {"contract", "reassoc"}
+#: No floating-point licence (fastmath) in these kernels: with one, a kernel's bits depended on whether numba had
+#: compiled its callees in the same process (their IR inlined and re-optimised) or loaded them from its cache (object
+#: code, called), so a chaotic motion's answers depended on the order of compilation — a fresh install's differed
+#: from a long-used checkout's (docs/reference_model.md §6).
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
 #: smallest and largest step ratio.
 PI_BETA, SAFETY, SHRINK_LIMIT, GROW_LIMIT = 0.04, 0.9, 0.2, 5.0
@@ -93,7 +91,7 @@ _D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -1069
                701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423])
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS)
+@numba.njit(cache=True, nogil=True)
 def point_state(z, phi, p, N):
     """(y, z, ẏ, ż) of contact point p from the state."""
     y = 0.0
@@ -125,7 +123,7 @@ def drag_halves(S):
     return SH, parity
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS, inline="always")
+@numba.njit(cache=True, nogil=True, inline="always")
 def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     """ż into ``out`` (without ``linear``, only its nonlinear part N(t, z), ż − Lz: the modal terms q̇ and
     −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
@@ -270,7 +268,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     out[4 * N + 3] = p_loss
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS, inline="always")
+@numba.njit(cache=True, nogil=True, inline="always")
 def _error_norm(difference, z, znew, scale, rtol, N):
     """The step's error norm: RMS over the 4N dynamic entries of the embedded difference (z5 − z4) over
     rtol (scale + max(|z|, |z_new|)); a step is accepted at 1 or less."""
@@ -281,7 +279,7 @@ def _error_norm(difference, z, znew, scale, rtol, N):
     return np.sqrt(err / (4 * N))
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS)
+@numba.njit(cache=True, nogil=True)
 def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
     derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
@@ -403,7 +401,7 @@ def _stage_propagators(omega2, damp, h, ex, N):
             _store_propagator(ex, i, m, g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g)
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS)
+@numba.njit(cache=True, nogil=True)
 def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale, rtol, N):
     """One Lawson (integrating-factor) Dormand–Prince step from (t, z) with k[0] = N(t, z) given (the nonlinear
     part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
@@ -586,7 +584,7 @@ def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, 
     return _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending) - target
 
 
-@numba.njit(cache=True, nogil=True, fastmath=SUMS)
+@numba.njit(cache=True, nogil=True)
 def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec, scheme, h_stable):
     """Integrate from t to t_end. Returns (t, h, outcome, n_rec, steps).
