@@ -27,7 +27,8 @@ def _compiled_without_avx512() -> None:
     2.82 µs) and does not slow when both cores run it (2.79 µs; 3.10 µs with AVX-512), so a sweep of the default
     study on two workers took 9 min 17 s instead of 10 min 13–21 s; but the fast periodic solution's span search,
     written for wide vectors, took 1.8 times as long (a median of 65 against 36 ms). So the default keeps AVX-512, and
-    a user whose sweeps run the reference model on every core may turn it off. Like the BLAS threads above, it takes
+    a user whose sweeps run the reference model on every core may turn it off. (Measured with the reference kernel's
+    since-removed fastmath licence; not re-measured without it.) Like the BLAS threads above, it takes
     effect when study is imported before numba."""
     if os.environ.get("STUDY_AVX512", "1") != "0" or "NUMBA_CPU_FEATURES" in os.environ:
         return

@@ -68,10 +68,11 @@ N_STATS = 7
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
-#: No floating-point licence (fastmath) in these kernels: with one, a kernel's bits depended on whether numba had
-#: compiled its callees in the same process (their IR inlined and re-optimised) or loaded them from its cache (object
-#: code, called), so a chaotic motion's answers depended on the order of compilation — a fresh install's differed
-#: from a long-used checkout's (docs/reference_model.md §6).
+# No floating-point licence (fastmath) in these kernels: with one, a kernel's bits depended on whether numba had
+# compiled its callees in the same process (their IR inlined and re-optimised) or loaded them from its cache (object
+# code, called), so a chaotic motion's answers depended on the order of compilation — a fresh install's differed
+# from a long-used checkout's (docs/reference_model.md §6).
+
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
 #: smallest and largest step ratio.
 PI_BETA, SAFETY, SHRINK_LIMIT, GROW_LIMIT = 0.04, 0.9, 0.2, 5.0
