@@ -68,10 +68,14 @@ N_STATS = 7
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
-# No floating-point licence (fastmath) in these kernels: with one, a kernel's bits depended on whether numba had
-# compiled its callees in the same process (their IR inlined and re-optimised) or loaded them from its cache (object
-# code, called), so a chaotic motion's answers depended on the order of compilation — a fresh install's differed
-# from a long-used checkout's (docs/reference_model.md §6).
+#: The floating-point licence of :func:`advance`: numba's fastmath flags to fuse multiply-adds and reorder sums (so
+#: that the drag's and the stages' sums run in vector instructions). Deterministic only because advance has no
+#: compiled callee: every kernel it calls is inlined at numba's level (``inline="always"``), so its machine code
+#: depends on its own source alone. A licensed kernel that calls a separately compiled one gets other bits when that
+#: callee was compiled in the same process (LLVM inlines it and optimises it under the caller's licence) than when it
+#: was loaded from numba's cache (called as object code): a chaotic motion's answers then depended on the order of
+#: compilation (docs/reference_model.md §6). tests/solvers/test_whirl_kernel.py holds advance to having no callee.
+FASTMATH = {"contract", "reassoc"}
 
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
 #: smallest and largest step ratio.
@@ -92,7 +96,7 @@ _D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -1069
                701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423])
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def point_state(z, phi, p, N):
     """(y, z, ẏ, ż) of contact point p from the state."""
     y = 0.0
@@ -107,7 +111,7 @@ def point_state(z, phi, p, N):
     return y, w, yd, wd
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def drag_halves(S):
     """The drag shapes S (G, N) at symmetric points (Gauss–Legendre nodes: x_{G−1−g} = L − x_g) as :func:`rhs` sums
     them: SH (N, ⌈G/2⌉), the left half's rows transposed, and each mode's parity, +1 where its shape is symmetric
@@ -280,7 +284,7 @@ def _error_norm(difference, z, znew, scale, rtol, N):
     return np.sqrt(err / (4 * N))
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
     derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
@@ -362,7 +366,7 @@ def _turn(a, b):
     return a[0] * b[0] - a[1] * b[1], a[1] * b[0] + a[0] * b[1], a[2] * b[2]
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _stage_propagators(omega2, damp, h, ex, N):
     """e^{±c hL} of every mode at the Dormand–Prince nodes c = 1/5, 3/10, 4/5, 8/9, 1 into ex (2, 5, N, 4)
     (:func:`_propagator`). For an underdamped mode the cosines, sines and decays at the nodes (18, 27, 72, 80 and
@@ -402,7 +406,7 @@ def _stage_propagators(omega2, damp, h, ex, N):
             _store_propagator(ex, i, m, g * (C + beta * S), g * S, -g * w2 * S, g * (C - beta * S), g * g)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale, rtol, N):
     """One Lawson (integrating-factor) Dormand–Prince step from (t, z) with k[0] = N(t, z) given (the nonlinear
     part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
@@ -459,7 +463,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
     return _error_norm(stage, z, znew, scale, rtol, N)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _lawson_dense(z, vend, kv, shift, h, th, omega2, damp, N, out):
     """The state at θ of a Lawson step (:func:`_lawson_step`: start z, its end's image ``vend``, stages ``kv``,
     static deflection ``shift``) into ``out``: the Dormand–Prince continuous extension in the step's start frame
@@ -481,7 +485,7 @@ def _lawson_dense(z, vend, kv, shift, h, th, omega2, damp, N, out):
             out[(2 + j) * N + m] = c * q + e * v
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
     """Where the contact force switches, as a fraction of the clearance: the penetration δ/c for an onset;
     for the end of a contact, the smaller of δ/c and the bracket of the normal force, (1 + χ δ̇) (law 0) or
@@ -495,7 +499,7 @@ def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
     return min(d, bracket)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, target, within, lawson, omega2, damp,
                      shift):
     """The fraction θ of the step at which :func:`_contact_function` of point p, on the step's continuous
@@ -561,7 +565,7 @@ def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, tar
     return hi
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift):
     """:func:`_contact_function` − target on the continuous extension at θ: coefficients r (4, 5) projected on
     the point, or with ``lawson`` (4N, 5) of every dynamic entry in the step's start frame about the static
@@ -585,7 +589,7 @@ def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, 
     return _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending) - target
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
 def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec, scheme, h_stable):
     """Integrate from t to t_end. Returns (t, h, outcome, n_rec, steps).

@@ -223,3 +223,28 @@ def test_a_flights_rows_come_from_the_lawson_steps_continuous_extension(paper_in
     assert np.max(np.abs(window.states[:, :2 * N] - exact[:, :2 * N])) < 1e-6 * size
     assert np.max(np.abs(window.states[:, 2 * N:4 * N] - exact[:, 2 * N:])) < 1e-6 * om * size
     assert np.all(window.forces == 0.0)
+
+
+def _compiled_callees(function, seen=None):
+    """The numba kernels ``function`` calls, directly or through the kernels inlined into it, as (name, inlined)."""
+    import numba.core.registry
+
+    seen = {} if seen is None else seen
+    for name in function.py_func.__code__.co_names:
+        callee = getattr(whirl_kernel, name, None)
+        if isinstance(callee, numba.core.registry.CPUDispatcher) and name not in seen:
+            seen[name] = callee.targetoptions.get("inline") == "always"
+            if seen[name]:
+                _compiled_callees(callee, seen)
+    return seen
+
+
+def test_the_licensed_integrator_has_no_separately_compiled_callee():
+    # docs/reference_model.md §6: advance runs under a floating-point licence (whirl_kernel.FASTMATH); its bits are
+    # its own only if every kernel it calls is inlined at numba's level. A separately compiled callee made them
+    # depend on whether that callee was compiled in the same process or loaded from the cache (measured: 40 points
+    # of configs/dense.toml answered differently after their callees were compiled first in another process)
+    assert whirl_kernel.advance.targetoptions["fastmath"] == whirl_kernel.FASTMATH
+    callees = _compiled_callees(whirl_kernel.advance)
+    assert {"rhs", "_step", "_lawson_step", "_switch_fraction", "point_state"} <= set(callees)  # the walk sees them
+    assert [name for name, inlined in callees.items() if not inlined] == []
