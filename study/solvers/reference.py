@@ -125,7 +125,7 @@ class WhirlModel:
         return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
 
     def system(self) -> tuple:
-        """The tuple the compiled integrator takes (:func:`whirl_kernel.advance`)."""
+        """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple)."""
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
                          float(self.law), self.hysteresis])
         return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
@@ -258,7 +258,7 @@ class Integrator:
             raise ValueError(f"reference_integrator = {scheme!r}; allowed: {', '.join(SCHEMES)}")
         self.model = model
         self.scheme = SCHEME_CODES[scheme]
-        self.sy = model.system()
+        self.sy = whirl_kernel.kernel_system(model.system())
         N, P = model.n_modes, model.points.size
         self.z = np.zeros(4 * N + 4) if state is None else np.array(state, float)
         self.t = 0.0
@@ -273,6 +273,7 @@ class Integrator:
         # form takes the modes' free motion exactly, at any step
         self.h_stable = STABLE_STEP / float(np.max(model.omega))
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
+        self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
         self.steps = 0
         self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK
@@ -290,8 +291,8 @@ class Integrator:
         rec_dt = np.array([tau / rows_per_revolution, tau / (16 * rows_per_revolution)])
         start = self.t
         t, h, outcome, n_rec, steps = whirl_kernel.advance(
-            self.t, t_end, self.z, self.active, self.chi, self.h, self.sy, self.rtol, self.scale, self.h_max,
-            max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0, self.scheme, self.h_stable)
+            self.t, t_end, self.z, self.active, self.chi, self.h, self.sy, self.buffers, self.rtol, self.scale,
+            self.h_max, max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0, self.scheme, self.h_stable)
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
         self.work += stats

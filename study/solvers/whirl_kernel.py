@@ -69,12 +69,12 @@ DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
 #: Indices of fpar (the scalar parameters).
 F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
 #: The floating-point licence of :func:`advance`: numba's fastmath flags to fuse multiply-adds and reorder sums (so
-#: that the drag's and the stages' sums run in vector instructions). Deterministic only because advance has no
-#: compiled callee: every kernel it calls is inlined at numba's level (``inline="always"``), so its machine code
-#: depends on its own source alone. A licensed kernel that calls a separately compiled one gets other bits when that
-#: callee was compiled in the same process (LLVM inlines it and optimises it under the caller's licence) than when it
-#: was loaded from numba's cache (called as object code): a chaotic motion's answers then depended on the order of
-#: compilation (docs/reference_model.md §6). tests/solvers/test_whirl_kernel.py holds advance to having no callee.
+#: that the drag's and the stages' sums run in vector instructions). Deterministic only because nothing compiled apart
+#: is linked into advance: every kernel it calls is inlined at numba's level (``inline="always"``), it allocates
+#: nothing (:func:`workspace`), assigns no slices and raises to no integer power — numba compiles the helpers of those
+#: once per process, with the licence of the first kernel that needs them, and LLVM inlines them. With any such
+#: callee a chaotic motion's answers depended on what the process had compiled before (docs/reference_model.md §6);
+#: tests/solvers/test_whirl_kernel.py holds advance to the rule.
 FASTMATH = {"contract", "reassoc"}
 
 #: PI step-size control (Hairer & Wanner's DOPRI5): exponent β of the previous error, safety factor,
@@ -280,7 +280,8 @@ def _error_norm(difference, z, znew, scale, rtol, N):
     err = 0.0
     for i in range(4 * N):
         sc = rtol * (scale[i] + max(abs(z[i]), abs(znew[i])))
-        err += (difference[i] / sc) ** 2
+        ratio = difference[i] / sc
+        err += ratio * ratio  # not ** 2: numba compiles powers apart, and advance must have no compiled callee
     return np.sqrt(err / (4 * N))
 
 
@@ -501,15 +502,15 @@ def _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending):
 
 @numba.njit(cache=True, nogil=True, inline="always")
 def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, target, within, lawson, omega2, damp,
-                     shift):
+                     shift, r, v):
     """The fraction θ of the step at which :func:`_contact_function` of point p, on the step's continuous
     extension, reaches ``target`` within ``within`` (on one side of it at the start, on the other at the end):
     regula falsi with the Illinois modification. With ``lawson`` the extension is that of the Lawson step
     (:func:`_lawson_step`; ``znew`` its end and ``k`` its stages in the frame of the step's start, about the
-    static deflection ``shift``) mapped by e^{θhL} (ω² ``omega2``, ``damp`` d of the modes)."""
+    static deflection ``shift``) mapped by e^{θhL} (ω² ``omega2``, ``damp`` d of the modes). ``r``, ``v``: room for
+    the extension's coefficients and values, (4N, 5) and (4N,) with ``lawson``, else (4, 5) and (4,)."""
     if lawson:
         # every dynamic entry's extension in the start's frame: e^{θhL} is applied per mode at each θ
-        r = np.zeros((4 * N, 5))
         for i in range(4 * N):
             r[i, 0] = z[i] - shift[i]
             r[i, 1] = znew[i] - r[i, 0]
@@ -517,10 +518,8 @@ def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, tar
             r[i, 3] = r[i, 1] - h * k[6, i] - r[i, 2]
             r[i, 4] = h * (_D[0] * k[0, i] + _D[2] * k[2, i] + _D[3] * k[3, i] + _D[4] * k[4, i]
                            + _D[5] * k[5, i] + _D[6] * k[6, i])
-        v = np.empty(4 * N)
     else:
         # the extension's coefficients projected on the point: y, z, ẏ, ż (Hairer, Nørsett & Wanner 1993 §II.6)
-        r = np.zeros((4, 5))
         for c in range(4):
             y0 = 0.0
             y1 = 0.0
@@ -540,7 +539,6 @@ def _switch_fraction(z, znew, k, h, phi, p, N, cl, law, chi, kp, cp, ending, tar
             r[c, 2] = h * f0 - r[c, 1]
             r[c, 3] = r[c, 1] - h * f6 - r[c, 2]
             r[c, 4] = h * dsum
-        v = np.empty(4)
     lo, hi = 0.0, 1.0
     glo = _switch_gap(r, v, 0.0, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift)
     ghi = _switch_gap(r, v, 1.0, cl, law, chi, kp, cp, ending, target, lawson, h, phi, p, N, omega2, damp, shift)
@@ -589,8 +587,39 @@ def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, 
     return _contact_function(y, w, yd, wd, cl, law, chi, kp, cp, ending) - target
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _record(rec_t, rec_z, rec_f, row, t, z, fc):
+    """Row ``row`` of the recording: the time, the state and the contact forces (loops: no slice assignment, whose
+    shape check would link a compiled helper into :func:`advance`)."""
+    rec_t[row] = t
+    for i in range(z.size):
+        rec_z[row, i] = z[i]
+    for p in range(fc.shape[0]):
+        for j in range(3):
+            rec_f[row, p, j] = fc[p, j]
+
+
+def kernel_system(sy: tuple) -> tuple:
+    """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
+    S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`)."""
+    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
+    SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
+    return omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity
+
+
+def workspace(n_modes: int, n_points: int, n_drag: int) -> tuple:
+    """The arrays :func:`advance` works in, for N modes, P contact points and G drag points: the stages k and their
+    Lawson images kv (7, 4N + 4), the propagators (2, 5, N, 4), four states (4N + 4,), forces (P, 3) and penetrations
+    (P, 2) at the stages and at the step's end, the drag's scratch (6, G), and the switch location's coefficients and
+    values for a Lawson step, (4N, 5) and (4N,), and for a Dormand–Prince step, (4, 5) and (4,)."""
+    N, P, n = n_modes, n_points, 4 * n_modes + 4
+    return (np.zeros((7, n)), np.zeros((7, n)), np.zeros((2, 5, N, 4)), np.zeros(n), np.zeros(n), np.zeros(n),
+            np.zeros(n), np.zeros((P, 3)), np.zeros((P, 3)), np.zeros((P, 2)), np.zeros((P, 2)), np.zeros((6, n_drag)),
+            np.zeros((4 * N, 5)), np.zeros(4 * N), np.zeros((4, 5)), np.zeros(4))
+
+
 @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
-def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
+def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps,
             stats, peak, onsets, contact_time, record, rec_dt, rec_t, rec_z, rec_f, n_rec, scheme, h_stable):
     """Integrate from t to t_end. Returns (t, h, outcome, n_rec, steps).
 
@@ -606,30 +635,22 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
     ``peak`` (P,): largest F_n; ``onsets`` (P,): contact onsets; ``contact_time`` (P,): time in
     contact; ``stats`` (N_STATS,): the work, added to (S_* above). With ``record``, rows (t, z, F) are
     stored every rec_dt[0] (no contact) or rec_dt[1] (a contact open) from index n_rec on, while room
-    remains. ``sy`` as for :func:`rhs`, with the drag shapes S (G, N) (transposed here).
+    remains. ``sy`` as for :func:`rhs` (:func:`kernel_system`), ``work`` its room (:func:`workspace`): advance
+    allocates nothing and calls no compiled function (everything it calls is inlined: :data:`FASTMATH`).
     """
-    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
-    SH, parity = drag_halves(S)
-    sys_t = (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity)
+    sys_t = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity = sy
+    k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])
     N = omega2.size
     P = phi.shape[0]
     n = z.size
-    k = np.empty((7, n))
-    kv = np.empty((7, n))  # the Lawson step's stages in the frame of its start
-    ex = np.empty((2, 5, N, 4))  # and its propagators e^{±c hL}
-    vend = np.empty(n)
-    shift = np.empty(n)
-    stage = np.empty(n)
-    znew = np.empty(n)
-    fc = np.empty((P, 3))
-    fc_end = np.empty((P, 3))
-    pen = np.empty((P, 2))
-    pen_end = np.empty((P, 2))
-    scratch = np.empty((6, wts.size))
     # the form of the first stage k[0]: the whole ż (Dormand–Prince) or its nonlinear part N (Lawson)
-    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not np.any(active))
+    any_active = False
+    for p in range(P):
+        any_active = any_active or active[p]
+    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not any_active)
     rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)
     stats[S_RHS] += 1
     last_rec = -1e300
@@ -643,9 +664,7 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             any_open = any_open or active[p]
         if record and n_rec < rec_t.size:
             if t - last_rec >= (rec_dt[1] if any_open else rec_dt[0]) or t_end - t <= h_floor:
-                rec_t[n_rec] = t
-                rec_z[n_rec, :] = z
-                rec_f[n_rec, :, :] = fc_end
+                _record(rec_t, rec_z, rec_f, n_rec, t, z, fc_end)
                 n_rec += 1
                 last_rec = t
         if t_end - t <= h_floor:
@@ -707,12 +726,14 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
                     if f1 < -ONSET_TOLERANCE:
                         th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
                                               law, chi[p], kp[p], cpen[p], True, -0.5 * ONSET_TOLERANCE,
-                                              0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift)
+                                              0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift,
+                                          r_lawson if lawson else r_point, v_lawson if lawson else v_point)
                         cut = min(cut, max(th, 0.02))
                 elif pen[p, 0] > ONSET_TOLERANCE * cl[p] and pen_end[p, 0] < 0.0:
                     th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
                                           law, 0.0, kp[p], cpen[p], False, 0.5 * ONSET_TOLERANCE,
-                                          0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift)
+                                          0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift,
+                                          r_lawson if lawson else r_point, v_lawson if lawson else v_point)
                     cut = min(cut, max(th, 0.02))
             if cut < 2.0:
                 h *= cut
@@ -737,7 +758,9 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
             while t + h - tr > 1e-6 * rec_dt[0] and n_rec < rec_t.size:  # not the step's end: recorded as such
                 _lawson_dense(z, vend, kv, shift, h, (tr - t) / h, omega2, damp, N, rec_z[n_rec])
                 rec_t[n_rec] = tr
-                rec_f[n_rec, :, :] = 0.0
+                for p in range(P):
+                    for j in range(3):
+                        rec_f[n_rec, p, j] = 0.0
                 n_rec += 1
                 last_rec = tr
                 tr += rec_dt[0]
@@ -745,8 +768,11 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         for i in range(n):
             z[i] = znew[i]
             k[0, i] = k[6, i]  # FSAL: the last stage is the next step's first
-        fc_end[:, :] = fc
-        pen_end[:, :] = pen
+        for p in range(P):
+            for j in range(3):
+                fc_end[p, j] = fc[p, j]
+            pen_end[p, 0] = pen[p, 0]
+            pen_end[p, 1] = pen[p, 1]
         opened = False
         for p in range(P):
             d, rate = pen_end[p, 0], pen_end[p, 1]
@@ -778,8 +804,6 @@ def advance(t, t_end, z, active, chi, h, sy, rtol, scale, h_max, max_steps,
         err_old = max(err, 1e-4)
         h = h * factor
     if record and n_rec < rec_t.size:
-        rec_t[n_rec] = t
-        rec_z[n_rec, :] = z
-        rec_f[n_rec, :, :] = fc_end
+        _record(rec_t, rec_z, rec_f, n_rec, t, z, fc_end)
         n_rec += 1
     return t, h, OK, n_rec, steps

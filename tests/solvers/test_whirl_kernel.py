@@ -7,6 +7,10 @@ Hunt–Crossley damping set at an onset from the approach speed, down to ONSET_S
 (reference.SCHEMES), and the Lawson form's exactness on the modes' free motion and its order on a forced one.
 """
 
+import ast
+import inspect
+import textwrap
+
 import numpy as np
 import pytest
 
@@ -225,26 +229,58 @@ def test_a_flights_rows_come_from_the_lawson_steps_continuous_extension(paper_in
     assert np.all(window.forces == 0.0)
 
 
-def _compiled_callees(function, seen=None):
-    """The numba kernels ``function`` calls, directly or through the kernels inlined into it, as (name, inlined)."""
+def _kernels_of(function, seen=None):
+    """The numba kernels of whirl_kernel that ``function`` calls, directly or through the kernels inlined into it:
+    {name: (dispatcher, inlined at numba's level)}."""
     import numba.core.registry
 
     seen = {} if seen is None else seen
     for name in function.py_func.__code__.co_names:
         callee = getattr(whirl_kernel, name, None)
         if isinstance(callee, numba.core.registry.CPUDispatcher) and name not in seen:
-            seen[name] = callee.targetoptions.get("inline") == "always"
-            if seen[name]:
-                _compiled_callees(callee, seen)
+            seen[name] = (callee, callee.targetoptions.get("inline") == "always")
+            if seen[name][1]:
+                _kernels_of(callee, seen)
     return seen
 
 
-def test_the_licensed_integrator_has_no_separately_compiled_callee():
-    # docs/reference_model.md §6: advance runs under a floating-point licence (whirl_kernel.FASTMATH); its bits are
-    # its own only if every kernel it calls is inlined at numba's level. A separately compiled callee made them
-    # depend on whether that callee was compiled in the same process or loaded from the cache (measured: 40 points
-    # of configs/dense.toml answered differently after their callees were compiled first in another process)
+#: numpy functions numba lowers in place on scalars (no compiled helper linked into the caller)
+IN_PLACE = {"sqrt", "cos", "sin", "exp", "cosh", "sinh", "isfinite"}
+
+
+def test_the_licensed_integrator_links_no_compiled_code():
+    # docs/reference_model.md §6: advance runs under a floating-point licence (whirl_kernel.FASTMATH), and its bits are
+    # its own only if nothing compiled apart is linked into it: a separately compiled kernel, and equally numba's own
+    # helpers — the power operator's, an allocation's, a slice assignment's shape check — which a process compiles
+    # once, with the licence of the first kernel that needs them, and LLVM then inlines. Measured: the 40 points of
+    # configs/dense.toml answered differently after `study compile` (other kernels compiled first) than alone, until
+    # advance's ``x ** 2`` became ``x * x``; then one answer after four compilation orders.
     assert whirl_kernel.advance.targetoptions["fastmath"] == whirl_kernel.FASTMATH
-    callees = _compiled_callees(whirl_kernel.advance)
-    assert {"rhs", "_step", "_lawson_step", "_switch_fraction", "point_state"} <= set(callees)  # the walk sees them
-    assert [name for name, inlined in callees.items() if not inlined] == []
+    kernels = _kernels_of(whirl_kernel.advance)
+    assert {"rhs", "_step", "_lawson_step", "_switch_fraction", "point_state"} <= set(kernels)  # the walk sees them
+    assert [name for name, (_, inlined) in kernels.items() if not inlined] == []
+    found = []
+    for name, dispatcher in [("advance", whirl_kernel.advance)] + [(n, d) for n, (d, _) in kernels.items()]:
+        tree = ast.parse(textwrap.dedent(inspect.getsource(dispatcher.py_func)))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and not _float_power(node):
+                found.append(f"{name}: ** {ast.unparse(node.right)}")
+            if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                    and isinstance(node.func.value, ast.Name) and node.func.value.id == "np"
+                    and node.func.attr not in IN_PLACE):
+                found.append(f"{name}: np.{node.func.attr}")
+            if isinstance(node, (ast.Assign, ast.AugAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                for target in targets:
+                    if isinstance(target, ast.Subscript) and any(isinstance(n, ast.Slice) for n in ast.walk(target)):
+                        found.append(f"{name}: slice assignment {ast.unparse(target)}")
+    assert found == []
+
+
+def _float_power(node) -> bool:
+    """A power with a negative or fractional exponent (``err ** -0.2``), which numba lowers to LLVM's pow in place;
+    integer powers it compiles apart (docs/reference_model.md §6)."""
+    exponent = node.right
+    if isinstance(exponent, ast.UnaryOp) and isinstance(exponent.op, ast.USub):
+        exponent = exponent.operand
+    return not (isinstance(exponent, ast.Constant) and isinstance(exponent.value, int))
