@@ -14,7 +14,7 @@ help:
 	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
 	@echo "make charts    redraw the charts of the default study"
 	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
-	@echo "make bench-large  the measured sweep of 10^5 points, about 11 minutes (docs/large_sweep.md)"
+	@echo "make bench-large  the measured sweep of 10^5 points, about 9 minutes (docs/large_sweep.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
 	@echo "make faults    kill sweeps and their workers at random moments RUNS=$(RUNS) times (docs/reliability.md)"
 	@echo "make clean     remove outputs and the virtual environment"

@@ -541,7 +541,7 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
     for workers in (1, 2):
         start = time.perf_counter()
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+                          silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
             client.run(warm_up)  # worker start-up: processes and their imports
             startup = time.perf_counter() - start
             runs = sorted(timed(cluster.scheduler_address, workers, client) for _ in range(repeat))
