@@ -168,7 +168,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("bench", help="benchmark the methods side by side")
     p.add_argument("--out", default=None, help="also write the report to this markdown file")
     p.add_argument("--large", action="store_true",
-                   help="instead, the measured sweep of configs/dense.toml's 103 424 points (about 20 minutes)")
+                   help="instead, the measured sweep of configs/dense.toml's 103 424 points (about 9 minutes)")
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("validate", help="compare with the printed numbers of the sources")
