@@ -638,7 +638,6 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     remains. ``sy`` as for :func:`rhs` (:func:`kernel_system`), ``work`` its room (:func:`workspace`): advance
     allocates nothing and calls no compiled function (everything it calls is inlined: :data:`FASTMATH`).
     """
-    sys_t = sy
     omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity = sy
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
@@ -651,7 +650,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     for p in range(P):
         any_active = any_active or active[p]
     nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not any_active)
-    rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)
+    rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sy, not nonlinear)
     stats[S_RHS] += 1
     last_rec = -1e300
     steps = 0
@@ -699,10 +698,10 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
             if h < h_floor:
                 return t, h, STEP_UNDERFLOW, n_rec, steps
             if lawson:
-                err = _lawson_step(t, z, h, chi, sys_t, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale,
+                err = _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen, scratch, scale,
                                    rtol, N)
             else:
-                err = _step(t, z, h, chi, sys_t, k, stage, znew, fc, pen, scratch, scale, rtol, N)
+                err = _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N)
             stats[S_RHS] += 6
             if not np.isfinite(err):
                 h *= 0.1
@@ -727,7 +726,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                         th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
                                               law, chi[p], kp[p], cpen[p], True, -0.5 * ONSET_TOLERANCE,
                                               0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift,
-                                          r_lawson if lawson else r_point, v_lawson if lawson else v_point)
+                                              r_lawson if lawson else r_point, v_lawson if lawson else v_point)
                         cut = min(cut, max(th, 0.02))
                 elif pen[p, 0] > ONSET_TOLERANCE * cl[p] and pen_end[p, 0] < 0.0:
                     th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
@@ -785,7 +784,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 onsets[p] += 1
                 opened = True
         if opened:  # the new chi changes the force at the step's end
-            rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sys_t, not nonlinear)
+            rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sy, not nonlinear)
             stats[S_RHS] += 1
         for p in range(P):
             if fc_end[p, 2] > peak[p]:
