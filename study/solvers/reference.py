@@ -292,7 +292,8 @@ class Integrator:
         start = self.t
         t, h, outcome, n_rec, steps = whirl_kernel.advance(
             self.t, t_end, self.z, self.active, self.chi, self.h, self.sy, self.buffers, self.rtol, self.scale,
-            self.h_max, max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0, self.scheme, self.h_stable)
+            self.h_max, max_steps, stats, peak, onsets, ctime, record, rec_dt, rec_t, rec_z, rec_f, 0, self.scheme,
+            self.h_stable)
         self.t, self.h, self.outcome = t, h, outcome
         self.steps += steps
         self.work += stats

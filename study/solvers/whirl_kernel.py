@@ -111,7 +111,7 @@ def point_state(z, phi, p, N):
     return y, w, yd, wd
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True)
 def drag_halves(S):
     """The drag shapes S (G, N) at symmetric points (Gauss–Legendre nodes: x_{G−1−g} = L − x_g) as :func:`rhs` sums
     them: SH (N, ⌈G/2⌉), the left half's rows transposed, and each mode's parity, +1 where its shape is symmetric
@@ -588,6 +588,16 @@ def _switch_gap(r, v, th, cl, law, chi, kp, cp, ending, target, lawson, h, phi, 
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def _any_open(active):
+    """Whether any contact point is in contact (a loop: numpy's ``any`` would link a compiled helper into
+    :func:`advance`)."""
+    for p in range(active.size):
+        if active[p]:
+            return True
+    return False
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def _record(rec_t, rec_z, rec_f, row, t, z, fc):
     """Row ``row`` of the recording: the time, the state and the contact forces (loops: no slice assignment, whose
     shape check would link a compiled helper into :func:`advance`)."""
@@ -646,10 +656,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     P = phi.shape[0]
     n = z.size
     # the form of the first stage k[0]: the whole ż (Dormand–Prince) or its nonlinear part N (Lawson)
-    any_active = False
-    for p in range(P):
-        any_active = any_active or active[p]
-    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not any_active)
+    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not _any_open(active))
     rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sy, not nonlinear)
     stats[S_RHS] += 1
     last_rec = -1e300
@@ -658,9 +665,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     err_old = 1e-4  # the previous accepted step's error (PI control)
     expo = 0.2 - 0.75 * PI_BETA
     while t < t_end:
-        any_open = False
-        for p in range(P):
-            any_open = any_open or active[p]
+        any_open = _any_open(active)
         if record and n_rec < rec_t.size:
             if t - last_rec >= (rec_dt[1] if any_open else rec_dt[0]) or t_end - t <= h_floor:
                 _record(rec_t, rec_z, rec_f, n_rec, t, z, fc_end)

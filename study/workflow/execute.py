@@ -130,9 +130,9 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
 #: Dask settings for the local workers a sweep starts (:func:`configure_local_workers`): dask's statistical profiler
 #: off (it samples a worker's stack every 10 ms for the dashboard's profile page) and its event-loop, memory and
 #: system monitors at intervals of seconds instead of 20-500 ms. Each of those wakes a process that shares the two
-#: cores with the points being solved. The default study's 1408-point bench grid on two local workers, three runs of
-#: each alternating (docs/workers.md): 13.6-14.0 s with dask's defaults, 12.7-13.0 s with these (1.08x); the profiler
-#: alone gave most of it. A cluster the user starts keeps the user's settings.
+#: cores with the points being solved. The default study's 1408-point bench grid on two local workers, five runs of
+#: each alternating (docs/workers.md): 13.6-14.0 s with dask's defaults, 12.6-13.0 s with these (medians 13.73 and
+#: 12.74 s: 1.08x); the profiler alone gave most of it. A cluster the user starts keeps the user's settings.
 LOCAL_WORKER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",

@@ -254,7 +254,7 @@ def test_the_licensed_integrator_links_no_compiled_code():
     # helpers — the power operator's, an allocation's, a slice assignment's shape check — which a process compiles
     # once, with the licence of the first kernel that needs them, and LLVM then inlines. Measured: the 40 points of
     # configs/dense.toml answered differently after `study compile` (other kernels compiled first) than alone, until
-    # advance's ``x ** 2`` became ``x * x``; then one answer after four compilation orders.
+    # advance's ``x ** 2`` became ``x * x``; then one answer after five compilation orders.
     assert whirl_kernel.advance.targetoptions["fastmath"] == whirl_kernel.FASTMATH
     kernels = _kernels_of(whirl_kernel.advance)
     assert {"rhs", "_step", "_lawson_step", "_switch_fraction", "point_state"} <= set(kernels)  # the walk sees them
