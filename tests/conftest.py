@@ -15,7 +15,7 @@ def fresh_auto_memo():
 
 
 #: Test modules whose figures come out of adaptive integrators, iterations, root searches or chaotic motions: the
-#: ones a CPU's last bits (numba compiles for the host) can move. ``make test`` runs them a second time with numba
+#: ones a CPU's last bits (numba compiles for the host) can move. ``make test-generic`` (CI, after ``make test``) runs them a second time with numba
 #: compiling for a generic x86-64 CPU (``NUMBA_CPU_NAME=generic``, ``-m precision``), so that each holds its figures
 #: to their real accuracy, not to one machine's bits (issue 32).
 PRECISION_MODULES = {
