@@ -82,3 +82,13 @@ def test_a_sweep_that_cannot_go_on_ends_with_one_line_and_status_1(tmp_path, cap
     err = capsys.readouterr().err
     assert err.startswith("study: error: the grid has 3 points (3 rotary_speed), more than sweep.max_points = 2")
     assert err.count("\n") == 1 and not (out / "results.nc").exists()
+
+
+def test_a_study_name_outside_outputs_exits_2_naming_the_field(tmp_path, capsys):
+    # issue 32: name = "../../x" was joined to outputs/ unchecked (the sweep wrote two folders up)
+    bad = tmp_path / "bad.toml"
+    bad.write_text('name = "../../x"\n' + (ROOT / "configs" / "paper.toml").read_text().replace('name = "paper"', ""))
+    assert main(["sweep", str(bad), "--quiet", "--no-charts"]) == 2
+    err = capsys.readouterr().err
+    assert "name = '../../x': holds a path separator" in err and "allowed: one folder name under outputs/" in err
+    assert not (tmp_path.parent.parent / "x").exists()
