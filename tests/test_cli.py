@@ -92,3 +92,18 @@ def test_a_study_name_outside_outputs_exits_2_naming_the_field(tmp_path, capsys)
     err = capsys.readouterr().err
     assert "name = '../../x': holds a path separator" in err and "allowed: one folder name under outputs/" in err
     assert not (tmp_path.parent.parent / "x").exists()
+
+
+@pytest.mark.parametrize("option, value, allowed", [
+    ("--workers", "-1", ">= 0 and <= 1024 (0: one per core)"),  # waited forever at 0 % (issue 32)
+    ("--workers", "many", ">= 0 and <= 1024"),
+    ("--max-points", "-1", ">= 1 and <= 10000000"),
+    ("--max-points", "0", ">= 1 and <= 10000000"),
+    ("--max-points", "100000000", ">= 1 and <= 10000000"),
+])
+def test_sweep_options_out_of_range_exit_2_naming_the_option_value_and_range(option, value, allowed, capsys):
+    with pytest.raises(SystemExit) as ended:
+        main(["sweep", DEFAULT, option, value])
+    assert ended.value.code == 2
+    err = capsys.readouterr().err
+    assert f"argument {option}: '{value}': must be a whole number {allowed}" in err

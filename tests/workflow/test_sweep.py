@@ -403,6 +403,34 @@ def test_a_full_disk_while_writing_the_dataset_keeps_every_point(tmp_path, monke
     assert solved == []
 
 
+def test_a_netcdf_error_while_writing_the_dataset_is_one_line_and_keeps_every_point(tmp_path, monkeypatch, reference):
+    # issue 32: a full disk under the netCDF library is "RuntimeError: NetCDF: HDF error", not an OSError: it was a
+    # traceback. (make faults injects a real one: a file-size limit under the writing process.)
+    out = tmp_path / "full"
+    original = xr.Dataset.to_netcdf
+    writes = []
+
+    def write_until_full(self, path=None, *args, **kwargs):
+        writes.append(path)
+        if len(writes) == 3:
+            raise RuntimeError("NetCDF: HDF error")
+        return original(self, path, *args, **kwargs)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", write_until_full)
+    with pytest.raises(SweepError) as full:
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+    message = str(full.value)
+    assert message.startswith(f"cannot write {out / 'results.nc'}: NetCDF: HDF error (from the netCDF library: a full "
+                              "disk or a file-size limit, among others; ")
+    assert message.endswith(f"free there); all 30 points are kept in {out / PARTIAL}; run the same command again to "
+                            "write it (nothing is recomputed)") and "\n" not in message
+    assert sorted(p.name for p in out.iterdir()) == [PARTIAL]  # no half-written file
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", original)
+    solved = solved_points(monkeypatch)
+    same_as(run_sweep(small_study(), out, scheduler="synchronous", progress=False), reference)
+    assert solved == []
+
+
 def test_a_grid_over_the_cap_is_refused_with_an_estimate(tmp_path):
     huge = load_text(TEXT.split("[sweep]")[0] + '[sweep.axes]\n'
                      'load.rotary_speed = { start = "50 rpm", stop = "300 rpm", num = 100000 }\n'
