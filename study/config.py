@@ -61,6 +61,7 @@ class Field:
     integer: bool = False
     angular: bool = False
     display_unit: str | None = None  # the unit users think in, for tables and charts
+    why: str = ""  # why the bounds are what they are, told with a value outside them
 
     @property
     def sweepable(self) -> bool:
@@ -130,7 +131,9 @@ FIELDS: tuple[Field, ...] = (
           "N", display_unit="lbf"),
     Field("load.rotary_speed", "rotary_speed", "rotary speed of the drill string", "rad/s", angular=True,
           display_unit="rpm", **_POSITIVE),
-    Field("impact.restitution", "restitution", "coefficient of restitution", "", lower=0.0, upper=1.0),
+    Field("impact.restitution", "restitution", "coefficient of restitution", "", lower=0.0, lower_open=True, upper=1.0,
+          why="e = 0, a plastic contact, is not modelled: the Hunt-Crossley contact of the time-domain and reference "
+              "models cannot stop a rebound (its calibrated damping grows without bound as e -> 0); docs/model.md"),
     Field("impact.pattern", "impact_pattern", "which walls the midspan strikes", None, default="alternating",
           choices=("alternating", "one_wall")),
     Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
@@ -411,7 +414,7 @@ def _check_value(spec: Field, raw, where: str, problems: list[str]):
     if low_bad or high_bad:
         shown = f"{raw!r}" if isinstance(raw, str) else f"{raw!r}"
         si = f" (= {value:g} {spec.unit})" if isinstance(raw, str) and spec.unit else ""
-        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}")
+        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}" + (f" ({spec.why})" if spec.why else ""))
         return None
     return int(value) if spec.integer else value
 

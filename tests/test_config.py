@@ -97,7 +97,10 @@ BAD = [
     ('[pipe] outer_diameter = "4.5"', "has no units"),  # a bare number in a string
     ('[pipe] colour = "red"', "pipe.colour: unknown key"),  # unknown key
     ('[pipe] outer_diamter = "4.5 in"', "did you mean 'outer_diameter'"),  # misspelt key
-    ("[impact] restitution = 1.5", "impact.restitution = 1.5: must be a finite number >= 0 and <= 1"),
+    ("[impact] restitution = 1.5", "impact.restitution = 1.5: must be a finite number > 0 and <= 1"),
+    # issue 32: e = 0 was accepted and the reference model computed it as a perfectly elastic contact
+    ("[impact] restitution = 0", "impact.restitution = 0: must be a finite number > 0 and <= 1 (e = 0, a plastic "
+                                 "contact, is not modelled: the Hunt-Crossley contact"),
     ("[impact] restitution = -0.1", "impact.restitution = -0.1"),
     ('[mud] density = "-10 ppg"', "mud.density = '-10 ppg'"),  # negative
     ("[mud] drag_coefficient = nan", "must be finite"),  # non-finite
