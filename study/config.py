@@ -414,7 +414,8 @@ def _check_value(spec: Field, raw, where: str, problems: list[str]):
     if low_bad or high_bad:
         shown = f"{raw!r}" if isinstance(raw, str) else f"{raw!r}"
         si = f" (= {value:g} {spec.unit})" if isinstance(raw, str) and spec.unit else ""
-        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}" + (f" ({spec.why})" if spec.why else ""))
+        why = f" ({spec.why})" if spec.why and low_bad else ""  # why the lower bound is where it is
+        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}{why}")
         return None
     return int(value) if spec.integer else value
 
