@@ -319,16 +319,16 @@ MAX_TITLE = 1000
 
 
 def _shown(value, limit: int = 60) -> str:
-    """``repr(value)`` for a message, cut to about ``limit`` characters (a long value is named by its start and
-    its length, never printed whole)."""
-    if isinstance(value, (dict, list)):
-        text = f"<a {'table' if isinstance(value, dict) else 'list'} of {len(value)}>"
-        return text
+    """``repr(value)`` for a message, cut to about ``limit`` characters: a long value is named by its start and its
+    length, a long array or table by its kind and length, never printed whole."""
     text = repr(value)
-    if len(text) > limit:
-        size = f"{len(value)} characters" if isinstance(value, str) else f"{len(text)} characters written"
-        return f"{text[:limit - 20]}... ({size})"
-    return text
+    if len(text) <= limit:
+        return text
+    if isinstance(value, str):
+        return f"{text[:limit - 20]}... ({len(value)} characters)"
+    if isinstance(value, (dict, list)):
+        return f"<{'a table' if isinstance(value, dict) else 'an array'} of {len(value)}>"
+    return f"{text[:limit - 20]}... ({len(text)} characters written)"
 
 
 def name_problem(name) -> str | None:
@@ -395,24 +395,24 @@ def _check_value(spec: Field, raw, where: str, problems: list[str]):
     """Convert one raw value for ``spec``; append a problem and return None when it is bad."""
     if spec.choices is not None:
         if not isinstance(raw, str) or raw not in spec.choices:
-            problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+            problems.append(f"{where} = {_shown(raw)}: must be {spec.rule()}")
             return None
         return raw
     try:
         value = parse_quantity(raw, spec.unit, angular=spec.angular)
     except UnitProblem as exc:
-        problems.append(f"{where} = {raw!r}: {exc}")
+        problems.append(f"{where} = {_shown(raw)}: {exc}")
         return None
     if not math.isfinite(value):
-        problems.append(f"{where} = {raw!r}: must be finite; allowed: {spec.rule()}")
+        problems.append(f"{where} = {_shown(raw)}: must be finite; allowed: {spec.rule()}")
         return None
     if spec.integer and value != int(value):
-        problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+        problems.append(f"{where} = {_shown(raw)}: must be {spec.rule()}")
         return None
     low_bad = spec.lower is not None and (value <= spec.lower if spec.lower_open else value < spec.lower)
     high_bad = spec.upper is not None and (value >= spec.upper if spec.upper_open else value > spec.upper)
     if low_bad or high_bad:
-        shown = f"{raw!r}" if isinstance(raw, str) else f"{raw!r}"
+        shown = _shown(raw)
         si = f" (= {value:g} {spec.unit})" if isinstance(raw, str) and spec.unit else ""
         why = f" ({spec.why})" if spec.why and low_bad else ""  # why the lower bound is where it is
         problems.append(f"{where} = {shown}{si}: must be {spec.rule()}{why}")
@@ -435,7 +435,7 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
         for key in sorted(unknown):
             problems.append(f"{where}.{key}: unknown key; a range has start, stop and num or step")
         if not {"start", "stop"} <= set(raw) or ("num" in raw) == ("step" in raw):
-            problems.append(f"{where} = {raw!r}: a range needs start, stop and exactly one of num or step")
+            problems.append(f"{where} = {_shown(raw)}: a range needs start, stop and exactly one of num or step")
             return None
         start = _check_value(spec, raw["start"], f"{where}.start", problems)
         stop = _check_value(spec, raw["stop"], f"{where}.stop", problems)
@@ -473,7 +473,7 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
             return None
         return np.unique(np.asarray(array, dtype=float))
     else:
-        problems.append(f"{where} = {raw!r}: an axis is a list or a table {{start, stop, num|step}}")
+        problems.append(f"{where} = {_shown(raw)}: an axis is a list or a table {{start, stop, num|step}}")
         return None
     if any(v is None for v in values):
         return None
@@ -558,7 +558,7 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
     for key, value in data.items():
         if key in SECTIONS:
             if not isinstance(value, dict):
-                problems.append(f"{key} = {value!r}: must be a table [{key}]")
+                problems.append(f"{key} = {_shown(value)}: must be a table [{key}]")
         elif key == "name":
             why = name_problem(value)
             if why is not None:
@@ -590,7 +590,7 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
                             + ", ".join(SWEEP_KEYS))
     raw_axes = sweep_table.get("axes", {})
     if not isinstance(raw_axes, dict):
-        problems.append(f"sweep.axes = {raw_axes!r}: must be a table of field = list or range")
+        problems.append(f"sweep.axes = {_shown(raw_axes)}: must be a table of field = list or range")
         raw_axes = {}
     axes: dict[str, np.ndarray] = {}
     for key, raw in _flatten_axes(raw_axes).items():

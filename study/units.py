@@ -61,7 +61,9 @@ def parse_quantity(value, si_unit: str, *, angular: bool = False) -> float:
     if isinstance(value, float):
         return value
     if not isinstance(value, str):
-        raise UnitProblem(f"{value!r} is a {type(value).__name__}; expected a number or a string with units")
+        text = repr(value)
+        shown = text if len(text) <= 60 else f"{text[:30]}... ({len(text)} characters written)"
+        raise UnitProblem(f"{shown} is a {type(value).__name__}; expected a number or a string with units")
     quantity = read_quantity(value)
     target = ureg.Unit(si_unit) if si_unit else ureg.dimensionless
     if si_unit and quantity.dimensionless and quantity.units == ureg.dimensionless and not angular:

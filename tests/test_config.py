@@ -444,8 +444,9 @@ def _refused_quickly(text, fragment, seconds=2.0):
      "at most 1e+07 values on one axis"),
     ("[sweep] max_points = 100000000", "sweep.max_points = 100000000: must be the most points a sweep accepts"),
     ("[sweep] workers = 100000", "sweep.workers = 100000: must be local worker processes"),
+    ("[pipe] outer_diameter = [" + "1, " * 50000 + "1]", "pipe.outer_diameter = <an array of 50001>: "),
 ], ids=["tower", "huge-power", "overflow", "exponent", "400-digit-int", "long-number", "garbage", "num-1e9",
-        "step-1e9", "max-points", "workers"])
+        "step-1e9", "max-points", "workers", "long-array-value"])
 def test_values_that_would_hang_or_overflow_are_refused_at_once(line, fragment):
     _refused_quickly(with_lines(line), fragment)
 
