@@ -11,7 +11,7 @@ import math
 import sys
 
 from study import __version__
-from study.config import ConfigError, load, parse_set
+from study.config import MAX_GRID, MAX_WORKERS, ConfigError, load, parse_set
 from study.solvers import METHODS, OUTPUTS, solve_point
 from study.units import convert, display_unit, pint_unit
 from study.workflow.compiled import cached, compile_ahead, ensure_compiled, kernels, uncached
@@ -131,6 +131,22 @@ def cmd_validate(args) -> int:
     return 0
 
 
+def whole_number(low: int, high: int, meaning: str = ""):
+    """An argparse type: a whole number in [low, high]; anything else is refused naming the value and the range
+    (argparse adds the option's name and exits with status 2)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{text[:40]!r}: must be a whole number >= {low} and <= {high}{meaning}")
+        return value
+
+    return parse
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="study", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"study {__version__}")
@@ -149,10 +165,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--set", action="append", metavar="SECTION.KEY=VALUE")
     p.add_argument("--out", default=None, help="output folder (default outputs/<study name>)")
     p.add_argument("--scheduler", default=None, help="address of a dask.distributed scheduler")
-    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: cores)")
+    p.add_argument("--workers", type=whole_number(0, MAX_WORKERS, " (0: one per core)"), default=None,
+                   help="local worker processes (default: sweep.workers, else one per core)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-charts", action="store_true", help="skip the charts")
-    p.add_argument("--max-points", type=int, default=None, metavar="N",
+    p.add_argument("--max-points", type=whole_number(1, MAX_GRID), default=None, metavar="N",
                    help="largest grid accepted (default sweep.max_points, 1000000)")
     p.set_defaults(func=cmd_sweep)
 

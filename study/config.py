@@ -16,7 +16,10 @@ from __future__ import annotations
 import difflib
 import hashlib
 import math
+import os
+import stat
 import tomllib
+import unicodedata
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -58,6 +61,7 @@ class Field:
     integer: bool = False
     angular: bool = False
     display_unit: str | None = None  # the unit users think in, for tables and charts
+    why: str = ""  # why the bounds are what they are, told with a value outside them
 
     @property
     def sweepable(self) -> bool:
@@ -127,7 +131,9 @@ FIELDS: tuple[Field, ...] = (
           "N", display_unit="lbf"),
     Field("load.rotary_speed", "rotary_speed", "rotary speed of the drill string", "rad/s", angular=True,
           display_unit="rpm", **_POSITIVE),
-    Field("impact.restitution", "restitution", "coefficient of restitution", "", lower=0.0, upper=1.0),
+    Field("impact.restitution", "restitution", "coefficient of restitution", "", lower=0.0, lower_open=True, upper=1.0,
+          why="e = 0, a plastic contact, is not modelled: the Hunt-Crossley contact of the time-domain and reference "
+              "models cannot stop a rebound (its calibrated damping grows without bound as e -> 0); docs/model.md"),
     Field("impact.pattern", "impact_pattern", "which walls the midspan strikes", None, default="alternating",
           choices=("alternating", "one_wall")),
     Field("impact.closure", "closure", "how the impact velocity is closed", None, default="prescribed",
@@ -226,11 +232,15 @@ FIELDS_BY_NAME = {f.name: f for f in FIELDS}
 #: Sweep settings (not inputs of a design point).
 SWEEP_KEYS = {
     "axes": "table of swept inputs",
-    "chunk_size": "design points per task (a whole number >= 1)",
+    "chunk_size": "design points per task (a whole number >= 1 and <= 10000000)",
     "scheduler": "address of a dask.distributed scheduler ('' for local processes)",
-    "workers": "local worker processes (0: one per core)",
-    "max_points": "the most points a sweep accepts (a whole number >= 1; --max-points overrides it)",
+    "workers": "local worker processes (a whole number >= 0 and <= 1024; 0: one per core)",
+    "max_points": "the most points a sweep accepts (a whole number >= 1 and <= 10000000; --max-points overrides it)",
 }
+#: The most local worker processes a sweep starts (sweep.workers, --workers).
+MAX_WORKERS = 1024
+#: Each sweep setting's allowed whole numbers: (lowest, highest).
+SWEEP_RANGES = {"chunk_size": (1, 10**7), "workers": (0, MAX_WORKERS), "max_points": (1, 10**7)}
 ROOT_KEYS = {"name": "study name (folder under outputs/)", "title": "one-line title"}
 SECTIONS = ("pipe", "hole", "rock", "mud", "load", "impact", "contact", "solver", "fatigue", "sweep")
 SWEEP_DEFAULTS = {"chunk_size": 0, "scheduler": "", "workers": 0, "max_points": 1_000_000}
@@ -286,10 +296,97 @@ class Study:
 
     @property
     def size(self) -> int:
-        return int(np.prod([len(v) for v in self.axes.values()])) if self.axes else 1
+        return math.prod(len(v) for v in self.axes.values())
+
+
+#: Bounds on what a config may hold, checked before anything is built from it (issue 32): a config is a small
+#: text, and nothing in it may cost more than reading it. MAX_AXIS: the most values of one axis; MAX_GRID: the most
+#: points of a study (sweep.max_points and --max-points are at most this); MAX_CONFIG_BYTES: the largest config
+#: file; MAX_DEPTH: the deepest nesting of tables and arrays (a range axis under [sweep.axes] nests 5 deep);
+#: MAX_KEY and MAX_STRING: the longest key and string; MAX_LIST: the longest array.
+MAX_AXIS = 10**7
+MAX_GRID = 10**7
+MAX_CONFIG_BYTES = 1_000_000
+MAX_DEPTH = 10
+MAX_KEY = 100
+MAX_STRING = 1000
+MAX_LIST = 100_000
+
+#: The longest study name: it is one folder name under outputs/ (filesystems allow 255 bytes).
+MAX_NAME = 100
+#: The longest title: one line of provenance in the dataset and the charts.
+MAX_TITLE = 1000
+
+
+def _shown(value, limit: int = 60) -> str:
+    """``repr(value)`` for a message, cut to about ``limit`` characters: a long value is named by its start and its
+    length, a long array or table by its kind and length, never printed whole."""
+    text = repr(value)
+    if len(text) <= limit:
+        return text
+    if isinstance(value, str):
+        return f"{text[:limit - 20]}... ({len(value)} characters)"
+    if isinstance(value, (dict, list)):
+        return f"<{'a table' if isinstance(value, dict) else 'an array'} of {len(value)}>"
+    return f"{text[:limit - 20]}... ({len(text)} characters written)"
+
+
+def name_problem(name) -> str | None:
+    """Why ``name`` cannot be a study name (one plain folder name under ``outputs/``), or None.
+
+    A study name is joined to ``outputs/``: it must stay one path component there, so no path separator,
+    no ``.`` or ``..``, no control character, at most :data:`MAX_NAME` characters and no blank ends."""
+    if not isinstance(name, str) or not name.strip():
+        return "must be a non-empty string"
+    if len(name) > MAX_NAME:
+        return f"has {len(name)} characters; at most {MAX_NAME}"
+    bad = [c for c in name if unicodedata.category(c)[0] == "C" or unicodedata.category(c) in ("Zl", "Zp")]
+    if bad:
+        return f"holds the control character {bad[0]!r}"
+    if "/" in name or "\\" in name:
+        return "holds a path separator ('/' or '\\')"
+    if name in (".", ".."):
+        return "is a relative folder ('.' or '..')"
+    if name != name.strip():
+        return "begins or ends with a space"
+    return None
+
+
+NAME_RULE = (f"one folder name under outputs/: 1 to {MAX_NAME} characters, no '/' or '\\', not '.' or '..', "
+             "no control characters, no spaces at the ends")
+
+
+def _bounds(data: dict) -> list[str]:
+    """What in a parsed config breaks :data:`MAX_DEPTH`, :data:`MAX_KEY`, :data:`MAX_STRING` or :data:`MAX_LIST`
+    (walked without recursion, so that no nesting can exhaust the stack); empty when it is within them."""
+    problems: list[str] = []
+    stack = [("", data, 1)]
+    while stack and len(problems) < 5:
+        where, value, depth = stack.pop()
+        if isinstance(value, (dict, list)) and depth > MAX_DEPTH:
+            problems.append(f"{where[:80] or 'the config'}: tables or arrays nested more than {MAX_DEPTH} deep")
+            continue
+        if isinstance(value, dict):
+            for key, item in value.items():
+                if len(key) > MAX_KEY:
+                    problems.append(f"{where + '.' if where else ''}{_shown(key)}: a key of {len(key)} characters; "
+                                    f"at most {MAX_KEY}")
+                    continue
+                stack.append((f"{where}.{key}" if where else key, item, depth + 1))
+        elif isinstance(value, list):
+            if len(value) > MAX_LIST:
+                problems.append(f"{where}: an array of {len(value)} values; at most {MAX_LIST} (a long axis is a "
+                                "range {start, stop, num})")
+                continue
+            stack.extend((f"{where}[{i}]", item, depth + 1) for i, item in enumerate(value))
+        elif isinstance(value, str) and len(value) > MAX_STRING:
+            problems.append(f"{where} = {_shown(value)}: a string of {len(value)} characters; at most {MAX_STRING}")
+    return problems
 
 
 def _suggest(key: str, known) -> str:
+    if len(key) > MAX_KEY:
+        return ""
     close = difflib.get_close_matches(key, list(known), n=1)
     return f" (did you mean {close[0]!r}?)" if close else ""
 
@@ -298,26 +395,27 @@ def _check_value(spec: Field, raw, where: str, problems: list[str]):
     """Convert one raw value for ``spec``; append a problem and return None when it is bad."""
     if spec.choices is not None:
         if not isinstance(raw, str) or raw not in spec.choices:
-            problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+            problems.append(f"{where} = {_shown(raw)}: must be {spec.rule()}")
             return None
         return raw
     try:
         value = parse_quantity(raw, spec.unit, angular=spec.angular)
     except UnitProblem as exc:
-        problems.append(f"{where} = {raw!r}: {exc}")
+        problems.append(f"{where} = {_shown(raw)}: {exc}")
         return None
     if not math.isfinite(value):
-        problems.append(f"{where} = {raw!r}: must be finite; allowed: {spec.rule()}")
+        problems.append(f"{where} = {_shown(raw)}: must be finite; allowed: {spec.rule()}")
         return None
     if spec.integer and value != int(value):
-        problems.append(f"{where} = {raw!r}: must be {spec.rule()}")
+        problems.append(f"{where} = {_shown(raw)}: must be {spec.rule()}")
         return None
     low_bad = spec.lower is not None and (value <= spec.lower if spec.lower_open else value < spec.lower)
     high_bad = spec.upper is not None and (value >= spec.upper if spec.upper_open else value > spec.upper)
     if low_bad or high_bad:
-        shown = f"{raw!r}" if isinstance(raw, str) else f"{raw!r}"
+        shown = _shown(raw)
         si = f" (= {value:g} {spec.unit})" if isinstance(raw, str) and spec.unit else ""
-        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}")
+        why = f" ({spec.why})" if spec.why and low_bad else ""  # why the lower bound is where it is
+        problems.append(f"{where} = {shown}{si}: must be {spec.rule()}{why}")
         return None
     return int(value) if spec.integer else value
 
@@ -337,7 +435,7 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
         for key in sorted(unknown):
             problems.append(f"{where}.{key}: unknown key; a range has start, stop and num or step")
         if not {"start", "stop"} <= set(raw) or ("num" in raw) == ("step" in raw):
-            problems.append(f"{where} = {raw!r}: a range needs start, stop and exactly one of num or step")
+            problems.append(f"{where} = {_shown(raw)}: a range needs start, stop and exactly one of num or step")
             return None
         start = _check_value(spec, raw["start"], f"{where}.start", problems)
         stop = _check_value(spec, raw["stop"], f"{where}.stop", problems)
@@ -345,10 +443,11 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
             return None
         if "num" in raw:
             num = raw["num"]
-            if isinstance(num, bool) or not isinstance(num, int) or num < 1:
-                problems.append(f"{where}.num = {num!r}: must be a whole number >= 1")
+            if isinstance(num, bool) or not isinstance(num, int) or not 1 <= num <= MAX_AXIS:
+                problems.append(f"{where}.num = {_shown(num)}: must be a whole number >= 1 and <= {MAX_AXIS:.0e} "
+                                "(the most values of one axis)")
                 return None
-            values = list(np.linspace(start, stop, num))
+            array = np.linspace(start, stop, num)
         else:
             step = _check_value(Field(spec.path, spec.name, spec.long_name, spec.unit, angular=spec.angular),
                                 raw["step"], f"{where}.step", problems)
@@ -362,14 +461,19 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
                 problems.append(f"{where}.step = {raw['step']!r}: must be > 0")
                 return None
             count = (stop - start) / step
-            if count > 1e7:
-                problems.append(f"{where}: {count:.3g} steps; at most 1e7 points on one axis")
+            if not count < MAX_AXIS:
+                problems.append(f"{where}: {count:.3g} steps; at most {MAX_AXIS:.0e} values on one axis")
                 return None
             num = int(math.floor(count + 1e-9)) + 1
-            values = list(start + step * np.arange(num))
-        values = [_check_value(spec, float(v), f"{where}", problems) for v in values]
+            array = np.minimum(start + step * np.arange(num), stop)  # never past stop by a rounding
+        # every value lies between start and stop, which are checked; a whole-number field checks each value
+        if spec.integer and not np.all(array == np.round(array)):
+            bad = float(array[np.flatnonzero(array != np.round(array))[0]])
+            problems.append(f"{where} = {bad:g}: a value of the range is not whole; must be {spec.rule()}")
+            return None
+        return np.unique(np.asarray(array, dtype=float))
     else:
-        problems.append(f"{where} = {raw!r}: an axis is a list or a table {{start, stop, num|step}}")
+        problems.append(f"{where} = {_shown(raw)}: an axis is a list or a table {{start, stop, num|step}}")
         return None
     if any(v is None for v in values):
         return None
@@ -433,10 +537,10 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
     Raises :class:`ConfigError` listing every problem.
     """
     problems: list[str] = []
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError([f"not valid TOML: {exc}"], source) from None
+    if len(text) > MAX_CONFIG_BYTES:
+        raise ConfigError([f"a config of {len(text):,} characters; at most {MAX_CONFIG_BYTES:,} (a config is a small "
+                           "text: a long axis is a range {start, stop, num})"], source)
+    data = _toml(text, source)
     for path, raw in (overrides or {}).items():
         section, _, key = path.partition(".")
         if not key or section not in SECTIONS:
@@ -447,14 +551,23 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
         if not isinstance(data[section], dict):
             continue
         data[section][key] = raw
+    bounds = _bounds(data)
+    if bounds:  # nothing else is looked at: a deeper or larger config is not one
+        raise ConfigError(problems + bounds, source)
 
     for key, value in data.items():
         if key in SECTIONS:
             if not isinstance(value, dict):
-                problems.append(f"{key} = {value!r}: must be a table [{key}]")
+                problems.append(f"{key} = {_shown(value)}: must be a table [{key}]")
+        elif key == "name":
+            why = name_problem(value)
+            if why is not None:
+                problems.append(f"name = {_shown(value)}: {why}; allowed: {NAME_RULE}")
         elif key in ROOT_KEYS:
             if not isinstance(value, str) or not value.strip():
-                problems.append(f"{key} = {value!r}: must be a non-empty string ({ROOT_KEYS[key]})")
+                problems.append(f"{key} = {_shown(value)}: must be a non-empty string ({ROOT_KEYS[key]})")
+            elif len(value) > MAX_TITLE:
+                problems.append(f"{key} = {_shown(value)}: has {len(value)} characters; at most {MAX_TITLE}")
         else:
             problems.append(f"{key}: unknown key{_suggest(key, list(SECTIONS) + list(ROOT_KEYS))};"
                             f" allowed at top level: {', '.join(list(ROOT_KEYS) + list(SECTIONS))}")
@@ -477,7 +590,7 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
                             + ", ".join(SWEEP_KEYS))
     raw_axes = sweep_table.get("axes", {})
     if not isinstance(raw_axes, dict):
-        problems.append(f"sweep.axes = {raw_axes!r}: must be a table of field = list or range")
+        problems.append(f"sweep.axes = {_shown(raw_axes)}: must be a table of field = list or range")
         raw_axes = {}
     axes: dict[str, np.ndarray] = {}
     for key, raw in _flatten_axes(raw_axes).items():
@@ -511,8 +624,9 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
     for key in ("chunk_size", "workers", "max_points"):
         if key in sweep_table:
             value = sweep_table[key]
-            if isinstance(value, bool) or not isinstance(value, int) or value < 0 or (key != "workers" and value == 0):
-                problems.append(f"sweep.{key} = {value!r}: must be {SWEEP_KEYS[key]}")
+            low, high = SWEEP_RANGES[key]
+            if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+                problems.append(f"sweep.{key} = {_shown(value)}: must be {SWEEP_KEYS[key]}")
             else:
                 sweep[key] = value
     if "scheduler" in sweep_table:
@@ -521,21 +635,52 @@ def load_text(text: str, source: str = "config", overrides: dict[str, Any] | Non
         else:
             sweep["scheduler"] = sweep_table["scheduler"]
 
+    size = math.prod(len(values) for values in axes.values())
+    if size > MAX_GRID:
+        shape = " x ".join(f"{len(values)} {name}" for name, values in axes.items())
+        problems.append(f"sweep.axes: the grid has {size:,} points ({shape}); at most {MAX_GRID:,} in one study "
+                        "(split it into studies)")
     _cross_checks(inputs, axes, problems)
     if problems:
         raise ConfigError(problems, source)
     name = data.get("name") or Path(source).stem or "study"
+    if "name" not in data and name_problem(name) is not None:  # from the file's name: say so
+        problems.append(f"name = {_shown(name)} (the config file's name; no name is given): {name_problem(name)}; "
+                        f"allowed: {NAME_RULE}; give one with name = \"...\"")
+        raise ConfigError(problems, source)
     title = data.get("title") or name
     return Study(name=name, title=title, inputs=inputs, axes=axes, sweep=sweep, text=text, path=source)
+
+
+def _toml(text: str, source: str) -> dict:
+    """``tomllib.loads(text)``, its every failure a :class:`ConfigError`: invalid TOML, arrays or inline tables
+    nested deeper than Python's recursion allows, an integer of more digits than Python converts."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError([f"not valid TOML: {exc}"], source) from None
+    except RecursionError:
+        raise ConfigError([f"arrays or tables nested too deep (at most {MAX_DEPTH})"], source) from None
+    except ValueError as exc:  # e.g. an integer of more than 4300 digits
+        raise ConfigError([f"not a valid value: {str(exc)[:200]}"], source) from None
 
 
 def load(path: str | Path, overrides: dict[str, Any] | None = None) -> Study:
     """Read and validate a TOML config file. Raises :class:`ConfigError` (also for a missing file)."""
     path = Path(path)
-    try:
-        text = path.read_text()
+    try:  # a regular file, at most MAX_CONFIG_BYTES of it read: never a FIFO or a device that blocks or never ends
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+        with os.fdopen(fd, "rb") as handle:
+            if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
+                raise ConfigError(["cannot read config: not a regular file"], str(path))
+            data = handle.read(MAX_CONFIG_BYTES + 1)
     except OSError as exc:
-        raise ConfigError([f"cannot read config: {exc.strerror}"], str(path)) from None
+        raise ConfigError([f"cannot read config: {exc.strerror or exc}"], str(path)) from None
+    if len(data) > MAX_CONFIG_BYTES:
+        raise ConfigError([f"a config file of more than {MAX_CONFIG_BYTES:,} bytes (a config is a small text: a long "
+                           "axis is a range {start, stop, num})"], str(path))
+    try:
+        text = data.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")  # as read_text's universal newlines
     except UnicodeDecodeError as exc:
         raise ConfigError([f"not a text config: byte {exc.object[exc.start]:#04x} at offset {exc.start} is not "
                            "UTF-8 (a config is a TOML text file)"], str(path)) from None
@@ -551,10 +696,15 @@ def parse_set(assignments: list[str]) -> dict[str, Any]:
         if not sep or not key.strip():
             problems.append(f"--set {item!r}: expected section.key=VALUE")
             continue
+        if len(item) > MAX_STRING:
+            problems.append(f"--set {_shown(item)}: {len(item)} characters; at most {MAX_STRING}")
+            continue
         try:
             overrides[key.strip()] = tomllib.loads(f"v = {value.strip()}")["v"]
-        except tomllib.TOMLDecodeError:
+        except (tomllib.TOMLDecodeError, ValueError):
             overrides[key.strip()] = value.strip()
+        except RecursionError:
+            problems.append(f"--set {_shown(item)}: arrays nested too deep (at most {MAX_DEPTH})")
     if problems:
         raise ConfigError(problems, "command line")
     return overrides

@@ -1,6 +1,8 @@
 """The study command (study.cli): JSON point output, readable table, and clean refusals."""
 
 import json
+import signal
+import time
 import subprocess
 import sys
 from pathlib import Path
@@ -82,3 +84,77 @@ def test_a_sweep_that_cannot_go_on_ends_with_one_line_and_status_1(tmp_path, cap
     err = capsys.readouterr().err
     assert err.startswith("study: error: the grid has 3 points (3 rotary_speed), more than sweep.max_points = 2")
     assert err.count("\n") == 1 and not (out / "results.nc").exists()
+
+
+def test_a_study_name_outside_outputs_exits_2_naming_the_field(tmp_path, capsys):
+    # issue 32: name = "../../x" was joined to outputs/ unchecked (the sweep wrote two folders up)
+    bad = tmp_path / "bad.toml"
+    bad.write_text('name = "../../x"\n' + (ROOT / "configs" / "paper.toml").read_text().replace('name = "paper"', ""))
+    assert main(["sweep", str(bad), "--quiet", "--no-charts"]) == 2
+    err = capsys.readouterr().err
+    assert "name = '../../x': holds a path separator" in err and "allowed: one folder name under outputs/" in err
+    assert not (tmp_path.parent.parent / "x").exists()
+
+
+@pytest.mark.parametrize("option, value, allowed", [
+    ("--workers", "-1", ">= 0 and <= 1024 (0: one per core)"),  # waited forever at 0 % (issue 32)
+    ("--workers", "many", ">= 0 and <= 1024"),
+    ("--max-points", "-1", ">= 1 and <= 10000000"),
+    ("--max-points", "0", ">= 1 and <= 10000000"),
+    ("--max-points", "100000000", ">= 1 and <= 10000000"),
+])
+def test_sweep_options_out_of_range_exit_2_naming_the_option_value_and_range(option, value, allowed, capsys):
+    with pytest.raises(SystemExit) as ended:
+        main(["sweep", DEFAULT, option, value])
+    assert ended.value.code == 2
+    err = capsys.readouterr().err
+    assert f"argument {option}: '{value}': must be a whole number {allowed}" in err
+
+
+STUDY = str(Path(sys.executable).parent / "study")  # the console script (pyproject: study.console:main)
+
+
+def _catches_sigint(pid: int) -> bool:
+    """Whether the process has a handler of its own for SIGINT (Linux: bit 2 of SigCgt in /proc/<pid>/status)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    mask = next(line.split()[1] for line in status.splitlines() if line.startswith("SigCgt:"))
+    return bool(int(mask, 16) & (1 << (signal.SIGINT - 1)))
+
+
+@pytest.mark.parametrize("delay", [0.0, 0.2, 0.6])
+def test_ctrl_c_while_the_console_script_starts_is_one_line_and_status_130(delay):
+    # issue 32: a Ctrl-C in the console script's first second (numpy, pint, the solvers being imported) was a
+    # KeyboardInterrupt traceback; only python -m study had the guard. Point: imports, then about 1 s of work.
+    # The child starts with SIGINT ignored, so that Python installs no handler of its own and the first handler it
+    # has is study.console's (installed before any import of numpy); the signal follows ``delay`` s after that.
+    proc = subprocess.Popen([STUDY, "point", DEFAULT, "--method", "sdof"], cwd=ROOT, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+    while proc.poll() is None and not _catches_sigint(proc.pid):
+        time.sleep(0.001)
+    assert proc.poll() is None, "the console script ran without a SIGINT handler of its own"
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    if proc.returncode == 0:  # finished before the signal: nothing to judge at this machine's speed
+        pytest.skip(f"the point finished within {delay} s")
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert err.strip() in ("study: interrupted while starting: nothing new was computed", "study: interrupted")
+
+
+def test_ctrl_c_after_the_command_has_ended_is_one_line_and_status_130():
+    # issue 32: a Ctrl-C after results.nc was written (the interpreter exiting) ended the process by SIGINT
+    # (status -2) without a word. Here the command is replaced by one that returns at once; the SIGINT follows.
+    script = ("import os, signal, sys, time, study.cli\n"
+              "study.cli.main = lambda argv=None: 0\n"
+              "from study.console import main\n"
+              "code = main([])\n"
+              "os.kill(os.getpid(), signal.SIGINT)\n"
+              "time.sleep(10)\n"
+              "sys.exit(code)\n")
+    proc = subprocess.run([sys.executable, "-c", script], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 130
+    assert proc.stderr == "study: interrupted while exiting: the command had ended; what it reported above stands\n"

@@ -1,5 +1,6 @@
 """Config loading and validation (study.config): units in, SI out, every bad input named."""
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -96,7 +97,10 @@ BAD = [
     ('[pipe] outer_diameter = "4.5"', "has no units"),  # a bare number in a string
     ('[pipe] colour = "red"', "pipe.colour: unknown key"),  # unknown key
     ('[pipe] outer_diamter = "4.5 in"', "did you mean 'outer_diameter'"),  # misspelt key
-    ("[impact] restitution = 1.5", "impact.restitution = 1.5: must be a finite number >= 0 and <= 1"),
+    ("[impact] restitution = 1.5", "impact.restitution = 1.5: must be a finite number > 0 and <= 1"),
+    # issue 32: e = 0 was accepted and the reference model computed it as a perfectly elastic contact
+    ("[impact] restitution = 0", "impact.restitution = 0: must be a finite number > 0 and <= 1 (e = 0, a plastic "
+                                 "contact, is not modelled: the Hunt-Crossley contact"),
     ("[impact] restitution = -0.1", "impact.restitution = -0.1"),
     ('[mud] density = "-10 ppg"', "mud.density = '-10 ppg'"),  # negative
     ("[mud] drag_coefficient = nan", "must be finite"),  # non-finite
@@ -385,3 +389,115 @@ def test_every_limit_option_is_a_config_field():
     assert set(LIMIT_INPUTS) <= set(config.FIELDS_BY_NAME)
     result = design_limits(100e6, 20e6, 50e6, inputs["rotary_speed"], **{k: inputs[k] for k in LIMIT_INPUTS})
     assert result.yield_utilisation == pytest.approx(100e6 / (75_000 * PSI))
+
+
+# Issue 32: the study name is joined to outputs/ - it must be one plain folder name there.
+@pytest.mark.parametrize("name, why", [
+    ("../../x", "path separator"),
+    ("/abs/path", "path separator"),
+    ("a\\\\b", "path separator"),
+    ("..", "relative folder"),
+    (".", "relative folder"),
+    ("two\\nlines", "control character '\\n'"),
+    ("bell\\u0007", "control character"),
+    ("x" * 500, "500 characters; at most 100"),
+    (" padded", "spaces"),
+], ids=["up", "absolute", "backslash", "dotdot", "dot", "newline", "bell", "long", "padded"])
+def test_a_study_name_that_is_not_one_plain_folder_name_is_refused(name, why):
+    with pytest.raises(ConfigError) as refused:
+        load_text(f'name = "{name}"\n' + MINIMAL)
+    [problem] = refused.value.problems
+    assert problem.startswith("name = ") and why in problem and "allowed: one folder name under outputs/" in problem
+    assert len(problem) < 400  # a 5000-character name is named by its start, not printed whole
+
+
+def test_a_plain_study_name_is_kept_and_a_file_name_that_cannot_be_one_is_refused():
+    assert load_text('name = "drill pipe, 8° hole (v2)"\n' + MINIMAL).name == "drill pipe, 8° hole (v2)"
+    assert load_text(MINIMAL, source="configs/x.toml").name == "x"
+    with pytest.raises(ConfigError, match="the config file's name"):
+        load_text(MINIMAL, source="configs/" + "y" * 120 + ".toml")
+
+
+# Issue 32: the parser is bounded - every input below was a hang, a traceback or gigabytes before any check.
+def _refused_quickly(text, fragment, seconds=2.0):
+    import time
+
+    start = time.perf_counter()
+    with pytest.raises(ConfigError) as refused:
+        load_text(text)
+    assert time.perf_counter() - start < seconds
+    assert fragment in str(refused.value), str(refused.value)[:500]
+    assert len(str(refused.value)) < 2000  # the bad value is named by its start, never printed whole
+
+
+@pytest.mark.parametrize("line, fragment", [
+    ('[pipe] outer_diameter = "9**9**9 in"', "pipe.outer_diameter = '9**9**9 in': '9**9**9 in' cannot be read"),
+    ('[pipe] outer_diameter = "10**400 in"', "pipe.outer_diameter = '10**400 in'"),
+    ('[pipe] outer_diameter = "1e400 in"', "beyond a float's range"),
+    ('[pipe] outer_diameter = "4.5 in**99"', "an exponent is a whole number of at most 12"),
+    ("[pipe] youngs_modulus = " + "9" * 400, "an integer of 400 digits is too large"),
+    ('[pipe] outer_diameter = "' + "4" * 400 + ' in"', "at most 100 characters"),
+    ('[pipe] outer_diameter = "1 m;import os"', "is not a number, a unit name"),
+    ('[sweep] axes = { "load.rotary_speed" = { start = "50 rpm", stop = "300 rpm", num = 1000000000 } }',
+     "sweep.axes.load.rotary_speed.num = 1000000000: must be a whole number >= 1 and <= 1e+07"),
+    ('[sweep] axes = { "load.rotary_speed" = { start = "1 rpm", stop = "300 rpm", step = "1e-9 rpm" } }',
+     "at most 1e+07 values on one axis"),
+    ("[sweep] max_points = 100000000", "sweep.max_points = 100000000: must be the most points a sweep accepts"),
+    ("[sweep] workers = 100000", "sweep.workers = 100000: must be local worker processes"),
+    ("[pipe] outer_diameter = [" + "1, " * 50000 + "1]", "pipe.outer_diameter = <an array of 50001>: "),
+], ids=["tower", "huge-power", "overflow", "exponent", "400-digit-int", "long-number", "garbage", "num-1e9",
+        "step-1e9", "max-points", "workers", "long-array-value"])
+def test_values_that_would_hang_or_overflow_are_refused_at_once(line, fragment):
+    _refused_quickly(with_lines(line), fragment)
+
+
+def test_a_grid_over_ten_million_points_is_refused_by_the_config():
+    _refused_quickly(with_lines('[sweep] axes = { "load.rotary_speed" = { start = "50 rpm", stop = "300 rpm", '
+                                'num = 10000 }, "load.axial_tension" = { start = "1 lbf", stop = "9 lbf", num = 1001 } }'),
+                     "sweep.axes: the grid has 10,010,000 points (10000 rotary_speed x 1001 axial_tension); at most "
+                     "10,000,000 in one study")
+
+
+@pytest.mark.parametrize("text, fragment", [
+    ("v = " + "[" * 100_000 + "]" * 100_000, "nested too deep"),
+    ("[sweep.axes" + ".a" * 3000 + "]\nb = 1\n" + MINIMAL, "nested more than 10 deep"),
+    (MINIMAL + "[sweep.axes]\n" + "x" * 1_000_000 + " = 1\n", "at most 1,000,000"),
+    (MINIMAL + "[sweep.axes]\n" + "x" * 500 + " = 1\n", "a key of 500 characters; at most 100"),
+    (MINIMAL + 'title = "' + "t" * 900_000 + '"\n', "a string of 900000 characters; at most 1000"),
+    ("x = 1" + "0" * 5000, "not a valid value"),
+], ids=["deep-arrays", "deep-tables", "huge-file", "long-key", "long-string", "5000-digit-int"])
+def test_configs_too_deep_or_too_large_are_refused_before_anything_is_built(text, fragment):
+    _refused_quickly(text, fragment)
+
+
+def test_the_config_file_is_read_only_if_it_is_a_small_regular_file(tmp_path):
+    import os
+
+    big = tmp_path / "big.toml"
+    big.write_text("# " + "x" * 1_100_000 + "\n")
+    with pytest.raises(ConfigError, match="more than 1,000,000 bytes"):
+        config.load(big)
+    os.mkfifo(tmp_path / "fifo.toml")  # reading it would wait for a writer forever
+    with pytest.raises(ConfigError, match="not a regular file"):
+        config.load(tmp_path / "fifo.toml")
+    with pytest.raises(ConfigError, match="not a regular file"):
+        config.load("/dev/zero")
+
+
+@pytest.mark.parametrize("written, si, unit", [
+    # every unit spelling the shipped configs and tests use, and the dogleg severities of another field
+    ("4.5 in", 0.1143, "m"), ("15.0 lb/ft", 15.0 * 0.45359237 / 0.3048, "kg/m"),
+    ("16.6 lbm/ft", 16.6 * 0.45359237 / 0.3048, "kg/m"), ("10 ppg", 10 * 0.45359237 / 0.003785411784, "kg/m^3"),
+    ("0.0433 lb/in^3", 0.0433 * 0.45359237 / 0.0254**3, "kg/m^3"), ("7.4 ft/s", 7.4 * 0.3048, "m/s"),
+    ("88.6 in/s", 88.6 * 0.0254, "m/s"), ("10000 lbf", 10000 * 4.4482216152605, "N"),
+    ("30e6 psi", 30e6 * 6894.757293168361, "Pa"), ("120 ksi", 120e3 * 6894.757293168361, "Pa"),
+    ("2 m/s**2", 2.0, "m/s^2"),
+    ("3 deg/100ft", math.radians(3) / 30.48, "rad/m"), ("3 deg/100 ft", math.radians(3) / 30.48, "rad/m"),
+    ("3 deg/(100 ft)", math.radians(3) / 30.48, "rad/m"), ("3 deg/30m", math.radians(3) / 30, "rad/m"),
+])
+def test_units_as_users_write_them_are_read_by_the_bounded_grammar(written, si, unit):
+    # expected values: the exact definitions of the inch (0.0254 m), foot, pound (0.45359237 kg), US gallon
+    # (3.785411784 L), pound-force (4.4482216152605 N) and psi (NIST SP 811 appendix B)
+    from study.units import parse_quantity
+
+    assert parse_quantity(written, unit) == pytest.approx(si, rel=1e-12)

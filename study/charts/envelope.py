@@ -2,7 +2,7 @@
 
 A cell is safe when every point in it (over every other swept input) is
 
-- solved: status ``ok`` (a point without a valid answer is not known to be safe) — or ``not_converged`` to the
+- solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to be safe) — or ``not_converged`` to the
   study's tolerance but decided all the same: every limit below holds, or one fails, with its stresses off by
   :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer);
 - below yield: ``yield_utilisation`` ≤ 1;
@@ -33,7 +33,7 @@ from study.charts.critical import in_band
 from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
-from study.charts.plane import draw_boundary, ok_points, plane, plane_axes
+from study.charts.plane import answered_points, draw_boundary, ok_points, plane, plane_axes
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -65,7 +65,7 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
         raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
     if not target_hours > 0:
         raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
-    ok = ok_points(ds)
+    ok = answered_points(ds)  # ok, or yields: answered, and a yielding point fails the yield limit below
     off = _stress_margin(ds)  # NaN where a point is ok or cannot be decided
     rough = np.isfinite(off)
     with np.errstate(invalid="ignore"):
@@ -107,7 +107,7 @@ def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LI
 
 def _decided(ds: xr.Dataset, fails: dict[str, xr.DataArray]) -> xr.DataArray:
     """:func:`decided_within_error` from the points' :func:`failures`."""
-    return ~fails["no valid answer"] & ~ok_points(ds)
+    return ~fails["no valid answer"] & ~answered_points(ds)
 
 
 def _has_limits(ds: xr.Dataset, criterion: str) -> bool:

@@ -93,9 +93,21 @@ def ok_points(ds: xr.Dataset) -> xr.DataArray:
     return _full(ds, "status") == STATUS_CODES["ok"]
 
 
+#: Statuses whose figures are answers: ``ok``, and ``yields`` (solved and valid, its normal stress past the grade's
+#: yield: the limit charts and the envelope must show it, not leave it blank).
+ANSWERED = ("ok", "yields")
+
+
+def answered_points(ds: xr.Dataset) -> xr.DataArray:
+    """True where a point's status is one of :data:`ANSWERED` (every point when the dataset has no status)."""
+    if "status" not in ds.data_vars:
+        return ok_points(ds)
+    return _full(ds, "status").isin([STATUS_CODES[name] for name in ANSWERED])
+
+
 def ok_values(ds: xr.Dataset, name: str) -> xr.DataArray:
-    """The output ``name`` over every dimension, NaN where the point is not ok."""
-    return _full(ds, name).where(ok_points(ds))
+    """The output ``name`` over every dimension, NaN where the point has no answer (:func:`answered_points`)."""
+    return _full(ds, name).where(answered_points(ds))
 
 
 def cell_boundary(over: np.ndarray, xedges: np.ndarray, yedges: np.ndarray) -> list:

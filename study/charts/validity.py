@@ -39,6 +39,8 @@ STATUS_COLOURS = {
     "not_periodic": "#bf812d",
     "disagrees": "#ffff99",
     "unphysical": "#000080",
+    "out_of_scope": "#9e9ac8",
+    "yields": "#67000d",
 }
 
 

@@ -62,7 +62,7 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
         raise ValueError(f"method = {name!r}; allowed: {', '.join(methods)}")
     start = time.perf_counter()
     try:
-        return utilisation.add_limits(gate.admit(methods[name][0](inputs), inputs), inputs)
+        return gate.admit(utilisation.add_limits(methods[name][0](inputs), inputs), inputs)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         return PointResult(method=name, status="failed",

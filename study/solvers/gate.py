@@ -21,6 +21,10 @@ The checks, in order (each a plain function ``check(values, inputs) -> problem |
   stress, each non-negative (``unphysical``).
 - ``within_tolerance``: the method's error estimate is within the study's tolerance
   (``solver.tolerance``) (``not_converged``).
+- ``within_yield``: the largest normal stress is within the grade's yield strength, ``yield_utilisation`` ≤ 1
+  (:func:`study.solvers.utilisation.add_limits`, applied before the gate) (``yields``): past it the pipe yields,
+  which the elastic models do not follow; the figures are kept. Last, so that a point not converged stays
+  ``not_converged`` (the envelope decides its yield within its error estimate).
 """
 
 from __future__ import annotations
@@ -119,9 +123,19 @@ def within_tolerance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Pr
     return None
 
 
+def within_yield(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Problem | None:
+    """The largest normal stress is within the yield strength: ``yield_utilisation`` ≤ 1 (issue 32: a point at
+    10^7 lbf tension was ``ok`` with a 15.6 GPa normal stress)."""
+    use, normal = values.get("yield_utilisation"), values.get("max_normal_stress")
+    if use is None or normal is None or not (np.isfinite(use) and use > 1.0):
+        return None
+    return ("yields", f"the largest normal stress {normal:.4g} Pa is {use:.3g} times the yield strength "
+                      f"{normal / use:.4g} Pa: the pipe yields (the elastic figures are kept)")
+
+
 #: The checks, in the order their statuses take precedence.
 CHECKS: tuple[Callable[[Mapping[str, Any], Mapping[str, Any]], Problem | None], ...] = (
-    finite, within_clearance, hertz_valid, consistent_stresses, within_tolerance)
+    finite, within_clearance, hertz_valid, consistent_stresses, within_tolerance, within_yield)
 
 
 def problems(result: PointResult, inputs: Mapping[str, Any]) -> list[Problem]:

@@ -228,7 +228,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
                       damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
                       friction=mu, slip_velocity=float(option.slip_velocity),
-                      restitution=e, hysteresis=calibrated_hysteresis(e) if e > 0 else 0.0, law=law,
+                      restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
                       eccentricity=eps)
 

@@ -30,6 +30,9 @@ STATUS = {
     "unphysical": (16, "a computed value breaks a physical bound: deflection past the wall, inconsistent "
                        "stresses (see message)"),
     "out_of_scope": (17, "the model's assumptions do not hold at this point (see message): a higher model answers"),
+    "yields": (18, "solved and valid as an elastic answer, but the largest normal stress is past the grade's yield "
+                   "strength (yield_utilisation > 1): the pipe yields and the elastic figures (kept) overstate what "
+                   "it carries"),
 }
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 

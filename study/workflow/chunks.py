@@ -23,9 +23,14 @@ import numpy as np
 
 from study.atomic import atomic_path
 from study.solvers import OUTPUTS, STATUS_CODES, solve_point
-from study.workflow.grid import KEY_DTYPE, Points
+from study.workflow.grid import KEY_DTYPE, Points, code_hash
 
 CHECKSUM = "sha256"  # the member holding the checksum of the others
+
+#: The code hash of the solver sources as this process loaded them: computed when this module is first imported,
+#: right after it imported the solvers (a worker imports it with its first task, or in its warm-up). A dask worker
+#: that outlives an edit of the sources keeps running the code it loaded, and keeps this hash with it.
+LOADED_CODE = code_hash()
 
 
 class ChunkDamaged(Exception):
@@ -56,6 +61,15 @@ def solve_chunk(points: Points) -> dict[str, np.ndarray]:
     columns["method"] = np.array(methods, dtype=str)
     columns["point_key"] = np.asarray(points.keys, dtype=KEY_DTYPE)
     return columns
+
+
+def solve_task(points: Points, code: str) -> tuple[str, dict[str, np.ndarray] | None]:
+    """A sweep's task: ``(the code hash this process runs, solve_chunk(points))``, the points solved only when
+    that hash is ``code`` (the one the points' keys were made with); ``(hash, None)`` otherwise, so a worker
+    running other code never has its results stored under the new code's keys."""
+    if LOADED_CODE != code:
+        return LOADED_CODE, None
+    return LOADED_CODE, solve_chunk(points)
 
 
 def checksum(columns: Mapping[str, np.ndarray]) -> str:

@@ -125,5 +125,5 @@ def previous_history(path: Path) -> list[str]:
     try:
         with xr.open_dataset(path) as old:
             return [line for line in str(old.attrs.get("history", "")).splitlines() if line]
-    except (OSError, ValueError):
+    except (OSError, ValueError, RuntimeError):  # not a readable dataset: its history is lost, not the run
         return []

@@ -20,7 +20,8 @@ from typing import Callable
 
 import numpy as np
 
-from study.workflow.chunks import Store, StoredColumns, save_chunk, solve_chunk
+from study.workflow import chunks as chunk_module
+from study.workflow.chunks import Store, StoredColumns, save_chunk, solve_chunk, solve_task
 from study.workflow.grid import Grid, auto_chunk_size, chunk_key, chunks, code_hash
 
 #: How many times a chunk is resubmitted after the worker solving it was lost.
@@ -36,8 +37,23 @@ class Interrupted(KeyboardInterrupt):
 
 
 def warm_up() -> None:
-    """Import the solver stack in a worker process (a second or so of scipy/xarray imports)."""
-    import study.solvers  # noqa: F401
+    """Import the solver stack in a worker process (a second or so of scipy/xarray imports), through the module
+    that records the code hash of what it loaded (:data:`study.workflow.chunks.LOADED_CODE`)."""
+    import study.workflow.chunks  # noqa: F401
+
+
+class StaleCode(SweepError):
+    """A worker runs other solver code than this process: its results would be stored under the wrong keys."""
+
+
+def check_code(ran: str, code: str, where: str) -> None:
+    """Refuse the results of a task that ran with code hash ``ran`` where the keys were made with ``code``."""
+    if ran != code:
+        raise StaleCode(
+            f"{where} runs other solver code (code hash {ran[:12]}) than this study process ({code[:12]}): it "
+            "loaded the sources before they were changed (or from another install); restart the cluster's "
+            "workers (e.g. Client.restart()) so they load the current code, then run the same command again; "
+            "nothing it computed was stored")
 
 
 def dask_setup(worker) -> None:
@@ -80,7 +96,8 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
     store.mkdir(parents=True, exist_ok=True)
     for stale in store.glob(".tmp-*"):  # a write cut short by a kill: never a result, remove it
         stale.unlink(missing_ok=True)
-    keys = grid.point_keys(code_hash())
+    code = code_hash()
+    keys = grid.point_keys(code)
     stored = Store.scan(store)
     for path, why in stored.damaged:
         say(f"damaged chunk {path.name} ({why}): removed, its points are solved again")
@@ -114,10 +131,12 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
 
     try:
         if scheduler == "synchronous":
+            if tasks:
+                check_code(chunk_module.LOADED_CODE, code, "this process")
             for indices, path in tasks:
                 store_chunk(indices, path, solve_chunk(grid.take(indices, keys[indices])))
         elif tasks:
-            _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1)
+            _run_distributed(grid, keys, code, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1)
     except KeyboardInterrupt:
         _quiet_shutdown()
         raise Interrupted(f"interrupted: kept {kept} of {grid.size} points in {store}; run the same command "
@@ -206,9 +225,11 @@ def _quiet_shutdown() -> None:
         logging.getLogger(name).setLevel(logging.CRITICAL + 1)
 
 
-def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers) -> None:
+def _run_distributed(grid, keys, code, tasks, store_chunk, scheduler, workers) -> None:
     """Submit every chunk with its own points; store each as it completes; resubmit a chunk whose
-    worker was lost (dask gives up on a task after a few lost workers: ``KilledWorker``)."""
+    worker was lost (dask gives up on a task after a few lost workers: ``KilledWorker``). Each task reports the
+    code hash its worker runs (:func:`study.workflow.chunks.solve_task`): a worker that runs other code than
+    ``code`` (a long-lived cluster started before the sources changed) ends the sweep, nothing of it stored."""
     from dask.distributed import Client, as_completed
     from distributed.comm.core import CommClosedError
     from distributed.scheduler import KilledWorker
@@ -226,14 +247,14 @@ def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers) -> None
 
         def submit(task):
             indices, _ = task
-            return client.submit(solve_chunk, grid.take(indices, keys[indices]), pure=False)
+            return client.submit(solve_task, grid.take(indices, keys[indices]), code, pure=False)
 
         futures = {submit(task): (task, 0) for task in tasks}
         pending = as_completed(futures)
         for future in pending:
             task, resubmits = futures.pop(future)
             try:
-                columns = future.result()
+                ran, columns = future.result()
             except (KilledWorker, CancelledError, CommClosedError) as exc:
                 if resubmits >= RESUBMITS:
                     raise SweepError(f"chunk {task[1].name} lost its worker {resubmits + 1} times "
@@ -244,6 +265,7 @@ def _run_distributed(grid, keys, tasks, store_chunk, scheduler, workers) -> None
                 continue
             finally:
                 future.release()
+            check_code(ran, code, f"a worker of {scheduler or 'the local cluster'}")
             store_chunk(*task, columns)
     finally:
         client.close()

@@ -12,12 +12,16 @@ three faults, each at a random moment, drawn from
 - ``Ctrl-C``: SIGINT to the sweep's process group (as a terminal does); it must end with exit status
   130 and one line saying what was kept;
 - ``damaged chunk``: a kill -9, then one stored chunk file truncated, emptied or bit-flipped;
+- ``disk full``: the sweep runs with a file-size limit (``RLIMIT_FSIZE``, half the reference's ``results.nc``), so
+  that a write past it fails in the C library as on a full disk (``EFBIG`` instead of ``ENOSPC``, through numpy's
+  and netCDF/HDF5's writers alike); it must end with status 1 and one line saying what was kept;
 
 at a moment drawn from three phases (weights 1:3:1): 0-3 s after the start (imports, the cluster's
 start-up), while computing (after a random number of chunks is stored), or while ``results.nc`` is
 written (its temporary file exists);
 
-then run the same command again (as often as needed) until it finishes. A run passes when no output
+then run the same command again (as often as needed) until it finishes. Every sweep is the ``study`` console script
+(what a user runs), so a Ctrl-C in its first second lands while it imports. A run passes when no output
 has a traceback, every run ends as it should, nothing but ``results.nc`` is left in the folder, and
 the dataset equals the reference in every variable but ``wall_time``. Prints a markdown report.
 Each sweep is a separate ``study sweep`` process: nothing here imports the command line.
@@ -47,7 +51,10 @@ from study.workflow.sweep import PARTIAL, RESULTS
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_CONFIG = ROOT / "configs" / "screen.toml"
-KINDS = ("kill -9 all", "kill -9 workers", "Ctrl-C", "damaged chunk")
+KINDS = ("kill -9 all", "kill -9 workers", "Ctrl-C", "damaged chunk", "disk full")
+#: What a Ctrl-C may say (study.cli, study.console): what was kept, that nothing was computed, or that the command had
+#: already ended.
+CTRL_C_LINES = ("kept", "nothing new was computed", "interrupted while exiting")
 MOMENTS = ("start-up", "computing", "writing")
 
 
@@ -61,9 +68,15 @@ class Run:
     seconds: float = 0.0
 
 
+def console_script() -> str:
+    """The ``study`` console script of this interpreter's environment (``python -m study`` where there is none)."""
+    script = Path(sys.executable).parent / "study"
+    return str(script) if script.exists() else ""
+
+
 def sweep_command(config: Path, out: Path, workers: int, sets: list[str]) -> list[str]:
-    command = [sys.executable, "-m", "study", "sweep", str(config), "--out", str(out), "--quiet", "--no-charts",
-               "--workers", str(workers)]
+    start = [console_script()] if console_script() else [sys.executable, "-m", "study"]
+    command = start + ["sweep", str(config), "--out", str(out), "--quiet", "--no-charts", "--workers", str(workers)]
     for item in sets:
         command += ["--set", item]
     return command
@@ -139,8 +152,23 @@ def wait_for_moment(proc, out: Path, moment: str, chunks: int, rng: random.Rando
     return f"{len(chunk_files(out))} chunks stored"
 
 
-def one_run(command: list[str], out: Path, chunks: int, rng: random.Random, reference: xr.Dataset) -> Run:
-    """A sweep with 1-3 faults at random moments, then resumed until it finishes."""
+def file_size_limit(limit: int):
+    """A ``preexec_fn`` that caps the size of every file the process (and what it starts) writes at ``limit``
+    bytes: a write past it fails with ``EFBIG``, as a full disk fails with ``ENOSPC`` (SIGXFSZ is ignored, as
+    Python does anyway, so the write fails instead of the process)."""
+    import resource
+
+    def limit_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    return limit_files
+
+
+def one_run(command: list[str], out: Path, chunks: int, rng: random.Random, reference: xr.Dataset,
+            disk: int = 0) -> Run:
+    """A sweep with 1-3 faults at random moments, then resumed until it finishes. ``disk``: the file-size limit of
+    a ``disk full`` fault [bytes]."""
     run = Run()
     start = time.perf_counter()
     faults = rng.randint(1, 3)
@@ -148,13 +176,16 @@ def one_run(command: list[str], out: Path, chunks: int, rng: random.Random, refe
         kind = rng.choice(KINDS) if len(run.faults) < faults else None
         label = kind
         proc = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                start_new_session=True)
+                                start_new_session=True,
+                                preexec_fn=file_size_limit(disk) if kind == "disk full" else None)
         if kind == "kill -9 workers":
             when = wait_for_moment(proc, out, "computing", chunks, rng)
             victims = worker_processes(proc.pid)
             for victim in victims:
                 victim.kill()
             label += f" ({len(victims)}, {when})" if victims else " (too late: finished)"
+        elif kind == "disk full":
+            pass  # the limit strikes where a file outgrows it
         elif kind is not None:
             moment = rng.choices(MOMENTS, weights=(1, 3, 1))[0] if kind != "damaged chunk" else "computing"
             when = wait_for_moment(proc, out, moment, chunks, rng)
@@ -166,19 +197,25 @@ def one_run(command: list[str], out: Path, chunks: int, rng: random.Random, refe
             label = label[:-1] + ": lost while the workers started; finished)"
         elif kind in ("kill -9 all", "Ctrl-C", "damaged chunk") and proc.returncode == 0:  # no moment left
             label += " (too late: finished)"
+        elif kind == "disk full":
+            said = [line for line in err.strip().splitlines() if line.startswith("study: error: cannot write")]
+            where = "results.nc" if said and RESULTS in said[0].split(":")[2] else "a chunk"
+            label += f" (writing {where})" if proc.returncode == 1 else " (never reached: finished)"
+            if proc.returncode == 1 and (len(said) != 1 or "kept" not in said[0]):
+                run.problems.append(f"disk full printed {err.strip()!r}")
         run.exits.append(proc.returncode)
         lines = err.strip().splitlines()
         if any(not line.startswith("study: ") for line in lines):  # one line per event, nothing else
             run.problems.append(f"after {label or 'resume'}, stderr has more than the study's lines: {err.strip()!r}")
         if kind == "Ctrl-C" and proc.returncode == 130:
             said = [line for line in lines if line.startswith("study: interrupted")]
-            if len(said) != 1 or not ("kept" in said[0] or "nothing new was computed" in said[0]):
+            if len(said) != 1 or not any(words in said[0] for words in CTRL_C_LINES):
                 run.problems.append(f"Ctrl-C printed {said!r}")
         if kind == "damaged chunk" and proc.returncode != 0:  # a kill -9, then a chunk damaged
             stored = chunk_files(out)
             if stored:
                 label += f", then a chunk {damage(rng.choice(stored), rng)}"
-        if proc.returncode not in (0, 130, -signal.SIGKILL):
+        if proc.returncode not in (0, 130, -signal.SIGKILL) and not (kind == "disk full" and proc.returncode == 1):
             run.problems.append(f"exit status {proc.returncode} after {label or 'resume'}: {err.strip()[-300:]!r}")
         if label is not None:
             run.faults.append(label)
@@ -210,6 +247,7 @@ def run_faults(runs: int = 10, seed: int = 1, config: Path = DEFAULT_CONFIG, wor
     if clean.returncode != 0:
         raise SystemExit(f"the uninterrupted sweep failed: {clean.stderr.strip()}")
     reference = xr.load_dataset(reference_out / RESULTS)
+    disk = (reference_out / RESULTS).stat().st_size // 2  # results.nc outgrows it; a chunk file may too
     study = load(config, parse_set(list(sets)))
     size = study.sweep["chunk_size"]
     chunks = sum(1 for _ in grid_chunks(np.arange(study.size), size or auto_chunk_size(study.size), taper=not size))
@@ -217,7 +255,7 @@ def run_faults(runs: int = 10, seed: int = 1, config: Path = DEFAULT_CONFIG, wor
     for number in range(runs):
         out = work / f"run-{number}"
         shutil.rmtree(out, ignore_errors=True)
-        results.append(one_run(sweep_command(config, out, workers, list(sets)), out, chunks, rng, reference))
+        results.append(one_run(sweep_command(config, out, workers, list(sets)), out, chunks, rng, reference, disk))
         shutil.rmtree(out, ignore_errors=True)
         verdict = "ok" if not results[-1].problems else "; ".join(results[-1].problems)
         print(f"run {number + 1}/{runs}: {', '.join(results[-1].faults)} -> {verdict}", file=sys.stderr)
@@ -243,7 +281,7 @@ def report(results: list[Run], duration: float, sizes, seed: int, config: Path, 
         f"{min(len(r.exits) for r in results)} to {max(len(r.exits) for r in results)}; "
         f"time per faulted sweep {min(r.seconds for r in results):.1f} to {max(r.seconds for r in results):.1f} s",
         f"- **{passed} of {len(results)}** identical to the uninterrupted run in every variable but `wall_time`, "
-        "with no traceback, every Ctrl-C one line, nothing left but `results.nc`",
+        "with no traceback, every Ctrl-C and every full disk one line, nothing left but `results.nc`",
     ]
     for number, run in enumerate(results, 1):
         if run.problems:

@@ -13,6 +13,7 @@ import fcntl
 import json
 import os
 import socket
+import stat
 from pathlib import Path
 from typing import Iterator
 
@@ -37,7 +38,7 @@ def folder_lock(folder: Path, config: str, say=None) -> Iterator[dict]:
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / LOCK
     while True:
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+        fd = _open_regular(path)
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -67,6 +68,23 @@ def folder_lock(folder: Path, config: str, say=None) -> Iterator[dict]:
         with contextlib.suppress(FileNotFoundError):
             path.unlink()
         os.close(fd)
+
+
+def _open_regular(path: Path) -> int:
+    """Open (or create) the lock file itself: never through a symbolic link (its target would be overwritten
+    with the lock's JSON), and only a regular file. Raises :class:`Locked` saying what is there instead."""
+    refuse = (f"{path} is not the sweep's lock file but {{what}}; it is left as it is: remove it and run the "
+              "same command again")
+    try:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK, 0o666)
+    except OSError as exc:
+        if path.is_symlink():
+            raise Locked(refuse.format(what=f"a symbolic link to {os.readlink(path)}")) from None
+        raise
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise Locked(refuse.format(what="not a regular file"))
+    return fd
 
 
 def _read(fd: int) -> dict:

@@ -41,6 +41,14 @@ def _bytes(n: float) -> str:
     raise AssertionError
 
 
+def _free(folder: Path) -> str:
+    """The free space of the disk holding ``folder``, for a message ("unknown" when it cannot be read)."""
+    try:
+        return _bytes(shutil.disk_usage(folder).free)
+    except OSError:
+        return "unknown"
+
+
 def check_size(study: Study, cap: int) -> None:
     """Refuse a grid of more than ``cap`` points, with an estimate of what it would take."""
     size = study.size
@@ -139,6 +147,9 @@ def _locked_sweep(study, out, scheduler, workers, progress, on_chunk, say) -> Pa
         write_dataset(study, grid, columns, result, previous_history(result))
     except OSError as exc:
         raise SweepError(f"cannot write {result}: {reason(exc)}; {kept}") from None
+    except RuntimeError as exc:  # the netCDF/HDF5 library's own error, e.g. "NetCDF: HDF error" on a full disk
+        raise SweepError(f"cannot write {result}: {str(exc) or type(exc).__name__} (from the netCDF library: a full "
+                         f"disk or a file-size limit, among others; {_free(out)} free there); {kept}") from None
     except ChunkDamaged as exc:
         raise SweepError(f"a chunk was damaged while {result} was written ({exc}); run the same command "
                          "again: it is found and solved again") from None

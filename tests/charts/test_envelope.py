@@ -106,3 +106,22 @@ def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_dec
     open_points = fails["no valid answer"].transpose(*dims)
     assert int(decided.sum()) == 1 and int(open_points.sum()) == int((ds.status != 0).sum()) - 1
     assert not bool(fails["no valid answer"].transpose(*dims).values[first]) and bool(open_points.values[second])
+
+
+def test_a_point_that_yields_is_over_yield_not_unanswered_and_the_limit_charts_show_it(study):
+    # issue 32: a point past the grade's yield gets status yields (study.solvers.gate.within_yield); its figures
+    # are kept, so the envelope must call its cell over yield (not "no valid answer") and ok_values must keep it.
+    from study.charts.envelope import failures
+    from study.charts.plane import ok_values
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    answered = (ds.status == 0).values
+    first = tuple(np.argwhere(answered)[0])
+    ds["status"].values[first] = STATUS_CODES["yields"]
+    ds["yield_utilisation"].values[first] = 30.0
+    fails, _ = failures(ds)
+    assert bool(fails["over yield"].transpose(*ds.status.dims).values[first])
+    assert not bool(fails["no valid answer"].transpose(*ds.status.dims).values[first])
+    shown = ok_values(ds, "yield_utilisation").transpose(*ds.status.dims).values[first]
+    assert shown == 30.0

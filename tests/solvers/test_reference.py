@@ -1,5 +1,7 @@
 """Tests of the reference model (study.solvers.reference): checked against closed forms no one here wrote."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -457,3 +459,16 @@ def test_an_unknown_integrator_scheme_is_refused_naming_the_option(base):
         reference.Integrator(model, 1e-6, scheme="rk4")
     result = solve_point({**base, "reference_integrator": "rk4"}, "reference")  # a point's bad input: its status
     assert result.status == "failed" and "reference_integrator = 'rk4'; allowed:" in result.message
+
+
+def test_restitution_zero_is_refused_not_computed_as_an_elastic_contact():
+    # issue 32: e = 0 set the reference model's hysteresis to 0, the perfectly elastic contact of e = 1 (bit-identical
+    # results). The Hunt-Crossley damping that stops a rebound grows without bound as e -> 0: the model cannot
+    # represent it, and says so (status failed, the calibration's words); a config refuses e = 0 (test_config.py).
+    from study import config
+    from study.solvers import solve_point
+
+    root = Path(__file__).resolve().parents[2]
+    inputs = {**config.load(root / "configs" / "paper.toml").point(), "restitution": 0.0}
+    result = solve_point(inputs, "reference")
+    assert result.status == "failed" and "restitution = 0.0: the calibrated contact needs 0 < e <= 1" in result.message

@@ -98,6 +98,10 @@ CASES = [
     # closed-form free whirl does not hold
     pytest.param("out_of_scope", "free-whirl", {"inclination": 0.2617993877991494}, "reaches the wall",
                  id="out_of_scope-free-whirl-15deg"),
+    # source: issue 32 - 10^7 lbf (4.448e7 N) of tension on the paper's pipe (A = 2.86 in^2): an axial stress of
+    # 3.5e6 psi, 15.6 GPa in all, 30 times E-75's 75 ksi; it was called ok (the gate's within_yield check)
+    pytest.param("yields", "free-whirl", {"axial_tension": 1e7 * 4.4482216152605},
+                 "is 30.3 times the yield strength 5.171e+08 Pa: the pipe yields", id="yields-free-whirl-1e7lbf"),
 ]
 
 #: Statuses no real point reaches, with the reason (checked to be exactly the ones without a case).

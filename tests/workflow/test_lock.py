@@ -36,3 +36,24 @@ def test_a_lock_left_by_a_killed_process_is_taken_over(tmp_path):
         assert json.loads((tmp_path / LOCK).read_text())["config"] == "new.toml"
     assert said == [f"took over the stale lock of pid {pid} on {socket.gethostname()}, started "
                     "2026-01-01T00:00:00+00:00, config old.toml (no longer running)"]
+
+
+def test_a_lock_file_that_is_a_symbolic_link_is_refused_and_its_target_left_alone(tmp_path):
+    # issue 32: the lock was opened through the link and its target overwritten with the lock's JSON
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    folder = tmp_path / "study"
+    folder.mkdir()
+    (folder / LOCK).symlink_to(target)
+    with pytest.raises(Locked, match="symbolic link to .*precious.txt.*remove it"):
+        with folder_lock(folder, "a.toml"):
+            pass
+    assert target.read_text() == "keep me"
+    assert (folder / LOCK).is_symlink()  # left as it was
+
+
+def test_a_lock_path_that_is_not_a_regular_file_is_refused(tmp_path):
+    os.mkfifo(tmp_path / LOCK)
+    with pytest.raises(Locked, match="not a regular file"):
+        with folder_lock(tmp_path, "a.toml"):
+            pass

@@ -403,17 +403,45 @@ def test_a_full_disk_while_writing_the_dataset_keeps_every_point(tmp_path, monke
     assert solved == []
 
 
+def test_a_netcdf_error_while_writing_the_dataset_is_one_line_and_keeps_every_point(tmp_path, monkeypatch, reference):
+    # issue 32: a full disk under the netCDF library is "RuntimeError: NetCDF: HDF error", not an OSError: it was a
+    # traceback. (make faults injects a real one: a file-size limit under the writing process.)
+    out = tmp_path / "full"
+    original = xr.Dataset.to_netcdf
+    writes = []
+
+    def write_until_full(self, path=None, *args, **kwargs):
+        writes.append(path)
+        if len(writes) == 3:
+            raise RuntimeError("NetCDF: HDF error")
+        return original(self, path, *args, **kwargs)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", write_until_full)
+    with pytest.raises(SweepError) as full:
+        run_sweep(small_study(), out, scheduler="synchronous", progress=False)
+    message = str(full.value)
+    assert message.startswith(f"cannot write {out / 'results.nc'}: NetCDF: HDF error (from the netCDF library: a full "
+                              "disk or a file-size limit, among others; ")
+    assert message.endswith(f"free there); all 30 points are kept in {out / PARTIAL}; run the same command again to "
+                            "write it (nothing is recomputed)") and "\n" not in message
+    assert sorted(p.name for p in out.iterdir()) == [PARTIAL]  # no half-written file
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", original)
+    solved = solved_points(monkeypatch)
+    same_as(run_sweep(small_study(), out, scheduler="synchronous", progress=False), reference)
+    assert solved == []
+
+
 def test_a_grid_over_the_cap_is_refused_with_an_estimate(tmp_path):
     huge = load_text(TEXT.split("[sweep]")[0] + '[sweep.axes]\n'
-                     'load.rotary_speed = { start = "50 rpm", stop = "300 rpm", num = 1000000 }\n'
-                     'load.axial_tension = { start = "1000 lbf", stop = "40000 lbf", num = 1000 }\n', "huge.toml")
+                     'load.rotary_speed = { start = "50 rpm", stop = "300 rpm", num = 100000 }\n'
+                     'load.axial_tension = { start = "1000 lbf", stop = "40000 lbf", num = 100 }\n', "huge.toml")
     start = time.perf_counter()
     with pytest.raises(SweepError) as refused:
         run_sweep(huge, tmp_path / "huge", progress=False)
     assert time.perf_counter() - start < 1.0 and not (tmp_path / "huge").exists()
-    assert str(refused.value).startswith("the grid has 1,000,000,000 points (1000000 rotary_speed x 1000 "
+    assert str(refused.value).startswith("the grid has 10,000,000 points (100000 rotary_speed x 100 "
                                          "axial_tension), more than sweep.max_points = 1,000,000: about ")
-    assert "--max-points 1000000000" in str(refused.value)
+    assert "--max-points 10000000" in str(refused.value)  # the config refuses more than 10^7 (test_config.py)
     with pytest.raises(SweepError, match="more than sweep.max_points = 29"):
         run_sweep(small_study(), tmp_path / "s", max_points=29, progress=False)
     assert run_sweep(small_study(), tmp_path / "s", max_points=30, scheduler="synchronous", progress=False).exists()
@@ -429,3 +457,22 @@ def test_a_span_search_too_slow_to_hold_is_refused_before_any_work(tmp_path):
     with pytest.raises(SweepError, match=r"at 0.001 rpm down to a 3-m span, above solver.max_poles = 2e\+07.*nothing was computed"):
         run_sweep(load_text(text, "slow.toml"), tmp_path / "slow", scheduler="synchronous", progress=False)
     assert not (tmp_path / "slow").exists() or not any((tmp_path / "slow").iterdir())
+
+
+def test_a_worker_running_other_code_is_refused_and_nothing_of_it_stored(tmp_path, monkeypatch):
+    # issue 32: a long-lived cluster's workers kept the solver code they loaded; after an edit their points were
+    # stored under the new code's keys. Simulated: the worker side reports another code hash than the keys'.
+    from dask.distributed import LocalCluster
+
+    import study.workflow.chunks as chunks
+
+    monkeypatch.setattr(chunks, "LOADED_CODE", "0" * 64)
+    out = tmp_path / "stale"
+    with pytest.raises(SweepError, match=r"this process runs other solver code \(code hash 000000000000\) than "
+                                         r"this study process .*restart the cluster's workers"):
+        run_sweep(small_study(), out / "sync", scheduler="synchronous", progress=False)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        with pytest.raises(SweepError, match=r"a worker of \w+://.* runs other solver code .*nothing it computed "
+                                             "was stored"):
+            run_sweep(small_study(), out / "cluster", scheduler=cluster.scheduler_address, progress=False)
+    assert list((out / "sync" / PARTIAL).glob("*.npz")) == [] == list((out / "cluster" / PARTIAL).glob("*.npz"))
