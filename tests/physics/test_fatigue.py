@@ -133,3 +133,47 @@ def test_unknown_curve_and_correction_are_refused_with_the_allowed_names():
         fatigue.cycles_to_failure(1e8, "Z")
     with pytest.raises(ValueError, match=r"mean-stress correction = 'walker'; allowed: goodman, gerber"):
         fatigue.equivalent_alternating_stress(1e7, 0.0, SU, SY, "walker")
+
+
+def test_rainflow_counts_the_astm_e1049_example():
+    # ASTM E1049-85 (2017) §5.4.4 and its Fig. 6: the history -2, 1, -3, 5, -1, 3, -4, 4, -2 counts ranges
+    # 3, 4, 6, 8, 9 units with 0.5, 1.5, 0.5, 1.0, 0.5 cycles (as printed in the standard's table)
+    ranges, means, counts = fatigue.rainflow_cycles(np.array([-2, 1, -3, 5, -1, 3, -4, 4, -2]) * MPA)
+    counted = {}
+    for r, c in zip(ranges / MPA, counts):
+        counted[round(r, 9)] = counted.get(round(r, 9), 0.0) + c
+    assert counted == {3.0: 0.5, 4.0: 1.5, 6.0: 0.5, 8.0: 1.0, 9.0: 0.5}
+
+
+@pytest.mark.parametrize("mean", [0.0, 150 * MPA])
+def test_a_sinusoidal_history_does_the_damage_of_one_cycle_a_period(mean):
+    # closed form (Miner): 20 whole periods of amplitude 60 MPa about the mean, 1.5 s each, do 20 cycles of the
+    # constant-amplitude rate of fatigue.damage_rate at one cycle a period (rotary speed 2π/1.5 rad/s); the history
+    # starts and ends at a peak (rainflow counts 19 cycles and two half cycles of the full range: 20)
+    period, amplitude = 1.5, 60 * MPA
+    t = np.linspace(0.0, 20 * period, 20 * 64 + 1)
+    stress = mean + amplitude * np.cos(2 * np.pi * t / period)
+    rate = fatigue.history_damage_rate(stress, 20 * period, 517e6 * 1.3, stress_concentration=1.2)
+    sigma_ar = fatigue.local_equivalent_amplitude(amplitude, mean, 517e6 * 1.3, stress_concentration=1.2)
+    expected = fatigue.damage_rate(sigma_ar, 2 * np.pi / period)
+    assert rate == pytest.approx(float(expected), rel=1e-9)
+
+
+def test_impacts_add_the_small_cycles_one_cycle_a_revolution_misses():
+    # a revolution's bending (range 100 MPa) with three impact ringings of range 40 MPa on it: rainflow counts the
+    # large cycle once and the three small ones, and the damage exceeds the large cycle's alone by their share
+    one = np.array([-50.0, 50.0])
+    ring = np.array([-50.0, 50.0, 10.0, 50.0, 10.0, 50.0, 10.0, 50.0])
+    revolutions = 10
+    plain = np.concatenate([one] * revolutions + [[-50.0]]) * MPA
+    rung = np.concatenate([ring] * revolutions + [[-50.0]]) * MPA
+    base = fatigue.history_damage_rate(plain, 1.0, 1e12, correction="none")
+    more = fatigue.history_damage_rate(rung, 1.0, 1e12, correction="none")
+    # both ranges lie below B1's knee (106.97 MPa): its second slope m2 = 5, so each small cycle does (40/100)^5 of
+    # the large one's damage (DNV-RP-C203 Table 2-1)
+    expected = 1.0 + 3.0 * (40.0 / 100.0) ** 5
+    assert more / base == pytest.approx(expected, rel=1e-9)
+
+
+def test_an_empty_history_does_no_damage():
+    assert fatigue.history_damage_rate(np.full(10, 5 * MPA), 1.0, 700e6) == 0.0
