@@ -6,11 +6,12 @@ STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
 RUNS   ?= 10
 
-.PHONY: help setup test sweep charts bench bench-large validate faults clean chromium
+.PHONY: help setup test test-generic sweep charts bench bench-large validate faults clean chromium
 
 help:
 	@echo "make setup     install into .venv and compile the solver kernels ahead (every target does it first)"
 	@echo "make test      install (first time) and run the whole test suite"
+	@echo "make test-generic  the precision-sensitive tests again, numba compiling for a generic x86-64 CPU (CI runs it)"
 	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
 	@echo "make charts    redraw the charts of the default study"
 	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
@@ -29,6 +30,11 @@ $(STAMP): pyproject.toml
 
 test: $(STAMP) chromium
 	$(BIN)/python -m pytest -q
+
+# The precision-sensitive tests (marker `precision`, tests/conftest.py) again with numba compiling for a generic
+# x86-64 CPU: figures held to their real accuracy, not to this machine's last bits. CI runs it after make test.
+test-generic: $(STAMP)
+	NUMBA_CPU_NAME=generic $(BIN)/python -m pytest -q -m precision -p no:cacheprovider
 
 # The report test opens outputs in a headless browser: Debian's chromium, installed once if absent.
 chromium:
