@@ -91,7 +91,8 @@ def test_one_mass_peak_over_lees_half_sine_depends_on_e_alone(restitution, ratio
 
 def test_a_looser_tolerance_accepts_the_same_point(paper_one_wall):
     r = solve_point({**paper_one_wall, "check_tolerance": 0.5}, "crosscheck")
-    assert r.status == "ok", r.message
+    # accepted: no check but the yield fails (its 6.24e8 Pa is past E-75's 5.17e8 Pa yield: issue 32's status)
+    assert r.status == "yields" and "not ok - yields:" in r.message and "disagrees" not in r.message, r.message
     assert "agrees with the periodic solution within 0.5" in r.message
 
 

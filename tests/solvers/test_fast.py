@@ -19,7 +19,7 @@ def test_paper_example_one_wall_self_consistent_reading_has_two_short_valid_span
     for modes in (11, 21):
         result = solve_point({**paper_inputs, "impact_pattern": "one_wall", "closure": "self_consistent",
                               "modes": modes}, "fast")
-        assert result.status == "ok", result.message
+        assert result.status == "yields", result.message  # valid; its 6.24e8 Pa is past E-75's yield (issue 32)
         spans = np.array(result.extras["candidate_spans"]) / 0.3048
         assert result.values["span_length"] / 0.3048 == pytest.approx(spans[0])
         assert result.error_estimate < 0.05
@@ -75,7 +75,8 @@ PANEL = [
     (190, 30000, 0.2, 10, 'one_wall', 'self_consistent', 'ok', 10.100091847019515, 127853671.6672186, 14555, 2),
     (240, 10000, 0.2, 9, 'one_wall', 'self_consistent', 'ok', 7.658988040027578, 139172800.03805643, 10299, 1),
     (270, 20000, 0.5, 12, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 12765, 0),
-    (300, 10000, 0.5, 10, 'one_wall', 'self_consistent', 'ok', 6.712817536696624, 623858770.7190316, 13365, 2),
+    # 6.24e8 Pa is past E-75's 5.17e8 Pa yield: 'yields' since issue 32 (the gate's within_yield), outputs unchanged
+    (300, 10000, 0.5, 10, 'one_wall', 'self_consistent', 'yields', 6.712817536696624, 623858770.7190316, 13365, 2),
     (300, 40000, 0.8, 12, 'one_wall', 'self_consistent', 'no_span', np.nan, np.nan, 12658, 0),
     (50, 5000, 0.2, 9, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 3361, 0),
     (60, 5000, 0.8, 12, 'alternating', 'prescribed', 'no_span', np.nan, np.nan, 3242, 0),

@@ -476,3 +476,22 @@ def test_a_worker_running_other_code_is_refused_and_nothing_of_it_stored(tmp_pat
                                              "was stored"):
             run_sweep(small_study(), out / "cluster", scheduler=cluster.scheduler_address, progress=False)
     assert list((out / "sync" / PARTIAL).glob("*.npz")) == [] == list((out / "cluster" / PARTIAL).glob("*.npz"))
+
+
+def test_a_task_that_fails_on_a_worker_is_one_line_naming_the_chunk(tmp_path, monkeypatch):
+    # a worker of a cluster started before this code (its study.workflow.chunks without solve_task) fails the
+    # unpickling of every task: that was a traceback of the worker's exception; now one line with what to do
+    from dask.distributed import LocalCluster
+
+    import study.workflow.execute as execute
+
+    def old_worker(points, code):
+        raise AttributeError("module 'study.workflow.chunks' has no attribute 'solve_task'")
+
+    monkeypatch.setattr(execute, "solve_task", old_worker)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        with pytest.raises(SweepError, match=r"chunk \w+\.npz failed on a worker of \w+://.* \(AttributeError: module "
+                                             r"'study.workflow.chunks' has no attribute 'solve_task'\); a cluster "
+                                             r"started before the code changed runs the old code: restart its workers"):
+            run_sweep(small_study(), tmp_path / "old", scheduler=cluster.scheduler_address, progress=False)
+    assert list((tmp_path / "old" / PARTIAL).glob("*.npz")) == []
