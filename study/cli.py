@@ -12,8 +12,7 @@ import sys
 
 from study import __version__
 from study.config import ConfigError, load, parse_set
-from study.solvers import METHODS, OUTPUTS, solve_point
-from study.units import convert, display_unit, pint_unit
+from study.solvers import METHODS, solve_point
 from study.workflow.compiled import cached, compile_ahead, ensure_compiled, kernels, uncached
 from study.workflow.execute import Interrupted, SweepError, tell
 
@@ -38,27 +37,10 @@ def _point_json(result, inputs) -> str:
     return json.dumps(payload, indent=2)
 
 
-def _point_table(result, inputs) -> str:
-    lines = [f"method {result.method}: status {result.status}", f"  {result.message}", ""]
-    for name, value in result.values.items():
-        unit, long_name = OUTPUTS[name]
-        shown_unit, label = display_unit(name, unit)
-        if isinstance(value, float) and math.isfinite(value):
-            shown = convert(value, pint_unit(unit), shown_unit)
-            text = f"{shown:12.5g} {label}"
-        else:
-            text = f"{value!s:>12}"
-        lines.append(f"  {name:28s} {text:24s} {long_name}")
-    if result.error_estimate is not None:
-        lines.append(f"  {'error_estimate':28s} {result.error_estimate:12.3g} {'':11s} relative, max normal stress")
-    for name, value in result.extras.items():  # the non-scalar outputs, briefly (--json has them whole)
-        if name == "candidate_spans":
-            value = ", ".join(f"{convert(v, 'm', 'ft'):.1f} ft" for v in value) or "none"
-        elif isinstance(value, (dict, list)):
-            continue
-        lines.append(f"  {name:28s} {value}")
-    lines.append(f"\n  wall time {result.wall_time * 1e3:.3g} ms")
-    return "\n".join(lines)
+def _point_table(result, inputs, system: str = "oilfield") -> str:
+    from study.table import point_table
+
+    return point_table(result, inputs, system)
 
 
 def cmd_point(args) -> int:
@@ -68,7 +50,7 @@ def cmd_point(args) -> int:
         inputs["solver_method"] = args.method
     ensure_compiled(inputs, say=tell)
     result = solve_point(inputs)
-    print(_point_json(result, inputs) if args.json else _point_table(result, inputs))
+    print(_point_json(result, inputs) if args.json else _point_table(result, inputs, "si" if args.si else "oilfield"))
     return 0
 
 
@@ -142,6 +124,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help='override an input, e.g. --set load.rotary_speed="200 rpm" (repeatable)')
     p.add_argument("--method", choices=sorted(METHODS))
     p.add_argument("--json", action="store_true", help="print one JSON object, SI values")
+    p.add_argument("--si", action="store_true", help="the table in SI units (default: oilfield units)")
     p.set_defaults(func=cmd_point)
 
     p = sub.add_parser("sweep", help="solve every point of the config's grid and write outputs/<name>/")

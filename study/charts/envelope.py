@@ -121,37 +121,107 @@ def _criterion_text(target_hours: float, criterion: str) -> str:
     return "below the endurance limit (endurance utilisation ≤ 1)"
 
 
+#: A cell's verdict (the CSV's ``verdict``): every point decided and every limit held; some limit failed at a
+#: decided point (or the cell is in a critical-speed band, which needs no solution); no limit failed at a decided
+#: point but some point is undecided (its answer cannot be decided at its error, or it has no answer).
+VERDICTS = ("safe", "limited", "undecided")
+
+
+def _answered(ds: xr.Dataset) -> xr.DataArray:
+    """True where a point has an answer to judge: ``ok``, or ``not_converged`` with its values kept (an answer with
+    its error stated); other statuses' values (where any) are not answers."""
+    ok = ok_points(ds)
+    if "status" not in ds.data_vars:
+        return ok
+    return ok | (_full(ds, "status") == STATUS_CODES["not_converged"])
+
+
+def _error(ds: xr.Dataset) -> xr.DataArray:
+    """Each point's relative error estimate (0 where the dataset has none: an ok point met the study's tolerance)."""
+    if "error_estimate" not in ds.data_vars:
+        return xr.zeros_like(ok_points(ds), dtype=float)
+    return _full(ds, "error_estimate").fillna(0.0)
+
+
+def _cells(p, da: xr.DataArray) -> np.ndarray:
+    """``da`` over the dataset's dimensions as (load, speed, points of the cell): the fixed dimensions at their value,
+    the reduced ones stacked."""
+    da = da.isel({d: 0 for d in p.fixed if d in da.dims})
+    da = da.transpose(p.y, p.x, *[d for d in p.reduced if d in da.dims])
+    values = np.asarray(da.values)
+    return values.reshape(values.shape[0], values.shape[1], -1)
+
+
+def worst_in_cells(ds: xr.Dataset, name: str, how: str, p=None) -> dict[str, np.ndarray]:
+    """Per rotary speed × axial load cell, the worst ``name`` (``how``: "max" or "min") over every answered point
+    (ok, and not converged with its values: undecided ones included), the relative error estimate of the point that
+    gives it, and the worst case over the cell with each point's stresses off by :data:`MARGIN` times its error
+    estimate (a utilisation goes as the stress; a fatigue life as the stress to the power −:data:`LIFE_SLOPE`).
+
+    Returns ``{"value", "error", "bound"}`` arrays (load × speed), NaN where the cell has no answered point."""
+    p = p or plane(ds)
+    values = _cells(p, _limit(ds, name).where(_answered(ds)))
+    error = _cells(p, _error(ds))
+    off = MARGIN * error
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        bound = values * (1.0 + off) if how == "max" else values * (1.0 + off) ** -LIFE_SLOPE
+    empty = np.all(np.isnan(values), axis=-1)
+    pick = np.where(np.isnan(values), -np.inf if how == "max" else np.inf, values)
+    index = np.argmax(pick, axis=-1) if how == "max" else np.argmin(pick, axis=-1)
+    value = np.take_along_axis(values, index[..., None], -1)[..., 0]
+    err = np.take_along_axis(error, index[..., None], -1)[..., 0]
+    fill = -np.inf if how == "max" else np.inf
+    worst_bound = (np.max if how == "max" else np.min)(np.where(np.isnan(bound), fill, bound), axis=-1)
+    return {"value": np.where(empty, np.nan, value), "error": np.where(empty, np.nan, err),
+            "bound": np.where(empty, np.nan, worst_bound)}
+
+
 def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
                    ) -> list[dict]:
-    """One row per rotary speed × axial load cell (display units): whether it is safe, what limits it, the
-    points it holds and how many are ok, and the worst values over them. Empty without the plane or the limits."""
+    """One row per rotary speed × axial load cell (display units): its verdict (:data:`VERDICTS`), what limits it
+    (decided failures) or keeps it undecided, the points it holds (ok, decided within their error, undecided,
+    without an answer), and per design figure the worst value over every answered point — undecided ones included —
+    with the relative error estimate of the point that gives it and the cell's worst case with the stresses off by
+    :data:`MARGIN` times each point's error estimate. Empty without the plane or the limits."""
     p = plane(ds)
     if p is None or not _has_limits(ds, criterion):
         return []
     fails, _ = failures(ds, target_hours, criterion)
     xq, yq = quantity(ds[p.x]), quantity(ds[p.y])
     ok = ok_points(ds)
+    answered = _answered(ds)
+    undecided = fails["no valid answer"]
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
     count = p.reduce(xr.ones_like(ok, dtype=int), "sum")
     ok_count = p.reduce(ok.astype(int), "sum")
     within = p.reduce(_decided(ds, fails).astype(int), "sum")
-    counted = ~fails["no valid answer"]
-    worst = {}
-    for name, how, scale in (("yield_utilisation", "max", 1.0), ("endurance_utilisation", "max", 1.0),
-                             ("fatigue_life", "min", 1.0 / HOUR)):
-        worst[name] = p.reduce(_limit(ds, name).where(counted), how) * scale
+    open_count = p.reduce((undecided & answered).astype(int), "sum")
+    no_answer = p.reduce((~answered).astype(int), "sum")
+    figures = [("yield_utilisation", "max", "max yield utilisation", "[-]", 1.0),
+               ("endurance_utilisation", "max", "max endurance utilisation", "[-]", 1.0),
+               ("fatigue_life", "min", "min fatigue life", "[h]", 1.0 / HOUR)]
+    worst = {name: worst_in_cells(ds, name, how, p) for name, how, *_ in figures}
     rows = []
     for i, load in enumerate(yq.convert(ds[p.y].values)):
         for j, speed in enumerate(xq.convert(ds[p.x].values)):
-            limited = [r for r in REASONS if reduced[r][i, j]]
-            rows.append({
-                xq.label: _round(speed), yq.label: _round(load), "safe": not limited,
-                "limited by": "; ".join(limited), "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
-                "decided within their error": int(within[i, j]),
-                "max yield utilisation [-]": _round(worst["yield_utilisation"][i, j], 4),
-                "max endurance utilisation [-]": _round(worst["endurance_utilisation"][i, j], 4),
-                "min fatigue life [h]": _round(worst["fatigue_life"][i, j], 4),
-            })
+            limited = [r for r in REASONS[1:] if reduced[r][i, j]]
+            verdict = "limited" if limited else ("undecided" if reduced[REASONS[0]][i, j] else "safe")
+            why_open = []
+            if open_count[i, j]:
+                why_open.append(f"{int(open_count[i, j])} point(s) undecided at their error")
+            if no_answer[i, j]:
+                why_open.append(f"{int(no_answer[i, j])} point(s) without an answer")
+            row = {xq.label: _round(speed), yq.label: _round(load), "verdict": verdict, "safe": verdict == "safe",
+                   "limited by": "; ".join(limited), "undecided because": "; ".join(why_open),
+                   "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
+                   "decided within their error": int(within[i, j]), "undecided points": int(open_count[i, j]),
+                   "points without an answer": int(no_answer[i, j])}
+            for name, _, label, unit, scale in figures:
+                w = worst[name]
+                row[f"{label} {unit}"] = _round(w["value"][i, j] * scale, 4)
+                row[f"{label}: its error estimate [-]"] = _round(w["error"][i, j], 3)
+                row[f"{label} at {MARGIN:g}x error {unit}"] = _round(w["bound"][i, j] * scale, 4)
+            rows.append(row)
     return rows
 
 
@@ -160,9 +230,11 @@ def _round(value, digits: int = 10) -> float:
     return float(f"{float(value):.{digits}g}")
 
 
-def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
-    """Per axial load (from :func:`envelope_table`'s rows), the safe rotary speeds as runs of neighbouring grid
-    speeds: [(load text, "60–120, 200 rpm" or "none"), ...]."""
+def safe_ranges(rows: list[dict], verdict: str = "safe") -> list[tuple[str, str]]:
+    """Per axial load (from :func:`envelope_table`'s rows), the rotary speeds whose cell has ``verdict`` (default
+    safe) as runs of neighbouring grid speeds: [(load text, "60–120, 200 rpm" or "none"), ...]."""
+    if verdict not in VERDICTS:
+        raise ValueError(f"verdict = {verdict!r}; allowed: {', '.join(VERDICTS)}")
     if not rows:
         return []
     speed_key, load_key = list(rows[0])[:2]
@@ -172,14 +244,15 @@ def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
     for load in dict.fromkeys(r[load_key] for r in rows):
         mine = [r for r in rows if r[load_key] == load]
         runs: list[list[float]] = []
-        previous_safe = False
+        previous = False
         for r in mine:
-            if r["safe"]:
-                if previous_safe:
+            here = r.get("verdict", "safe" if r["safe"] else "limited") == verdict
+            if here:
+                if previous:
                     runs[-1].append(r[speed_key])
                 else:
                     runs.append([r[speed_key]])
-            previous_safe = r["safe"]
+            previous = here
         text = ", ".join(format_value(run[0]) if len(run) == 1 else f"{format_value(run[0])}–{format_value(run[-1])}"
                          for run in runs)
         out.append((f"{format_value(load)} {load_unit}", f"{text} {speed_unit}" if runs else "none"))

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from study.atomic import atomic_path
 from study.charts.catalogue import save_charts
-from study.charts.envelope import CRITERIA, envelope_table, safe_ranges, write_table
+from study.charts.envelope import CRITERIA, MARGIN, envelope_table, safe_ranges, write_table
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS
 from study.charts.labels import format_value, quantity
 
@@ -92,14 +92,47 @@ def _envelope_section(rows, table, folder: Path, target_hours: float, criterion:
     limit = (f"fatigue life at least {format_value(target_hours)} h" if criterion == "life"
              else "below the endurance limit")
     lines = ["<h2>Safe operating envelope</h2>",
-             f"<p>Rotary speeds where every point (over every other swept input) is solved, below yield, {_e(limit)} "
-             "and outside ±15 % of the joint's critical speeds.</p>",
-             '<table id="envelope"><thead><tr><th>axial load</th><th>safe rotary speeds</th></tr></thead><tbody>']
-    lines += [f"<tr><td>{_e(load)}</td><td>{_e(speeds)}</td></tr>" for load, speeds in safe_ranges(rows)]
+             f"<p>Rotary speeds where every point (over every other swept input) is answered and decided, below yield, "
+             f"{_e(limit)} and outside ±15 % of the joint's critical speeds. A point not converged to the study's "
+             f"tolerance counts where its limits hold (or fail) with its stresses off by {MARGIN:g} times its error "
+             "estimate; where they do not, the cell is undecided.</p>",
+             '<table id="envelope"><thead><tr><th>axial load</th><th>safe rotary speeds</th>'
+             "<th>undecided rotary speeds</th></tr></thead><tbody>"]
+    undecided = dict(safe_ranges(rows, "undecided"))
+    lines += [f"<tr><td>{_e(load)}</td><td>{_e(speeds)}</td><td>{_e(undecided.get(load, ''))}</td></tr>"
+              for load, speeds in safe_ranges(rows)]
     lines.append("</tbody></table>")
     link = os.path.relpath(table, folder)
-    lines.append(f'<p>Every cell, with what limits it: <a href="{_e(Path(link).as_posix())}">{_e(TABLE)}</a>.</p>')
+    lines.append(f'<p>Every cell: its verdict, what limits it or keeps it undecided, and its worst values over every '
+                 f'answered point — undecided ones included — with the error estimate of the point that gives each and '
+                 f'the worst case at {MARGIN:g}x the error (also as <a href="{_e(Path(link).as_posix())}">'
+                 f"{_e(TABLE)}</a>).</p>")
+    lines.append(_cell_table(rows, criterion))
     return "\n".join(lines)
+
+
+def _cell_table(rows: list[dict], criterion: str) -> str:
+    """Every cell of the envelope as a row of the page (the CSV's columns that decide)."""
+    speed_key, load_key = list(rows[0])[:2]
+    figure = "min fatigue life" if criterion == "life" else "max endurance utilisation"
+    unit = "[h]" if criterion == "life" else "[-]"
+    head = [load_key, speed_key, "verdict", "limited by / undecided because", f"{figure} {unit}",
+            "its error estimate", f"{figure} at {MARGIN:g}x error {unit}", "max yield utilisation [-]",
+            f"max yield utilisation at {MARGIN:g}x error [-]", "points (ok, decided within error, undecided, no answer)"]
+    out = ['<table id="envelope-cells"><thead><tr>' + "".join(f"<th>{_e(h)}</th>" for h in head)
+           + "</tr></thead><tbody>"]
+    for r in rows:
+        why = r["limited by"] or r["undecided because"]
+        error = r[f"{figure}: its error estimate [-]"]
+        cells = [format_value(r[load_key]), format_value(r[speed_key]), r["verdict"], why,
+                 format_value(r[f"{figure} {unit}"]), f"{error:.0%}" if error == error else "",
+                 format_value(r[f"{figure} at {MARGIN:g}x error {unit}"]), format_value(r["max yield utilisation [-]"]),
+                 format_value(r[f"max yield utilisation at {MARGIN:g}x error [-]"]),
+                 f"{r['points']} ({r['ok points']}, {r['decided within their error']}, {r['undecided points']}, "
+                 f"{r['points without an answer']})"]
+        out.append(f'<tr class="{_e(r["verdict"])}">' + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
+    out.append("</tbody></table>")
+    return "\n".join(out)
 
 
 def _figure(path: Path, chart, folder: Path) -> str:

@@ -106,3 +106,47 @@ def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_dec
     open_points = fails["no valid answer"].transpose(*dims)
     assert int(decided.sum()) == 1 and int(open_points.sum()) == int((ds.status != 0).sum()) - 1
     assert not bool(fails["no valid answer"].transpose(*dims).values[first]) and bool(open_points.values[second])
+
+
+def test_every_cell_states_its_verdict_and_its_worst_value_with_the_undecided_points_and_their_error(study):
+    """The issue's case (issue 34): a cell holding a 1 103-h point at a 106 % error must show that point as its worst
+    life, with its error, and be undecided rather than "no valid answer" or safe."""
+    from study.charts.envelope import LIFE_SLOPE, MARGIN
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    dims = ds.status.dims
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=xr.full_like(ds.status, 0.001, dtype=float))
+    rows = envelope_table(ds)
+    safe_cells = [r for r in rows if r["verdict"] == "safe"]
+    assert safe_cells and all(r["safe"] and not r["limited by"] for r in safe_cells)
+    first, second = safe_cells[0], safe_cells[-1]
+
+    def where(row):
+        i = int(np.argmin(np.abs(ds.rotary_speed.values * RPM_PER_RAD_S - row["rotary speed [rpm]"])))
+        j = int(np.argmin(np.abs(ds.axial_tension.values / 4.4482216152605 - row["axial tension [lbf]"])))
+        index = [0] * len(dims)
+        index[dims.index("rotary_speed")], index[dims.index("axial_tension")] = i, j
+        return tuple(index)
+
+    undecided, failed = where(first), where(second)
+    ds.status.values[undecided] = STATUS_CODES["not_converged"]
+    ds.error_estimate.values[undecided] = 1.06
+    ds.fatigue_life.values[undecided] = 1103 * 3600.0
+    ds.status.values[failed] = STATUS_CODES["failed"]
+    ds.fatigue_life.values[failed] = 1.0  # a failed point's values are no answer: never the cell's worst
+    rows = {(r["rotary speed [rpm]"], r["axial tension [lbf]"]): r for r in envelope_table(ds)}
+    a = rows[(first["rotary speed [rpm]"], first["axial tension [lbf]"])]
+    assert a["verdict"] == "undecided" and not a["safe"] and a["limited by"] == ""
+    assert a["undecided points"] == 1 and a["undecided because"] == "1 point(s) undecided at their error"
+    assert a["min fatigue life [h]"] == pytest.approx(1103, rel=1e-3)  # the undecided point's own value
+    assert a["min fatigue life: its error estimate [-]"] == pytest.approx(1.06)
+    # its worst case: the stress off by twice its error, the life over (1 + 2 x 1.06)^5 (the S-N curve's m = 5)
+    assert a["min fatigue life at 2x error [h]"] == pytest.approx(1103 * (1 + MARGIN * 1.06) ** -LIFE_SLOPE, rel=1e-3)
+    b = rows[(second["rotary speed [rpm]"], second["axial tension [lbf]"])]
+    assert b["verdict"] == "undecided" and b["points without an answer"] == 1
+    assert b["min fatigue life [h]"] == pytest.approx(second["min fatigue life [h]"], rel=1e-3)
+    # a decided failure limits a cell whatever else it holds
+    limited = [r for r in rows.values() if r["limited by"]]
+    assert limited and all(r["verdict"] == "limited" for r in limited)

@@ -36,6 +36,7 @@ class Page(HTMLParser):
     def __init__(self):
         super().__init__()
         self.images, self.cells, self.ids, self.stack, self.text = {}, [], {}, [], {}
+        self.verdicts = []
 
     def handle_starttag(self, tag, attrs):
         attrs = dict(attrs)
@@ -46,6 +47,8 @@ class Page(HTMLParser):
         self.stack.append(attrs.get("id") or (self.stack[-1] if self.stack else None))
         if tag == "td" and "envelope" in self.stack:
             self.cells.append("")
+        if tag == "tr" and "envelope-cells" in self.stack and "class" in attrs:
+            self.verdicts.append(attrs.get("class"))
 
     def handle_endtag(self, tag):
         if self.stack:
@@ -79,8 +82,13 @@ def test_the_page_holds_every_chart_the_envelope_and_the_provenance(study, tmp_p
         assert src.startswith("data:image/png;base64,")
         assert base64.b64decode(src.split(",", 1)[1]) == png.read_bytes()
         assert parsed.ids[f"chart-{png.stem}"] == "figure"
-    expected = [cell for row in safe_ranges(envelope_table(study)) for cell in row]
+    rows = envelope_table(study)
+    undecided = dict(safe_ranges(rows, "undecided"))
+    expected = [cell for load, safe in safe_ranges(rows) for cell in (load, safe, undecided[load])]
     assert parsed.ids["envelope"] == "table" and [c.strip() for c in parsed.cells] == expected
+    # every cell of the envelope is a row of the page's cell table, with its verdict
+    assert parsed.ids["envelope-cells"] == "table"
+    assert parsed.verdicts == [r["verdict"] for r in rows]
     provenance = parsed.text["provenance"]
     assert "abc123" in provenance and "study 0.2.0" in provenance and "2026-11-24T09:00:00+00:00" in provenance
     assert parsed.text["config"].strip() == study.attrs["config"].strip()
