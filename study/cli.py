@@ -9,6 +9,7 @@ import argparse
 import json
 import math
 import sys
+import time
 
 from study import __version__
 from study.config import ConfigError, load, parse_set
@@ -55,6 +56,7 @@ def cmd_point(args) -> int:
 
 
 def cmd_sweep(args) -> int:
+    start = time.perf_counter()
     try:
         from study.workflow.sweep import run_sweep
 
@@ -66,11 +68,22 @@ def cmd_sweep(args) -> int:
     except KeyboardInterrupt:
         raise KeyboardInterrupt("interrupted before the sweep started: nothing new was computed") from None
     print(f"results: {path}")
-    if not args.no_charts:
-        from study.charts.report import write_report
+    from study.charts.catalogue import open_results
+    from study.charts.summary import sweep_summary
 
-        for figure in write_report(path):
-            print(f"chart:   {figure}")
+    report = table = None
+    if not args.no_charts:
+        from study.charts.report import REPORT, TABLE, write_report
+
+        written = write_report(path)
+        figures = [p for p in written if p.name not in (REPORT, TABLE)]
+        if figures:
+            print(f"charts:  {len(figures)} in {figures[0].parent}")
+        report = next((p for p in written if p.name == REPORT), None)
+        table = next((p for p in written if p.name == TABLE), None)
+    print(sweep_summary(open_results(path), time.perf_counter() - start, report, table))
+    if args.no_charts:
+        print(f"  report: not written (--no-charts); draw it with: study charts {path}")
     return 0
 
 

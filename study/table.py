@@ -86,12 +86,18 @@ _MESSAGE_QUANTITY = re.compile(rf"(?<![\w.])({_NUMBER}) ({'|'.join(sorted(map(re
                                r"(?![\w/²·])")
 
 
+#: Lengths along the pipe, shown in feet in oilfield units (a position along a 93-ft section reads badly in inches).
+ALONG_THE_PIPE = {"touching_points", "contact_points", "whirl_point", "contact_spacing", "candidate_spans"}
+
+
 def shown_unit(name: str, udunits: str, system: str = "oilfield") -> tuple[str, str]:
     """(pint unit, label) of an output in the table: the label is "" for a dimensionless value."""
     if not udunits or udunits.strip() == "1":
         return "", ""
     if system == "si":
         return SI_UNITS.get(udunits, (pint_unit(udunits), udunits))
+    if udunits == "m" and (name in ALONG_THE_PIPE or name.endswith("_x")):
+        return "ft", "ft"
     unit, label = display_unit(name, udunits)
     return unit, label
 
@@ -133,7 +139,8 @@ def format_value(name: str, value: Any, system: str = "oilfield") -> str:
         if isinstance(value, int) and (udunits in (None, "1")):
             return str(value)
         if not math.isfinite(value):
-            return str(value)
+            label = shown_unit(name, udunits or "1", system)[1]
+            return str(value) + (f" {label}" if label else "")
         return _number(float(value), udunits, name, system)
     if isinstance(value, complex):
         return f"{abs(value):.4g} (modulus)"
@@ -179,7 +186,7 @@ def error_of(result) -> str:
                   if isinstance(entry, Mapping) and _is_number(entry.get("total"))}
         if totals:
             worst = max(totals, key=totals.get)
-            return f"the worst figure's: {FIGURE_NAMES.get(worst, worst)}"
+            return f"the worst figure, the {FIGURE_NAMES.get(worst, worst)} (each figure's: convergence)"
     return ERROR_OF.get(result.method, f"the {result.method} method's own measure")
 
 
@@ -221,5 +228,6 @@ def point_table(result, inputs: Mapping[str, Any] | None = None, system: str = "
             f"relative error of {error_of(result)}")
     for name, value in result.extras.items():
         row(name, format_value(name, value, system), describe(name, system)[1])
-    lines.append(f"\n  wall time {result.wall_time * 1e3:.3g} ms")
+    wall = result.wall_time
+    lines.append(f"\n  wall time {wall * 1e3:.3g} ms" if wall < 1 else f"\n  wall time {wall:.3g} s")
     return "\n".join(lines)
