@@ -4,7 +4,8 @@ A cell is safe when every point in it (over every other swept input) is
 
 - solved: status ``ok`` (a point without a valid answer is not known to be safe) — or ``not_converged`` to the
   study's tolerance but decided all the same: every limit below holds, or one fails, with its stresses off by
-  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer);
+  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer; stresses that
+  might be off by 100 % or more can show a limit holds, never that it fails);
 - below yield: ``yield_utilisation`` ≤ 1;
 - long-lived: ``fatigue_life`` ≥ the target (default :data:`~study.charts.limits.DEFAULT_TARGET_LIFE_HOURS`
   = 1000 h of rotation), or with ``criterion="endurance"`` below the endurance limit,
@@ -12,8 +13,10 @@ A cell is safe when every point in it (over every other swept input) is
 - away from resonance: outside ±15 % of every critical speed of the joint (:mod:`study.charts.critical`),
   where the dataset allows computing them (the chart says when it does not).
 
-:func:`envelope_table` gives one row per cell (the CSV written beside the charts), :func:`safe_ranges` the
-safe rotary speeds per load (the report's table), :func:`envelope_chart` the map.
+:func:`envelope_table` gives one row per cell (the CSV written beside the charts and the report's cell table): its
+verdict — safe, limited (a decided failure or a critical-speed band) or undecided — and its worst values over every
+answered point (undecided ones included) with their error; :func:`safe_ranges` the safe (or undecided) rotary speeds
+per load (the report's table), :func:`envelope_chart` the map.
 """
 
 from __future__ import annotations
@@ -66,19 +69,20 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
     if not target_hours > 0:
         raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
     ok = ok_points(ds)
-    off = _stress_margin(ds)  # NaN where a point is ok or cannot be decided
+    off = _stress_margin(ds)  # NaN where a point is ok or has no estimate
     rough = np.isfinite(off)
-    with np.errstate(invalid="ignore"):
+    can_fail = rough & (off < 1.0)  # stresses off by 100 % or more might be nil: such a point cannot fail a limit
+    with np.errstate(invalid="ignore", divide="ignore"):
         use = _limit(ds, "yield_utilisation")
-        yield_fails = (ok & ~(use <= 1.0)) | (rough & (use * (1 - off) > 1.0))
+        yield_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
         yield_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
         if criterion == "life":
             life, target = _limit(ds, "fatigue_life"), target_hours * HOUR
-            fatigue_fails = (ok & ~(life >= target)) | (rough & (life * (1 - off) ** -LIFE_SLOPE < target))
+            fatigue_fails = (ok & ~(life >= target)) | (can_fail & (life * (1 - off) ** -LIFE_SLOPE < target))
             fatigue_holds = (ok & (life >= target)) | (rough & (life * (1 + off) ** -LIFE_SLOPE >= target))
         else:
             use = _limit(ds, "endurance_utilisation")
-            fatigue_fails = (ok & ~(use <= 1.0)) | (rough & (use * (1 - off) > 1.0))
+            fatigue_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
             fatigue_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
     # decided: ok, or every limit held or one failed within the margin
     answered = ok | (rough & ((yield_holds & fatigue_holds) | yield_fails | fatigue_fails))
@@ -90,13 +94,13 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
 
 
 def _stress_margin(ds: xr.Dataset) -> xr.DataArray:
-    """Per point not converged to the study's tolerance, :data:`MARGIN` times its error estimate (relative), where
-    below 1; NaN elsewhere (ok points, other statuses, no estimate)."""
+    """Per point not converged to the study's tolerance, :data:`MARGIN` times its error estimate (relative); NaN
+    elsewhere (ok points, other statuses, no estimate)."""
     if "status" not in ds.data_vars or "error_estimate" not in ds.data_vars:
         return xr.full_like(ok_points(ds), np.nan, dtype=float)
     rough = _full(ds, "status") == STATUS_CODES["not_converged"]
     off = MARGIN * _full(ds, "error_estimate")
-    return off.where(rough & (off < 1.0))
+    return off.where(rough & np.isfinite(off))
 
 
 def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"

@@ -150,3 +150,26 @@ def test_every_cell_states_its_verdict_and_its_worst_value_with_the_undecided_po
     # a decided failure limits a cell whatever else it holds
     limited = [r for r in rows.values() if r["limited by"]]
     assert limited and all(r["verdict"] == "limited" for r in limited)
+
+
+def test_an_error_of_100_percent_or_more_can_show_a_limit_holds_never_that_it_fails(study):
+    from study.charts.envelope import LIFE_SLOPE, MARGIN, failures
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    dims = ds.status.dims
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   yield_utilisation=ds.yield_utilisation.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=xr.full_like(ds.status, np.nan, dtype=float))
+    far, over = (0,) * len(dims), (1,) + (0,) * (len(dims) - 1)
+    for where in (far, over):
+        ds.status.values[where] = STATUS_CODES["not_converged"]
+        ds.error_estimate.values[where] = 0.6  # stresses off by 2 x 60 %: anywhere from nil to 2.2 times
+    ds.fatigue_life.values[far] = 1e9 * 3600  # (1 + 1.2)^5 = 52: still 1.9e7 h, far above 1000 h
+    ds.yield_utilisation.values[far] = 0.1  # 0.22 at 2.2 times
+    ds.yield_utilisation.values[over] = 3.0  # over yield as computed, but the stress might be nil
+    assert 1e9 * (1 + MARGIN * 0.6) ** -LIFE_SLOPE > 1000
+    fails, _ = failures(ds)
+    assert not bool(fails["no valid answer"].transpose(*dims).values[far])
+    assert bool(fails["no valid answer"].transpose(*dims).values[over])
+    assert not bool(fails["over yield"].transpose(*dims).values[over])
