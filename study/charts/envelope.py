@@ -36,7 +36,8 @@ from study.charts.critical import in_band
 from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
-from study.charts.plane import draw_boundary, ok_points, plane, plane_axes
+from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, draw_boundary, ok_points, plane, plane_axes,
+                                worst_in_cells)
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -44,13 +45,6 @@ REASONS = ("no valid answer", "over yield", "fatigue", "critical speed")
 COLOURS = {"safe": "#41ab5d", "no valid answer": "#bdbdbd", "over yield": "#a50f15", "fatigue": "#fd8d3c",
            "critical speed": "#6baed6"}
 CRITERIA = ("life", "endurance")
-#: A point not converged to the study's tolerance decides a limit when the limit holds (or fails) with its stresses
-#: off by MARGIN times its error estimate: the reference model's estimate of its window erred low by up to 2x in its
-#: tests (docs/reference_model.md §3.1), so twice.
-MARGIN = 2.0
-#: The steepest S-N slope of the fatigue curves (DNV-RP-C203: m = 3 and 5): life goes as S^-m, so stresses off by a
-#: factor (1 + d) move the life by at most (1 + d)^5.
-LIFE_SLOPE = 5.0
 
 
 def _limit(ds: xr.Dataset, name: str) -> xr.DataArray:
@@ -131,55 +125,6 @@ def _criterion_text(target_hours: float, criterion: str) -> str:
 VERDICTS = ("safe", "limited", "undecided")
 
 
-def _answered(ds: xr.Dataset) -> xr.DataArray:
-    """True where a point has an answer to judge: ``ok``, or ``not_converged`` with its values kept (an answer with
-    its error stated); other statuses' values (where any) are not answers."""
-    ok = ok_points(ds)
-    if "status" not in ds.data_vars:
-        return ok
-    return ok | (_full(ds, "status") == STATUS_CODES["not_converged"])
-
-
-def _error(ds: xr.Dataset) -> xr.DataArray:
-    """Each point's relative error estimate (0 where the dataset has none: an ok point met the study's tolerance)."""
-    if "error_estimate" not in ds.data_vars:
-        return xr.zeros_like(ok_points(ds), dtype=float)
-    return _full(ds, "error_estimate").fillna(0.0)
-
-
-def _cells(p, da: xr.DataArray) -> np.ndarray:
-    """``da`` over the dataset's dimensions as (load, speed, points of the cell): the fixed dimensions at their value,
-    the reduced ones stacked."""
-    da = da.isel({d: 0 for d in p.fixed if d in da.dims})
-    da = da.transpose(p.y, p.x, *[d for d in p.reduced if d in da.dims])
-    values = np.asarray(da.values)
-    return values.reshape(values.shape[0], values.shape[1], -1)
-
-
-def worst_in_cells(ds: xr.Dataset, name: str, how: str, p=None) -> dict[str, np.ndarray]:
-    """Per rotary speed × axial load cell, the worst ``name`` (``how``: "max" or "min") over every answered point
-    (ok, and not converged with its values: undecided ones included), the relative error estimate of the point that
-    gives it, and the worst case over the cell with each point's stresses off by :data:`MARGIN` times its error
-    estimate (a utilisation goes as the stress; a fatigue life as the stress to the power −:data:`LIFE_SLOPE`).
-
-    Returns ``{"value", "error", "bound"}`` arrays (load × speed), NaN where the cell has no answered point."""
-    p = p or plane(ds)
-    values = _cells(p, _limit(ds, name).where(_answered(ds)))
-    error = _cells(p, _error(ds))
-    off = MARGIN * error
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        bound = values * (1.0 + off) if how == "max" else values * (1.0 + off) ** -LIFE_SLOPE
-    empty = np.all(np.isnan(values), axis=-1)
-    pick = np.where(np.isnan(values), -np.inf if how == "max" else np.inf, values)
-    index = np.argmax(pick, axis=-1) if how == "max" else np.argmin(pick, axis=-1)
-    value = np.take_along_axis(values, index[..., None], -1)[..., 0]
-    err = np.take_along_axis(error, index[..., None], -1)[..., 0]
-    fill = -np.inf if how == "max" else np.inf
-    worst_bound = (np.max if how == "max" else np.min)(np.where(np.isnan(bound), fill, bound), axis=-1)
-    return {"value": np.where(empty, np.nan, value), "error": np.where(empty, np.nan, err),
-            "bound": np.where(empty, np.nan, worst_bound)}
-
-
 def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
                    ) -> list[dict]:
     """One row per rotary speed × axial load cell (display units): its verdict (:data:`VERDICTS`), what limits it
@@ -193,7 +138,7 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     fails, _ = failures(ds, target_hours, criterion)
     xq, yq = quantity(ds[p.x]), quantity(ds[p.y])
     ok = ok_points(ds)
-    answered = _answered(ds)
+    answered = answered_points(ds)
     undecided = fails["no valid answer"]
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
     count = p.reduce(xr.ones_like(ok, dtype=int), "sum")
@@ -204,7 +149,8 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     figures = [("yield_utilisation", "max", "max yield utilisation", "[-]", 1.0),
                ("endurance_utilisation", "max", "max endurance utilisation", "[-]", 1.0),
                ("fatigue_life", "min", "min fatigue life", "[h]", 1.0 / HOUR)]
-    worst = {name: worst_in_cells(ds, name, how, p) for name, how, *_ in figures}
+    absent = {k: np.full((ds.sizes[p.y], ds.sizes[p.x]), np.nan) for k in ("value", "error", "bound")}
+    worst = {name: worst_in_cells(ds, name, how, p) if name in ds.data_vars else absent for name, how, *_ in figures}
     rows = []
     for i, load in enumerate(yq.convert(ds[p.y].values)):
         for j, speed in enumerate(xq.convert(ds[p.x].values)):
