@@ -56,7 +56,10 @@ REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio
 HARMONICS = (1, 2, 3)
 #: Relative change of the span between neighbouring rotary speeds taken as a jump to another branch.
 SPAN_BRANCH_JUMP = 0.2
-CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
+#: The section's own first mode meeting the 1x line: shown where it is, not as a critical speed of the joint (those are
+#: the Campbell chart's, :mod:`study.charts.critical`).
+CRITICAL_SPEED_LABEL = "the section's first mode meets 1× (N = 60 f1)"
+SECTION_MODE_TEXT = "the section's first mode meets 1× at N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
 
 @dataclass
@@ -687,7 +690,8 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
         elif low > float(np.max(xpos)):
             where = ", above the swept speeds"
         span = format_value(low) if high - low <= 1e-6 * abs(high) else f"{format_value(low)}–{format_value(high)}"
-        return [f"classical critical speed N = 60 f1: {span} rpm{where}"]
+        return [f"{SECTION_MODE_TEXT}: {span} rpm{where} (a mode of the whole span; the joint's critical speeds are "
+                "the Campbell chart's)"]
 
     title = "Natural frequencies of the span and rotation harmonics against rotary speed"
     overlay = "natural frequency [Hz]" if len(names) > 1 else None
@@ -696,9 +700,11 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
                         x_quantity=xq, y_quantities=fq, decorate=decorate, extra_handles=handles,
                         scales=(scale, scale),
                         xlim=xlim, ylim=ylim, extra_context=extra_context,
-                        caption="Natural frequencies of the span the periodic solution finds, against the rotation "
-                                "harmonics; the span is itself an output, so its critical speeds are not an input "
-                                "check (the Campbell diagram of the joint is).")
+                        caption="Natural frequencies of the span the method answers on (the periodic solution's span, or "
+                                "the reference model's section), against the rotation harmonics; where its first mode "
+                                "meets the 1× line is marked, a low mode of the whole span rather than a critical "
+                                "speed: the joint's critical speeds, which the envelope and the bands use, are the "
+                                "Campbell chart's.")
 
 
 def save_figure(figure: Figure, path: Path, fmt: str = "png") -> Path:

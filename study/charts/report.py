@@ -16,6 +16,7 @@ from pathlib import Path
 
 from study.atomic import atomic_path
 from study.charts.catalogue import save_charts
+from study.charts.critical import api_comparison
 from study.charts.envelope import CRITERIA, MARGIN, envelope_table, safe_ranges, write_table
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS
 from study.charts.labels import format_value, quantity
@@ -60,7 +61,7 @@ def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: flo
         written.append(table)
     body = [f"<h1>{_e(ds.attrs.get('title') or ds.attrs.get('study_name') or 'Study')}</h1>",
             f"<p>Study <code>{_e(ds.attrs.get('study_name', ''))}</code>: {_e(_size(ds))}.</p>",
-            _envelope_section(rows, table, page.parent, target_hours, criterion),
+            _envelope_section(rows, table, page.parent, target_hours, criterion, api_comparison(ds)),
             "<h2>Charts</h2>"]
     body += [_figure(path, chart, page.parent) for path, chart in saved]
     body.append(_provenance(ds))
@@ -85,7 +86,7 @@ def _size(ds) -> str:
     return f"{points} design points" + (" over " + ", ".join(swept) if swept else "")
 
 
-def _envelope_section(rows, table, folder: Path, target_hours: float, criterion: str) -> str:
+def _envelope_section(rows, table, folder: Path, target_hours: float, criterion: str, critical: str = "") -> str:
     if not rows:
         return ("<h2>Safe operating envelope</h2><p>No envelope: it needs rotary speed and axial load both swept and "
                 "the design limits (yield utilisation and fatigue) in the dataset.</p>")
@@ -93,9 +94,11 @@ def _envelope_section(rows, table, folder: Path, target_hours: float, criterion:
              else "below the endurance limit")
     lines = ["<h2>Safe operating envelope</h2>",
              f"<p>Rotary speeds where every point (over every other swept input) is answered and decided, below yield, "
-             f"{_e(limit)} and outside ±15 % of the joint's critical speeds. A point not converged to the study's "
-             f"tolerance counts where its limits hold (or fail) with its stresses off by {MARGIN:g} times its error "
-             "estimate; where they do not, the cell is undecided.</p>",
+             f"{_e(limit)} and outside ±15 % of the joint's critical speeds (1× and 2×: the crossings the Campbell "
+             "chart marks). A point not converged to the study's tolerance counts where its limits hold (or fail) "
+             f"with its stresses off by {MARGIN:g} times its error estimate; where they do not, the cell is "
+             "undecided.</p>",
+             f'<p id="critical-speeds">{_e(critical)}</p>' if critical else "",
              '<table id="envelope"><thead><tr><th>axial load</th><th>safe rotary speeds</th>'
              "<th>undecided rotary speeds</th></tr></thead><tbody>"]
     undecided = dict(safe_ranges(rows, "undecided"))

@@ -324,7 +324,7 @@ def test_natural_frequencies_with_harmonics_and_the_classical_critical_speed(ful
     np.testing.assert_allclose(verticals, np.sort(60 * f1))
     low, high = ax.get_xlim()
     assert low < 60 * f1.min() and high > 300  # both the critical speeds and the sweep are in view
-    assert "classical critical speed N = 60 f1" in labels["titles"][-1]
+    assert "the section's first mode meets 1× at N = 60 f1" in labels["titles"][-1]
 
 
 def test_legends_sit_outside_the_data_and_the_title(full_charts):

@@ -15,12 +15,13 @@ RPM_PER_RAD_S = 30 / np.pi
 
 
 def _critical_rpm(ds):
-    """60 f_n of the joint's first three modes, from the closed form (docs/model.md §2), per point [rpm]."""
+    """60 f_n / k of the joint's first three modes at the 1x and 2x excitations (k = 1, 2), from the closed form
+    (docs/model.md §2), per point [rpm]."""
     n = np.array([1, 2, 3])
     k = n * np.pi / float(ds.joint_length)
     ei, t, m = ds.bending_stiffness, ds.effective_tension, ds.mass_per_length
     omega = np.sqrt((ei.values[..., None] * k**4 + t.values[..., None] * k**2) / m.values[..., None])
-    return omega * RPM_PER_RAD_S
+    return np.concatenate([omega, omega / 2], axis=-1) * RPM_PER_RAD_S
 
 
 @pytest.mark.parametrize("target", [1000.0, 20000.0])

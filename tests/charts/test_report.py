@@ -89,6 +89,9 @@ def test_the_page_holds_every_chart_the_envelope_and_the_provenance(study, tmp_p
     # every cell of the envelope is a row of the page's cell table, with its verdict
     assert parsed.ids["envelope-cells"] == "table"
     assert parsed.verdicts == [r["verdict"] for r in rows]
+    from study.charts.critical import api_comparison  # the model's critical speeds beside API RP 7G's, and why
+
+    assert parsed.text["critical-speeds"].strip() == api_comparison(study) != ""
     provenance = parsed.text["provenance"]
     assert "abc123" in provenance and "study 0.2.0" in provenance and "2026-11-24T09:00:00+00:00" in provenance
     assert parsed.text["config"].strip() == study.attrs["config"].strip()
