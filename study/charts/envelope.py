@@ -36,8 +36,8 @@ from study.charts.critical import in_band
 from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
-from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, draw_boundary, ok_points, plane, plane_axes,
-                                worst_in_cells)
+from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, caption_from, draw_boundary, ok_points, plane,
+                                plane_axes, worst_in_cells)
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -229,11 +229,12 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
         return []
     fails, checked = failures(ds, target_hours, criterion)
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
+    # as the table's verdict: a decided limit first (in REASONS' order), else undecided, else safe
+    names = ["safe", *REASONS[1:], REASONS[0]]
     category = np.zeros(reduced[REASONS[0]].shape, dtype=int)  # 0: safe
-    for k, reason in reversed(list(enumerate(REASONS, start=1))):
-        category[reduced[reason]] = k
+    for k, reason in enumerate(names[1:], start=1):
+        category[reduced[reason] & (category == 0)] = k
     safe = category == 0
-    names = ["safe", *REASONS]
     fig = Figure(figsize=(10.0, 5.4), dpi=DPI, layout="constrained")
     ax = fig.subplots()
     ax.pcolormesh(p.xedges, p.yedges, category, cmap=ListedColormap([COLOURS[n] for n in names]), vmin=-0.5,
@@ -241,23 +242,26 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     if safe.any():
         draw_boundary(ax, safe, p, colors="k", linewidths=2.5)
     plane_axes(ax, p)
-    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{n} ({int(np.sum(category == k))} cells)")
-               for k, n in enumerate(names) if np.any(category == k)]
-    handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
+    shown = {REASONS[0]: "undecided (an answer not decided at its error, or none)"}
+    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{shown.get(n, n)} ({int(np.sum(category == k))} "
+                     "cells)") for k, n in enumerate(names) if np.any(category == k)]
+    if safe.any():
+        handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
                title="cell (first limit broken)", title_fontsize=8)
     within = int(_decided(ds, fails).sum())
-    context = [f"safe: every point answered, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
-               + (", outside ±15 % of the joint's critical speeds" if checked else
+    context = [f"safe: every point answered and decided, yield utilisation ≤ 1, "
+               f"{_criterion_text(target_hours, criterion)}"
+               + (", outside ±15 % of the joint's critical speeds (1× and 2×, the Campbell chart's)" if checked else
                   "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "
                   "mass_per_length)")]
     if within:
-        context.append(f"answered: ok, or not converged to the study's tolerance but decided ({within} points: their "
-                       f"limits hold or fail with the stresses off by {MARGIN:g}x their error estimate)")
+        context.append(f"decided: ok, or not converged to the study's tolerance with its limits holding or failing "
+                       f"with the stresses off by {MARGIN:g}x its error estimate ({within} points)")
     context += p.context("every point must pass")
     _title(fig, "Safe operating envelope", context, 8.5)
-    caption = (f"Where the pipe can run: green cells pass every limit at every value of the other swept inputs "
-               f"(solved, below yield, {_criterion_text(target_hours, criterion)}, away from critical speeds); other "
-               "cells show the first limit they break.")
+    caption = caption_from("Where the pipe can run: green cells pass every limit at every value of the other swept "
+                           "inputs; other cells show the first limit a decided point breaks, or that the cell is "
+                           "undecided.", [h.get_label() for h in handles])
     return [Chart("envelope", fig, caption)]
 

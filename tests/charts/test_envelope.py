@@ -174,3 +174,18 @@ def test_an_error_of_100_percent_or_more_can_show_a_limit_holds_never_that_it_fa
     assert not bool(fails["no valid answer"].transpose(*dims).values[far])
     assert bool(fails["no valid answer"].transpose(*dims).values[over])
     assert not bool(fails["over yield"].transpose(*dims).values[over])
+
+
+def test_the_map_colours_each_cell_as_the_table_s_verdict_and_its_caption_names_its_legend(study):
+    from matplotlib.collections import QuadMesh
+
+    (chart,) = envelope_chart(study)
+    ax = chart.figure.axes[0]
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    category = np.asarray(mesh.get_array()).reshape(4, 13).ravel()
+    rows = envelope_table(study)
+    undecided = 4  # names: safe, over yield, fatigue, critical speed, undecided
+    for r, k in zip(rows, category):
+        assert (k == 0) == (r["verdict"] == "safe") and (k == undecided) == (r["verdict"] == "undecided"), r
+    legend = figure_labels(chart.figure)["legend"]
+    assert all(entry in chart.caption for entry in legend[1:])  # legend[0] is its title
