@@ -35,7 +35,7 @@ chromium:
 	@test -x /usr/bin/chromium || { apt-get update -qq && apt-get install -y -qq chromium >/dev/null; }
 
 sweep: $(STAMP)
-	$(BIN)/study sweep $(CONFIG)
+	$(BIN)/study sweep $(CONFIG) --record docs/runs
 
 charts: $(STAMP)
 	$(BIN)/study charts outputs/$$($(BIN)/python -c "import study.config as c; print(c.load('$(CONFIG)').name)")/results.nc

@@ -81,9 +81,22 @@ def cmd_sweep(args) -> int:
             print(f"charts:  {len(figures)} in {figures[0].parent}")
         report = next((p for p in written if p.name == REPORT), None)
         table = next((p for p in written if p.name == TABLE), None)
-    print(sweep_summary(open_results(path), time.perf_counter() - start, report, table))
+    results = open_results(path)
+    seconds = time.perf_counter() - start
+    print(sweep_summary(results, seconds, report, table))
     if args.no_charts:
         print(f"  report: not written (--no-charts); draw it with: study charts {path}")
+    if args.record:
+        from pathlib import Path
+
+        from study.atomic import atomic_path
+        from study.charts.summary import run_record
+
+        record = Path(args.record) / f"{study.name}.md"
+        record.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(record) as tmp:
+            Path(tmp).write_text(run_record(results, seconds), encoding="utf-8")
+        print(f"  record: {record}")
     return 0
 
 
@@ -148,6 +161,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: cores)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-charts", action="store_true", help="skip the charts")
+    p.add_argument("--record", default=None, metavar="FOLDER",
+                   help="also write the run's record, FOLDER/<study name>.md (make sweep: docs/runs)")
     p.add_argument("--max-points", type=int, default=None, metavar="N",
                    help="largest grid accepted (default sweep.max_points, 1000000)")
     p.set_defaults(func=cmd_sweep)

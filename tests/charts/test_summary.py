@@ -34,3 +34,33 @@ def test_the_summary_counts_the_points_by_status_and_method_and_gives_the_envelo
 def test_without_the_plane_the_summary_says_there_is_no_envelope(study):
     text = sweep_summary(study.isel(axial_tension=[0]))
     assert "envelope: none (it needs rotary speed and axial load both swept" in text and "report" not in text
+
+
+def test_the_run_record_holds_the_summary_the_errors_and_the_cells_that_are_not_safe(study):
+    from study.charts.summary import run_record
+
+    ds = study.copy(deep=True)
+    ds["error_estimate"] = (ds.status.dims, np.full(ds.status.shape, np.nan))
+    first = (0,) * ds.status.ndim
+    ds.status.values[first] = STATUS_CODES["not_converged"]
+    ds.error_estimate.values[first] = 0.2
+    text = run_record(ds, 10.0)
+    assert sweep_summary(ds, 10.0) in text  # the same lines the sweep printed
+    assert "| fast | 1 | 20% | 20%–20% | 20% |" in text  # one point not converged, its error 20 %
+    assert "The envelope decides 1 of these 1 points at their error" in text
+    rows = [r for r in envelope_table(ds) if r["verdict"] != "safe"]
+    table = text.split("## The envelope's cells that are not safe")[1]
+    assert table.count("\n| ") == len(rows) + 1  # the header and a line per cell that is not safe
+
+
+def test_the_readme_links_the_record_of_the_default_study_and_quotes_no_figure_of_a_run():
+    root = Path(__file__).resolve().parents[2]
+    readme = (root / "README.md").read_text()
+    record = root / "docs" / "runs" / "default.md"
+    assert "docs/runs/default.md" in readme and record.exists()
+    assert record.read_text().startswith("# The last run of `default`")
+    section = readme.split("### What `make sweep` answers")[1].split("\n## ")[0]
+    # the figures of a run (points per status, cells per verdict) are the record's, never retyped here
+    import re
+
+    assert not re.findall(r"\b\d+ of the \d+\b|\(\d+ points?, `?ok|\d+ `not_converged`", section)
