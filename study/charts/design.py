@@ -560,9 +560,17 @@ def reference_maps(ds: xr.Dataset) -> list[Chart]:
                           + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
 
 
+#: Methods whose span is an answer (a search over the span condition); elsewhere the span is an input (the section
+#: length, ``solver.span_length``) and its chart would be a flat line of the input.
+SPAN_SEARCHES = ("fast", "series", "periodic", "damped", "crosscheck", "reference-check")
+
+
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
-    """Span length between nodes against rotary speed, one line per axial load."""
+    """Span length between nodes against rotary speed, one line per axial load; drawn only where some point's span
+    is an answer (a method of :data:`SPAN_SEARCHES`, or a dataset that does not say its methods)."""
     if "span_length" not in ds.data_vars or RPM not in ds.sizes or ds.sizes[RPM] == 0:
+        return []
+    if "method" in ds.data_vars and not np.isin(np.asarray(ds["method"].values).astype(str), SPAN_SEARCHES).any():
         return []
     return _line_charts(ds, "span_length", "Span length against rotary speed", ["span_length"], RPM,
                         _line_series(ds, RPM), break_jump=SPAN_BRANCH_JUMP,

@@ -61,6 +61,7 @@ def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: flo
         written.append(table)
     body = [f"<h1>{_e(ds.attrs.get('title') or ds.attrs.get('study_name') or 'Study')}</h1>",
             f"<p>Study <code>{_e(ds.attrs.get('study_name', ''))}</code>: {_e(_size(ds))}.</p>",
+            _answers(ds),
             _envelope_section(rows, table, page.parent, target_hours, criterion, api_comparison(ds)),
             "<h2>Charts</h2>"]
     body += [_figure(path, chart, page.parent) for path, chart in saved]
@@ -84,6 +85,35 @@ def _size(ds) -> str:
     for n in ds.sizes.values():
         points *= n
     return f"{points} design points" + (" over " + ", ".join(swept) if swept else "")
+
+
+def _answers(ds) -> str:
+    """The points by status, and — where no point has an answer — why, at the top of the page."""
+    if "status" not in ds.data_vars:
+        return ""
+    from collections import Counter
+
+    import numpy as np
+
+    from study.charts.plane import answered_points
+    from study.solvers.result import STATUS
+
+    names = {code: name for name, (code, _) in STATUS.items()}
+    codes = np.asarray(ds["status"].values).ravel()
+    counts = Counter(names.get(int(c), str(c)) for c in codes)
+    text = ", ".join(f"{n} {name}" for name, n in counts.most_common())
+    out = f'<p id="statuses">Points by status: {_e(text)}.</p>'
+    if not bool(answered_points(ds).any()):
+        common = counts.most_common(1)[0][0]
+        sample = ""
+        if "message" in ds.data_vars:
+            messages = np.asarray(ds["message"].values).ravel()
+            sample = str(messages[int(np.flatnonzero(codes == STATUS[common][0])[0])]) if common in STATUS else ""
+        out += (f'<p id="no-answer"><strong>No point of this study has an answer</strong>: every point is '
+                f"{_e(', '.join(counts))} — {_e(STATUS.get(common, (0, ''))[1])}. The maps are empty and there is no "
+                f"envelope; choose a method that serves these inputs (solver.method). For example: "
+                f"{_e(sample)}</p>")
+    return out
 
 
 def _envelope_section(rows, table, folder: Path, target_hours: float, criterion: str, critical: str = "") -> str:

@@ -566,3 +566,13 @@ def test_iso_lines_only_on_filled_maps():
     holed = ds.copy(deep=True)
     holed["peak_force_ratio"][dict(rotary_speed=1, axial_tension=1)] = np.nan
     assert filled and not contour_sets(holed)  # no scribbles drawn around a hole in the data
+
+
+def test_the_span_chart_is_not_drawn_where_no_point_searched_a_span(full):
+    """Issue 34: with auto the span is the section's length, an input: a flat line captioned as an answer."""
+    from study.charts.design import span_length_vs_rpm
+
+    assert span_length_vs_rpm(full)  # the synthetic study does not say its method
+    for method, drawn in (("fast", True), ("reference", False)):
+        other = full.assign(method=(full.status.dims, np.full(full.status.shape, method)))
+        assert bool(span_length_vs_rpm(other)) == drawn, method

@@ -11,6 +11,7 @@ import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from study.charts.envelope import envelope_table, safe_ranges
@@ -103,3 +104,15 @@ def test_other_formats_are_linked_and_an_unknown_criterion_is_refused(study, tmp
     assert all(f'href="{p.name}"' in text for p in written if p.suffix == ".pdf")
     with pytest.raises(ValueError, match="criterion = 'soon'"):
         write_report(study, out_dir=tmp_path, criterion="soon")
+
+
+def test_a_study_without_any_answer_says_so_at_the_top(study, tmp_path):
+    """Issue 34: configs/paper.toml's 1 404 points are all hertz_invalid, and its report did not say why."""
+    ds = study.copy(deep=True)
+    ds["status"].values[...] = 2  # hertz_invalid
+    ds["message"] = (ds.status.dims, np.full(ds.status.shape, "contact 8.5 m long on a 4.5-in pipe"))
+    write_report(ds, out_dir=tmp_path)
+    text = (tmp_path / "report.html").read_text()
+    top = text.split("<h2>")[0]
+    assert f"Points by status: {ds.status.size} hertz_invalid." in top
+    assert "No point of this study has an answer" in top and "contact 8.5 m long" in top
