@@ -56,6 +56,7 @@ REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio
 HARMONICS = (1, 2, 3)
 #: Relative change of the span between neighbouring rotary speeds taken as a jump to another branch.
 SPAN_BRANCH_JUMP = 0.2
+ROUGH_POINT_LABEL = "not converged to the study's tolerance (its error: envelope.csv, the validity map)"
 #: The section's own first mode meeting the 1x line: shown where it is, not as a critical speed of the joint (those are
 #: the Campbell chart's, :mod:`study.charts.critical`).
 CRITICAL_SPEED_LABEL = "the section's first mode meets 1× (N = 60 f1)"
@@ -288,11 +289,14 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                  decorate: Callable | None = None, extra_handles: Sequence = (),
                  scales: tuple[str, str] = ("linear", "linear"),
                  xlim=None, ylim=None, extra_context: Callable | None = None, break_jump: float | None = None,
-                 caption: str = "") -> list[Chart]:
+                 caption: str = "", rough: xr.DataArray | None = None) -> list[Chart]:
     """Lines of ``names`` against ``x``, one per value of ``series``; one row of panels per name,
     or all names in the same panels (line styles) when ``overlay`` gives their common y label; with
-    ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`)."""
+    ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`); with ``rough`` (a mask over the
+    dataset's dimensions) a value from a point there (reduced dimensions: any) is drawn as a hollow marker."""
     arrays = {n: _full(ds, n) for n in names}
+    rough_full = rough.transpose(*ds.sizes).astype(float) if rough is not None else None
+    any_rough = False
     plan = _plan(ds, list(arrays.values()), x, series, collapse_series=True)
     xq = x_quantity or quantity(ds[x])
     xpos, xticks = _positions(ds, x, xq)
@@ -325,11 +329,20 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                         values = values[:, None]
                     drawn |= np.isfinite(values).any(axis=0)
                     panel_has_data |= bool(np.isfinite(values).any())
+                    marked = None
+                    if rough_full is not None:
+                        marked = _select(rough_full, plan, fi, p).values > 0
+                        marked = marked[:, None] if plan.series is None else marked
                     for s in range(values.shape[1]):
                         xs, ys = (xpos, values[:, s]) if break_jump is None else branch_breaks(xpos, values[:, s],
                                                                                                 break_jump)
                         ax.plot(xs, ys, color=colours[s], ls=styles[k % len(styles)], lw=1.6,
                                 marker="o", ms=3 if xpos.size <= 40 or break_jump is not None else 0)
+                        if marked is not None and np.any(marked[:, s] & np.isfinite(values[:, s])):
+                            where = marked[:, s] & np.isfinite(values[:, s])
+                            any_rough = True
+                            ax.plot(xpos[where], values[where, s], ls="none", marker="o", ms=6, mfc="white",
+                                    mec=colours[s], mew=1.3, zorder=4, gid="not converged")
                 ax.set_xscale(scales[0])
                 ax.set_yscale(scales[1])
                 if not panel_has_data:  # keep the panel's axis on the swept range and say why it is empty
@@ -363,6 +376,9 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
             handles += [Line2D([], [], color="0.3", ls=styles[k % len(styles)], label=yq[n].short_name)
                         for k, n in enumerate(names)]
         handles += list(extra_handles)
+        if any_rough:
+            handles.append(Line2D([], [], ls="none", marker="o", ms=6, mfc="white", mec="0.2", mew=1.3,
+                                  label=ROUGH_POINT_LABEL))
         if handles:
             fig.legend(handles=handles, loc="outside right center", fontsize=8,
                        title=quantity(ds[plan.series]).short_name if plan.series else None, title_fontsize=8,
@@ -371,7 +387,9 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
         if extra_context is not None:
             context += extra_context(plan, fi)
         _title(fig, title, context, width)
-        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig, caption))
+        labels = [h.get_label() for h in handles if h.get_label() == ROUGH_POINT_LABEL]
+        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig,
+                            caption + (f" Hollow markers: {ROUGH_POINT_LABEL}." if labels else "")))
     return charts
 
 
@@ -587,8 +605,18 @@ def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     if not names or RPM not in ds.sizes or ds.sizes[RPM] == 0:
         return []
     title = _join([quantity(ds[n]).short_name for n in names]).capitalize() + " against rotary speed"
-    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM),
-                        caption="How hard and how long the pipe strikes the wall at each speed, one line per load.")
+    rough = None
+    if "status" in ds.data_vars:  # answers only: ok, or not converged (marked); other statuses' values are not drawn
+        from study.solvers.result import STATUS_CODES
+
+        status = _full(ds, "status")
+        answered = (status == STATUS_CODES["ok"]) | (status == STATUS_CODES["not_converged"])
+        rough = status == STATUS_CODES["not_converged"]
+        ds = ds.assign({n: _full(ds, n).where(answered) for n in names})
+    what = "How hard and how long" if "contact_duration" in names else "How hard"
+    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM), rough=rough,
+                        caption=f"{what} the pipe strikes the wall at each speed, one line per load (the largest over "
+                                "the inputs reduced), answered points only.")
 
 
 def _mode_names(ds: xr.Dataset) -> list[str]:

@@ -576,3 +576,28 @@ def test_the_span_chart_is_not_drawn_where_no_point_searched_a_span(full):
     for method, drawn in (("fast", True), ("reference", False)):
         other = full.assign(method=(full.status.dims, np.full(full.status.shape, method)))
         assert bool(span_length_vs_rpm(other)) == drawn, method
+
+
+def test_contact_lines_draw_answers_only_and_mark_the_points_not_converged(full):
+    """Issue 34: the contact chart drew unmarked not-converged points, and values of invalid points."""
+    from study.charts.design import ROUGH_POINT_LABEL, contact_force_and_duration_vs_rpm
+    from study.solvers.result import STATUS_CODES
+
+    ds = full.copy(deep=True)
+    dims = ds.status.dims
+    ds["peak_contact_force"] = ds.peak_contact_force.broadcast_like(ds.status).transpose(*dims).copy()
+    index = {d: 0 for d in dims}
+    index.update(rotary_speed=2, axial_tension=2)
+    rough = tuple(index[d] for d in dims)
+    index.update(rotary_speed=4)
+    invalid = tuple(index[d] for d in dims)
+    ds.status.values[rough] = STATUS_CODES["not_converged"]
+    ds.status.values[invalid] = STATUS_CODES["hertz_invalid"]
+    ds.peak_contact_force.values[invalid] = 1e9  # an invalid point's value: never drawn
+    charts = contact_force_and_duration_vs_rpm(ds)
+    lines = [ln for chart in charts for ax in chart.figure.axes for ln in ax.get_lines()]
+    assert max(np.nanmax(np.asarray(ln.get_ydata(), float)) for ln in lines if len(ln.get_ydata())) < 1e9 / 4.448
+    hollow = [ln for ln in lines if ln.get_gid() == "not converged"]
+    assert hollow and all(ln.get_xdata()[0] == 140 for ln in hollow)  # 140 rpm, the point not converged
+    assert any(ROUGH_POINT_LABEL in chart.caption for chart in charts)
+    assert any(ROUGH_POINT_LABEL in figure_labels(chart.figure)["legend"] for chart in charts)
