@@ -63,6 +63,7 @@ def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: flo
             f"<p>Study <code>{_e(ds.attrs.get('study_name', ''))}</code>: {_e(_size(ds))}.</p>",
             _answers(ds),
             _envelope_section(rows, table, page.parent, target_hours, criterion, api_comparison(ds)),
+            _drivers_section(ds),
             "<h2>Charts</h2>"]
     body += [_figure(path, chart, page.parent) for path, chart in saved]
     body.append(_provenance(ds))
@@ -85,6 +86,21 @@ def _size(ds) -> str:
     for n in ds.sizes.values():
         points *= n
     return f"{points} design points" + (" over " + ", ".join(swept) if swept else "")
+
+
+def _drivers_section(ds) -> str:
+    from study.charts.drivers import drivers_table_html, main_effects
+
+    rows = main_effects(ds)
+    if not rows:
+        return ""
+    return ("<h2>Which input drives the design</h2>\n<p>How much each swept input moves each design figure, from the "
+            "full-factorial grid: its main effect — the variance of the figure's mean at each of the input's levels "
+            "(the mean over every other input), as a share of the figure's variance over the grid, a first-order "
+            "Sobol index on the grid — with, in brackets, how far that mean moves across the levels; what the main "
+            "effects leave is every interaction together, and the largest two-way interaction (the variance of the "
+            "means over a pair less their main effects) is named. Answered points only; the fatigue life as log₁₀ "
+            "of hours (a share of its decades).</p>\n" + drivers_table_html(rows, _e))
 
 
 def _answers(ds) -> str:

@@ -168,6 +168,7 @@ def test_draw_all_writes_every_chart_beside_the_dataset(tmp_path, full):
     assert all(p.parent == tmp_path / "charts" and p.suffix == ".png" for p in written)
     assert sorted(p.stem for p in written) == sorted([
         "stress_limits", "contact_force", "regime_map",  # decisions: one figure, worst case over the others
+        "drivers",  # the main effects of the swept inputs on the design figures
         "span_length",  # the span does not depend on restitution or mud density: one figure
         "contact_force_duration__mud_density_9_ppg", "contact_force_duration__mud_density_10_ppg",
         "contact_force_duration__mud_density_12_ppg",
@@ -196,11 +197,11 @@ def test_an_open_dataset_needs_an_out_dir(tmp_path, full):
 
 @pytest.mark.parametrize("outputs, expected", [
     (ALL_OUTPUTS, {"stress_limits", "contact_force", "span_length", "contact_force_duration", "natural_frequencies",
-                   "regime_map", "validity_map"}),
+                   "regime_map", "validity_map", "drivers"}),
     (("span_length", "first_natural_frequency", "peak_contact_force", "contact_duration", "impact_velocity"),
      {"contact_force", "span_length", "contact_force_duration", "natural_frequencies", "regime_map",
-      "validity_map"}),
-    (("alternating_bending_stress",), {"stress_limits", "regime_map", "validity_map"}),
+      "validity_map", "drivers"}),
+    (("alternating_bending_stress",), {"stress_limits", "regime_map", "validity_map", "drivers"}),
     (("contact_duration",), {"contact_force_duration", "regime_map", "validity_map"}),
     (CROSSCHECK_OUTPUTS[:3], {"crosscheck", "regime_map", "validity_map"}),  # no orbit at e = 0.5 alone
     ((), {"regime_map", "validity_map"}),
@@ -218,7 +219,7 @@ def test_no_status_no_validity_map():
 def test_charts_against_rpm_need_the_rpm_dimension():
     ds = make_dataset({"axial_tension": [5000, 10000, 20000], "restitution": [0.2, 0.8]})
     drawn = names_of(draw(ds))
-    assert drawn == ["stress_maps", "validity_map"]
+    assert drawn == ["stress_maps", "drivers", "validity_map"]
     figure = stress_maps(ds)[0].figure
     assert "axial tension [lbf]" in figure_labels(figure)["xlabels"]
 
