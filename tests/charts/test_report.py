@@ -93,6 +93,10 @@ def test_the_page_holds_every_chart_the_envelope_and_the_provenance(study, tmp_p
     from study.charts.critical import api_comparison  # the model's critical speeds beside API RP 7G's, and why
 
     assert parsed.text["critical-speeds"].strip() == api_comparison(study) != ""
+    from study.charts.drivers import main_effects  # which input drives the design: a row per design figure
+
+    assert parsed.ids["drivers"] == "table" and "drivers" in parsed.images
+    assert parsed.text["drivers"].count("of") >= len(main_effects(study)) > 0
     provenance = parsed.text["provenance"]
     assert "abc123" in provenance and "study 0.2.0" in provenance and "2026-11-24T09:00:00+00:00" in provenance
     assert parsed.text["config"].strip() == study.attrs["config"].strip()
