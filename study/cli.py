@@ -45,6 +45,8 @@ def _point_table(result, inputs, system: str = "oilfield") -> str:
 
 
 def cmd_point(args) -> int:
+    if args.plot and not args.plot.lower().endswith((".png", ".pdf", ".svg")):
+        raise ValueError(f"--plot {args.plot}: allowed: a file ending in .png, .pdf or .svg")
     study = load(args.config, parse_set(args.set or []))
     inputs = study.point()
     if args.method:
@@ -52,6 +54,17 @@ def cmd_point(args) -> int:
     ensure_compiled(inputs, say=tell)
     result = solve_point(inputs)
     print(_point_json(result, inputs) if args.json else _point_table(result, inputs, "si" if args.si else "oilfield"))
+    if args.plot:
+        from pathlib import Path
+
+        from study.charts.design import save_figure
+        from study.charts.point import point_chart
+
+        path = Path(args.plot)
+        fmt = path.suffix.lstrip(".").lower()
+        chart = point_chart(inputs)
+        save_figure(chart.figure, path, fmt)
+        print(f"{'' if args.json else 'plot: '}{path}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
@@ -151,6 +164,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--method", choices=sorted(METHODS))
     p.add_argument("--json", action="store_true", help="print one JSON object, SI values")
     p.add_argument("--si", action="store_true", help="the table in SI units (default: oilfield units)")
+    p.add_argument("--plot", default=None, metavar="FILE",
+                   help="also draw what the pipe does there (the reference model's orbit, contact forces and "
+                        "deflection) into FILE (.png, .pdf, .svg)")
     p.set_defaults(func=cmd_point)
 
     p = sub.add_parser("sweep", help="solve every point of the config's grid and write outputs/<name>/")
