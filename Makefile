@@ -23,6 +23,7 @@ setup: $(STAMP)
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	@echo "installing study and its pinned dependencies into $(VENV) (quiet; about 2 minutes the first time)"
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	$(BIN)/study compile
 	touch $(STAMP)
