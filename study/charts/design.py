@@ -658,9 +658,9 @@ def _curves(values: np.ndarray) -> np.ndarray:
 def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     """Natural frequencies of the span against rotary speed (a Campbell diagram).
 
-    With the rotation harmonics f = k N / 60 (k = 1, 2, 3; N in rpm) and, for comparison, the
-    classical critical speed of a rotating simply supported shaft, N = 60 f1, as a dotted vertical
-    line per axial load with a circle where it meets the 1x line. Both axes turn logarithmic when
+    With the rotation harmonics f = k N / 60 (k = 1, 2, 3; N in rpm) and where the span's first mode meets the 1x
+    line, N = 60 f1, as a dotted vertical line per axial load with a circle: a low mode of the whole span, not a
+    critical speed (the joint's, which the envelope and the bands use, are :mod:`study.charts.critical`'s). Both axes turn logarithmic when
     the frequencies or speeds span more than a decade or so, as they do when the span is long.
     """
     names = _mode_names(ds)

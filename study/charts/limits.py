@@ -60,7 +60,7 @@ def _over(ds: xr.Dataset, p, name: str, above: float = 1.0) -> np.ndarray:
 
 def stress_limit_maps(ds: xr.Dataset) -> list[Chart]:
     """Maximum normal stress with the grade's yield outlined, and alternating bending stress with the endurance
-    limit outlined, over rotary speed × axial load (worst case over the other inputs, ok points only), with the
+    limit outlined, over rotary speed × axial load (worst case over the other inputs, every answered point), with the
     critical-speed bands. Without both speed and load swept: the line charts of :func:`design.stress_maps`."""
     names = [n for n in design.STRESSES if n in ds.data_vars]
     p = plane(ds)
@@ -117,7 +117,7 @@ def _fatigue_text(ds: xr.Dataset) -> str:
 
 def fatigue_life_map(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS) -> list[Chart]:
     """Hours of rotation to fatigue failure (Miner's sum 1) over rotary speed × axial load, on a log colour scale;
-    the shortest life over the other inputs (ok points only); outlined: the cells under ``target_hours``."""
+    the shortest life over the other inputs (every answered point); outlined: the cells under ``target_hours``."""
     p = plane(ds)
     if p is None or "fatigue_life" not in ds.data_vars:
         return []
