@@ -36,13 +36,16 @@ pre { background: #f6f6f6; padding: 1em; overflow-x: auto; }
 
 
 def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: float = DEFAULT_TARGET_LIFE_HOURS,
-                 criterion: str = "life") -> list[Path]:
+                 criterion: str = "life", regime_points: bool = True) -> list[Path]:
     """Draw every chart, write the envelope CSV beside them and ``report.html``; return the written paths.
 
     dataset_path : the results netCDF (or an open dataset, then ``out_dir`` is needed).
     out_dir : the charts' folder, default ``charts/`` beside the dataset. The page goes beside the dataset
         (``outputs/<study>/report.html``), or into ``out_dir`` when one is given.
     target_hours, criterion : the fatigue limit of the envelope (see :func:`study.charts.envelope.failures`).
+    regime_points : also draw what the pipe does at one point of each regime the study found
+        (:func:`study.charts.point.point_chart`, the reference model run again there: a second or so each), where the
+        dataset records its config and regimes.
     """
     if criterion not in CRITERIA:
         raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
@@ -66,6 +69,12 @@ def write_report(dataset_path, out_dir=None, fmt: str = "png", target_hours: flo
             _drivers_section(ds),
             "<h2>Charts</h2>"]
     body += [_figure(path, chart, page.parent) for path, chart in saved]
+    if regime_points:
+        seen = _regime_figures(ds, charts_dir, fmt)
+        written += [path for path, _ in seen]
+        if seen:
+            body.append('<h2 id="regimes-seen">What the pipe does: one point of each regime</h2>')
+            body += [_figure(path, chart, page.parent) for path, chart in seen]
     body.append(_provenance(ds))
     text = ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
             f"<title>{_e(ds.attrs.get('title', 'study report'))}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
@@ -86,6 +95,64 @@ def _size(ds) -> str:
     for n in ds.sizes.values():
         points *= n
     return f"{points} design points" + (" over " + ", ".join(swept) if swept else "")
+
+
+def representative_points(ds) -> list[tuple[str, dict]]:
+    """One answered point of each regime in the dataset (the one at the median rotary speed of that regime's
+    points): [(regime name, {dimension: index})]."""
+    import numpy as np
+
+    from study.charts.design import _full
+    from study.charts.plane import answered_points
+    from study.solvers.result import REGIMES
+
+    if "regime" not in ds.data_vars or not ds.sizes:
+        return []
+    regime = _full(ds, "regime").where(answered_points(ds)).values
+    dims = list(ds.sizes)
+    out = []
+    for name, code in REGIMES.items():
+        where = np.argwhere(regime == code)
+        if not where.size:
+            continue
+        order = where[:, dims.index("rotary_speed")] if "rotary_speed" in dims else np.arange(len(where))
+        pick = where[np.argsort(order, kind="stable")[len(where) // 2]]
+        out.append((name, {d: int(i) for d, i in zip(dims, pick)}))
+    return out
+
+
+def _regime_figures(ds, folder: Path, fmt: str) -> list:
+    """:func:`representative_points` drawn (study.charts.point) and saved; a point whose config cannot be read back
+    or whose motion cannot be drawn is left out (the report never fails on it)."""
+    from study.charts.design import save_figure
+    from study.charts.point import point_chart
+    from study.config import ConfigError, load_text
+
+    text = ds.attrs.get("config")
+    points = representative_points(ds)
+    if not text or not points:
+        return []
+    try:
+        study = load_text(text, "the dataset's config")
+    except (ConfigError, ValueError):
+        return []
+    saved = []
+    for name, index in points:
+        where = {d: ds[d].values[i] for d, i in index.items() if ds.sizes[d] > 1}
+        try:
+            inputs = study.point(**{d: v.item() if hasattr(v, "item") else v for d, v in where.items()})
+            chart = point_chart(inputs)
+        except Exception:  # noqa: BLE001 - a drawing aid: the report stands without it
+            continue
+        chart.name = f"point__{name}"
+        shown = ", ".join(quantity(ds[d]).describe(ds[d].values[i]) for d, i in index.items() if ds.sizes[d] > 1)
+        chart.caption = f"Regime {name.replace('_', ' ')}, at {shown}: " + chart.caption[0].lower() + chart.caption[1:]
+        try:
+            chart.title = chart.figure.get_suptitle()
+            saved.append((save_figure(chart.figure, folder / f"{chart.name}.{fmt}", fmt), chart))
+        finally:
+            chart.figure.clear()
+    return saved
 
 
 def _drivers_section(ds) -> str:

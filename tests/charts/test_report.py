@@ -120,3 +120,22 @@ def test_a_study_without_any_answer_says_so_at_the_top(study, tmp_path):
     top = text.split("<h2>")[0]
     assert f"Points by status: {ds.status.size} hertz_invalid." in top
     assert "No point of this study has an answer" in top and "contact 8.5 m long" in top
+
+
+def test_one_representative_point_of_each_regime_the_study_found(study):
+    from study.charts.report import representative_points
+    from study.solvers.result import REGIMES
+
+    ds = study.copy(deep=True)
+    assert representative_points(ds) == []  # no regime recorded: nothing to draw
+    speed = ds.rotary_speed.broadcast_like(ds.status).transpose(*ds.status.dims)
+    rpm = speed.values * 30 / np.pi
+    regime = np.where(rpm < 150, REGIMES["sliding"], REGIMES["bouncing"]).astype(float)
+    ds["regime"] = (ds.status.dims, regime)
+    ds["status"].values[...] = 0
+    points = dict(representative_points(ds))
+    assert set(points) == {"sliding", "bouncing"}
+    speeds = ds.rotary_speed.values * 30 / np.pi
+    # the median speed of each regime's points: 60-140 rpm (median 100) and 160-300 rpm (median 240)
+    assert speeds[points["sliding"]["rotary_speed"]] == pytest.approx(100)
+    assert speeds[points["bouncing"]["rotary_speed"]] == pytest.approx(240)
