@@ -24,6 +24,7 @@ setup: $(STAMP)
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	@echo "installing study and its pinned dependencies into $(VENV) (quiet; about 2 minutes the first time)"
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	$(BIN)/study compile
 	touch $(STAMP)
@@ -41,7 +42,7 @@ chromium:
 	@test -x /usr/bin/chromium || { apt-get update -qq && apt-get install -y -qq chromium >/dev/null; }
 
 sweep: $(STAMP)
-	$(BIN)/study sweep $(CONFIG)
+	$(BIN)/study sweep $(CONFIG) --record docs/runs
 
 charts: $(STAMP)
 	$(BIN)/study charts outputs/$$($(BIN)/python -c "import study.config as c; print(c.load('$(CONFIG)').name)")/results.nc

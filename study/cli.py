@@ -9,11 +9,11 @@ import argparse
 import json
 import math
 import sys
+import time
 
 from study import __version__
 from study.config import MAX_GRID, MAX_WORKERS, ConfigError, load, parse_set
-from study.solvers import METHODS, OUTPUTS, solve_point
-from study.units import convert, display_unit, pint_unit
+from study.solvers import METHODS, solve_point
 from study.workflow.compiled import cached, compile_ahead, ensure_compiled, kernels, uncached
 from study.workflow.execute import Interrupted, SweepError, tell
 
@@ -38,41 +38,38 @@ def _point_json(result, inputs) -> str:
     return json.dumps(payload, indent=2)
 
 
-def _point_table(result, inputs) -> str:
-    lines = [f"method {result.method}: status {result.status}", f"  {result.message}", ""]
-    for name, value in result.values.items():
-        unit, long_name = OUTPUTS[name]
-        shown_unit, label = display_unit(name, unit)
-        if isinstance(value, float) and math.isfinite(value):
-            shown = convert(value, pint_unit(unit), shown_unit)
-            text = f"{shown:12.5g} {label}"
-        else:
-            text = f"{value!s:>12}"
-        lines.append(f"  {name:28s} {text:24s} {long_name}")
-    if result.error_estimate is not None:
-        lines.append(f"  {'error_estimate':28s} {result.error_estimate:12.3g} {'':11s} relative, max normal stress")
-    for name, value in result.extras.items():  # the non-scalar outputs, briefly (--json has them whole)
-        if name == "candidate_spans":
-            value = ", ".join(f"{convert(v, 'm', 'ft'):.1f} ft" for v in value) or "none"
-        elif isinstance(value, (dict, list)):
-            continue
-        lines.append(f"  {name:28s} {value}")
-    lines.append(f"\n  wall time {result.wall_time * 1e3:.3g} ms")
-    return "\n".join(lines)
+def _point_table(result, inputs, system: str = "oilfield") -> str:
+    from study.table import point_table
+
+    return point_table(result, inputs, system)
 
 
 def cmd_point(args) -> int:
+    if args.plot and not args.plot.lower().endswith((".png", ".pdf", ".svg")):
+        raise ValueError(f"--plot {args.plot}: allowed: a file ending in .png, .pdf or .svg")
     study = load(args.config, parse_set(args.set or []))
     inputs = study.point()
     if args.method:
         inputs["solver_method"] = args.method
     ensure_compiled(inputs, say=tell)
     result = solve_point(inputs)
-    print(_point_json(result, inputs) if args.json else _point_table(result, inputs))
+    print(_point_json(result, inputs) if args.json else _point_table(result, inputs, "si" if args.si else "oilfield"))
+    if args.plot:
+        from pathlib import Path
+
+        from study.charts.design import save_figure
+        from study.charts.point import point_chart
+
+        path = Path(args.plot)
+        fmt = path.suffix.lstrip(".").lower()
+        chart = point_chart(inputs)
+        save_figure(chart.figure, path, fmt)
+        print(f"{'' if args.json else 'plot: '}{path}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
 def cmd_sweep(args) -> int:
+    start = time.perf_counter()
     try:
         from study.workflow.sweep import run_sweep
 
@@ -84,11 +81,35 @@ def cmd_sweep(args) -> int:
     except KeyboardInterrupt:
         raise KeyboardInterrupt("interrupted before the sweep started: nothing new was computed") from None
     print(f"results: {path}")
-    if not args.no_charts:
-        from study.charts.report import write_report
+    from study.charts.catalogue import open_results
+    from study.charts.summary import sweep_summary
 
-        for figure in write_report(path):
-            print(f"chart:   {figure}")
+    report = table = None
+    if not args.no_charts:
+        from study.charts.report import REPORT, TABLE, write_report
+
+        written = write_report(path)
+        figures = [p for p in written if p.name not in (REPORT, TABLE)]
+        if figures:
+            print(f"charts:  {len(figures)} in {figures[0].parent}")
+        report = next((p for p in written if p.name == REPORT), None)
+        table = next((p for p in written if p.name == TABLE), None)
+    results = open_results(path)
+    seconds = time.perf_counter() - start
+    print(sweep_summary(results, seconds, report, table))
+    if args.no_charts:
+        print(f"  report: not written (--no-charts); draw it with: study charts {path}")
+    if args.record:
+        from pathlib import Path
+
+        from study.atomic import atomic_path
+        from study.charts.summary import run_record
+
+        record = Path(args.record) / f"{study.name}.md"
+        record.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(record) as tmp:
+            Path(tmp).write_text(run_record(results, seconds), encoding="utf-8")
+        print(f"  record: {record}")
     return 0
 
 
@@ -158,6 +179,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help='override an input, e.g. --set load.rotary_speed="200 rpm" (repeatable)')
     p.add_argument("--method", choices=sorted(METHODS))
     p.add_argument("--json", action="store_true", help="print one JSON object, SI values")
+    p.add_argument("--si", action="store_true", help="the table in SI units (default: oilfield units)")
+    p.add_argument("--plot", default=None, metavar="FILE",
+                   help="also draw what the pipe does there (the reference model's orbit, contact forces and "
+                        "deflection) into FILE (.png, .pdf, .svg)")
     p.set_defaults(func=cmd_point)
 
     p = sub.add_parser("sweep", help="solve every point of the config's grid and write outputs/<name>/")
@@ -169,6 +194,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="local worker processes (default: sweep.workers, else one per core)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-charts", action="store_true", help="skip the charts")
+    p.add_argument("--record", default=None, metavar="FOLDER",
+                   help="also write the run's record, FOLDER/<study name>.md (make sweep: docs/runs)")
     p.add_argument("--max-points", type=whole_number(1, MAX_GRID), default=None, metavar="N",
                    help="largest grid accepted (default sweep.max_points, 1000000)")
     p.set_defaults(func=cmd_sweep)

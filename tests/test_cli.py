@@ -64,8 +64,13 @@ def test_sweep_writes_results_and_charts_then_charts_redraws(tmp_path, capsys):
     assert main(["sweep", str(config), "--out", str(out), "--scheduler", "synchronous", "--quiet"]) == 0
     printed = capsys.readouterr().out
     assert f"results: {out / 'results.nc'}" in printed
+    # the run ends with its summary: the points by status and method, the time, the envelope, where the report is
+    summary = printed[printed.index("sweep done:"):].splitlines()
+    assert summary[0].startswith("sweep done: 6 points in ") and summary[1].startswith("  by status: ")
+    assert summary[2].startswith("  by method: ") and summary[-1].startswith(f"  report: {out / 'report.html'}")
     charts = sorted(p.name for p in (out / "charts").iterdir())
-    assert "validity_map.png" in charts and "span_length.png" in charts
+    # the span is the config's input for the core method: its chart would be a flat line, so it is not drawn
+    assert "validity_map.png" in charts and "span_length.png" not in charts
     assert main(["charts", str(out / "results.nc"), "--out", str(tmp_path / "pdf"), "--format", "pdf"]) == 0
     assert any(p.suffix == ".pdf" for p in (tmp_path / "pdf").iterdir())
 

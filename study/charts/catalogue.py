@@ -16,14 +16,15 @@ from study.charts.cost import cost_accuracy_chart
 from study.charts.critical import campbell_chart
 from study.charts.design import (Chart, contact_force_and_duration_vs_rpm, crosscheck_maps, natural_frequencies_vs_rpm,
                                  orbit_maps, reference_maps, save_figure, span_length_vs_rpm)
+from study.charts.drivers import drivers_chart
 from study.charts.envelope import envelope_chart
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, contact_force_map, fatigue_life_map, stress_limit_maps
 from study.charts.regimes import regime_map
 from study.charts.validity import validity_map
 
 #: Every chart, in the order :func:`draw` draws them.
-CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, regime_map, campbell_chart,
-          validity_map, cost_accuracy_chart, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
+CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, drivers_chart, regime_map,
+          campbell_chart, validity_map, cost_accuracy_chart, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
           crosscheck_maps, orbit_maps, reference_maps)
 #: Charts that take the fatigue target (target_hours [h]) and, for the envelope, the fatigue criterion.
 _TAKE_TARGET = {envelope_chart: ("target_hours", "criterion"), fatigue_life_map: ("target_hours",)}

@@ -4,7 +4,10 @@ The span between tool joints (span = the ``joint_length`` input) whirls at its n
 ω_n² = [EI (nπ/L)⁴ + T_eff (nπ/L)²]/M (:func:`study.physics.critical_speeds.critical_rotary_speeds`,
 docs/model.md §2) with the dataset's own ``bending_stiffness``, ``effective_tension`` (tension less the
 mud flow's share) and ``mass_per_length`` (pipe, internal mud and annular added mass) at every point,
-so the critical speeds follow the load and the mud. A rotary speed within ±15 % of one is to be
+so the critical speeds follow the load and the mud; each mode is critical where the 1× (synchronous whirl: the
+out-of-balance, a bent joint) or the 2× excitation (two forcing cycles a revolution) meets it, at 60 f_n / k
+(:func:`every_critical_speed`: the crossings the Campbell chart marks, the bands on every map and the envelope's
+check are this one set). A rotary speed within ±15 % of one is to be
 avoided (:func:`study.physics.critical_speeds.avoid_band`, API RP 7G's margin); API RP 7G's rule of
 thumb (:func:`study.physics.critical_speeds.rp7g_critical_speed`: no tension, no mud) is drawn beside.
 
@@ -78,10 +81,21 @@ def _merge(intervals) -> list[tuple[float, float]]:
     return [(lo, hi) for lo, hi in merged]
 
 
-def avoid_bands(p: Plane, margin: float = API_RP7G_ACCURACY, modes=MODES) -> list[list[tuple[float, float]]] | None:
+def every_critical_speed(ds: xr.Dataset, modes=MODES, orders=ORDERS) -> xr.DataArray | None:
+    """The critical rotary speeds [rpm] of the joint at every excitation order the Campbell chart marks (60 f_n / k
+    for k in ``orders``): over every dimension of ``ds``, ``mode`` and ``order``. The one set of critical speeds the
+    Campbell chart, the bands on every map and the envelope use. None as :func:`critical_speeds`."""
+    per_order = [critical_speeds(ds, modes, order=k) for k in orders]
+    if any(s is None for s in per_order):
+        return None
+    return xr.concat(per_order, dim=xr.DataArray(list(orders), dims="order", name="order"))
+
+
+def avoid_bands(p: Plane, margin: float = API_RP7G_ACCURACY, modes=MODES, orders=ORDERS
+                ) -> list[list[tuple[float, float]]] | None:
     """Per load row of the plane, the rotary speeds [rpm] within ``margin`` of a critical speed of any
-    point of that row (every mode, every value of the reduced inputs), merged into intervals."""
-    speeds = critical_speeds(p.ds, modes)
+    point of that row (every mode and order, every value of the reduced inputs), merged into intervals."""
+    speeds = every_critical_speed(p.ds, modes, orders)
     if speeds is None:
         return None
     speeds = speeds.isel({d: 0 for d in p.fixed})
@@ -94,14 +108,15 @@ def avoid_bands(p: Plane, margin: float = API_RP7G_ACCURACY, modes=MODES) -> lis
     return rows
 
 
-def in_band(ds: xr.Dataset, margin: float = API_RP7G_ACCURACY, modes=MODES) -> xr.DataArray | None:
-    """True where a point's rotary speed is within ``margin`` of one of its own critical speeds."""
-    speeds = critical_speeds(ds, modes)
+def in_band(ds: xr.Dataset, margin: float = API_RP7G_ACCURACY, modes=MODES, orders=ORDERS) -> xr.DataArray | None:
+    """True where a point's rotary speed is within ``margin`` of one of its own critical speeds (every mode and
+    order of :func:`every_critical_speed`)."""
+    speeds = every_critical_speed(ds, modes, orders)
     if speeds is None or RPM not in ds.coords:
         return None
     rpm = ds[RPM] * RPM_PER_RAD_S
     lo, hi = (speeds.copy(data=edge) for edge in avoid_band(speeds.values, margin))
-    return ((rpm >= lo) & (rpm <= hi)).any("mode")
+    return ((rpm >= lo) & (rpm <= hi)).any(["mode", "order"])
 
 
 def _range_text(values) -> str:
@@ -200,11 +215,34 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
     context += [quantity(ds[d]).describe(ds[d].values[0]) for d in fixed]
     if others:
         context.append(f"shaded: the spread over {_names(ds, others)}")
-    context.append("1× critical speeds: " + ", ".join(f"mode {m} {_range_text(speeds.sel(mode=m).values)}"
-                                                       for m in MODES))
+    every = every_critical_speed(ds)
+    context.append("critical speeds (the bands on every map and the envelope's): " + "; ".join(
+        f"{k}× " + ", ".join(f"mode {m} {_range_text(every.sel(order=k, mode=m).values)}" for m in MODES)
+        for k in ORDERS))
     _title(fig, "Rotary speeds to avoid: natural frequencies of the joint against rotary speed (Campbell diagram)",
            context, 8.5)
-    caption = ("Where a 1× (or 2×) excitation line crosses a natural frequency of the joint between tool joints the pipe "
-               "whirls in resonance: the marked crossings are the critical speeds to keep 15 % away from; API RP 7G's "
-               "rule of thumb (no tension, no mud) is the dash-dotted line.")
+    caption = ("Where a 1× or 2× excitation line crosses a natural frequency of the joint between tool joints the pipe "
+               "whirls in resonance: the marked crossings are the critical speeds, the same ones the shaded bands on "
+               "every map and the envelope keep 15 % away from. " + api_comparison(ds))
     return [Chart("campbell", fig, caption)]
+
+
+def api_comparison(ds: xr.Dataset) -> str:
+    """A sentence setting the model's critical speeds of the joint beside API RP 7G's rule of thumb, and why they
+    differ; "" where either cannot be computed."""
+    api, every = rp7g_speeds(ds), every_critical_speed(ds)
+    if not api.size or every is None:
+        return ""
+    lo, hi = avoid_band(api)
+    mode1 = every.sel(order=1, mode=1).values
+    finite = mode1[np.isfinite(mode1)]
+    if not finite.size:
+        return ""
+    band = f"{format_value(float(lo.min()))}–{format_value(float(hi.max()))} rpm"
+    low, high = float(finite.min()), float(finite.max())
+    where = ("above it" if low > api.max() else "below it" if high < api.min() else "on both sides of it")
+    return (f"API RP 7G's rule of thumb, drawn as a reference, puts the joint's critical speed at "
+            f"{_range_text(api)} (avoid {band}) for a bare joint with no tension and no mud; the model's first mode "
+            f"at 1× is {_range_text(finite)} here, {where}, because the axial tension stiffens the joint (the "
+            "T (nπ/L)² term raises every natural frequency, most at high tension) while the mud inside and around "
+            "the pipe adds mass and lowers them; the envelope and the bands use the model's, with the 2× crossings.")

@@ -56,7 +56,11 @@ REFERENCE_RATIOS = ("reference_peak_force_ratio", "reference_normal_stress_ratio
 HARMONICS = (1, 2, 3)
 #: Relative change of the span between neighbouring rotary speeds taken as a jump to another branch.
 SPAN_BRANCH_JUMP = 0.2
-CRITICAL_SPEED_LABEL = "classical critical speed: N = 60 f1"
+ROUGH_POINT_LABEL = "not converged to the study's tolerance (its error: envelope.csv, the validity map)"
+#: The section's own first mode meeting the 1x line: shown where it is, not as a critical speed of the joint (those are
+#: the Campbell chart's, :mod:`study.charts.critical`).
+CRITICAL_SPEED_LABEL = "the section's first mode meets 1× (N = 60 f1)"
+SECTION_MODE_TEXT = "the section's first mode meets 1× at N = 60 f1"
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
 
 @dataclass
@@ -285,11 +289,14 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                  decorate: Callable | None = None, extra_handles: Sequence = (),
                  scales: tuple[str, str] = ("linear", "linear"),
                  xlim=None, ylim=None, extra_context: Callable | None = None, break_jump: float | None = None,
-                 caption: str = "") -> list[Chart]:
+                 caption: str = "", rough: xr.DataArray | None = None) -> list[Chart]:
     """Lines of ``names`` against ``x``, one per value of ``series``; one row of panels per name,
     or all names in the same panels (line styles) when ``overlay`` gives their common y label; with
-    ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`)."""
+    ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`); with ``rough`` (a mask over the
+    dataset's dimensions) a value from a point there (reduced dimensions: any) is drawn as a hollow marker."""
     arrays = {n: _full(ds, n) for n in names}
+    rough_full = rough.transpose(*ds.sizes).astype(float) if rough is not None else None
+    any_rough = False
     plan = _plan(ds, list(arrays.values()), x, series, collapse_series=True)
     xq = x_quantity or quantity(ds[x])
     xpos, xticks = _positions(ds, x, xq)
@@ -322,11 +329,20 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                         values = values[:, None]
                     drawn |= np.isfinite(values).any(axis=0)
                     panel_has_data |= bool(np.isfinite(values).any())
+                    marked = None
+                    if rough_full is not None:
+                        marked = _select(rough_full, plan, fi, p).values > 0
+                        marked = marked[:, None] if plan.series is None else marked
                     for s in range(values.shape[1]):
                         xs, ys = (xpos, values[:, s]) if break_jump is None else branch_breaks(xpos, values[:, s],
                                                                                                 break_jump)
                         ax.plot(xs, ys, color=colours[s], ls=styles[k % len(styles)], lw=1.6,
                                 marker="o", ms=3 if xpos.size <= 40 or break_jump is not None else 0)
+                        if marked is not None and np.any(marked[:, s] & np.isfinite(values[:, s])):
+                            where = marked[:, s] & np.isfinite(values[:, s])
+                            any_rough = True
+                            ax.plot(xpos[where], values[where, s], ls="none", marker="o", ms=6, mfc="white",
+                                    mec=colours[s], mew=1.3, zorder=4, gid="not converged")
                 ax.set_xscale(scales[0])
                 ax.set_yscale(scales[1])
                 if not panel_has_data:  # keep the panel's axis on the swept range and say why it is empty
@@ -360,6 +376,9 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
             handles += [Line2D([], [], color="0.3", ls=styles[k % len(styles)], label=yq[n].short_name)
                         for k, n in enumerate(names)]
         handles += list(extra_handles)
+        if any_rough:
+            handles.append(Line2D([], [], ls="none", marker="o", ms=6, mfc="white", mec="0.2", mew=1.3,
+                                  label=ROUGH_POINT_LABEL))
         if handles:
             fig.legend(handles=handles, loc="outside right center", fontsize=8,
                        title=quantity(ds[plan.series]).short_name if plan.series else None, title_fontsize=8,
@@ -368,7 +387,9 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
         if extra_context is not None:
             context += extra_context(plan, fi)
         _title(fig, title, context, width)
-        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig, caption))
+        labels = [h.get_label() for h in handles if h.get_label() == ROUGH_POINT_LABEL]
+        charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig,
+                            caption + (f" Hollow markers: {ROUGH_POINT_LABEL}." if labels else "")))
     return charts
 
 
@@ -557,9 +578,17 @@ def reference_maps(ds: xr.Dataset) -> list[Chart]:
                           + _join([words[n] for n in names]), names, cmap="coolwarm", centre=1.0)
 
 
+#: Methods whose span is an answer (a search over the span condition); elsewhere the span is an input (the section
+#: length, ``solver.span_length``) and its chart would be a flat line of the input.
+SPAN_SEARCHES = ("fast", "series", "periodic", "damped", "crosscheck", "reference-check")
+
+
 def span_length_vs_rpm(ds: xr.Dataset) -> list[Chart]:
-    """Span length between nodes against rotary speed, one line per axial load."""
+    """Span length between nodes against rotary speed, one line per axial load; drawn only where some point's span
+    is an answer (a method of :data:`SPAN_SEARCHES`, or a dataset that does not say its methods)."""
     if "span_length" not in ds.data_vars or RPM not in ds.sizes or ds.sizes[RPM] == 0:
+        return []
+    if "method" in ds.data_vars and not np.isin(np.asarray(ds["method"].values).astype(str), SPAN_SEARCHES).any():
         return []
     return _line_charts(ds, "span_length", "Span length against rotary speed", ["span_length"], RPM,
                         _line_series(ds, RPM), break_jump=SPAN_BRANCH_JUMP,
@@ -576,8 +605,18 @@ def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     if not names or RPM not in ds.sizes or ds.sizes[RPM] == 0:
         return []
     title = _join([quantity(ds[n]).short_name for n in names]).capitalize() + " against rotary speed"
-    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM),
-                        caption="How hard and how long the pipe strikes the wall at each speed, one line per load.")
+    rough = None
+    if "status" in ds.data_vars:  # answers only: ok, or not converged (marked); other statuses' values are not drawn
+        from study.solvers.result import STATUS_CODES
+
+        status = _full(ds, "status")
+        answered = (status == STATUS_CODES["ok"]) | (status == STATUS_CODES["not_converged"])
+        rough = status == STATUS_CODES["not_converged"]
+        ds = ds.assign({n: _full(ds, n).where(answered) for n in names})
+    what = "How hard and how long" if "contact_duration" in names else "How hard"
+    return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM), rough=rough,
+                        caption=f"{what} the pipe strikes the wall at each speed, one line per load (the largest over "
+                                "the inputs reduced), answered points only.")
 
 
 def _mode_names(ds: xr.Dataset) -> list[str]:
@@ -619,9 +658,9 @@ def _curves(values: np.ndarray) -> np.ndarray:
 def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     """Natural frequencies of the span against rotary speed (a Campbell diagram).
 
-    With the rotation harmonics f = k N / 60 (k = 1, 2, 3; N in rpm) and, for comparison, the
-    classical critical speed of a rotating simply supported shaft, N = 60 f1, as a dotted vertical
-    line per axial load with a circle where it meets the 1x line. Both axes turn logarithmic when
+    With the rotation harmonics f = k N / 60 (k = 1, 2, 3; N in rpm) and where the span's first mode meets the 1x
+    line, N = 60 f1, as a dotted vertical line per axial load with a circle: a low mode of the whole span, not a
+    critical speed (the joint's, which the envelope and the bands use, are :mod:`study.charts.critical`'s). Both axes turn logarithmic when
     the frequencies or speeds span more than a decade or so, as they do when the span is long.
     """
     names = _mode_names(ds)
@@ -687,7 +726,8 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
         elif low > float(np.max(xpos)):
             where = ", above the swept speeds"
         span = format_value(low) if high - low <= 1e-6 * abs(high) else f"{format_value(low)}–{format_value(high)}"
-        return [f"classical critical speed N = 60 f1: {span} rpm{where}"]
+        return [f"{SECTION_MODE_TEXT}: {span} rpm{where} (a mode of the whole span; the joint's critical speeds are "
+                "the Campbell chart's)"]
 
     title = "Natural frequencies of the span and rotation harmonics against rotary speed"
     overlay = "natural frequency [Hz]" if len(names) > 1 else None
@@ -696,9 +736,11 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
                         x_quantity=xq, y_quantities=fq, decorate=decorate, extra_handles=handles,
                         scales=(scale, scale),
                         xlim=xlim, ylim=ylim, extra_context=extra_context,
-                        caption="Natural frequencies of the span the periodic solution finds, against the rotation "
-                                "harmonics; the span is itself an output, so its critical speeds are not an input "
-                                "check (the Campbell diagram of the joint is).")
+                        caption="Natural frequencies of the span the method answers on (the periodic solution's span, or "
+                                "the reference model's section), against the rotation harmonics; where its first mode "
+                                "meets the 1× line is marked, a low mode of the whole span rather than a critical "
+                                "speed: the joint's critical speeds, which the envelope and the bands use, are the "
+                                "Campbell chart's.")
 
 
 def save_figure(figure: Figure, path: Path, fmt: str = "png") -> Path:

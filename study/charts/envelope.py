@@ -4,7 +4,8 @@ A cell is safe when every point in it (over every other swept input) is
 
 - solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to be safe) — or ``not_converged`` to the
   study's tolerance but decided all the same: every limit below holds, or one fails, with its stresses off by
-  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer);
+  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer; stresses that
+  might be off by 100 % or more can show a limit holds, never that it fails);
 - below yield: ``yield_utilisation`` ≤ 1;
 - long-lived: ``fatigue_life`` ≥ the target (default :data:`~study.charts.limits.DEFAULT_TARGET_LIFE_HOURS`
   = 1000 h of rotation), or with ``criterion="endurance"`` below the endurance limit,
@@ -12,8 +13,10 @@ A cell is safe when every point in it (over every other swept input) is
 - away from resonance: outside ±15 % of every critical speed of the joint (:mod:`study.charts.critical`),
   where the dataset allows computing them (the chart says when it does not).
 
-:func:`envelope_table` gives one row per cell (the CSV written beside the charts), :func:`safe_ranges` the
-safe rotary speeds per load (the report's table), :func:`envelope_chart` the map.
+:func:`envelope_table` gives one row per cell (the CSV written beside the charts and the report's cell table): its
+verdict — safe, limited (a decided failure or a critical-speed band) or undecided — and its worst values over every
+answered point (undecided ones included) with their error; :func:`safe_ranges` the safe (or undecided) rotary speeds
+per load (the report's table), :func:`envelope_chart` the map.
 """
 
 from __future__ import annotations
@@ -33,7 +36,8 @@ from study.charts.critical import in_band
 from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
-from study.charts.plane import answered_points, draw_boundary, ok_points, plane, plane_axes
+from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, caption_from, draw_boundary, ok_points, plane,
+                                plane_axes, worst_in_cells)
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -41,13 +45,6 @@ REASONS = ("no valid answer", "over yield", "fatigue", "critical speed")
 COLOURS = {"safe": "#41ab5d", "no valid answer": "#bdbdbd", "over yield": "#a50f15", "fatigue": "#fd8d3c",
            "critical speed": "#6baed6"}
 CRITERIA = ("life", "endurance")
-#: A point not converged to the study's tolerance decides a limit when the limit holds (or fails) with its stresses
-#: off by MARGIN times its error estimate: the reference model's estimate of its window erred low by up to 2x in its
-#: tests (docs/reference_model.md §3.1), so twice.
-MARGIN = 2.0
-#: The steepest S-N slope of the fatigue curves (DNV-RP-C203: m = 3 and 5): life goes as S^-m, so stresses off by a
-#: factor (1 + d) move the life by at most (1 + d)^5.
-LIFE_SLOPE = 5.0
 
 
 def _limit(ds: xr.Dataset, name: str) -> xr.DataArray:
@@ -66,19 +63,20 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
     if not target_hours > 0:
         raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
     ok = answered_points(ds)  # ok, or yields: answered, and a yielding point fails the yield limit below
-    off = _stress_margin(ds)  # NaN where a point is ok or cannot be decided
+    off = _stress_margin(ds)  # NaN where a point is ok or has no estimate
     rough = np.isfinite(off)
-    with np.errstate(invalid="ignore"):
+    can_fail = rough & (off < 1.0)  # stresses off by 100 % or more might be nil: such a point cannot fail a limit
+    with np.errstate(invalid="ignore", divide="ignore"):
         use = _limit(ds, "yield_utilisation")
-        yield_fails = (ok & ~(use <= 1.0)) | (rough & (use * (1 - off) > 1.0))
+        yield_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
         yield_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
         if criterion == "life":
             life, target = _limit(ds, "fatigue_life"), target_hours * HOUR
-            fatigue_fails = (ok & ~(life >= target)) | (rough & (life * (1 - off) ** -LIFE_SLOPE < target))
+            fatigue_fails = (ok & ~(life >= target)) | (can_fail & (life * (1 - off) ** -LIFE_SLOPE < target))
             fatigue_holds = (ok & (life >= target)) | (rough & (life * (1 + off) ** -LIFE_SLOPE >= target))
         else:
             use = _limit(ds, "endurance_utilisation")
-            fatigue_fails = (ok & ~(use <= 1.0)) | (rough & (use * (1 - off) > 1.0))
+            fatigue_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
             fatigue_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
     # decided: ok, or every limit held or one failed within the margin
     answered = ok | (rough & ((yield_holds & fatigue_holds) | yield_fails | fatigue_fails))
@@ -90,13 +88,13 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
 
 
 def _stress_margin(ds: xr.Dataset) -> xr.DataArray:
-    """Per point not converged to the study's tolerance, :data:`MARGIN` times its error estimate (relative), where
-    below 1; NaN elsewhere (ok points, other statuses, no estimate)."""
+    """Per point not converged to the study's tolerance, :data:`MARGIN` times its error estimate (relative); NaN
+    elsewhere (ok points, other statuses, no estimate)."""
     if "status" not in ds.data_vars or "error_estimate" not in ds.data_vars:
         return xr.full_like(ok_points(ds), np.nan, dtype=float)
     rough = _full(ds, "status") == STATUS_CODES["not_converged"]
     off = MARGIN * _full(ds, "error_estimate")
-    return off.where(rough & (off < 1.0))
+    return off.where(rough & np.isfinite(off))
 
 
 def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
@@ -121,37 +119,59 @@ def _criterion_text(target_hours: float, criterion: str) -> str:
     return "below the endurance limit (endurance utilisation ≤ 1)"
 
 
+#: A cell's verdict (the CSV's ``verdict``): every point decided and every limit held; some limit failed at a
+#: decided point (or the cell is in a critical-speed band, which needs no solution); no limit failed at a decided
+#: point but some point is undecided (its answer cannot be decided at its error, or it has no answer).
+VERDICTS = ("safe", "limited", "undecided")
+
+
 def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
                    ) -> list[dict]:
-    """One row per rotary speed × axial load cell (display units): whether it is safe, what limits it, the
-    points it holds and how many are ok, and the worst values over them. Empty without the plane or the limits."""
+    """One row per rotary speed × axial load cell (display units): its verdict (:data:`VERDICTS`), what limits it
+    (decided failures) or keeps it undecided, the points it holds (ok, decided within their error, undecided,
+    without an answer), and per design figure the worst value over every answered point — undecided ones included —
+    with the relative error estimate of the point that gives it and the cell's worst case with the stresses off by
+    :data:`MARGIN` times each point's error estimate. Empty without the plane or the limits."""
     p = plane(ds)
     if p is None or not _has_limits(ds, criterion):
         return []
     fails, _ = failures(ds, target_hours, criterion)
     xq, yq = quantity(ds[p.x]), quantity(ds[p.y])
     ok = ok_points(ds)
+    answered = answered_points(ds)
+    undecided = fails["no valid answer"]
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
     count = p.reduce(xr.ones_like(ok, dtype=int), "sum")
     ok_count = p.reduce(ok.astype(int), "sum")
     within = p.reduce(_decided(ds, fails).astype(int), "sum")
-    counted = ~fails["no valid answer"]
-    worst = {}
-    for name, how, scale in (("yield_utilisation", "max", 1.0), ("endurance_utilisation", "max", 1.0),
-                             ("fatigue_life", "min", 1.0 / HOUR)):
-        worst[name] = p.reduce(_limit(ds, name).where(counted), how) * scale
+    open_count = p.reduce((undecided & answered).astype(int), "sum")
+    no_answer = p.reduce((~answered).astype(int), "sum")
+    figures = [("yield_utilisation", "max", "max yield utilisation", "[-]", 1.0),
+               ("endurance_utilisation", "max", "max endurance utilisation", "[-]", 1.0),
+               ("fatigue_life", "min", "min fatigue life", "[h]", 1.0 / HOUR)]
+    absent = {k: np.full((ds.sizes[p.y], ds.sizes[p.x]), np.nan) for k in ("value", "error", "bound")}
+    worst = {name: worst_in_cells(ds, name, how, p) if name in ds.data_vars else absent for name, how, *_ in figures}
     rows = []
     for i, load in enumerate(yq.convert(ds[p.y].values)):
         for j, speed in enumerate(xq.convert(ds[p.x].values)):
-            limited = [r for r in REASONS if reduced[r][i, j]]
-            rows.append({
-                xq.label: _round(speed), yq.label: _round(load), "safe": not limited,
-                "limited by": "; ".join(limited), "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
-                "decided within their error": int(within[i, j]),
-                "max yield utilisation [-]": _round(worst["yield_utilisation"][i, j], 4),
-                "max endurance utilisation [-]": _round(worst["endurance_utilisation"][i, j], 4),
-                "min fatigue life [h]": _round(worst["fatigue_life"][i, j], 4),
-            })
+            limited = [r for r in REASONS[1:] if reduced[r][i, j]]
+            verdict = "limited" if limited else ("undecided" if reduced[REASONS[0]][i, j] else "safe")
+            why_open = []
+            if open_count[i, j]:
+                why_open.append(f"{int(open_count[i, j])} point(s) undecided at their error")
+            if no_answer[i, j]:
+                why_open.append(f"{int(no_answer[i, j])} point(s) without an answer")
+            row = {xq.label: _round(speed), yq.label: _round(load), "verdict": verdict, "safe": verdict == "safe",
+                   "limited by": "; ".join(limited), "undecided because": "; ".join(why_open),
+                   "points": int(count[i, j]), "ok points": int(ok_count[i, j]),
+                   "decided within their error": int(within[i, j]), "undecided points": int(open_count[i, j]),
+                   "points without an answer": int(no_answer[i, j])}
+            for name, _, label, unit, scale in figures:
+                w = worst[name]
+                row[f"{label} {unit}"] = _round(w["value"][i, j] * scale, 4)
+                row[f"{label}: its error estimate [-]"] = _round(w["error"][i, j], 3)
+                row[f"{label} at {MARGIN:g}x error {unit}"] = _round(w["bound"][i, j] * scale, 4)
+            rows.append(row)
     return rows
 
 
@@ -160,9 +180,11 @@ def _round(value, digits: int = 10) -> float:
     return float(f"{float(value):.{digits}g}")
 
 
-def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
-    """Per axial load (from :func:`envelope_table`'s rows), the safe rotary speeds as runs of neighbouring grid
-    speeds: [(load text, "60–120, 200 rpm" or "none"), ...]."""
+def safe_ranges(rows: list[dict], verdict: str = "safe") -> list[tuple[str, str]]:
+    """Per axial load (from :func:`envelope_table`'s rows), the rotary speeds whose cell has ``verdict`` (default
+    safe) as runs of neighbouring grid speeds: [(load text, "60–120, 200 rpm" or "none"), ...]."""
+    if verdict not in VERDICTS:
+        raise ValueError(f"verdict = {verdict!r}; allowed: {', '.join(VERDICTS)}")
     if not rows:
         return []
     speed_key, load_key = list(rows[0])[:2]
@@ -172,14 +194,15 @@ def safe_ranges(rows: list[dict]) -> list[tuple[str, str]]:
     for load in dict.fromkeys(r[load_key] for r in rows):
         mine = [r for r in rows if r[load_key] == load]
         runs: list[list[float]] = []
-        previous_safe = False
+        previous = False
         for r in mine:
-            if r["safe"]:
-                if previous_safe:
+            here = r.get("verdict", "safe" if r["safe"] else "limited") == verdict
+            if here:
+                if previous:
                     runs[-1].append(r[speed_key])
                 else:
                     runs.append([r[speed_key]])
-            previous_safe = r["safe"]
+            previous = here
         text = ", ".join(format_value(run[0]) if len(run) == 1 else f"{format_value(run[0])}–{format_value(run[-1])}"
                          for run in runs)
         out.append((f"{format_value(load)} {load_unit}", f"{text} {speed_unit}" if runs else "none"))
@@ -206,11 +229,12 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
         return []
     fails, checked = failures(ds, target_hours, criterion)
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}
+    # as the table's verdict: a decided limit first (in REASONS' order), else undecided, else safe
+    names = ["safe", *REASONS[1:], REASONS[0]]
     category = np.zeros(reduced[REASONS[0]].shape, dtype=int)  # 0: safe
-    for k, reason in reversed(list(enumerate(REASONS, start=1))):
-        category[reduced[reason]] = k
+    for k, reason in enumerate(names[1:], start=1):
+        category[reduced[reason] & (category == 0)] = k
     safe = category == 0
-    names = ["safe", *REASONS]
     fig = Figure(figsize=(10.0, 5.4), dpi=DPI, layout="constrained")
     ax = fig.subplots()
     ax.pcolormesh(p.xedges, p.yedges, category, cmap=ListedColormap([COLOURS[n] for n in names]), vmin=-0.5,
@@ -218,23 +242,26 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
     if safe.any():
         draw_boundary(ax, safe, p, colors="k", linewidths=2.5)
     plane_axes(ax, p)
-    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{n} ({int(np.sum(category == k))} cells)")
-               for k, n in enumerate(names) if np.any(category == k)]
-    handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
+    shown = {REASONS[0]: "undecided (an answer not decided at its error, or none)"}
+    handles = [Patch(facecolor=COLOURS[n], edgecolor="0.5", label=f"{shown.get(n, n)} ({int(np.sum(category == k))} "
+                     "cells)") for k, n in enumerate(names) if np.any(category == k)]
+    if safe.any():
+        handles.append(Line2D([], [], color="k", lw=2.5, label="envelope boundary"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
                title="cell (first limit broken)", title_fontsize=8)
     within = int(_decided(ds, fails).sum())
-    context = [f"safe: every point answered, yield utilisation ≤ 1, {_criterion_text(target_hours, criterion)}"
-               + (", outside ±15 % of the joint's critical speeds" if checked else
+    context = [f"safe: every point answered and decided, yield utilisation ≤ 1, "
+               f"{_criterion_text(target_hours, criterion)}"
+               + (", outside ±15 % of the joint's critical speeds (1× and 2×, the Campbell chart's)" if checked else
                   "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "
                   "mass_per_length)")]
     if within:
-        context.append(f"answered: ok, or not converged to the study's tolerance but decided ({within} points: their "
-                       f"limits hold or fail with the stresses off by {MARGIN:g}x their error estimate)")
+        context.append(f"decided: ok, or not converged to the study's tolerance with its limits holding or failing "
+                       f"with the stresses off by {MARGIN:g}x its error estimate ({within} points)")
     context += p.context("every point must pass")
     _title(fig, "Safe operating envelope", context, 8.5)
-    caption = (f"Where the pipe can run: green cells pass every limit at every value of the other swept inputs "
-               f"(solved, below yield, {_criterion_text(target_hours, criterion)}, away from critical speeds); other "
-               "cells show the first limit they break.")
+    caption = caption_from("Where the pipe can run: green cells pass every limit at every value of the other swept "
+                           "inputs; other cells show the first limit a decided point breaks, or that the cell is "
+                           "undecided.", [h.get_label() for h in handles])
     return [Chart("envelope", fig, caption)]
 

@@ -1,9 +1,12 @@
 """Stress, contact force and fatigue life over rotary speed × axial load, with the design limits drawn in.
 
 Each chart is one figure for the whole study: the other swept inputs are reduced to the worst case over
-the ok points (see :mod:`study.charts.plane`), the limits are outlines of the cells over them (from the
-dataset's ``yield_utilisation``, ``endurance_utilisation`` and ``fatigue_life``, docs/model.md §5.1) and
-the rotary speeds to avoid (:mod:`study.charts.critical`) are shaded bands.
+every answered point — ok, or not converged with its values and error estimate, whose cells are veiled with the
+error written in (see :mod:`study.charts.plane`) — the limits are outlines of the cells over them as computed (from
+the dataset's ``yield_utilisation``, ``endurance_utilisation`` and ``fatigue_life``, docs/model.md §5.1; whether a
+veiled cell's limit is decided at its error is the envelope's verdict), and the rotary speeds to avoid
+(:mod:`study.charts.critical`) are shaded bands. Each colour scale includes its limit (the yield strength, the
+fatigue target), and each caption names the legend's entries, so it says only what is drawn.
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ from study.charts import design
 from study.charts.critical import avoid_bands
 from study.charts.design import Chart
 from study.charts.labels import format_value, quantity
-from study.charts.plane import Panel, ok_values, plane, plane_chart
+from study.charts.plane import Panel, answered_values, plane, plane_chart, worst_panel
 from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import grade_strengths
 
@@ -26,7 +29,7 @@ HOUR = 3600.0  # s
 YIELD_STYLE = {"colors": "k", "linewidths": 2.2}
 ENDURANCE_STYLE = {"colors": "#08519c", "linewidths": 2.2, "linestyles": "--"}
 LIFE_STYLE = {"colors": "k", "linewidths": 2.2}
-WORST = "worst case (ok points only)"
+WORST = "worst case over every answered point"
 
 
 def _scalar(ds: xr.Dataset, name: str, default=None):
@@ -49,14 +52,15 @@ def yield_strengths(ds: xr.Dataset) -> list[tuple[str, float]]:
 
 
 def _over(ds: xr.Dataset, p, name: str, above: float = 1.0) -> np.ndarray:
-    """Cells where some ok point's ``name`` is above the limit."""
-    values = ok_values(ds, name)
+    """Cells where some answered point's ``name`` is above the limit (as computed: a veiled cell's point may be
+    undecided, see the envelope)."""
+    values = answered_values(ds, name)
     return p.reduce(values > above, "any")
 
 
 def stress_limit_maps(ds: xr.Dataset) -> list[Chart]:
     """Maximum normal stress with the grade's yield outlined, and alternating bending stress with the endurance
-    limit outlined, over rotary speed × axial load (worst case over the other inputs, ok points only), with the
+    limit outlined, over rotary speed × axial load (worst case over the other inputs, every answered point), with the
     critical-speed bands. Without both speed and load swept: the line charts of :func:`design.stress_maps`."""
     names = [n for n in design.STRESSES if n in ds.data_vars]
     p = plane(ds)
@@ -68,22 +72,20 @@ def stress_limit_maps(ds: xr.Dataset) -> list[Chart]:
     panels = []
     for name in names:
         q = quantity(ds[name])
-        panel = Panel(q.convert(p.reduce(ok_values(ds, name), "max")), q.label, f"{q.short_name}, {WORST}")
+        panel = worst_panel(p, ds, name, "max", q.label, f"{q.short_name}, {WORST}")
         if name == "max_normal_stress" and "yield_utilisation" in ds.data_vars:
             yields = ", ".join(f"{g} {format_value(q.convert(s))} {q.unit_label}" for g, s in strengths)
-            panel.limits.append((_over(ds, p, "yield_utilisation"), f"over the yield strength ({yields})",
-                                 YIELD_STYLE))
+            panel.limits.append((_over(ds, p, "yield_utilisation"), f"black outline, hatched: over the yield strength "
+                                 f"({yields}) as computed", YIELD_STYLE))
             panel.marks = [float(q.convert(s)) for _, s in strengths]
-            panel.title += "\nhatched: over yield; bar line: yield strength"
+            panel.title += "\nbar line: yield strength"
         if name == "alternating_bending_stress" and "endurance_utilisation" in ds.data_vars:
-            panel.limits.append((_over(ds, p, "endurance_utilisation"), "over the endurance limit "
-                                 "(tool joint, mean-stress corrected)", ENDURANCE_STYLE))
-            panel.title += "\nhatched: over the endurance limit"
+            panel.limits.append((_over(ds, p, "endurance_utilisation"), "dashed blue outline, hatched: over the "
+                                 "endurance limit (tool joint, mean-stress corrected) as computed", ENDURANCE_STYLE))
         panels.append(panel)
     context = p.context("worst case (highest stress)") + [_fatigue_text(ds)]
-    caption = ("The highest stress the pipe sees at each rotary speed and load over the other swept inputs; cells "
-               "inside the black outline exceed the grade's yield strength, inside the dashed blue outline the "
-               "tool joint's alternating stress is above the endurance limit; shaded bands are speeds to avoid.")
+    caption = ("The highest stress the pipe sees at each rotary speed and load over the other swept inputs, every "
+               "answered point counted.")
     return [plane_chart(p, "stress_limits", "Pipe stresses against the grade's yield and endurance limits", panels,
                         context, caption, bands=avoid_bands(p))]
 
@@ -94,10 +96,9 @@ def contact_force_map(ds: xr.Dataset) -> list[Chart]:
     if p is None or "peak_contact_force" not in ds.data_vars:
         return []
     q = quantity(ds["peak_contact_force"])
-    panel = Panel(q.convert(p.reduce(ok_values(ds, "peak_contact_force"), "max")), q.label,
-                  f"{q.short_name}, {WORST}", cmap="PuRd")
+    panel = worst_panel(p, ds, "peak_contact_force", "max", q.label, f"{q.short_name}, {WORST}", cmap="PuRd")
     caption = ("The hardest blow of the pipe against the bore-hole wall at each rotary speed and load (worst case "
-               "over the other swept inputs); shaded bands are speeds to avoid.")
+               "over the other swept inputs, every answered point counted).")
     return [plane_chart(p, "contact_force", "Peak contact force against the wall", [panel],
                         p.context("worst case (highest force)"), caption, bands=avoid_bands(p))]
 
@@ -116,26 +117,28 @@ def _fatigue_text(ds: xr.Dataset) -> str:
 
 def fatigue_life_map(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS) -> list[Chart]:
     """Hours of rotation to fatigue failure (Miner's sum 1) over rotary speed × axial load, on a log colour scale;
-    the shortest life over the other inputs (ok points only); outlined: the cells under ``target_hours``."""
+    the shortest life over the other inputs (every answered point); outlined: the cells under ``target_hours``."""
     p = plane(ds)
     if p is None or "fatigue_life" not in ds.data_vars:
         return []
-    hours = p.reduce(ok_values(ds, "fatigue_life"), "min") / HOUR
+    panel = worst_panel(p, ds, "fatigue_life", "min", "hours to failure [h]",
+                        f"hours of rotation to fatigue failure, {WORST}", scale=lambda v: np.asarray(v) / HOUR,
+                        cmap="RdYlGn", marks=[target_hours])
+    hours = panel.values
     finite = hours[np.isfinite(hours) & (hours > 0)]
     if not finite.size:
         return []
-    low, high = float(finite.min()), float(finite.max())
-    if high <= low * 1.01:
-        low, high = low / 2.0, high * 2.0
-    shown = np.where(np.isposinf(hours), high, hours)  # no damage at all: the top of the scale
-    panel = Panel(shown, "hours to failure [h]", f"hours of rotation to fatigue failure, {WORST}", cmap="RdYlGn",
-                  norm=LogNorm(low, high), marks=[target_hours])
-    short = p.reduce(ok_values(ds, "fatigue_life") < target_hours * HOUR, "any")
-    panel.limits.append((short, f"life under the target {format_value(target_hours)} h", LIFE_STYLE))
-    panel.title += f"\nhatched: under the target; bar line: target {format_value(target_hours)} h"
+    # the scale shows its target: at least a factor of 3 either side of it
+    low, high = min(float(finite.min()), target_hours / 3.0), max(float(finite.max()), target_hours * 3.0)
+    panel.values = np.where(np.isposinf(hours), high, hours)  # no damage at all: the top of the scale
+    panel.norm = LogNorm(low, high)
+    short = p.reduce(answered_values(ds, "fatigue_life") < target_hours * HOUR, "any")
+    panel.limits.append((short, f"black outline, hatched: life under the target {format_value(target_hours)} h as "
+                         "computed", LIFE_STYLE))
+    panel.title += f"\nbar line: target {format_value(target_hours)} h"
     context = p.context("shortest life") + [_fatigue_text(ds), "Miner's rule at constant amplitude"]
-    caption = (f"How many hours the pipe can rotate at each speed and load before fatigue cracks it (worst case over "
-               f"the other swept inputs, log scale); inside the outline the life is under {format_value(target_hours)} "
-               "h (hatched); shaded bands are speeds to avoid.")
+    caption = ("How many hours the pipe can rotate at each speed and load before fatigue cracks it (worst case over "
+               "the other swept inputs, every answered point counted, log scale; a stress off by n % moves the life "
+               "by up to (1 + n)⁵).")
     return [plane_chart(p, "fatigue_life", "Fatigue: hours to failure", [panel], context, caption,
                         bands=avoid_bands(p))]

@@ -2,9 +2,11 @@
 
 Every decision chart (stress and force with their limits, fatigue life, regimes, the safe envelope) is
 a map over rotary speed (x) and axial load (y). Any other swept input (restitution, mud density, mud
-flow velocity, ...) is reduced to the worst case — the highest stress, the shortest life — over the
-points whose status is ``ok`` only, so a failed point or another solution branch never speckles the
-colour scale; a cell without any ok point is hatched. A limit is drawn as the boundary of the cells
+flow velocity, ...) is reduced to the worst case — the highest stress, the shortest life — over every
+answered point: ``ok``, or ``not_converged`` with its values kept (the bouncing pipe's answers, with their error
+estimate); a cell whose worst value is from a point not converged is veiled and its error estimate written in, a
+cell where some points have no answer is dotted, and a cell without any answered point is hatched grey. A failed
+point's values (where it has any) are never drawn. A limit is drawn as the boundary of the cells
 over it (no contouring of scattered data), and the rotary speeds to avoid as bands per load row.
 """
 
@@ -29,8 +31,20 @@ from study.solvers.result import STATUS_CODES
 BAND_STYLE = {"facecolor": (0.25, 0.35, 0.9, 0.22), "edgecolor": (0.15, 0.25, 0.75, 0.9), "linewidth": 0.8}
 BAND_LABEL = "critical speed ±15 % (rpm to avoid)"
 PARTIAL_STYLE = {"facecolor": "none", "edgecolor": "0.3", "hatch": "..", "linewidth": 0}
-PARTIAL_LABEL = "worst of the ok points; some points there failed"
+PARTIAL_LABEL = "dotted: some points without an answer (worst of the others shown)"
+ROUGH_STYLE = {"facecolor": (1.0, 1.0, 1.0, 0.35), "edgecolor": (0.0, 0.0, 0.0, 0.3), "hatch": "//", "linewidth": 0}
+ROUGH_LABEL = "veiled, ±n %: the worst point is not converged, n % its error estimate"
+MISSING_LABEL = "hatched grey: no answered point (see the validity map)"
 LIMIT_HATCH = "\\\\"  # inside a limit's outline
+#: Cells annotated with their error estimate only up to this many (beyond, the veil alone).
+MAX_ANNOTATED = 200
+#: A point not converged to the study's tolerance decides a limit when the limit holds (or fails) with its stresses
+#: off by MARGIN times its error estimate: the reference model's estimate of its window erred low by up to 2x in its
+#: tests (docs/reference_model.md §3.1), so twice.
+MARGIN = 2.0
+#: The steepest S-N slope of the fatigue curves (DNV-RP-C203: m = 3 and 5): life goes as S^-m, so stresses off by a
+#: factor (1 + d) move the life by at most (1 + d)^5.
+LIFE_SLOPE = 5.0
 
 
 @dataclass
@@ -110,6 +124,66 @@ def ok_values(ds: xr.Dataset, name: str) -> xr.DataArray:
     return _full(ds, name).where(answered_points(ds))
 
 
+def answered_points(ds: xr.Dataset) -> xr.DataArray:
+    """True where a point has an answer to show: ``ok``, or ``not_converged`` with its values kept (an answer with its
+    error stated); other statuses' values (where any) are not answers."""
+    ok = ok_points(ds)
+    if "status" not in ds.data_vars:
+        return ok
+    return ok | (_full(ds, "status") == STATUS_CODES["not_converged"])
+
+
+def answered_values(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """The output ``name`` over every dimension, NaN where the point has no answer (:func:`answered_points`)."""
+    return _full(ds, name).where(answered_points(ds))
+
+
+def point_errors(ds: xr.Dataset) -> xr.DataArray:
+    """Each point's relative error estimate (0 where the dataset has none)."""
+    if "error_estimate" not in ds.data_vars:
+        return xr.zeros_like(ok_points(ds), dtype=float)
+    return _full(ds, "error_estimate").fillna(0.0)
+
+
+def _cells(p: "Plane", da: xr.DataArray) -> np.ndarray:
+    """``da`` over the dataset's dimensions as (load, speed, points of the cell): the fixed dimensions at their value,
+    the reduced ones stacked."""
+    da = da.isel({d: 0 for d in p.fixed if d in da.dims})
+    da = da.transpose(p.y, p.x, *[d for d in p.reduced if d in da.dims])
+    values = np.asarray(da.values)
+    return values.reshape(values.shape[0], values.shape[1], -1)
+
+
+def worst_in_cells(ds: xr.Dataset, name: str, how: str, p: "Plane | None" = None) -> dict[str, np.ndarray]:
+    """Per rotary speed × axial load cell, the worst ``name`` (``how``: "max" or "min") over every answered point
+    (ok, and not converged with its values: undecided ones included), the relative error estimate of the point that
+    gives it, whether that point is not ok (``rough``), and the worst case over the cell with each point's stresses
+    off by :data:`MARGIN` times its error estimate (``bound``: a stress or utilisation goes as the stress, a fatigue
+    life — the one "min" figure — as the stress to the power −:data:`LIFE_SLOPE`).
+
+    Returns ``{"value", "error", "rough", "bound"}`` arrays (load × speed), NaN (False) where the cell has no
+    answered point."""
+    if how not in ("max", "min"):
+        raise ValueError(f"how = {how!r}; allowed: max, min")
+    p = p or plane(ds)
+    values = _cells(p, _full(ds, name).where(answered_points(ds)))
+    error = _cells(p, point_errors(ds))
+    rough = _cells(p, ~ok_points(ds))
+    off = MARGIN * error
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        bound = values * (1.0 + off) if how == "max" else values * (1.0 + off) ** -LIFE_SLOPE
+    empty = np.all(np.isnan(values), axis=-1)
+    fill = -np.inf if how == "max" else np.inf
+    pick = np.where(np.isnan(values), fill, values)
+    index = (np.argmax(pick, axis=-1) if how == "max" else np.argmin(pick, axis=-1))[..., None]
+    value = np.take_along_axis(values, index, -1)[..., 0]
+    err = np.take_along_axis(error, index, -1)[..., 0]
+    from_rough = np.take_along_axis(rough, index, -1)[..., 0]
+    worst_bound = (np.max if how == "max" else np.min)(np.where(np.isnan(bound), fill, bound), axis=-1)
+    return {"value": np.where(empty, np.nan, value), "error": np.where(empty, np.nan, err),
+            "rough": from_rough & ~empty, "bound": np.where(empty, np.nan, worst_bound)}
+
+
 def cell_boundary(over: np.ndarray, xedges: np.ndarray, yedges: np.ndarray) -> list:
     """Segments [((x0, y0), (x1, y1)), ...] separating the cells where ``over`` (load × speed) holds
     from their neighbours where it does not: the outline of a region of cells, no interpolation."""
@@ -172,8 +246,9 @@ def plane_axes(ax, p: Plane):
 
 @dataclass
 class Panel:
-    """One map of the plane: cell values (load × speed, display units; NaN hatched), its colour scale,
-    and the limits drawn as cell boundaries (mask, legend label, line style)."""
+    """One map of the plane: cell values (load × speed, display units; NaN hatched), its colour scale, the limits
+    drawn as cell boundaries (mask, legend label, line style), and where a cell's value is from a point not
+    converged (``rough``) with that point's relative error estimate (``errors``)."""
 
     values: np.ndarray
     label: str
@@ -182,31 +257,61 @@ class Panel:
     norm: Normalize | None = None
     limits: list[tuple[np.ndarray, str, dict]] = field(default_factory=list)
     marks: list[float] = field(default_factory=list)  # values marked on the colour bar (a limit's value)
+    rough: np.ndarray | None = None
+    errors: np.ndarray | None = None
+
+
+def worst_panel(p: Plane, ds: xr.Dataset, name: str, how: str, label: str, title: str, scale=None, **options) -> Panel:
+    """A :class:`Panel` of each cell's worst ``name`` over every answered point (:func:`worst_in_cells`), converted by
+    ``scale`` (default: the output's display unit), with the cells whose value is from a point not converged marked
+    with its error estimate."""
+    worst = worst_in_cells(ds, name, how, p)
+    convert = scale or quantity(ds[name]).convert
+    return Panel(convert(worst["value"]), label, title, rough=worst["rough"], errors=worst["error"], **options)
+
+
+def _annotate_errors(ax, p: Plane, rough: np.ndarray, errors: np.ndarray):
+    """Write each marked cell's error estimate in it (±38 %), where the map has few enough cells to read them."""
+    if rough.sum() > MAX_ANNOTATED:
+        return
+    for i, j in zip(*np.nonzero(rough)):
+        if np.isfinite(errors[i, j]):
+            ax.text(p.xpos[j], p.ypos[i], f"±{errors[i, j]:.0%}", ha="center", va="center", fontsize=6.5,
+                    color="0.1", zorder=4, gid="error estimate")
+
+
+def caption_from(lead: str, labels: Sequence[str]) -> str:
+    """A chart's caption from its lead sentence and the legend entries drawn, so it names only what is drawn."""
+    return lead + (" Key: " + "; ".join(labels) + "." if labels else "")
 
 
 def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], context: Sequence[str], caption: str,
                 bands=None) -> Chart:
-    """One figure of side-by-side panels over the plane, with the limit outlines and the rpm bands."""
+    """One figure of side-by-side panels over the plane, with the limit outlines, the rpm bands and the cells whose
+    value is from a point not converged (veiled, their error written in). ``caption`` is the lead sentence; the
+    chart's caption adds the legend's entries (:func:`caption_from`)."""
     columns = len(panels)
     width = min(3.0 + 4.6 * columns, 20.0)
     fig = Figure(figsize=(width, 5.4), dpi=DPI, layout="constrained")
     axes = fig.subplots(1, columns, squeeze=False)[0]
     handles: dict[str, object] = {}
     missing = False
-    some_failed = p.reduce(~ok_points(p.ds), "any")
+    some_failed = p.reduce(~answered_points(p.ds), "any")
     for ax, panel in zip(axes, panels):
         masked = np.ma.masked_invalid(np.asarray(panel.values, dtype=float))
         if masked.mask.any():
             missing = True
             _mark_missing(ax)
         partial = some_failed & ~masked.mask
-        if partial.any():  # the worst of the ok points only: a failed point there might be worse
+        if partial.any():  # the worst of the answered points only: a point without an answer there might be worse
             draw_cells(ax, partial, p, **PARTIAL_STYLE)
             handles[PARTIAL_LABEL] = Patch(**PARTIAL_STYLE, label=PARTIAL_LABEL)
         norm = panel.norm
         if norm is None:
             finite = masked.compressed()
             low, high = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+            for value in panel.marks:  # the scale shows its limits
+                low, high = min(low, value), max(high, value)
             norm = Normalize(low, high if high > low else low + (abs(low) or 1.0))
         mesh = ax.pcolormesh(p.xedges, p.yedges, masked, cmap=panel.cmap, norm=norm, shading="flat")
         bar = fig.colorbar(mesh, ax=ax, label=panel.label, shrink=0.95, pad=0.02)
@@ -215,6 +320,11 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
         for value in panel.marks:
             if norm.vmin <= value <= norm.vmax:
                 bar.ax.axhline(value, color="k", lw=2.0)
+        if panel.rough is not None and np.any(panel.rough & ~masked.mask):
+            rough = panel.rough & ~masked.mask
+            draw_cells(ax, rough, p, **ROUGH_STYLE)
+            _annotate_errors(ax, p, rough, panel.errors if panel.errors is not None else np.full(rough.shape, np.nan))
+            handles[ROUGH_LABEL] = Patch(**ROUGH_STYLE, label=ROUGH_LABEL)
         for mask, label, style in panel.limits:
             if np.any(mask):  # outlined, and hatched inside so the side over the limit reads at a glance
                 draw_boundary(ax, mask, p, **style)
@@ -231,11 +341,10 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
         ax.set_ylabel("")
     context = list(context)
     if missing:
-        handles["no ok point"] = Patch(facecolor="white", edgecolor="0.75", hatch="////", label="no ok point "
-                                       "(see the validity map)")
+        handles[MISSING_LABEL] = Patch(facecolor="white", edgecolor="0.75", hatch="////", label=MISSING_LABEL)
     if handles:
-        columns_of_legend = max(1, min(len(handles), int(width // 5)))
+        columns_of_legend = max(1, min(len(handles), int(width // 7)))
         fig.legend(handles=list(handles.values()), loc="outside lower center", ncols=columns_of_legend,
                    fontsize=8, frameon=False)
     _title(fig, title, context, width)
-    return Chart(name, fig, caption)
+    return Chart(name, fig, caption_from(caption, list(handles)))

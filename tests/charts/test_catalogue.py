@@ -8,8 +8,8 @@ from study.charts import draw, figure_labels
 def test_a_full_study_gets_every_decision_chart_once_with_units_and_a_caption(study):
     charts = draw(study)
     names = [c.name for c in charts]
-    assert names[:7] == ["envelope", "stress_limits", "fatigue_life", "contact_force", "regime_map", "campbell",
-                         "validity_map"]
+    assert names[:8] == ["envelope", "stress_limits", "fatigue_life", "contact_force", "drivers", "regime_map",
+                         "campbell", "validity_map"]
     assert len(names) == len(set(names))  # one figure per question, not one per mud density
     for chart in charts:
         labels = figure_labels(chart.figure)

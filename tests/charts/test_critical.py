@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from study.charts import figure_labels
-from study.charts.critical import avoid_bands, campbell_chart, critical_speeds, in_band, rp7g_speeds
+from study.charts.critical import (api_comparison, avoid_bands, campbell_chart, critical_speeds,
+                                   every_critical_speed, in_band, rp7g_speeds)
 from study.charts.plane import plane
 
 #: API RP 7G's rule of thumb for 4 1/2-in x 3.826-in pipe, 30-ft joint: 4 760 000 sqrt(D^2 + d^2)/L^2, L in inches
@@ -50,7 +51,7 @@ def test_crossings_are_at_60_f_over_k(study):
 def test_bands_are_15_percent_either_side_of_every_critical_speed_of_a_row(study):
     p = plane(study)
     bands = avoid_bands(p)
-    speeds = critical_speeds(study).isel(axial_tension=0).values.ravel()
+    speeds = every_critical_speed(study).isel(axial_tension=0).values.ravel()  # 1x and 2x
     speeds = speeds[np.isfinite(speeds)]
     row = bands[0]
     for c in speeds:  # every critical speed of the 5,000-lbf row lies in a band with its margins
@@ -68,3 +69,30 @@ def test_bands_are_15_percent_either_side_of_every_critical_speed_of_a_row(study
 def test_no_stiffness_no_critical_speeds(study):
     ds = study.drop_vars("bending_stiffness")
     assert critical_speeds(ds) is None and campbell_chart(ds) == [] and avoid_bands(plane(ds)) is None
+
+
+def test_one_critical_speed_answer_the_campbell_crossings_are_the_bands_and_the_envelope_s(study):
+    """Issue 34: the Campbell chart marked 2x crossings the envelope did not check. Every marked crossing (1x and 2x,
+    every mode and load) lies inside its load row's band, and a point at a 2x crossing is in_band (the envelope's
+    critical-speed check)."""
+    (chart,) = campbell_chart(study)
+    (ax,) = [a for a in chart.figure.axes if a.get_visible()]
+    p = plane(study)
+    bands = avoid_bands(p)
+    colours = {}
+    marks = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("crossing")]
+    assert {ln.get_gid().split()[1] for ln in marks} == {"1x", "2x"}
+    for ln in marks:  # the marker's edge colour is its load row's
+        colours.setdefault(ln.get_markeredgecolor(), []).append(float(ln.get_xdata()[0]))
+    assert len(colours) == study.sizes["axial_tension"]
+    for row, speeds in zip(bands, colours.values()):
+        for speed in speeds:
+            assert any(lo <= speed <= hi for lo, hi in row), (speed, row)
+    two = every_critical_speed(study).sel(order=2, mode=1)  # 30 f1 at each point [rpm]
+    assert np.allclose(two, critical_speeds(study).sel(mode=1) / 2)
+    near = study.isel(rotary_speed=[0])
+    near = near.assign_coords(rotary_speed=("rotary_speed", [float(two.isel(axial_tension=0).mean()) * np.pi / 30]))
+    assert bool(in_band(near).isel(axial_tension=0).all())
+    assert "same ones the shaded bands on every map and the envelope keep 15 % away from" in chart.caption
+    sentence = api_comparison(study)
+    assert sentence in chart.caption and "API RP 7G" in sentence and "tension stiffens" in sentence

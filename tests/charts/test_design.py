@@ -168,6 +168,7 @@ def test_draw_all_writes_every_chart_beside_the_dataset(tmp_path, full):
     assert all(p.parent == tmp_path / "charts" and p.suffix == ".png" for p in written)
     assert sorted(p.stem for p in written) == sorted([
         "stress_limits", "contact_force", "regime_map",  # decisions: one figure, worst case over the others
+        "drivers",  # the main effects of the swept inputs on the design figures
         "span_length",  # the span does not depend on restitution or mud density: one figure
         "contact_force_duration__mud_density_9_ppg", "contact_force_duration__mud_density_10_ppg",
         "contact_force_duration__mud_density_12_ppg",
@@ -196,11 +197,11 @@ def test_an_open_dataset_needs_an_out_dir(tmp_path, full):
 
 @pytest.mark.parametrize("outputs, expected", [
     (ALL_OUTPUTS, {"stress_limits", "contact_force", "span_length", "contact_force_duration", "natural_frequencies",
-                   "regime_map", "validity_map"}),
+                   "regime_map", "validity_map", "drivers"}),
     (("span_length", "first_natural_frequency", "peak_contact_force", "contact_duration", "impact_velocity"),
      {"contact_force", "span_length", "contact_force_duration", "natural_frequencies", "regime_map",
-      "validity_map"}),
-    (("alternating_bending_stress",), {"stress_limits", "regime_map", "validity_map"}),
+      "validity_map", "drivers"}),
+    (("alternating_bending_stress",), {"stress_limits", "regime_map", "validity_map", "drivers"}),
     (("contact_duration",), {"contact_force_duration", "regime_map", "validity_map"}),
     (CROSSCHECK_OUTPUTS[:3], {"crosscheck", "regime_map", "validity_map"}),  # no orbit at e = 0.5 alone
     ((), {"regime_map", "validity_map"}),
@@ -218,7 +219,7 @@ def test_no_status_no_validity_map():
 def test_charts_against_rpm_need_the_rpm_dimension():
     ds = make_dataset({"axial_tension": [5000, 10000, 20000], "restitution": [0.2, 0.8]})
     drawn = names_of(draw(ds))
-    assert drawn == ["stress_maps", "validity_map"]
+    assert drawn == ["stress_maps", "drivers", "validity_map"]
     figure = stress_maps(ds)[0].figure
     assert "axial tension [lbf]" in figure_labels(figure)["xlabels"]
 
@@ -324,7 +325,7 @@ def test_natural_frequencies_with_harmonics_and_the_classical_critical_speed(ful
     np.testing.assert_allclose(verticals, np.sort(60 * f1))
     low, high = ax.get_xlim()
     assert low < 60 * f1.min() and high > 300  # both the critical speeds and the sweep are in view
-    assert "classical critical speed N = 60 f1" in labels["titles"][-1]
+    assert "the section's first mode meets 1× at N = 60 f1" in labels["titles"][-1]
 
 
 def test_legends_sit_outside_the_data_and_the_title(full_charts):
@@ -566,3 +567,38 @@ def test_iso_lines_only_on_filled_maps():
     holed = ds.copy(deep=True)
     holed["peak_force_ratio"][dict(rotary_speed=1, axial_tension=1)] = np.nan
     assert filled and not contour_sets(holed)  # no scribbles drawn around a hole in the data
+
+
+def test_the_span_chart_is_not_drawn_where_no_point_searched_a_span(full):
+    """Issue 34: with auto the span is the section's length, an input: a flat line captioned as an answer."""
+    from study.charts.design import span_length_vs_rpm
+
+    assert span_length_vs_rpm(full)  # the synthetic study does not say its method
+    for method, drawn in (("fast", True), ("reference", False)):
+        other = full.assign(method=(full.status.dims, np.full(full.status.shape, method)))
+        assert bool(span_length_vs_rpm(other)) == drawn, method
+
+
+def test_contact_lines_draw_answers_only_and_mark_the_points_not_converged(full):
+    """Issue 34: the contact chart drew unmarked not-converged points, and values of invalid points."""
+    from study.charts.design import ROUGH_POINT_LABEL, contact_force_and_duration_vs_rpm
+    from study.solvers.result import STATUS_CODES
+
+    ds = full.copy(deep=True)
+    dims = ds.status.dims
+    ds["peak_contact_force"] = ds.peak_contact_force.broadcast_like(ds.status).transpose(*dims).copy()
+    index = {d: 0 for d in dims}
+    index.update(rotary_speed=2, axial_tension=2)
+    rough = tuple(index[d] for d in dims)
+    index.update(rotary_speed=4)
+    invalid = tuple(index[d] for d in dims)
+    ds.status.values[rough] = STATUS_CODES["not_converged"]
+    ds.status.values[invalid] = STATUS_CODES["hertz_invalid"]
+    ds.peak_contact_force.values[invalid] = 1e9  # an invalid point's value: never drawn
+    charts = contact_force_and_duration_vs_rpm(ds)
+    lines = [ln for chart in charts for ax in chart.figure.axes for ln in ax.get_lines()]
+    assert max(np.nanmax(np.asarray(ln.get_ydata(), float)) for ln in lines if len(ln.get_ydata())) < 1e9 / 4.448
+    hollow = [ln for ln in lines if ln.get_gid() == "not converged"]
+    assert hollow and all(ln.get_xdata()[0] == 140 for ln in hollow)  # 140 rpm, the point not converged
+    assert any(ROUGH_POINT_LABEL in chart.caption for chart in charts)
+    assert any(ROUGH_POINT_LABEL in figure_labels(chart.figure)["legend"] for chart in charts)

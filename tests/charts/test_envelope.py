@@ -15,12 +15,13 @@ RPM_PER_RAD_S = 30 / np.pi
 
 
 def _critical_rpm(ds):
-    """60 f_n of the joint's first three modes, from the closed form (docs/model.md §2), per point [rpm]."""
+    """60 f_n / k of the joint's first three modes at the 1x and 2x excitations (k = 1, 2), from the closed form
+    (docs/model.md §2), per point [rpm]."""
     n = np.array([1, 2, 3])
     k = n * np.pi / float(ds.joint_length)
     ei, t, m = ds.bending_stiffness, ds.effective_tension, ds.mass_per_length
     omega = np.sqrt((ei.values[..., None] * k**4 + t.values[..., None] * k**2) / m.values[..., None])
-    return omega * RPM_PER_RAD_S
+    return np.concatenate([omega, omega / 2], axis=-1) * RPM_PER_RAD_S
 
 
 @pytest.mark.parametrize("target", [1000.0, 20000.0])
@@ -125,3 +126,85 @@ def test_a_point_that_yields_is_over_yield_not_unanswered_and_the_limit_charts_s
     assert not bool(fails["no valid answer"].transpose(*ds.status.dims).values[first])
     shown = ok_values(ds, "yield_utilisation").transpose(*ds.status.dims).values[first]
     assert shown == 30.0
+
+
+def test_every_cell_states_its_verdict_and_its_worst_value_with_the_undecided_points_and_their_error(study):
+    """The issue's case (issue 34): a cell holding a 1 103-h point at a 106 % error must show that point as its worst
+    life, with its error, and be undecided rather than "no valid answer" or safe."""
+    from study.charts.envelope import LIFE_SLOPE, MARGIN
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    dims = ds.status.dims
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=xr.full_like(ds.status, 0.001, dtype=float))
+    rows = envelope_table(ds)
+    safe_cells = [r for r in rows if r["verdict"] == "safe"]
+    assert safe_cells and all(r["safe"] and not r["limited by"] for r in safe_cells)
+    first, second = safe_cells[0], safe_cells[-1]
+
+    def where(row):
+        i = int(np.argmin(np.abs(ds.rotary_speed.values * RPM_PER_RAD_S - row["rotary speed [rpm]"])))
+        j = int(np.argmin(np.abs(ds.axial_tension.values / 4.4482216152605 - row["axial tension [lbf]"])))
+        index = [0] * len(dims)
+        index[dims.index("rotary_speed")], index[dims.index("axial_tension")] = i, j
+        return tuple(index)
+
+    undecided, failed = where(first), where(second)
+    ds.status.values[undecided] = STATUS_CODES["not_converged"]
+    ds.error_estimate.values[undecided] = 1.06
+    ds.fatigue_life.values[undecided] = 1103 * 3600.0
+    ds.status.values[failed] = STATUS_CODES["failed"]
+    ds.fatigue_life.values[failed] = 1.0  # a failed point's values are no answer: never the cell's worst
+    rows = {(r["rotary speed [rpm]"], r["axial tension [lbf]"]): r for r in envelope_table(ds)}
+    a = rows[(first["rotary speed [rpm]"], first["axial tension [lbf]"])]
+    assert a["verdict"] == "undecided" and not a["safe"] and a["limited by"] == ""
+    assert a["undecided points"] == 1 and a["undecided because"] == "1 point(s) undecided at their error"
+    assert a["min fatigue life [h]"] == pytest.approx(1103, rel=1e-3)  # the undecided point's own value
+    assert a["min fatigue life: its error estimate [-]"] == pytest.approx(1.06)
+    # its worst case: the stress off by twice its error, the life over (1 + 2 x 1.06)^5 (the S-N curve's m = 5)
+    assert a["min fatigue life at 2x error [h]"] == pytest.approx(1103 * (1 + MARGIN * 1.06) ** -LIFE_SLOPE, rel=1e-3)
+    b = rows[(second["rotary speed [rpm]"], second["axial tension [lbf]"])]
+    assert b["verdict"] == "undecided" and b["points without an answer"] == 1
+    assert b["min fatigue life [h]"] == pytest.approx(second["min fatigue life [h]"], rel=1e-3)
+    # a decided failure limits a cell whatever else it holds
+    limited = [r for r in rows.values() if r["limited by"]]
+    assert limited and all(r["verdict"] == "limited" for r in limited)
+
+
+def test_an_error_of_100_percent_or_more_can_show_a_limit_holds_never_that_it_fails(study):
+    from study.charts.envelope import LIFE_SLOPE, MARGIN, failures
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    dims = ds.status.dims
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   yield_utilisation=ds.yield_utilisation.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=xr.full_like(ds.status, np.nan, dtype=float))
+    far, over = (0,) * len(dims), (1,) + (0,) * (len(dims) - 1)
+    for where in (far, over):
+        ds.status.values[where] = STATUS_CODES["not_converged"]
+        ds.error_estimate.values[where] = 0.6  # stresses off by 2 x 60 %: anywhere from nil to 2.2 times
+    ds.fatigue_life.values[far] = 1e9 * 3600  # (1 + 1.2)^5 = 52: still 1.9e7 h, far above 1000 h
+    ds.yield_utilisation.values[far] = 0.1  # 0.22 at 2.2 times
+    ds.yield_utilisation.values[over] = 3.0  # over yield as computed, but the stress might be nil
+    assert 1e9 * (1 + MARGIN * 0.6) ** -LIFE_SLOPE > 1000
+    fails, _ = failures(ds)
+    assert not bool(fails["no valid answer"].transpose(*dims).values[far])
+    assert bool(fails["no valid answer"].transpose(*dims).values[over])
+    assert not bool(fails["over yield"].transpose(*dims).values[over])
+
+
+def test_the_map_colours_each_cell_as_the_table_s_verdict_and_its_caption_names_its_legend(study):
+    from matplotlib.collections import QuadMesh
+
+    (chart,) = envelope_chart(study)
+    ax = chart.figure.axes[0]
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    category = np.asarray(mesh.get_array()).reshape(4, 13).ravel()
+    rows = envelope_table(study)
+    undecided = 4  # names: safe, over yield, fatigue, critical speed, undecided
+    for r, k in zip(rows, category):
+        assert (k == 0) == (r["verdict"] == "safe") and (k == undecided) == (r["verdict"] == "undecided"), r
+    legend = figure_labels(chart.figure)["legend"]
+    assert all(entry in chart.caption for entry in legend[1:])  # legend[0] is its title

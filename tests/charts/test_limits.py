@@ -2,12 +2,14 @@
 
 import numpy as np
 import pytest
+import xarray as xr
 from matplotlib.collections import LineCollection, QuadMesh
 from matplotlib.colors import LogNorm
 
 from study.charts import figure_labels
 from study.charts.limits import contact_force_map, fatigue_life_map, stress_limit_maps
-from study.charts.plane import cell_boundary, plane
+from study.charts.plane import MISSING_LABEL, PARTIAL_LABEL, ROUGH_LABEL, cell_boundary, plane
+from study.solvers.result import STATUS_CODES
 
 PSI = 6894.757293168361
 LBF = 4.4482216152605
@@ -54,7 +56,7 @@ def test_failed_points_are_hatched_not_coloured(study):
     (chart,) = stress_limit_maps(ds)
     _, values = mesh_values(panels(chart.figure)[0], (4, 13))
     assert values.mask[1, 3] and values.mask.sum() == 1
-    assert any("no ok point" in t for t in figure_labels(chart.figure)["legend"])
+    assert MISSING_LABEL in figure_labels(chart.figure)["legend"]
 
 
 def test_contact_force_in_lbf(study):
@@ -96,4 +98,50 @@ def test_cells_where_only_some_points_are_ok_are_marked(study):
     # 5,000 lbf above 200 rpm: no span at e = 0.8 -> the five cells 220-300 rpm show the worst of e = 0.2
     lefts = sorted(round(float(p.vertices[:, 0].min())) for p in cells.get_paths())
     assert lefts == [210, 230, 250, 270, 290]
-    assert "worst of the ok points; some points there failed" in figure_labels(chart.figure)["legend"]
+    assert PARTIAL_LABEL in figure_labels(chart.figure)["legend"]
+
+
+def test_a_point_not_converged_is_drawn_with_its_value_veiled_and_its_error_written_in(study):
+    """Issue 34: the bouncing region was blank (ok points only); an answer with its error stated is drawn."""
+    from matplotlib.collections import PolyCollection
+
+    ds = study.copy(deep=True)
+    ds["error_estimate"] = xr.full_like(ds.max_normal_stress, np.nan)
+    where = dict(axial_tension=2, rotary_speed=5, restitution=0, mud_density=1)
+    ds["status"][where] = STATUS_CODES["not_converged"]
+    ds["error_estimate"][where] = 0.38
+    ds["max_normal_stress"][where] = 120_000 * PSI  # the cell's worst, from the point not converged
+    (chart,) = stress_limit_maps(ds)
+    normal = panels(chart.figure)[0]
+    _, values = mesh_values(normal, (4, 13))
+    assert values[2, 5] == pytest.approx(120_000) and not values.mask.any()
+    veiled = [c for c in normal.collections if isinstance(c, PolyCollection) and c.get_hatch() == "//"]
+    (cells,) = veiled
+    assert len(cells.get_paths()) == 1
+    assert [t.get_text() for t in normal.texts if t.get_gid() == "error estimate"] == ["±38%"]
+    assert ROUGH_LABEL in figure_labels(chart.figure)["legend"]
+    # a failed point (status other than ok and not_converged) is never drawn, whatever value it carries
+    ds["status"][where] = STATUS_CODES["failed"]
+    (chart,) = stress_limit_maps(ds)
+    _, values = mesh_values(panels(chart.figure)[0], (4, 13))
+    assert values[2, 5] < 120_000
+
+
+def test_the_fatigue_scale_shows_its_target_even_where_every_life_is_far_above_it(study):
+    (chart,) = fatigue_life_map(study, target_hours=1.0)  # every life of the synthetic study is far above 1 h
+    mesh, values = mesh_values(panels(chart.figure)[0], (4, 13))
+    assert values.min() > 100.0
+    assert mesh.norm.vmin <= 1.0 <= mesh.norm.vmax
+
+
+@pytest.mark.parametrize("draw_map", [stress_limit_maps, fatigue_life_map, contact_force_map])
+def test_each_map_s_caption_names_every_legend_entry_and_no_outline_it_does_not_draw(study, draw_map):
+    ds = study.copy(deep=True)
+    ds["error_estimate"] = xr.full_like(ds.max_normal_stress, np.nan)
+    ds["status"][dict(axial_tension=2, rotary_speed=5, restitution=0, mud_density=1)] = STATUS_CODES["not_converged"]
+    for data in (study, ds):
+        (chart,) = draw_map(data)
+        legend = figure_labels(chart.figure)["legend"]
+        assert legend and all(entry in chart.caption for entry in legend), (legend, chart.caption)
+        for words in ("outline", "veiled", "dotted", "hatched grey"):  # said only where drawn
+            assert (words in chart.caption) == any(words in entry for entry in legend), words
