@@ -37,7 +37,7 @@ from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
 from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, caption_from, draw_boundary, ok_points, plane,
-                                plane_axes, worst_in_cells)
+                                plane_axes, solved_points, worst_in_cells)
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -62,7 +62,7 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
         raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
     if not target_hours > 0:
         raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
-    ok = answered_points(ds)  # ok, or yields: answered, and a yielding point fails the yield limit below
+    ok = solved_points(ds)  # ok, or yields: solved, and a yielding point fails the yield limit below
     off = _stress_margin(ds)  # NaN where a point is ok or has no estimate
     rough = np.isfinite(off)
     can_fail = rough & (off < 1.0)  # stresses off by 100 % or more might be nil: such a point cannot fail a limit
@@ -105,7 +105,7 @@ def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LI
 
 def _decided(ds: xr.Dataset, fails: dict[str, xr.DataArray]) -> xr.DataArray:
     """:func:`decided_within_error` from the points' :func:`failures`."""
-    return ~fails["no valid answer"] & ~answered_points(ds)
+    return ~fails["no valid answer"] & ~solved_points(ds)
 
 
 def _has_limits(ds: xr.Dataset, criterion: str) -> bool:
@@ -137,7 +137,7 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
         return []
     fails, _ = failures(ds, target_hours, criterion)
     xq, yq = quantity(ds[p.x]), quantity(ds[p.y])
-    ok = ok_points(ds)
+    ok = solved_points(ds)
     answered = answered_points(ds)
     undecided = fails["no valid answer"]
     reduced = {reason: p.reduce(mask, "any") for reason, mask in fails.items()}

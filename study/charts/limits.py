@@ -19,7 +19,7 @@ from study.charts import design
 from study.charts.critical import avoid_bands
 from study.charts.design import Chart
 from study.charts.labels import format_value, quantity
-from study.charts.plane import Panel, answered_values, plane, plane_chart, worst_panel
+from study.charts.plane import answered_values, plane, plane_chart, worst_panel
 from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import grade_strengths
 

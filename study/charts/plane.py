@@ -112,25 +112,27 @@ def ok_points(ds: xr.Dataset) -> xr.DataArray:
 ANSWERED = ("ok", "yields")
 
 
-def answered_points(ds: xr.Dataset) -> xr.DataArray:
-    """True where a point's status is one of :data:`ANSWERED` (every point when the dataset has no status)."""
+def solved_points(ds: xr.Dataset) -> xr.DataArray:
+    """True where a point's status is one of :data:`ANSWERED`, its figures answers to the study's tolerance (every
+    point when the dataset has no status)."""
     if "status" not in ds.data_vars:
         return ok_points(ds)
     return _full(ds, "status").isin([STATUS_CODES[name] for name in ANSWERED])
 
 
 def ok_values(ds: xr.Dataset, name: str) -> xr.DataArray:
-    """The output ``name`` over every dimension, NaN where the point has no answer (:func:`answered_points`)."""
-    return _full(ds, name).where(answered_points(ds))
+    """The output ``name`` over every dimension, NaN where the point is not solved (:func:`solved_points`)."""
+    return _full(ds, name).where(solved_points(ds))
 
 
 def answered_points(ds: xr.Dataset) -> xr.DataArray:
-    """True where a point has an answer to show: ``ok``, or ``not_converged`` with its values kept (an answer with its
-    error stated); other statuses' values (where any) are not answers."""
-    ok = ok_points(ds)
+    """True where a point has an answer to show: solved (:func:`solved_points`: ``ok`` or ``yields``), or
+    ``not_converged`` with its values kept (an answer with its error stated); other statuses' values (where any)
+    are not answers."""
+    solved = solved_points(ds)
     if "status" not in ds.data_vars:
-        return ok
-    return ok | (_full(ds, "status") == STATUS_CODES["not_converged"])
+        return solved
+    return solved | (_full(ds, "status") == STATUS_CODES["not_converged"])
 
 
 def answered_values(ds: xr.Dataset, name: str) -> xr.DataArray:
@@ -168,7 +170,7 @@ def worst_in_cells(ds: xr.Dataset, name: str, how: str, p: "Plane | None" = None
     p = p or plane(ds)
     values = _cells(p, _full(ds, name).where(answered_points(ds)))
     error = _cells(p, point_errors(ds))
-    rough = _cells(p, ~ok_points(ds))
+    rough = _cells(p, ~solved_points(ds))
     off = MARGIN * error
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         bound = values * (1.0 + off) if how == "max" else values * (1.0 + off) ** -LIFE_SLOPE
