@@ -364,7 +364,7 @@ class Integrator:
         # and, for Dormand-Prince on the whole right-hand side, within its stability interval on the imaginary axis
         # (about 3.3/omega): the error estimate alone lets an undamped high mode ring at the edge of it. The Lawson
         # form takes the modes' free motion exactly, at any step
-        self.h_stable = STABLE_STEP / float(np.max(model.omega))
+        self.h_stable = STABLE_STEP / max(float(np.max(model.omega)), 1e-300)  # (the rigid translation alone: none)
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
         self.steps = 0
