@@ -1,4 +1,4 @@
-"""The well: side loads, doglegs and the string on its joints (docs/model.md, "The well").
+"""The well: side loads, doglegs and the string on its joints (docs/model.md §13).
 
 Pure functions of numpy arrays (or floats), SI units. The hole frame: x along the hole, downwards; y towards
 the low side of the hole; z = x × y. A positive rotary speed turns the pipe from +y towards +z (clockwise

@@ -48,7 +48,7 @@ def test_small_tension_follows_the_series_of_the_closed_forms():
 
 @pytest.mark.parametrize("z", [0.05, 0.9999999, 1.0000001, 0.3, 2.0, -0.05, -1.0000001, -2.0])
 def test_moments_equal_the_closed_forms_on_both_sides_of_the_series_switch(z):
-    # M = (w/k²)(1 − u/tanh u) and (w/k²)(1 − u/sinh u) (docs/model.md "The well"), evaluated directly: at
+    # M = (w/k²)(1 − u/tanh u) and (w/k²)(1 − u/sinh u) (docs/model.md §13), evaluated directly: at
     # |z| >= 0.05 their cancellation costs under 1e-13, well inside the tolerance.
     w, EI, s = 1.0, 1.0, 1.0
     T = _tension(z)
@@ -82,7 +82,7 @@ def _derivatives(z, x, h):
 
 @pytest.mark.parametrize("z", Z_VALUES)
 def test_deflection_satisfies_the_beam_column_equation(z):
-    # EI y'''' − T y'' = w (MODEL.md §2 without inertia), checked by finite differences inside the span.
+    # EI y'''' − T y'' = w (docs/model.md §2 without inertia and drag), by finite differences inside the span.
     x = np.array([0.05, 0.2, 0.37, 0.5, 0.81, 0.95])
     second, fourth = _derivatives(z, x, 0.01)
     residual = fourth - _tension(z) * second - 1.0
@@ -255,7 +255,7 @@ def test_side_load_vector_magnitude_is_the_soft_string_normal_force():
     in_plane, across = T * kappa * np.cos(phi), T * kappa * np.sin(phi)
     assert np.hypot(w_y, w_z) == pytest.approx(np.sqrt(across**2 + (in_plane + w_b * np.sin(theta)) ** 2),
                                                rel=1e-14)
-    # a straight hole: the weight's side component alone (MODEL.md §10: N = w)
+    # a straight hole: the weight's side component alone (docs/model.md §13: N = w)
     assert well.side_load_vector(w_b, theta, T, 0.0, phi) == pytest.approx((w_b * np.sin(theta), 0.0))
     # a vertical hole in a drop: only the tension's pull
     assert well.side_load_vector(w_b, 0.0, T, kappa, 0.0) == pytest.approx((T * kappa, 0.0))
