@@ -203,6 +203,22 @@ def test_lubinski_worked_example_4_half_inch_pipe():
     assert well.curvature_bending_stress(E, 2.25 * IN, kappa) / PSI == pytest.approx(2945, rel=2e-4)
 
 
+@pytest.mark.parametrize("T", [0.0, 1e3, 4.4e4, 4.4e5, 1.3e6])
+def test_lubinski_is_the_curve_plus_the_beam_column_under_the_tensions_pull(T):
+    # docs/model.md §13.3: seen from the hole's axis, a span between joints that follow a curve κ is the clamped
+    # beam-column under the tension's pull T κ; its moment at the joints added to the curve's own −EI κ gives
+    # Lubinski's −EI κ KL/tanh KL (L = s/2), and at mid-joint −EI κ KL/sinh KL. Two derivations, one number.
+    E, r_o, r_i, s = 206.8e9, 2.25 * IN, 1.913 * IN, 31 * FT
+    I = np.pi / 4 * (r_o**4 - r_i**4)
+    kappa = 3 * well.DEG_PER_100FT
+    at_joint = -E * I * kappa + well.support_moment(T * kappa, T, E * I, s)
+    sigma = well.lubinski_bending_stress(E, 2 * r_o, kappa, T, E * I, s / 2)
+    assert abs(at_joint) * r_o / I == pytest.approx(sigma, rel=1e-12)
+    KL = math.sqrt(T / (E * I)) * s / 2
+    at_mid = -E * I * kappa + well.midspan_moment(T * kappa, T, E * I, s)
+    assert at_mid == pytest.approx(-E * I * kappa * (KL / math.sinh(KL) if KL else 1.0), rel=1e-10)
+
+
 def test_lubinski_is_nan_in_compression():
     assert np.isnan(well.lubinski_bending_stress(206.8e9, 0.1143, 0.0017, -1e3, 8.3e5, 4.6))
 
