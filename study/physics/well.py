@@ -52,8 +52,8 @@ DOGLEG_DIRECTIONS = {
 }
 
 # Below |z| = _SERIES_LIMIT the functions of z use their Taylor series (radius of convergence π², so the terms
-# fall by 1/π² ≈ 0.1 each: 24 terms reach 1e-24); at and above it the closed forms lose at most some 1e-15 of
-# their value to cancellation.
+# fall by 1/π² ≈ 0.1 each: 24 terms reach 1e-24); at and above it the closed forms lose to cancellation at most
+# 5e-15 of the span's largest deflection and 1.1e-15 of the moments (measured against the series at 1 <= |z| <= 2).
 _SERIES_LIMIT = 1.0
 _TERMS = 24
 _COSH = np.array([1.0 / math.factorial(2 * m) for m in range(_TERMS + 2)])  # cosh u = Σ z^m/(2m)!
@@ -195,7 +195,7 @@ def beam_column_deflection(x, w, tension, bending_stiffness, spacing):
     which tends to w x² (s − x)²/(24 EI) as T → 0 (taken by its series in T, no cancellation) and, for
     large T, to the taut string's w x (s − x)/(2T) less the clamped ends' boundary layers. x [m] in
     [0, s] (nan outside), w [N/m], T [N], EI [N m²], s [m]. Its cancellation for T ≠ 0 costs at most about
-    1e-15 of the span's largest deflection.
+    5e-15 of the span's largest deflection.
     """
     s = np.asarray(spacing, dtype=float)
     eta = 2.0 * np.asarray(x, dtype=float) / s - 1.0
