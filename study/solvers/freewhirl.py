@@ -27,7 +27,7 @@ import numpy as np
 
 from study.physics import section, whirl
 from study.solvers.options import ReferenceOptions, study_tolerance
-from study.solvers.reference import mode_shapes, mode_wavenumbers
+from study.solvers.reference import mode_shapes, mode_wavenumbers, side_loads
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -57,9 +57,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
     factors = np.zeros(modes)
     factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: the uniform loads drive the rigid translation alone
     eccentric = whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors / mass
-    r_o = inputs["outer_diameter"] / 2.0
-    w_side = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
-                                   float(inputs.get("inclination") or 0.0)))
+    w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)
     x = np.linspace(0.0, L, points)
     gx, gw = whirl.gauss_legendre(2 * modes + 8)
@@ -111,8 +109,9 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     state = steady_state(inputs)
     if state["side_load"] != 0.0:
         result.status = "out_of_scope"
-        result.message = (f"a side load of {state['side_load']:.4g} N/m (the buoyed weight in the inclined hole) lays "
-                          "the string on its tool joints on the low side: not clear of the wall, a higher model answers")
+        result.message = (f"a side load of {state['side_load']:.4g} N/m (the buoyed weight in the inclined hole, the "
+                          "tension in a curved one) lays the string on its tool joints (on the low side in a straight "
+                          "hole): not clear of the wall, a higher model answers")
         result.wall_time = time.perf_counter() - start
         return result
     x, sag, spin = state["x"], state["sag"], state["whirl"]

@@ -54,7 +54,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, section, whirl
+from study.physics import hertz, section, well, whirl
 from study.solvers import stress_kernel, trajectory, whirl_kernel
 from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
@@ -221,23 +221,22 @@ def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.nda
 
 def side_loads(inputs: Mapping[str, Any], props: Mapping[str, float]) -> tuple[float, float, np.ndarray]:
     """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
-    hole's curvature vector κ⃗ (2,) [1/m]: the buoyed weight's side component w_b sin θ along +y
-    (:func:`study.physics.whirl.side_load`) plus, in a curved hole (``dogleg_curvature`` κ [1/m] towards
-    ``dogleg_direction`` φ [rad] from the low side), the effective tension's T κ towards the centre of curvature
-    (soft-string; Johancsik, Friesen & Dawson 1984, doi:10.2118/11380-PA). ``side_load`` [N/m] in the inputs sets
-    the load along +y directly (code and tests)."""
+    hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
+    (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension and,
+    in a curved hole, ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side (the
+    tension's T κ towards the centre of curvature). ``side_load`` [N/m] in the inputs sets the load along +y
+    directly (code and tests)."""
     kappa = float(inputs.get("dogleg_curvature") or 0.0)
     phi = float(inputs.get("dogleg_direction") or 0.0)
-    if not np.isfinite(kappa) or kappa < 0:
-        raise ValueError(f"hole.dogleg_severity = {kappa:.6g} rad/m: must be a finite curvature >= 0")
     curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
     if inputs.get("side_load") is not None:
         return float(inputs["side_load"]), 0.0, curvature
     r_o = inputs["outer_diameter"] / 2.0
-    w = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
-                              float(inputs.get("inclination") or 0.0)))
-    tension = props["effective_tension"]
-    return w + tension * curvature[0], tension * curvature[1], curvature
+    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
+                                   0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
+    w_y, w_z = well.side_load_vector(buoyed, float(inputs.get("inclination") or 0.0), props["effective_tension"],
+                                     kappa, phi)
+    return float(w_y), float(w_z), curvature
 
 
 def build_model(inputs: Mapping[str, Any]) -> WhirlModel:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from study import config
-from study.physics import _well_stub as well
+from study.physics import well
 from study.physics import whirl as whirl_physics
 from study.solvers import reference, sliding
 
