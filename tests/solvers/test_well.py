@@ -108,3 +108,56 @@ def test_friction_turns_the_resting_string_aside_by_its_friction_angle():
     np.testing.assert_allclose(angle, -np.arctan(0.3 * s), rtol=1e-9)
     w = model.side[0] * model.mass / (model.span / np.sqrt(2.0))
     np.testing.assert_allclose(rest["normal"][joints], w * model.span / 3 / np.sqrt(1 + (0.3 * s) ** 2), rtol=1e-9)
+
+
+# --- a curved hole ---------------------------------------------------------------------------------------------
+
+DOGLEG = np.radians(3.0) / (100 * 0.3048)  # 3 deg/100 ft [1/m]
+
+
+def _curved(klbf: float, direction: float, **extra) -> dict:
+    """The default study's pipe in a vertical hole curving at 3 deg/100 ft towards ``direction`` [rad]."""
+    return _default(100, klbf, inclination=0.0, dogleg_curvature=DOGLEG, dogleg_direction=direction, **extra)
+
+
+@pytest.mark.parametrize("direction", [0.0, np.pi / 2, np.pi])
+def test_in_a_curved_hole_the_joints_rest_on_the_inside_of_the_curve_at_lubinskis_stress(direction):
+    # the tension's side load T κ presses the joints onto the inside of the curve (towards its centre, φ from the low
+    # side), each with its share T κ s; where the body between them stays clear its bending at the joints is
+    # Lubinski's (1961, doi:10.2118/1543-G-PA; API RP 7G): σ = (E D κ/2) KL/tanh KL, K = √(T/EI), L half the joint
+    # spacing — the curve's E r_o κ raised by the tension straightening the body between the joints
+    inputs = _curved(30, direction, friction=0.0, eccentricity=0.0)
+    model = reference.build_model(inputs)
+    rest = sliding.rest(model)
+    assert rest["found"]
+    props = model.props
+    joints = model.kinds == 1
+    spacing = model.span / np.count_nonzero(joints)
+    tension, ei = props["effective_tension"], props["bending_stiffness"]
+    np.testing.assert_allclose(rest["normal"][joints], tension * DOGLEG * spacing, rtol=1e-9)
+    assert np.all(rest["touching"] == joints)  # the body clear (19 mm of sag against 22 mm more room)
+    # the joints' direction in the hole's frame: the model's frame is turned by the side load's angle
+    angle = model.frame + np.arctan2(rest["u"][joints, 1], rest["u"][joints, 0])
+    np.testing.assert_allclose(np.cos(angle - direction), 1.0, atol=1e-12)
+    # a revolution of the pipe lying there (the sliding state, nothing turning but the pipe): the stresses
+    state = sliding.steady_state(inputs)
+    values = reference.stresses(inputs, state["model"], state["window"], correction=True)
+    r_o = inputs["outer_diameter"] / 2
+    lubinski = well.lubinski_bending_stress(inputs["pipe_youngs_modulus"], 2 * r_o, DOGLEG, tension, ei, spacing / 2)
+    assert values["max_bending_stress"] == pytest.approx(lubinski, rel=1e-6)
+    assert values["alternating_bending_stress"] == pytest.approx(lubinski, rel=1e-3)  # every fibre through it
+    assert values["alternating_bending_stress"] >= well.curvature_bending_stress(inputs["pipe_youngs_modulus"], r_o,
+                                                                                 DOGLEG)
+    assert np.min(np.abs(values["max_normal_stress_x"] - model.points[joints])) < 1e-9  # at a joint
+
+
+def test_without_tension_a_turning_pipe_in_the_curve_is_bent_by_e_r_kappa_and_back():
+    # T = 0: the curve's bending E r_o κ alone (Lubinski's KL → 0) with the weight's own sag between joints in a
+    # horizontal plane: the alternating stress of a turning fibre is at least E r_o κ (issue 33)
+    inputs = _default(100, 0, inclination=np.radians(8.0), dogleg_curvature=DOGLEG, dogleg_direction=np.pi / 2,
+                      friction=0.3)
+    result = sliding.solve(inputs)
+    assert result.status in ("ok", "not_converged"), result.message
+    r_o = inputs["outer_diameter"] / 2
+    floor = well.curvature_bending_stress(inputs["pipe_youngs_modulus"], r_o, DOGLEG)
+    assert result.values["alternating_bending_stress"] >= floor
