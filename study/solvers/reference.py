@@ -202,10 +202,11 @@ def mode_shapes(x, span: float, modes, derivative: int = 0) -> np.ndarray:
     return out
 
 
-def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.ndarray]:
+def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """Contact positions x_p [m] and kinds (0 body, 1 tool joint) of the periodic section: the tool joints at
-    0, s, 2s, … (x = L is the joint at 0 again), the body halfway between neighbouring joints. The section must
-    hold a whole number of joints (within 1e-6): raises ValueError naming both fields otherwise."""
+    0, s, 2s, … (x = L is the joint at 0 again), ``body_stations`` on the body evenly between neighbouring joints
+    (one: halfway). The section must hold a whole number of joints (within 1e-6): raises ValueError naming both
+    fields otherwise."""
     count = float(span) / float(joint_length)
     joints = int(round(count))
     if joints < 1 or abs(count - joints) > 1e-6 * max(count, 1.0):
@@ -213,8 +214,12 @@ def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.nda
                          f"{joint_length:.6g} m: the periodic section must hold a whole number of joints (1 or more)")
     spacing = float(span) / joints
     stations = np.arange(joints) * spacing
-    x = np.concatenate((stations, stations + 0.5 * spacing))
-    kinds = np.concatenate((np.ones(joints, int), np.zeros(joints, int)))
+    k = int(body_stations)
+    if k < 0:
+        raise ValueError(f"reference_body_stations = {k}: must be >= 0")
+    body = (stations[:, None] + spacing * np.arange(1, k + 1)[None, :] / (k + 1)).ravel()
+    x = np.concatenate((stations, body))
+    kinds = np.concatenate((np.ones(joints, int), np.zeros(body.size, int)))
     order = np.argsort(x)
     return x[order], kinds[order]
 
@@ -274,7 +279,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         x = np.atleast_1d(np.asarray(inputs["contact_points"], float)) * L
         kinds = np.atleast_1d(np.asarray(inputs.get("contact_kinds", np.zeros(x.size)), int))
     else:
-        x, kinds = contact_layout(L, joint)
+        x, kinds = contact_layout(L, joint, int(option.reference_body_stations))
     radius = np.where(kinds == 1, tj, r_o)
     clearance = hole_r - radius
     kappa = clearance * (np.pi / L) ** 2
@@ -1032,6 +1037,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 whirl_class=float(WHIRL_CLASSES[measure["whirl"]]), regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
     spacing, touching = contact_spacing(model, window)
     vals["contact_spacing"] = spacing
+    # the largest Hertz approach of a contact on the body (the gate holds the largest deflection, on the body, to the
+    # body's clearance plus it): its peak force's (F/K)^(2/3), or the penalty's F/k
+    body = model.kinds == 0
+    if np.any(body):
+        peak = window.peak[body]
+        approach = ((peak / model.stiffness[body]) ** (2.0 / 3.0) if model.law == 0
+                    else peak / model.penalty_stiffness[body])
+        vals["max_approach"] = float(np.max(approach))
     stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
