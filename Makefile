@@ -27,8 +27,11 @@ $(STAMP): pyproject.toml
 	$(BIN)/study compile
 	touch $(STAMP)
 
+# The whole suite, then the precision-sensitive tests (marker `precision`, tests/conftest.py) again with numba
+# compiling for a generic x86-64 CPU: figures held to their real accuracy, not to this machine's last bits.
 test: $(STAMP) chromium
 	$(BIN)/python -m pytest -q
+	NUMBA_CPU_NAME=generic $(BIN)/python -m pytest -q -m precision -p no:cacheprovider
 
 # The report test opens outputs in a headless browser: Debian's chromium, installed once if absent.
 chromium:

@@ -6,6 +6,7 @@ source it names. ``make validate`` writes the report to ``docs/validation.md``.
 
 from __future__ import annotations
 
+import re
 import tempfile
 from pathlib import Path
 
@@ -30,6 +31,68 @@ HERTZ_TABLE = {
     50: (1.754, 0.641), 55: (1.611, 0.678), 60: (1.486, 0.717), 65: (1.378, 0.759),
     70: (1.284, 0.802), 75: (1.202, 0.846), 80: (1.128, 0.893), 85: (1.061, 0.944), 90: (1.000, 1.000),
 }
+
+
+class Uncertain(str):
+    """A line of the record whose numbers are statistics of a chaotic motion (or derived from them): a machine
+    whose last bits differ follows another trajectory and prints other numbers, equally right within the
+    ``tolerance`` (relative) the line carries — twice the stated error of the figures it shows
+    (:func:`record_differences`)."""
+
+    tolerance: float
+
+    def __new__(cls, text: str, tolerance: float):
+        line = super().__new__(cls, text)
+        line.tolerance = float(tolerance) if np.isfinite(tolerance) else float("inf")
+        return line
+
+
+#: A number as the record prints it: sign, digits, decimals, exponent.
+NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+#: Words a chaotic figure's line may change between machines: a figure at the edge of its tolerance is converged
+#: on one and not on the other.
+STATUS_WORDS = {"ok", "not_converged"}
+
+
+def _printed_unit(token: str) -> float:
+    """The unit of the last digit a number was printed with (``"1.429"`` -> 0.001, ``"1.0e-06"`` -> 1e-07)."""
+    mantissa, _, exponent = token.lower().partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return 10.0 ** (int(exponent or 0) - decimals)
+
+
+def _numbers_agree(a: str, b: str, tolerance: float) -> bool:
+    """Whether two printed numbers are one within one unit of their last printed digit (a value computed to an
+    integrator's tolerance rounds either way at a digit's edge) or the relative ``tolerance``."""
+    x, y = float(a), float(b)
+    return abs(x - y) <= max(_printed_unit(a), _printed_unit(b), tolerance * max(abs(x), abs(y))) * (1 + 1e-9)
+
+
+def record_differences(committed: str, lines: list[str]) -> list[str]:
+    """The lines where a committed record and the one computed now (:func:`record_lines`) differ beyond what the
+    machine may change: every word the same, and every number within one unit of its last printed digit or, on an
+    :class:`Uncertain` line, within that line's tolerance (there the words ``ok``/``not_converged`` may swap).
+    Empty when the record is current."""
+    old = committed.rstrip("\n").split("\n")
+    new = "\n".join(lines).rstrip("\n").split("\n")
+    tolerance = []
+    for line in lines:
+        tolerance += [getattr(line, "tolerance", 0.0)] * (line.count("\n") + 1)
+    if len(old) != len(new):
+        return [f"{len(old)} lines committed, {len(new)} computed"]
+    out = []
+    for k, (a, b, tol) in enumerate(zip(old, new, tolerance), start=1):
+        if a == b:
+            continue
+        words_a, words_b = NUMBER.split(a), NUMBER.split(b)
+        nums_a, nums_b = NUMBER.findall(a), NUMBER.findall(b)
+        same_words = len(words_a) == len(words_b) and all(
+            u == v or (tol > 0 and set(re.findall(r"\w+", u)) ^ set(re.findall(r"\w+", v)) <= STATUS_WORDS)
+            for u, v in zip(words_a, words_b))
+        if not (same_words and len(nums_a) == len(nums_b)
+                and all(_numbers_agree(u, v, tol) for u, v in zip(nums_a, nums_b))):
+            out.append(f"line {k}: committed {a!r}, computed {b!r}" + (f" (tolerance {tol:.3g})" if tol else ""))
+    return out
 
 
 def _row(*cells) -> str:
@@ -444,7 +507,7 @@ def damped_section() -> list[str]:
              _row("rpm", "inclination", "reference: whirl, peak force [lbf], max normal stress [psi]", "fast",
                   "damped", "damped: c [N s/m²], ζ₁, end moment [lbf ft], energy residual"),
              _row(*["---"] * 6)]
-    closer, compared, changes, stress_ratios, untouched = 0, 0, [], [], 0
+    closer, compared, changes, stress_ratios, untouched, tolerances = 0, 0, [], [], 0, []
     for rpm, inclination in DAMPED_POINTS:
         inputs = {**point, "rotary_speed": convert(rpm, "rpm", "rad/s"), "inclination": np.radians(inclination),
                   "impact_pattern": "one_wall", "closure": "self_consistent"}
@@ -466,19 +529,24 @@ def damped_section() -> list[str]:
         extra = (f"{d['equivalent_damping']:.4g}, {d['damping_ratio']:.3f}, "
                  f"{convert(d['end_moment_amplitude'], 'N*m', 'lbf*ft'):.4g}, {d['energy_residual']:.1e}"
                  if "energy_residual" in d else "-")
-        error = f" (error {ref.error_estimate:.0%})" if ref.error_estimate is not None and touches else ""
-        lines.append(_row(rpm, f"{inclination}°", f"`{ref.status}` {whirls.get(r.get('whirl_class'), '?')}, "
-                          f"{convert(r.get('peak_contact_force', 0.0), 'N', 'lbf'):.4g}, "
-                          f"{r.get('max_normal_stress', float('nan')) / psi:.4g}{error}", cell_fast, cell_damped, extra))
+        stated = ref.error_estimate if ref.error_estimate is not None and touches else None
+        error = f" (error {stated:.0%})" if stated is not None else ""
+        row = _row(rpm, f"{inclination}°", f"`{ref.status}` {whirls.get(r.get('whirl_class'), '?')}, "
+                   f"{convert(r.get('peak_contact_force', 0.0), 'N', 'lbf'):.4g}, "
+                   f"{r.get('max_normal_stress', float('nan')) / psi:.4g}{error}", cell_fast, cell_damped, extra)
+        if stated is not None:  # the reference's figures are a window's statistics: twice their stated error
+            tolerances.append(2.0 * stated)
+            row = Uncertain(row, tolerances[-1])
+        lines.append(row)
     change = f"{100 * min(changes):+.0f} to {100 * max(changes):+.0f} %" if changes else "-"
     ratio = f"{min(stress_ratios):.3g}-{max(stress_ratios):.3g}" if stress_ratios else "-"
     lines += ["",
-              f"Where both strike the wall ({compared} points) the damped solution is nearer the reference model "
+              Uncertain(f"Where both strike the wall ({compared} points) the damped solution is nearer the reference model "
               f"than the undamped one at {closer} (by the larger |log ratio| of force and stress); its max normal "
               f"stress is {ratio} times the reference's there. Keeping the drag moves the max normal stress of the "
               f"undamped solution by {change} on these points. At {untouched} points the damped solution strikes the wall where the reference model "
               "whirls clear of it. The end moments' work equals the drag's dissipation to the energy residual shown "
-              "(tests/solvers/test_damped.py asserts < 1e-3 at the paper's point).", "",
+              "(tests/solvers/test_damped.py asserts < 1e-3 at the paper's point).", max(tolerances, default=0.0)), "",
               "Near the paper's span: every root of the damped condition 2 between "
               f"{PAPER_SPAN_WINDOW[0]:.0f} and {PAPER_SPAN_WINDOW[1]:.0f} ft, found directly (201 spans sampled, "
               "sign changes refined; `damped.scan`) with the paper's assumed-mode damping, at the paper's point "
@@ -523,7 +591,8 @@ def hierarchy_sample(count: int = HIERARCHY_SAMPLE) -> list[dict]:
         auto = solve_point(inputs, "auto")
         ref = solve_point(inputs, "reference") if auto.method != "reference" else auto
         rows.append(dict(inputs=inputs, method=auto.method, status=auto.status, ref_status=ref.status,
-                         auto_time=auto.wall_time, ref_time=ref.wall_time, auto=auto.values, ref=ref.values))
+                         auto_time=auto.wall_time, ref_time=ref.wall_time, auto=auto.values, ref=ref.values,
+                         errors=(auto.error_estimate, ref.error_estimate)))
     return rows
 
 
@@ -542,7 +611,7 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     errors = {"max_normal_stress": [], "max_deflection": []}
-    alternating = []
+    alternating, tolerances = [], []
     for r in rows:
         i, a, ref = r["inputs"], r["auto"], r["ref"]
         cells = [f"{convert(i['rotary_speed'], 'rad/s', 'rpm'):.0f}", f"{convert(i['axial_tension'], 'N', 'lbf'):.0f}",
@@ -551,7 +620,11 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
         for name, unit in (("max_normal_stress", psi), ("alternating_bending_stress", psi),
                            ("max_deflection", 0.0254)):
             cells.append(f"{a.get(name, np.nan) / unit:.4g} / {ref.get(name, np.nan) / unit:.4g}")
-        lines.append(_row(*cells))
+        # the figures' stated errors (a chaotic bouncing's are a window's statistics): twice the larger, the line's
+        # tolerance on another machine
+        stated = max((e for e in r["errors"] if e is not None), default=0.0)
+        tolerances.append(2.0 * stated)
+        lines.append(Uncertain(_row(*cells), tolerances[-1]))
         if r["method"] != "reference" and r["status"] == "ok" and r["ref_status"] == "ok":
             for name in errors:
                 errors[name].append(abs(a[name] / ref[name] - 1.0))
@@ -571,8 +644,8 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
     return lines
 
 
-def run_validate() -> str:
-    """The validation report as markdown."""
+def record_lines() -> list[str]:
+    """The validation report's lines (:class:`Uncertain` where its numbers are a chaotic motion's statistics)."""
     lines = ["# Validation", "",
              f"Generated by `study validate --out docs/validation.md` (`make validate`), study {__version__}. "
              "Every computed value below is produced by the code at the time of generation.", ""]
@@ -580,4 +653,9 @@ def run_validate() -> str:
               + cross_check_section() + periodic_solution_section() + damped_section() + replay_section()
               + survey_section()
               + hierarchy_section())
-    return "\n".join(lines).rstrip() + "\n"
+    return lines
+
+
+def run_validate(lines: list[str] | None = None) -> str:
+    """The validation report as markdown (of ``lines``, default :func:`record_lines` computed now)."""
+    return "\n".join(record_lines() if lines is None else lines).rstrip() + "\n"

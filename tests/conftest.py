@@ -12,3 +12,21 @@ def fresh_auto_memo():
     auto.clear_memo()
     yield
     auto.clear_memo()
+
+
+#: Test modules whose figures come out of adaptive integrators, iterations, root searches or chaotic motions: the
+#: ones a CPU's last bits (numba compiles for the host) can move. ``make test`` runs them a second time with numba
+#: compiling for a generic x86-64 CPU (``NUMBA_CPU_NAME=generic``, ``-m precision``), so that each holds its figures
+#: to their real accuracy, not to one machine's bits (issue 32).
+PRECISION_MODULES = {
+    "test_validate.py", "test_sliding.py", "test_reference.py", "test_auto.py", "test_whirl_kernel.py",
+    "test_timedomain.py", "test_fast.py", "test_periodic.py", "test_freewhirl.py", "test_event_driven.py",
+    "test_orbit.py", "test_crosscheck.py", "test_damped.py", "test_refcheck.py", "test_trajectory.py",
+    "test_stress_kernel.py", "test_beam.py", "test_roots.py", "test_sdof.py", "test_series.py",
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if item.path.name in PRECISION_MODULES:
+            item.add_marker(pytest.mark.precision)

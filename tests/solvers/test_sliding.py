@@ -142,6 +142,13 @@ def default_grid():
     return Grid(dict(study.inputs), dict(study.axes))
 
 
+#: The panel's precision: the method's rest is solved to xtol 1e-13 and its drag iterated to a relative change of
+#: 1e-10 (sliding.SETTLED); another CPU's last bits (numba compiles for the host) moved the estimate, a difference of
+#: forces, by 7e-9 relative (issue 32: 0.005705578895 against 0.005705578853). 1e-6 holds the outputs to what the
+#: method resolves with a margin, and far below the 1e-3 at which a change of the method would show.
+PANEL_PRECISION = 1e-6
+
+
 @pytest.mark.parametrize("index, status, estimate, figures, message", PANEL)
 def test_a_panel_of_the_default_study_keeps_the_outputs_it_had(default_grid, index, status, estimate, figures,
                                                                 message):
@@ -150,9 +157,9 @@ def test_a_panel_of_the_default_study_keeps_the_outputs_it_had(default_grid, ind
     if estimate is None:
         assert result.error_estimate is None
     else:
-        assert result.error_estimate == pytest.approx(estimate, rel=1e-9)
+        assert result.error_estimate == pytest.approx(estimate, rel=PANEL_PRECISION)
         for name, value in zip(PANEL_FIGURES, figures):
-            assert result.values[name] == pytest.approx(value, rel=1e-9), name
+            assert result.values[name] == pytest.approx(value, rel=PANEL_PRECISION), name
 
 
 def test_where_an_error_variant_is_not_this_state_the_answer_still_states_its_outputs(default_grid, monkeypatch):
@@ -170,7 +177,7 @@ def test_where_an_error_variant_is_not_this_state_the_answer_still_states_its_ou
     assert result.message == "with the drag made viscous at the mean speed is made to bounce: a higher model answers"
     figures = PANEL[0].values[3]
     for name, value in zip(PANEL_FIGURES, figures):
-        assert result.values[name] == pytest.approx(value, rel=1e-9), name
+        assert result.values[name] == pytest.approx(value, rel=PANEL_PRECISION), name
 
 
 def test_an_answer_above_the_tolerance_is_not_converged_and_stands_in_auto(default_grid):
@@ -179,8 +186,9 @@ def test_an_answer_above_the_tolerance_is_not_converged_and_stands_in_auto(defau
     # and does not run the reference model
     point = {**default_grid.point(0), "tolerance": 0.005}
     alone = solve_point(point, "sliding")
-    assert alone.status == "not_converged" and alone.error_estimate == pytest.approx(0.007884216743141978, rel=1e-9)
-    assert alone.values["peak_contact_force"] == pytest.approx(PANEL[3].values[3][0], rel=1e-9)
+    assert alone.status == "not_converged" and alone.error_estimate == pytest.approx(0.007884216743141978,
+                                                                                     rel=PANEL_PRECISION)
+    assert alone.values["peak_contact_force"] == pytest.approx(PANEL[3].values[3][0], rel=PANEL_PRECISION)
     chosen = solve_point(point, "auto")
     assert chosen.method == "sliding" and chosen.status == "not_converged"
     assert set(chosen.extras["methods_tried"]) == {"free-whirl", "sliding"}
