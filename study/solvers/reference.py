@@ -621,6 +621,11 @@ def uncorrected_means(inputs: Mapping[str, Any], model: WhirlModel, window: Wind
     return {name: float(np.mean([v[name] for v in plain])) for name in ("max_normal_stress", "alternating_bending_stress")}
 
 
+#: A bending stress below this share of the max normal stress is nothing (the rounding of a string whirling as a
+#: rigid body): its error parts are counted relative to the normal stress (:func:`convergence`).
+NEGLIGIBLE_BENDING = 1e-9
+
+
 def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
                 stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None,
                 uncorrected: Mapping[str, float] | None = None) -> dict:
@@ -645,8 +650,14 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
         if values[name] > 0:
             modes[name] = max(modes[name], abs(1.0 - plain / values[name]))
     # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
-    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing
-    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"])}
+    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing; and a
+    # bending stress below NEGLIGIBLE_BENDING of the normal stress (the rounding of a string whirling as a rigid body,
+    # 1e-11 Pa) relative to that
+    floor = NEGLIGIBLE_BENDING * normal
+    if values["max_bending_stress"] < floor:
+        modes = {name: 0.0 for name in modes}
+    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
+                                               floor)}
     out = {}
     for name, s in stats.items():
         share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
