@@ -161,8 +161,8 @@ FIELDS: tuple[Field, ...] = (
     Field("contact.friction", "friction", "Coulomb friction coefficient of pipe on wall (method reference; default "
           "0.3: water-base mud, 0.25-0.40 in Johancsik, Friesen & Dawson 1984)", "",
           default=ReferenceOptions.default("friction"), **_NON_NEGATIVE),
-    Field("contact.section_length", "section_length", "length of the pinned pipe section of the reference model "
-          "(default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
+    Field("contact.section_length", "section_length", "length of the reference model's periodic section of the "
+          "string, a whole number of joints (default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
           **_POSITIVE),
     Field("solver.method", "solver_method", "solution method", None, default="core",
           choices=tuple(METHOD_DESCRIPTIONS)),

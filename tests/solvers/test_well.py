@@ -68,7 +68,7 @@ def test_a_free_rigid_section_under_a_constant_side_load_accelerates_as_w_over_m
 def test_at_rest_every_joint_carries_its_share_on_a_continuous_beam_column(klbf):
     # issue 33: in a straight inclined hole (30 deg here) every joint lies on the low side with its share w s of the
     # buoyed weight's side load; the body between joints is a continuous beam-column on equal supports, clamped at
-    # each joint by symmetry (MODEL.md §10): its deflection relative to the joints and its moments at the joints and
+    # each joint by symmetry (docs/model.md §13.3): its deflection relative to the joints and its moments at the joints and
     # at mid-joint are well.beam_column_deflection, support_moment and midspan_moment (Timoshenko & Gere 1961, §1.11)
     inputs = _default(100, klbf, inclination=np.radians(30.0), friction=0.0)
     model = reference.build_model(inputs)
