@@ -13,10 +13,12 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
 - **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), uniform
   along the section, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
-  (:func:`study.physics.whirl.eccentric_load`); and in an inclined hole (``inclination``, config
-  ``hole.inclination``, default 0) the buoyed weight's side component (:func:`study.physics.whirl.side_load`;
-  ``side_load`` [N/m] sets it directly in code). Nothing else: with ε = 0 and a centred pipe
-  nothing moves.
+  (:func:`study.physics.whirl.eccentric_load`); and the uniform side load (:func:`side_loads`): in an inclined
+  hole (``inclination``, config ``hole.inclination``, default 0) the buoyed weight's side component, in a curved
+  hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
+  curvature also bends the pipe that follows it (``side_load`` [N/m] sets the load directly in code). A uniform
+  load drives the rigid translation ψ_0 alone. Nothing else: with ε = 0 and a centred pipe in a straight vertical
+  hole nothing moves.
 - **mud**: added mass in M; quadratic drag −D |u̇| u̇ per unit length with the velocity's magnitude in
   both directions (``reference_damping = "drag"``, default; D from
   :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
@@ -49,13 +51,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from types import SimpleNamespace
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import hertz, section, well, whirl
-from study.solvers import stress_kernel, trajectory, whirl_kernel
+from study.solvers import stress_kernel, whirl_kernel
 from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
@@ -927,7 +928,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
     docs/reference_model.md §3).
 
-    Moments M_y, M_z (−EI y'', −EI z'') from :func:`study.solvers.trajectory.fields` in each direction
+    Moments M_y, M_z (−EI (κ_y + y''), −EI (κ_z + z'')) from :func:`periodic_fields` in each direction
     (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
     only when the modes left out are fast beside the contacts, :func:`quasi_static_applies`: for an
     impact shorter than their periods they respond to its impulse, not statically, and the

@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from study import config
-from study.physics import section
 from study.solvers import freewhirl, solve_point
 
 ROOT = Path(__file__).resolve().parents[2]

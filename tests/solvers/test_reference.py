@@ -3,7 +3,6 @@
 import numpy as np
 import pytest
 
-from study.physics import whirl
 from study.solvers import METHODS, reference, solve_point
 from study.solvers.options import ReferenceOptions
 from study.workflow.grid import Grid

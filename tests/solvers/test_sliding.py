@@ -8,7 +8,6 @@ import pytest
 
 from study import config
 from study.workflow.grid import Grid
-from study.physics import whirl as whirl_physics
 from study.solvers import reference, sliding, solve_point
 
 ROOT = Path(__file__).resolve().parents[2]

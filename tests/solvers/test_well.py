@@ -13,7 +13,6 @@ from study.physics import whirl as whirl_physics
 from study.solvers import reference, sliding
 
 ROOT = Path(__file__).resolve().parents[2]
-LBF = 4.4482216152605
 
 
 def _default(rpm: float, klbf: float, **extra) -> dict:
