@@ -22,7 +22,7 @@ import tomllib
 import unicodedata
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -30,10 +30,11 @@ from study.physics.beam import LOAD_SHAPES
 from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
+from study.physics.well import DOGLEG_DIRECTIONS, MAX_DOGLEG_SEVERITY
 from study.solvers.options import (DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
                                    DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
                                    TimeDomainOptions)
-from study.units import UnitProblem, parse_quantity
+from study.units import UnitProblem, parse_angle_per_length, parse_quantity
 
 REQUIRED = object()
 
@@ -46,6 +47,8 @@ class Field:
     lower, upper : bounds in SI; ``lower_open``/``upper_open`` make them strict.
     choices : allowed strings for a choice field.
     integer : the value must be a whole number.
+    parser : reads a raw value into SI (raising UnitProblem) where parse_quantity does not serve.
+    rule_note : said after the bounds in the rule, e.g. a bound in the units users think in.
     """
 
     path: str
@@ -62,6 +65,8 @@ class Field:
     angular: bool = False
     display_unit: str | None = None  # the unit users think in, for tables and charts
     why: str = ""  # why the bounds are what they are, told with a value outside them
+    parser: Callable[[Any], float] | None = None
+    rule_note: str = ""
 
     @property
     def sweepable(self) -> bool:
@@ -77,7 +82,19 @@ class Field:
             parts.append(f"{'<' if self.upper_open else '<='} {self.upper:g}")
         kind = "a whole number" if self.integer else "a finite number"
         unit = f" [{self.unit}]" if self.unit else ""
-        return kind + unit + (" " + " and ".join(parts) if parts else "")
+        note = f" ({self.rule_note})" if self.rule_note else ""
+        return kind + unit + (" " + " and ".join(parts) if parts else "") + note
+
+
+def _dogleg_direction(raw) -> float:
+    """A dogleg's direction [rad]: a name of ``DOGLEG_DIRECTIONS`` or an angle ("90 deg"; a number is in rad)."""
+    if isinstance(raw, str) and raw.strip() in DOGLEG_DIRECTIONS:
+        return DOGLEG_DIRECTIONS[raw.strip()]
+    try:
+        return parse_quantity(raw, "rad")
+    except UnitProblem as exc:
+        raise UnitProblem(f"{exc}; a direction is one of {', '.join(repr(k) for k in DOGLEG_DIRECTIONS)} or an "
+                          "angle from the low side towards +z such as '90 deg'") from None
 
 
 _POSITIVE = dict(lower=0.0, lower_open=True)
@@ -117,6 +134,13 @@ FIELDS: tuple[Field, ...] = (
     Field("hole.inclination", "inclination", "hole inclination from vertical: the buoyed weight's side component "
           "pushes the pipe to the low side (method reference)", "rad", default=0.0, display_unit="deg",
           lower=0.0, upper=1.5707963267948966),
+    Field("hole.dogleg_severity", "dogleg_curvature", "dogleg severity of the hole as its curvature ('3 deg/100ft', "
+          "'3 deg/30m', '0.0017 rad/m'; 0: a straight hole)", "1/m", default=0.0,
+          lower=0.0, upper=MAX_DOGLEG_SEVERITY, parser=parse_angle_per_length, rule_note="at most 30 deg/100ft"),
+    Field("hole.dogleg_direction", "dogleg_direction", "direction of the dogleg's centre of curvature from the low "
+          "side towards +z = x × y: 'drop' (0), 'build' (180 deg), 'walk_right' (-90 deg), 'walk_left' (90 deg) or an "
+          "angle", "rad", default=0.0, display_unit="deg",
+          lower=-2 * math.pi, upper=2 * math.pi, parser=_dogleg_direction, rule_note="-360 to 360 deg"),
     Field("rock.youngs_modulus", "rock_youngs_modulus", "rock Young's modulus", "Pa", display_unit="psi",
           **_POSITIVE),
     Field("rock.poisson_ratio", "rock_poisson_ratio", "rock Poisson's ratio", "", **_POISSON),
@@ -143,8 +167,8 @@ FIELDS: tuple[Field, ...] = (
     Field("contact.friction", "friction", "Coulomb friction coefficient of pipe on wall (method reference; default "
           "0.3: water-base mud, 0.25-0.40 in Johancsik, Friesen & Dawson 1984)", "",
           default=ReferenceOptions.default("friction"), **_NON_NEGATIVE),
-    Field("contact.section_length", "section_length", "length of the pinned pipe section of the reference model "
-          "(default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
+    Field("contact.section_length", "section_length", "length of the reference model's periodic section of the "
+          "string, a whole number of joints (default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
           **_POSITIVE),
     Field("solver.method", "solver_method", "solution method", None, default="core",
           choices=tuple(METHOD_DESCRIPTIONS)),
@@ -399,7 +423,7 @@ def _check_value(spec: Field, raw, where: str, problems: list[str]):
             return None
         return raw
     try:
-        value = parse_quantity(raw, spec.unit, angular=spec.angular)
+        value = spec.parser(raw) if spec.parser else parse_quantity(raw, spec.unit, angular=spec.angular)
     except UnitProblem as exc:
         problems.append(f"{where} = {_shown(raw)}: {exc}")
         return None
@@ -449,8 +473,8 @@ def _axis_values(spec: Field, raw, where: str, problems: list[str]):
                 return None
             array = np.linspace(start, stop, num)
         else:
-            step = _check_value(Field(spec.path, spec.name, spec.long_name, spec.unit, angular=spec.angular),
-                                raw["step"], f"{where}.step", problems)
+            step = _check_value(Field(spec.path, spec.name, spec.long_name, spec.unit, angular=spec.angular,
+                                      parser=spec.parser), raw["step"], f"{where}.step", problems)
             if step is None:
                 return None
             if stop < start:

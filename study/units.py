@@ -283,3 +283,34 @@ def display_unit(name: str, udunits: str) -> tuple[str, str]:
     if udunits in OUTPUT_UNITS:
         return OUTPUT_UNITS[udunits]
     return pint_unit(udunits), udunits
+
+
+# A dogleg severity as drillers write it: an angle per a count of lengths, "3 deg/100ft", "3 deg/30m",
+# "0.0017 rad/m". Pint reads "3 deg/100ft" as (3 deg/100)·ft, so this form is read here, by a pattern of
+# two numbers and two named units from the tables below: nothing in the text is evaluated.
+_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+_PER_LENGTH = re.compile(rf"\s*(?P<value>{_NUMBER})\s*(?P<angle>[A-Za-z°]+)\s*/\s*(?P<count>{_NUMBER})?\s*"
+                         rf"(?P<length>[A-Za-z]+)\s*")
+_ANGLES = {"deg": math.pi / 180, "degree": math.pi / 180, "degrees": math.pi / 180, "°": math.pi / 180,
+           "rad": 1.0, "radian": 1.0, "radians": 1.0}
+_LENGTHS = {"ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "m": 1.0, "meter": 1.0, "meters": 1.0, "metre": 1.0,
+            "metres": 1.0}
+
+
+def parse_angle_per_length(value) -> float:
+    """A change of angle per length (a dogleg severity) in rad/m: "3 deg/100ft", "3 deg/30m", "0.0017 rad/m".
+
+    A number is taken as already in rad/m. A string is an angle in deg or rad over a length in ft or m, with an
+    optional count of lengths ("/100ft", "/30 m", "/m"). Raises :class:`UnitProblem` naming the value and
+    the forms allowed.
+    """
+    if isinstance(value, (bool, int, float)) or not isinstance(value, str):
+        return parse_quantity(value, "rad/m")
+    match = _PER_LENGTH.fullmatch(value)
+    angle = _ANGLES.get(match["angle"]) if match else None
+    length = _LENGTHS.get(match["length"]) if match else None
+    count = float(match["count"]) if match and match["count"] else 1.0
+    if angle is None or length is None or not count > 0:
+        raise UnitProblem(f"{value!r} cannot be read as an angle per length; write it as '3 deg/100ft', '3 deg/30m' "
+                          "or '0.0017 rad/m'")
+    return float(match["value"]) * angle / (count * length)

@@ -253,7 +253,8 @@ from hypothesis import strategies as st
 _VALUES = st.one_of(
     st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True), st.booleans(),
     st.text(max_size=12), st.sampled_from(["4.5 in", "-3 ft", "10 ppg", "300 rpm", "1e400 psi", "lbf", "3 Hz",
-                                           "nan in", "0 in", "in", "2 m/s**2", "5 rev/s", "1/0"]),
+                                           "nan in", "0 in", "in", "2 m/s**2", "5 rev/s", "1/0", "3 deg/100ft",
+                                           "2 deg/30m", "walk_right", "1e400 deg/100ft", "3 deg/1e-400ft"]),
     st.lists(st.integers(-5, 5), max_size=3),
 )
 _PATHS = st.sampled_from([f.path for f in config.FIELDS] + ["pipe.colour", "sweep.chunk_size", "sweep.workers",
@@ -501,3 +502,80 @@ def test_units_as_users_write_them_are_read_by_the_bounded_grammar(written, si, 
     from study.units import parse_quantity
 
     assert parse_quantity(written, unit) == pytest.approx(si, rel=1e-12)
+
+
+# --- the well: dogleg severity and direction (issue 33) ---------------------------------------------
+DEG_PER_100FT = np.pi / 180 / 30.48  # 1°/100 ft in rad/m: 100 ft = 30.48 m exactly
+
+
+@pytest.mark.parametrize(
+    "line, name, expected",
+    [
+        ('[hole] dogleg_severity = "3 deg/100ft"', "dogleg_curvature", 3 * DEG_PER_100FT),
+        ('[hole] dogleg_severity = "3 deg/100 ft"', "dogleg_curvature", 3 * DEG_PER_100FT),
+        ('[hole] dogleg_severity = "3 deg/30m"', "dogleg_curvature", 3 * np.pi / 180 / 30),
+        ('[hole] dogleg_severity = "0.0017 rad/m"', "dogleg_curvature", 0.0017),
+        ("[hole] dogleg_severity = 0.0017", "dogleg_curvature", 0.0017),  # a number is SI
+        ('[hole] dogleg_severity = "30 deg/100ft"', "dogleg_curvature", 30 * DEG_PER_100FT),  # the bound itself
+        # the angle towards the centre of curvature from the low side (+y) towards +z = x × y
+        ('[hole] dogleg_direction = "drop"', "dogleg_direction", 0.0),
+        ('[hole] dogleg_direction = "build"', "dogleg_direction", np.pi),
+        ('[hole] dogleg_direction = "walk_left"', "dogleg_direction", np.pi / 2),
+        ('[hole] dogleg_direction = "walk_right"', "dogleg_direction", -np.pi / 2),
+        ('[hole] dogleg_direction = "45 deg"', "dogleg_direction", np.pi / 4),
+        ("[hole] dogleg_direction = 1.0", "dogleg_direction", 1.0),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "=" in v else None,
+)
+def test_dogleg_fields_are_read_in_the_units_users_write(line, name, expected):
+    assert load_text(with_lines(line)).inputs[name] == pytest.approx(expected, rel=1e-12, abs=1e-15)
+
+
+def test_dogleg_fields_default_to_a_straight_hole():
+    inputs = load_text(MINIMAL).inputs
+    assert inputs["dogleg_curvature"] == 0.0 and inputs["dogleg_direction"] == 0.0
+
+
+BAD_DOGLEGS = [
+    ('[hole] dogleg_severity = "31 deg/100ft"', "hole.dogleg_severity = '31 deg/100ft' (= 0.0177511 1/m): must be a "
+                                                "finite number [1/m] >= 0 and <= 0.0171784 (at most 30 deg/100ft)"),
+    ('[hole] dogleg_severity = "-1 deg/100ft"', "hole.dogleg_severity = '-1 deg/100ft' (= -0.000572615 1/m): must"),
+    ("[hole] dogleg_severity = 3", "hole.dogleg_severity = 3: must be a finite number [1/m] >= 0"),  # 3 rad/m
+    ('[hole] dogleg_severity = "3 deg/100"', "hole.dogleg_severity = '3 deg/100': '3 deg/100' cannot be read as an "
+                                             "angle per length; write it as '3 deg/100ft', '3 deg/30m' or"),
+    ('[hole] dogleg_severity = "3/100ft"', "'3/100ft' cannot be read as an angle per length"),  # no angle named
+    ('[hole] dogleg_severity = "3 deg/0ft"', "'3 deg/0ft' cannot be read as an angle per length"),
+    ('[hole] dogleg_severity = "3 deg/100in"', "'3 deg/100in' cannot be read as an angle per length"),
+    ('[hole] dogleg_direction = "sideways"', "a direction is one of 'drop', 'build', 'walk_right', 'walk_left' or"),
+    ('[hole] dogleg_direction = "90"', "hole.dogleg_direction = '90': '90' has no units"),
+    ("[hole] dogleg_direction = 90", "hole.dogleg_direction = 90: must be a finite number [rad] >= -6.28319 and "
+                                     "<= 6.28319 (-360 to 360 deg)"),  # 90 rad: degrees meant
+    ('[hole] dogleg_direction = "3 m"', "hole.dogleg_direction = '3 m'"),
+]
+
+
+@pytest.mark.parametrize("line, fragment", BAD_DOGLEGS, ids=[b[0] for b in BAD_DOGLEGS])
+def test_bad_dogleg_fields_are_refused_with_field_value_and_rule(line, fragment):
+    with pytest.raises(ConfigError) as info:
+        load_text(with_lines(line))
+    assert fragment in str(info.value)
+
+
+def test_dogleg_fields_sweep_as_grid_axes():
+    study = load_text(with_lines(
+        '[sweep.axes] hole.dogleg_severity = { start = "0 deg/100ft", stop = "6 deg/100ft", step = "2 deg/100ft" }\n'
+        'hole.dogleg_direction = ["build", "drop", "walk_left", "45 deg", "drop"]'))
+    np.testing.assert_allclose(study.axes["dogleg_curvature"], np.array([0, 2, 4, 6]) * DEG_PER_100FT, rtol=1e-12)
+    np.testing.assert_allclose(study.axes["dogleg_direction"], [0, np.pi / 4, np.pi / 2, np.pi])  # sorted, unique
+    assert study.size == 16
+    point = study.point(dogleg_curvature=study.axes["dogleg_curvature"][1], dogleg_direction=np.pi)
+    assert point["dogleg_curvature"] == pytest.approx(2 * DEG_PER_100FT) and point["dogleg_direction"] == np.pi
+    with pytest.raises(ConfigError, match=r"sweep.axes.hole.dogleg_severity\[1\] = '40 deg/100ft'"):
+        load_text(with_lines('[sweep.axes] hole.dogleg_severity = ["1 deg/100ft", "40 deg/100ft"]'))
+
+
+def test_dogleg_severity_from_the_command_line():
+    overrides = config.parse_set(['hole.dogleg_severity="3 deg/30m"', "hole.dogleg_direction=walk_right"])
+    inputs = load_text(MINIMAL, overrides=overrides).inputs
+    assert inputs["dogleg_curvature"] == pytest.approx(np.pi / 180 / 10)
+    assert inputs["dogleg_direction"] == -np.pi / 2

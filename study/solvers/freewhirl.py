@@ -1,28 +1,21 @@
 """The ``free-whirl`` method: the steady state of the reference model's scene where the pipe does not touch the
 wall, in closed form (docs/reference_model.md; the cheapest rung of the ``auto`` hierarchy).
 
-The scene is the reference model's (:mod:`study.solvers.reference`): the pinned section of length L in both
-lateral directions, driven by its mass eccentricity ε (the centrifugal load m_p ε Ω² turning with the pipe) and,
-in an inclined hole, pushed to the low side by its buoyed weight w; mud added mass in M and quadratic drag
-D |u̇| u̇. Both loads are uniform along the section, so only odd modes respond (Jeffcott's rotor on a pinned
-beam-column; Vance 1988 ch. 2, Genta 2005 §4.2). Away from the wall the steady state is exact:
+The scene is the reference model's (:mod:`study.solvers.reference`): a periodic section of the long string
+(its modes :func:`study.solvers.reference.mode_shapes`) in both lateral directions, driven by its mass
+eccentricity ε (the centrifugal load m_p ε Ω² turning with the pipe); mud added mass in M and quadratic drag
+D |u̇| u̇. A uniform load drives the rigid translation ψ_0 alone, so away from the wall the string whirls as a
+rigid body (Jeffcott's rotor with no stiffness; Vance 1988 ch. 2): a circle of the same radius at every section,
+on which the speed |u̇| = Ω |A| is constant, so the drag is exactly a viscous damping c = D Ω |A| and the modal
+equation (−Ω²) a + iΩ C a / m = ε_0 is solved by fixed-point iteration on |A| (a few steps).
 
-- **sag** S(x) = Σ_n s_n/ω_n² sin(k_n x), the static deflection under w (fixed in the hole);
-- **synchronous whirl** A(x) e^{iΩt}: the rotating load's forced response, a circle at each section. On a
-  circle the speed |u̇| = Ω |A(x)| is constant, so the drag is exactly a viscous damping c(x) = D Ω |A(x)|,
-  and the modal equations (ω_n² − Ω²) a_n + iΩ Σ_m C_nm a_m / m = ε_n are linear; C depends on |A|, so
-  they are solved by fixed-point iteration on |A| (a few steps: the drag is weak away from resonance).
-
-The pipe stays clear of the wall when |S(x)| + |A(x)| < c everywhere — c_b = R − r_o along the body, c_tj =
-R − r_tj at the tool joints (every ``joint_length``). Then the answer is (per section x, the pipe rotating):
-the whirl's curvature is fixed in the pipe and the sag's turns once per revolution through every fibre, so
-
-    max bending stress = E r_o max_x (|κ_S| + |κ_A|),   alternating = E r_o max_x |κ_S|,
-
-with κ = y''; shear 2V/A_s likewise with V = EI y'''. Where the free motion would reach the wall (within the
-study's tolerance), or near a resonance where the iteration does not settle, the method does not answer:
-status ``out_of_scope`` (a higher model answers). Its error estimate is the modal truncation's (the part of
-the stress carried by the upper half of the modes) plus the iteration's last change.
+Clear of the wall only where nothing lies on it: a side load (the buoyed weight in an inclined hole) lays the
+string on its tool joints on the low side — the rigid translation has no stiffness to hold it off — so there
+the method does not answer (``out_of_scope``, the sliding method or the reference model does). In a vertical
+hole the pipe stays clear when the whirl's radius is below the tool joints' clearance R − r_tj; the rigid whirl
+does not bend the pipe (no bending stress). Where the whirl would reach the wall (within the study's tolerance),
+or the iteration does not settle, the method does not answer: status ``out_of_scope``. Its error estimate is the
+iteration's last change.
 """
 
 from __future__ import annotations
@@ -34,6 +27,7 @@ import numpy as np
 
 from study.physics import section, whirl
 from study.solvers.options import ReferenceOptions, study_tolerance
+from study.solvers.reference import mode_shapes, mode_wavenumbers, side_loads
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -41,7 +35,7 @@ METHOD = "free-whirl"
 #: Inputs the answer does not depend on: nothing strikes the wall, so the restitution (which sets only the contacts'
 #: Hunt–Crossley damping) never enters. ``auto`` reuses one answer across them (a test holds the claim).
 INDEPENDENT_OF = ("restitution",)
-#: Odd modes kept (every odd mode up to this number): the uniform loads excite no even mode.
+#: Modes per direction kept (the periodic basis; a uniform load drives its first alone).
 MODES = 61
 #: Points along the section for the clearance check and the stress maxima.
 POINTS = 401
@@ -51,26 +45,24 @@ ITERATIONS, SETTLED = 50, 1e-10
 
 def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = POINTS) -> dict[str, Any]:
     """The steady state of the section without wall contact: x [m], sag S and whirl A (complex) [m] and their
-    second and third derivatives along x, the section's data, and how the drag iteration ended."""
+    second and third derivatives along x, the section's data, and how the drag iteration ended. The sag is NaN
+    where a side load lays the string on the wall (its rigid translation has no stiffness)."""
     option = ReferenceOptions.from_inputs(inputs)
     props = section_properties(inputs)
     L, M, Om = float(option.section_length), props["mass_per_length"], float(inputs["rotary_speed"])
-    n = np.arange(1, modes + 1, 2, dtype=float)
-    k = n * np.pi / L
-    omega = np.asarray(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M,
-                                                   n), float).ravel()
+    n = np.arange(modes)
+    k = mode_wavenumbers(L, modes)
+    omega = np.sqrt((props["bending_stiffness"] * k**4 + props["effective_tension"] * k**2) / M)
     mass = 0.5 * M * L
-    factors = whirl.uniform_load_modal_factors(n, L)
+    factors = np.zeros(modes)
+    factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: the uniform loads drive the rigid translation alone
     eccentric = whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors / mass
-    r_o = inputs["outer_diameter"] / 2.0
-    w_side = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
-                                   float(inputs.get("inclination") or 0.0)))
-    sag_modal = w_side * factors / mass / omega**2
+    w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
+    sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)
     x = np.linspace(0.0, L, points)
-    shapes = np.sin(np.outer(x, k))  # (X, N)
     gx, gw = whirl.gauss_legendre(2 * modes + 8)
     gauss_x, gauss_w = 0.5 * L * (gx + 1.0), 0.5 * L * gw
-    gauss_shapes = np.sin(np.outer(gauss_x, k))
+    gauss_shapes = mode_shapes(gauss_x, L, modes)
     drag = props["drag_coefficient_per_length"]
     stiffness = np.diag(omega**2 - Om**2).astype(complex)
     a = eccentric / (omega**2 - Om**2) + 0j
@@ -83,7 +75,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
         a = new
         if change < SETTLED:
             break
-    derivative = {0: shapes, 2: -shapes * k**2, 3: -np.cos(np.outer(x, k)) * k**3}
+    derivative = {d: mode_shapes(x, L, modes, d) for d in (0, 2, 3)}
     return dict(x=x, L=L, n=n, k=k, omega=omega, rotary_speed=Om, sag={d: s @ sag_modal for d, s in derivative.items()},
                 whirl={d: s @ a for d, s in derivative.items()}, sag_modal=sag_modal, whirl_modal=a,
                 iterations=iteration, change=change, props=props, option=option, side_load=w_side)
@@ -94,7 +86,7 @@ def clearances(inputs: Mapping[str, Any], x: np.ndarray, option: ReferenceOption
     hole_r = inputs["hole_diameter"] / 2.0
     body = np.full(x.shape, hole_r - inputs["outer_diameter"] / 2.0)
     L, joint = float(option.section_length), float(option.joint_length)
-    stations = np.arange(0.0, L + 1e-9 * L, joint)
+    stations = np.arange(0.0, L * (1.0 - 1e-9), joint)  # periodic: x = L is the joint at 0
     return body, np.column_stack([stations, np.full(stations.shape, hole_r - float(option.tool_joint_diameter) / 2)])
 
 
@@ -107,13 +99,21 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     option = ReferenceOptions.from_inputs(inputs)
     result.values.update(props)
     L = float(option.section_length)
-    if section.is_buckled(L, props["bending_stiffness"], props["effective_tension"]):
+    # the periodic section's first bending mode has k = 2π/L: the pinned half-length's Euler load
+    if section.is_buckled(L / 2.0, props["bending_stiffness"], props["effective_tension"]):
         result.status = "buckled"
         result.message = (f"effective tension {props['effective_tension']:.4g} N buckles the {L:.4g} m section "
                           "(contact.section_length)")
         result.wall_time = time.perf_counter() - start
         return result
     state = steady_state(inputs)
+    if state["side_load"] != 0.0:
+        result.status = "out_of_scope"
+        result.message = (f"a side load of {state['side_load']:.4g} N/m (the buoyed weight in the inclined hole, the "
+                          "tension in a curved one) lays the string on its tool joints (on the low side in a straight "
+                          "hole): not clear of the wall, a higher model answers")
+        result.wall_time = time.perf_counter() - start
+        return result
     x, sag, spin = state["x"], state["sag"], state["whirl"]
     reach = np.abs(sag[0]) + np.abs(spin[0])  # largest distance from the hole's axis over a revolution [m]
     body, joints = clearances(inputs, x, option)
@@ -141,9 +141,10 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     axial = abs(inputs["axial_tension"]) / props["steel_area"]
     i_b, i_a, i_s = int(np.argmax(bending)), int(np.argmax(alternating)), int(np.argmax(shear))
     # truncation: the stress carried by the upper half of the odd modes kept
-    upper = state["n"] > state["n"][-1] / 2
-    tail = ei * scale * float(np.max(np.abs(np.sin(np.outer(x, state["k"][upper])) * state["k"][upper] ** 2
-                                      @ (np.abs(state["whirl_modal"][upper]) + np.abs(state["sag_modal"][upper])))))
+    upper = state["n"] >= state["n"].size // 2
+    tail = ei * scale * float(np.max(np.abs(mode_shapes(x, L, state["n"].size)[:, upper] * state["k"][upper] ** 2
+                                            @ (np.abs(state["whirl_modal"][upper])
+                                               + np.abs(state["sag_modal"][upper])))))
     result.values.update(
         max_deflection=float(np.max(reach)), max_bending_stress=float(bending[i_b]),
         max_normal_stress=float(axial + bending[i_b]), max_normal_stress_x=float(x[i_b]),

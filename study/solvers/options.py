@@ -198,7 +198,9 @@ class ReferenceOptions(MethodOptions):
     eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
     tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
     joint_length: float = 31 * 0.3048  #: tool joint to tool joint [m]
-    section_length: float = 93 * 0.3048  #: the pinned section, three joints [m]
+    section_length: float = 93 * 0.3048  #: the periodic section of the string, three joints [m]
+    #: contact stations on the pipe body between neighbouring tool joints, evenly spaced (reference model)
+    reference_body_stations: int = 1
     friction: float = 0.3  #: Coulomb coefficient of pipe on wall
     reference_modes: int = 16  #: modes per lateral direction
     reference_revolutions: int = 40  #: most revolutions of the transient

@@ -3,25 +3,30 @@ the hole, in both lateral directions, driven by what drives it.
 
 Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 
-- **section** pinned and centred at both ends, length L = ``section_length`` (config
-  ``contact.section_length``, default 93 ft: three 31-ft joints), under the effective tension
-  T0 − m_i V_m², mass M = m_p + m_i + m_a per unit length (:func:`study.solvers.scene.section_properties`);
-  deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) sin(nπx/L), n = 1 … N (``reference_modes``, default 16),
-  modal mass M L/2 and ω_n from :func:`study.physics.section.natural_frequencies`.
+- **section** a piece of a long string, spatially periodic (the string repeats from section to section, so its
+  end joints lie on the wall like the others; docs/reference_model.md §1), length L = ``section_length`` (config
+  ``contact.section_length``, default 93 ft: three 31-ft joints; a whole number of joints), under the effective
+  tension T0 − m_i V_m², mass M = m_p + m_i + m_a per unit length
+  (:func:`study.solvers.scene.section_properties`); deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) ψ_n(x) over
+  the periodic basis ψ_0 = 1/√2 (the rigid translation, ω_0 = 0), ψ_{2j−1} = cos k_j x, ψ_{2j} = sin k_j x,
+  k_j = 2πj/L (:func:`mode_shapes`), n = 0 … N − 1 (``reference_modes``, default 16, modes per direction),
+  modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
 - **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), uniform
   along the section, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
-  (:func:`study.physics.whirl.eccentric_load`); and in an inclined hole (``inclination``, config
-  ``hole.inclination``, default 0) the buoyed weight's side component (:func:`study.physics.whirl.side_load`;
-  ``side_load`` [N/m] sets it directly in code). Nothing else: with ε = 0 and a centred pipe
-  nothing moves.
+  (:func:`study.physics.whirl.eccentric_load`); and the uniform side load (:func:`side_loads`): in an inclined
+  hole (``inclination``, config ``hole.inclination``, default 0) the buoyed weight's side component, in a curved
+  hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
+  curvature also bends the pipe that follows it (``side_load`` [N/m] sets the load directly in code). A uniform
+  load drives the rigid translation ψ_0 alone. Nothing else: with ε = 0 and a centred pipe in a straight vertical
+  hole nothing moves.
 - **mud**: added mass in M; quadratic drag −D |u̇| u̇ per unit length with the velocity's magnitude in
   both directions (``reference_damping = "drag"``, default; D from
   :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
   Gauss–Legendre quadrature with 2N + 8 points. For validation ``"viscous"`` (modal damping ratio
   ``damping_ratio`` in every mode) and ``"none"``.
-- **contact points**: the tool joints inside the section, at every multiple of ``joint_length`` (the
-  ends are joints: pinned), radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe
-  body halfway between adjacent joints (and between a joint and an end), radius r_o, clearance R − r_o.
+- **contact points**: the tool joints at 0, s, 2s, … (s = ``joint_length``; x = L is the joint at 0 again),
+  radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe body halfway between neighbouring
+  joints, radius r_o, clearance R − r_o (:func:`contact_layout`).
   ``contact_points`` (fractions of L) and ``contact_kinds`` (0 body, 1 joint) replace them in code.
 - **wall**: Hertz normal force K_p δ^{3/2}(1 + χ δ̇)₊ with K_p from
   :func:`study.physics.hertz.hertz_stiffness` for the point's radius in the hole at the curvature of the
@@ -32,8 +37,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
-Run: from the section's synchronous whirl without walls (:func:`initial_state`; ``reference_initial =
-"rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
+Run: from the string's rest on the wall where a side load lays it there, else its synchronous whirl without walls
+(:func:`initial_state`; ``reference_initial = "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
 :mod:`study.solvers.whirl_kernel`, ``reference_rtol`` default 1e-6, in its Lawson form between contacts:
 ``reference_integrator``) until the state at the revolution
 boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`), the pipe bounces with
@@ -46,13 +51,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from types import SimpleNamespace
 from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, section, whirl
-from study.solvers import stress_kernel, trajectory, whirl_kernel
+from study.physics import hertz, section, well, whirl
+from study.solvers import stress_kernel, whirl_kernel
 from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
@@ -84,8 +88,8 @@ class WhirlModel:
     """The section's modal model in both directions (SI)."""
 
     span: float  #: section length L [m]
-    modes: np.ndarray  #: mode numbers n (N,)
-    omega: np.ndarray  #: ω_n [rad/s]
+    modes: np.ndarray  #: mode indices n = 0 … N − 1 (N,) of the periodic basis (:func:`mode_shapes`)
+    omega: np.ndarray  #: ω_n [rad/s] (ω_0 = 0: the rigid translation)
     mass: float  #: modal mass M L/2 [kg]
     rotary_speed: float
     points: np.ndarray  #: contact positions x_p [m]
@@ -93,7 +97,7 @@ class WhirlModel:
     clearance: np.ndarray  #: c_p [m]
     radius: np.ndarray  #: r_p [m]
     stiffness: np.ndarray  #: Hertz K_p [N m^-3/2]
-    phi: np.ndarray  #: (P, N) sin(k_n x_p)
+    phi: np.ndarray  #: (P, N) ψ_n(x_p)
     eccentric: np.ndarray  #: (N,) generalised eccentric force per modal mass [m/s²]
     side: np.ndarray  #: (N,) generalised side load per modal mass [m/s²]
     damping: np.ndarray  #: (N,) linear modal damping per mass 2ζω_n [1/s]
@@ -109,6 +113,27 @@ class WhirlModel:
     penalty_damping: np.ndarray  #: (P,) [N s/m]
     props: Mapping[str, float] = field(default_factory=dict)
     eccentricity: float = 0.0
+    frame: float = 0.0  #: angle β of the model's +y from the hole's low side towards +z: the side load's direction [rad]
+    hole_curvature: np.ndarray = field(default_factory=lambda: np.zeros(2))  #: κ⃗ of the hole in the model's frame [1/m]
+    cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
+
+    @property
+    def wavenumber(self) -> np.ndarray:
+        """k_n [1/m] of the modes (0 for the rigid translation)."""
+        return mode_wavenumbers(self.span, self.modes)
+
+    @property
+    def weights(self) -> np.ndarray:
+        """(N,) each mode's weight in the integrator's error scale: 1/n² with n = k L/π the half-waves of its
+        wavenumber over the section (at least 1: the rigid translation weighs as the first bending mode), so that
+        each mode's contribution to the moment (k² q) is held alike."""
+        return 1.0 / np.maximum(self.wavenumber * self.span / np.pi, 1.0) ** 2
+
+    def first_left_out(self) -> float:
+        """ω of the first mode left out of the basis [rad/s]."""
+        k = float(mode_wavenumbers(self.span, [int(np.max(self.modes)) + 1])[0])
+        return float(np.sqrt((self.props["bending_stiffness"] * k**4 + self.props["effective_tension"] * k**2)
+                             / self.props["mass_per_length"]))
 
     @property
     def period(self) -> float:
@@ -123,6 +148,10 @@ class WhirlModel:
         c = float(np.max(self.clearance))
         N = self.n_modes
         return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
+
+    def shapes(self, x, derivative: int = 0) -> np.ndarray:
+        """(X, N) the modes' shapes (or their ``derivative``-th derivative along x) at x [m]: :func:`mode_shapes`."""
+        return mode_shapes(x, self.span, self.modes, derivative)
 
     def system(self) -> tuple:
         """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple)."""
@@ -144,17 +173,76 @@ class WhirlModel:
         return float(0.5 * self.mass * np.sum(v**2 + w2 * q**2) + np.sum(contact))
 
 
-def contact_layout(span: float, joint_length: float) -> tuple[np.ndarray, np.ndarray]:
-    """Contact positions x_p [m] and kinds (0 body, 1 tool joint): the joints at multiples of the joint
-    length strictly inside the section, the body halfway between neighbouring joints or ends."""
-    joints = np.arange(1, int(np.ceil(span / joint_length)) + 1) * joint_length
-    joints = joints[joints < span * (1 - 1e-9)]
-    stations = np.concatenate(([0.0], joints, [span]))
-    body = 0.5 * (stations[:-1] + stations[1:])
-    x = np.concatenate((joints, body))
-    kinds = np.concatenate((np.ones(joints.size, int), np.zeros(body.size, int)))
+def _indices(modes) -> np.ndarray:
+    """The mode indices: 0 … N − 1 for a count N, else the indices given."""
+    return np.arange(int(modes)) if np.ndim(modes) == 0 else np.asarray(modes, int)
+
+
+def mode_wavenumbers(span: float, modes) -> np.ndarray:
+    """k_n [1/m] of the periodic basis's modes n (``modes``: their count N, n = 0 … N − 1, or their indices): 0 for
+    ψ_0, 2πj/L for ψ_{2j−1} and ψ_{2j}."""
+    return 2.0 * np.pi * ((_indices(modes) + 1) // 2) / float(span)
+
+
+def mode_shapes(x, span: float, modes, derivative: int = 0) -> np.ndarray:
+    """(X, N) the spatially periodic basis of the section (docs/reference_model.md §1) at x [m], or its
+    ``derivative``-th derivative (0–3) along x; ``modes`` their count N (n = 0 … N − 1) or their indices n:
+    ψ_0 = 1/√2 (the rigid translation), ψ_{2j−1} = cos k_j x,
+    ψ_{2j} = sin k_j x, k_j = 2πj/L. Each has ∫₀ᴸ ψ² dx = L/2 (one modal mass M L/2 for all) and the string
+    repeats from section to section: u(x + L) = u(x)."""
+    x = np.atleast_1d(np.asarray(x, float))
+    n = _indices(modes)
+    k = mode_wavenumbers(span, n)
+    phase = np.outer(x, k)
+    cos, sin = np.cos(phase), np.sin(phase)
+    # d/dx of (cos, sin) is k (−sin, cos): the derivative-th of each, by quarter turns
+    turns = [(cos, sin), (-sin, cos), (-cos, -sin), (sin, -cos)][derivative]
+    out = np.where(n % 2 == 1, turns[0], turns[1]) * k**derivative
+    rigid = n == 0
+    out[:, rigid] = 1.0 / np.sqrt(2.0) if derivative == 0 else 0.0
+    return out
+
+
+def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """Contact positions x_p [m] and kinds (0 body, 1 tool joint) of the periodic section: the tool joints at
+    0, s, 2s, … (x = L is the joint at 0 again), ``body_stations`` on the body evenly between neighbouring joints
+    (one: halfway). The section must hold a whole number of joints (within 1e-6): raises ValueError naming both
+    fields otherwise."""
+    count = float(span) / float(joint_length)
+    joints = int(round(count))
+    if joints < 1 or abs(count - joints) > 1e-6 * max(count, 1.0):
+        raise ValueError(f"contact.section_length = {span:.6g} m holds {count:.6g} joints of pipe.joint_length = "
+                         f"{joint_length:.6g} m: the periodic section must hold a whole number of joints (1 or more)")
+    spacing = float(span) / joints
+    stations = np.arange(joints) * spacing
+    k = int(body_stations)
+    if k < 0:
+        raise ValueError(f"reference_body_stations = {k}: must be >= 0")
+    body = (stations[:, None] + spacing * np.arange(1, k + 1)[None, :] / (k + 1)).ravel()
+    x = np.concatenate((stations, body))
+    kinds = np.concatenate((np.ones(joints, int), np.zeros(body.size, int)))
     order = np.argsort(x)
     return x[order], kinds[order]
+
+
+def side_loads(inputs: Mapping[str, Any], props: Mapping[str, float]) -> tuple[float, float, np.ndarray]:
+    """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
+    hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
+    (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension and,
+    in a curved hole, ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side (the
+    tension's T κ towards the centre of curvature). ``side_load`` [N/m] in the inputs sets the load along +y
+    directly (code and tests)."""
+    kappa = float(inputs.get("dogleg_curvature") or 0.0)
+    phi = float(inputs.get("dogleg_direction") or 0.0)
+    curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
+    if inputs.get("side_load") is not None:
+        return float(inputs["side_load"]), 0.0, curvature
+    r_o = inputs["outer_diameter"] / 2.0
+    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
+                                   0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
+    w_y, w_z = well.side_load_vector(buoyed, float(inputs.get("inclination") or 0.0), props["effective_tension"],
+                                     kappa, phi)
+    return float(w_y), float(w_z), curvature
 
 
 def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
@@ -181,32 +269,37 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     N = int(option.reference_modes)
     if N < 1:
         raise ValueError(f"reference_modes = {N}: at least 1")
-    modes = np.arange(1, N + 1)
+    modes = np.arange(N)
     M = props["mass_per_length"]
-    omega = np.asarray(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M,
-                                                   modes), float).ravel()
-    k = modes * np.pi / L
+    k = mode_wavenumbers(L, N)
+    with np.errstate(invalid="ignore"):
+        # ω_n² = (EI k⁴ + T k²)/M; a compressed section whose first bending mode has ω² < 0 buckles (NaN)
+        omega2 = (props["bending_stiffness"] * k**4 + props["effective_tension"] * k**2) / M
+        omega = np.where(omega2 >= 0.0, np.sqrt(np.maximum(omega2, 0.0)), np.nan)
     if inputs.get("contact_points") is not None:
         x = np.atleast_1d(np.asarray(inputs["contact_points"], float)) * L
         kinds = np.atleast_1d(np.asarray(inputs.get("contact_kinds", np.zeros(x.size)), int))
     else:
-        x, kinds = contact_layout(L, joint)
+        x, kinds = contact_layout(L, joint, int(option.reference_body_stations))
     radius = np.where(kinds == 1, tj, r_o)
     clearance = hole_r - radius
     kappa = clearance * (np.pi / L) ** 2
     a_sum, b_sum = hertz.curvature_sums(radius, hole_r, kappa)
     K = np.asarray(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum), float)
-    phi = np.sin(np.outer(x, k))
+    phi = mode_shapes(x, L, N)
     mass = 0.5 * M * L
     Om = float(inputs["rotary_speed"])
     eps = float(option.eccentricity)
-    factors = whirl.uniform_load_modal_factors(modes, L)
+    factors = np.zeros(N)
+    factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
     eccentric = whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors / mass
-    if inputs.get("side_load") is not None:
-        w_side = float(inputs["side_load"])
-    else:
-        w_side = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
-                                       float(inputs.get("inclination") or 0.0)))
+    w_y, w_z, curvature = side_loads(inputs, props)
+    # the scene is axisymmetric but for the side load, whose direction is constant: the model's frame is the hole's
+    # turned by the side load's angle β, so that the load lies along its +y (every output is the same in any frame)
+    frame = float(np.arctan2(w_z, w_y)) if (w_y or w_z) else 0.0
+    w_side = float(np.hypot(w_y, w_z))
+    cb, sb = np.cos(frame), np.sin(frame)
+    hole_curvature = np.array([cb * curvature[0] + sb * curvature[1], -sb * curvature[0] + cb * curvature[1]])
     side = w_side * factors / mass
     damping_model = option.reference_damping
     damping = np.zeros(N)
@@ -214,7 +307,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         damping = 2.0 * float(option.damping_ratio) * omega
     G = 2 * N + 8
     gx, gw = whirl.gauss_legendre(G)
-    shapes = np.sin(np.outer(0.5 * L * (gx + 1), k))
+    shapes = mode_shapes(0.5 * L * (gx + 1), L, N)
     drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
     e = float(inputs["restitution"])
     law = CONTACT_LAWS.index(option.contact_law)
@@ -230,7 +323,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       friction=mu, slip_velocity=float(option.slip_velocity),
                       restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
-                      eccentricity=eps)
+                      eccentricity=eps, frame=frame, hole_curvature=hole_curvature)
 
 
 @dataclass
@@ -264,14 +357,19 @@ class Integrator:
         self.t = 0.0
         self.active = np.zeros(P, bool)
         self.chi = np.zeros(P)
+        # a start on the wall (the string's rest, :func:`initial_state`): its contacts open, with the Hunt–Crossley
+        # damping of the slowest onset (whirl_kernel.ONSET_SPEED_FLOOR), not counted as onsets
+        y, w = model.phi @ self.z[:N], model.phi @ self.z[N:2 * N]
+        self.active[:] = np.hypot(y, w) > model.clearance
+        self.chi[self.active] = model.hysteresis / whirl_kernel.ONSET_SPEED_FLOOR
         self.rtol = float(rtol)
         # error scale weighted by 1/n^2: the bending moment weighs mode n by k_n^2, so its error is kept even
-        self.scale = model.state_scale() * np.tile(1.0 / model.modes.astype(float) ** 2, 4)
+        self.scale = model.state_scale() * np.tile(model.weights, 4)
         self.h = model.period / 1000.0
         # and, for Dormand-Prince on the whole right-hand side, within its stability interval on the imaginary axis
         # (about 3.3/omega): the error estimate alone lets an undamped high mode ring at the edge of it. The Lawson
         # form takes the modes' free motion exactly, at any step
-        self.h_stable = STABLE_STEP / float(np.max(model.omega))
+        self.h_stable = STABLE_STEP / max(float(np.max(model.omega)), 1e-300)  # (the rigid translation alone: none)
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
         self.steps = 0
@@ -307,21 +405,33 @@ INITIAL_CHOICES = ReferenceOptions.choices("reference_initial")
 
 def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
     """The state the run starts from (4N + 4,): ``"rest"`` the centred pipe at rest; ``"forced"`` (default)
-    the synchronous forward whirl of the section without walls, Q_n e^{iΩt} with
-    Q_n = ε_n/(ω_n² − Ω² + iΩ d_n) (the modal Jeffcott response; linear damping only), plus the static
-    sag under the side load, scaled down as a whole until every contact point is clear of its wall. It
-    removes the start-up ringing of the low modes, which the quadratic drag damps slowly at small
-    amplitude; with no drive it is the centred pipe at rest too."""
+    where a side load lays the string on the wall, its rest there (the sliding method's static equilibrium on the
+    touching points, :func:`study.solvers.sliding.rest`: every joint on the low side); without a side load the
+    synchronous forward whirl without walls, Q_n e^{iΩt} with Q_n = ε_n/(ω_n² − Ω² + iΩ d_n) (the modal Jeffcott
+    response; linear damping only; a uniform eccentricity drives the rigid translation alone), scaled down as a
+    whole until every contact point is clear of its wall. It removes the start-up ringing of the low modes,
+    which the quadratic drag damps slowly at small amplitude; with no drive it is the centred pipe at rest too."""
     N = model.n_modes
     z = np.zeros(4 * N + 4)
     if kind == "rest":
         return z
     om = model.rotary_speed
+    if np.any(model.side != 0.0):
+        from study.solvers import sliding  # it builds on this module
+
+        rested = sliding.rest(model)
+        if rested["found"]:
+            z[:2 * N] = rested["state"]
+            return z
+        # no equilibrium found: the rigid translation laid onto the low side at the joints' clearance
+        z[0] = float(np.min(model.clearance[model.kinds == 1] if np.any(model.kinds == 1) else model.clearance)
+                     / model.phi[0, 0])
+        return z
     with np.errstate(divide="ignore", invalid="ignore"):
         Q = model.eccentric / (model.omega**2 - om**2 + 1j * om * model.damping)
-    Q = np.where(np.isfinite(Q), Q, 0.0) + model.side / model.omega**2
+    Q = np.where(np.isfinite(Q), Q, 0.0)
     z[:N], z[N:2 * N] = Q.real, Q.imag
-    velocity = 1j * om * (Q - model.side / model.omega**2)
+    velocity = 1j * om * Q
     z[2 * N:3 * N], z[3 * N:4 * N] = velocity.real, velocity.imag
     reach = np.hypot(model.phi @ z[:N], model.phi @ z[N:2 * N])
     if np.any(reach > 0):
@@ -494,11 +604,7 @@ def modal_error(model: WhirlModel, window: Window, tail: float, quarter: float, 
         return left
     touching = window.contact_time > 0
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
-    props = model.props
-    first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
-                                                            props["effective_tension"], props["mass_per_length"],
-                                                            [model.n_modes + 1]))[0])
-    ratio = 2.0 * np.pi / (first_left * float(np.min(durations)))
+    ratio = 2.0 * np.pi / (model.first_left_out() * float(np.min(durations)))
     return float(left * min(1.0, ratio**2))
 
 
@@ -514,6 +620,11 @@ def uncorrected_means(inputs: Mapping[str, Any], model: WhirlModel, window: Wind
     segments = list(zip(first, list(first[1:]) + [window.times.size]))
     plain = stresses(inputs, model, window, correction=False, segments=segments)
     return {name: float(np.mean([v[name] for v in plain])) for name in ("max_normal_stress", "alternating_bending_stress")}
+
+
+#: A bending stress below this share of the max normal stress is nothing (the rounding of a string whirling as a
+#: rigid body): its error parts are counted relative to the normal stress (:func:`convergence`).
+NEGLIGIBLE_BENDING = 1e-9
 
 
 def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
@@ -540,8 +651,14 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
         if values[name] > 0:
             modes[name] = max(modes[name], abs(1.0 - plain / values[name]))
     # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
-    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing
-    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"])}
+    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing; and a
+    # bending stress below NEGLIGIBLE_BENDING of the normal stress (the rounding of a string whirling as a rigid body,
+    # 1e-11 Pa) relative to that
+    floor = NEGLIGIBLE_BENDING * normal
+    if values["max_bending_stress"] < floor:
+        modes = {name: 0.0 for name in modes}
+    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
+                                               floor)}
     out = {}
     for name, s in stats.items():
         share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
@@ -698,7 +815,7 @@ def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
         where = float(model.points[p])
     else:
         p, where = -1, 0.5 * model.span
-        shape = np.sin(model.modes * np.pi * 0.5)
+        shape = model.shapes(where)[0]
     y = window.states[:, :N] @ shape
     w = window.states[:, N:2 * N] @ shape
     angle = np.unwrap(np.arctan2(w, y))
@@ -725,11 +842,85 @@ def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
     if not np.any(touching):
         return False
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
-    props = model.props
-    first_left = float(np.ravel(section.natural_frequencies(model.span, props["bending_stiffness"],
-                                                            props["effective_tension"], props["mass_per_length"],
-                                                            [model.n_modes + 1]))[0])
-    return bool(first_left * np.min(durations) >= 2.0 * np.pi)
+    return bool(model.first_left_out() * np.min(durations) >= 2.0 * np.pi)
+
+
+#: Highest harmonic of the static tail sum of the deflection correction (its terms fall like j⁻⁴: those left out
+#: are below 3e-4 of the correction above the default 16 modes).
+STATIC_TAIL_HARMONICS = 256
+
+
+def periodic_point_moment(s, span: float, bending_stiffness: float, tension: float):
+    """The static moment −EI u'' [N m per N] at a distance s [m] along the string from a unit point load on the
+    periodic beam-column of period L (EI u'''' − T u'' = δ(x − a) − 1/L, the load's mean carried by the rigid
+    translation; the modes' static sum (2/L) Σ_{j≥1} cos(k_j s)/(k_j² + T/EI), k_j = 2πj/L) in closed form: with
+    a = √(T/EI), (1/L)[(L/2a) cosh(a(L/2 − s'))/sinh(aL/2) − 1/a²], s' = s mod L (Fourier series of the
+    hyperbolic cosine; Gradshteyn & Ryzhik 1.445.2); its trigonometric form in compression (a imaginary) and
+    the tensionless limit (L/2π²)(π²/6 − πθ/2 + θ²/4), θ = 2πs'/L (G&R 1.443.3), for |a| L < 1e-4."""
+    L = float(span)
+    sp = np.mod(np.asarray(s, float), L)
+    a2 = float(tension) / float(bending_stiffness)
+    if abs(a2) * L * L < 1e-8:
+        theta = 2.0 * np.pi * sp / L
+        return L / (2.0 * np.pi**2) * (np.pi**2 / 6.0 - np.pi * theta / 2.0 + theta**2 / 4.0)
+    if a2 > 0.0:
+        a = np.sqrt(a2)
+        # cosh(a(L/2 − s'))/sinh(aL/2) without overflow: e^{−a s'} (1 + e^{−2a(L/2 − s')})... as exponentials
+        e1, e2, e3 = np.exp(-a * sp), np.exp(-a * (L - sp)), np.exp(-a * L)
+        ratio = (e1 + e2) / (1.0 - e3)
+        return (L / (2.0 * a) * ratio - 1.0 / a2) / L
+    b = np.sqrt(-a2)
+    return (-L / (2.0 * b) * np.cos(b * (L / 2.0 - sp)) / np.sin(b * L / 2.0) - 1.0 / a2) / L
+
+
+def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
+    """Per unit force at each contact point, the static deflection and moment of the modes left out on the stations
+    x [m], [y_s, m_s] (P, 2X): the full static field of a point load on the periodic beam-column
+    (:func:`periodic_point_moment`; the deflection's modes summed to :data:`STATIC_TAIL_HARMONICS`) minus the
+    kept modes' static terms ψ_n(x_p) ψ_n(x)/(m ω_n²) (the rigid translation has no static term: the load's mean
+    is carried by the other contacts). Cached on the model per stations."""
+    key = np.asarray(x, float).tobytes()
+    if key in model.cache:
+        return model.cache[key]
+    L, N = model.span, model.n_modes
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    k = model.wavenumber
+    flexible = k > 0  # the kept modes with a static term (the rigid translation has none)
+    at = model.points
+    shapes = model.shapes(x)  # (X, N)
+    gain = np.zeros(N)
+    gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
+    kept_moment = (model.phi * gain * ei * k**2) @ shapes.T
+    moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
+    # the deflection: the harmonics above the kept ones (and the sine of a harmonic whose cosine alone is kept)
+    full = mode_shapes(x, L, 2 * STATIC_TAIL_HARMONICS + 1)
+    every = mode_wavenumbers(L, 2 * STATIC_TAIL_HARMONICS + 1)
+    tail = (every > 0) & ~np.isin(np.arange(every.size), model.modes)
+    g = (2.0 / L) / (ei * every[tail] ** 4 + tn * every[tail] ** 2)
+    deflection = (mode_shapes(at, L, every.size)[:, tail] * g) @ full[:, tail].T
+    out = np.hstack([deflection, moment])
+    out.flags.writeable = False
+    model.cache[key] = out
+    return out
+
+
+def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
+                    direction: int | None = None) -> dict:
+    """Deflection [m] and moment −EI u'' [N m] on the stations x [m] (shape times × x) of one direction from the
+    modal states q (T, N) (ψ_n'' = −k_n² ψ_n: mode n's moment is EI k_n² ψ_n q_n, none for the rigid translation),
+    plus with ``forces`` (T, P) on the pipe the quasi-static correction for the modes left out
+    (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
+    hole's curvature in that direction (the pipe follows the curved hole)."""
+    x = np.asarray(x, float)
+    shapes = model.shapes(x)
+    both = q @ np.vstack([shapes, shapes * (model.props["bending_stiffness"] * model.wavenumber**2)]).T
+    if forces is not None:
+        both = both + forces @ static_correction(model, x)
+    moment = both[:, x.size:]
+    if direction is not None and model.hole_curvature[direction] != 0.0:
+        # the pipe follows the hole: its curvature is the hole's κ⃗ plus its own u'', M = −EI (κ⃗ + u'')
+        moment = moment - model.props["bending_stiffness"] * model.hole_curvature[direction]
+    return {"deflection": both[:, :x.size], "moment": moment}
 
 
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
@@ -737,7 +928,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
     docs/reference_model.md §3).
 
-    Moments M_y, M_z (−EI y'', −EI z'') from :func:`study.solvers.trajectory.fields` in each direction
+    Moments M_y, M_z (−EI (κ_y + y''), −EI (κ_z + z'')) from :func:`periodic_fields` in each direction
     (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
     only when the modes left out are fast beside the contacts, :func:`quasi_static_applies`: for an
     impact shorter than their periods they respond to its impulse, not statically, and the
@@ -757,14 +948,13 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     fields = []
     for j in range(2):
         forces = window.forces[:, :, j] if correction else None  # without it, the modes alone
-        samples = SimpleNamespace(q=window.states[:, j * N:(j + 1) * N], forces=forces)
-        fields.append(trajectory.fields(samples, x, model.modes, model.points / L, L, ei, tn))
+        fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]
-    k = model.modes * np.pi / L
-    upper = model.modes > N // 2
-    second = (model.modes > N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
+    k = model.wavenumber
+    upper = model.modes >= N // 2
+    second = (model.modes >= N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
     turn = model.rotary_speed * window.times
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
@@ -778,9 +968,10 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
             my, mz, uy, uz, x, cos_turn[rows], sin_turn[rows], cos_fibre, sin_fibre)
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
-        shapes = np.sin(np.outer(k, x[ix])).ravel() * ei * k**2
+        shapes = model.shapes(x[ix])[0] * ei * k**2
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
-        full = np.hypot(qy @ shapes, qz @ shapes)
+        bend = ei * model.hole_curvature  # the hole's curvature: exact, in no mode
+        full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
         outs.append(dict(max_deflection=float(deflection),
@@ -798,12 +989,12 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
 
 
 def contact_spacing(model: WhirlModel, window: Window) -> tuple[float, list[float]]:
-    """Largest distance between neighbouring touching points, the pinned ends counted as held [m]; and
-    the touching positions [m]."""
+    """Largest distance between neighbouring touching points along the periodic string (the first of the next
+    section, x + L, follows the last) [m]; and the touching positions [m]."""
     touching = np.sort(model.points[(window.contact_time > 0) | (window.onsets > 0)])
     if touching.size == 0:
         return float("nan"), []
-    stations = np.concatenate(([0.0], touching, [model.span]))
+    stations = np.concatenate((touching, [touching[0] + model.span]))
     return float(np.max(np.diff(stations))), [float(v) for v in touching]
 
 
@@ -858,6 +1049,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 whirl_class=float(WHIRL_CLASSES[measure["whirl"]]), regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
     spacing, touching = contact_spacing(model, window)
     vals["contact_spacing"] = spacing
+    # the largest Hertz approach of a contact on the body (the gate holds the largest deflection, on the body, to the
+    # body's clearance plus it): its peak force's (F/K)^(2/3), or the penalty's F/k
+    body = model.kinds == 0
+    if np.any(body):
+        peak = window.peak[body]
+        approach = ((peak / model.stiffness[body]) ** (2.0 / 3.0) if model.law == 0
+                    else peak / model.penalty_stiffness[body])
+        vals["max_approach"] = float(np.max(approach))
     stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)

@@ -166,7 +166,7 @@ OUTPUTS = {
                               "(method reference)"),
     "whirl_class": ("1", "whirl verdict (method reference): 0 no contact, 1 forward, 2 backward, 3 bouncing, "
                     "4 sliding on the wall"),
-    "contact_spacing": ("m", "largest distance between neighbouring touching points, the pinned ends counted "
+    "contact_spacing": ("m", "largest distance between neighbouring touching points along the periodic string "
                         "(method reference)"),
     "alternating_bending_stress_x": ("m", "position along the section of the largest alternating bending stress"),
     "modal_tail_fraction": ("1", "share of the largest bending moment carried by the upper half of the modes "

@@ -76,40 +76,56 @@ def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) ->
 
 
 def flexibility(model: reference.WhirlModel) -> np.ndarray:
-    """Static deflection of point p per unit force at point q (P, P) [m/N] of the modal model (either direction)."""
-    return (model.phi / (model.mass * model.omega**2)) @ model.phi.T
+    """Static deflection of point p per unit force at point q (P, P) [m/N] of the modal model's modes with stiffness
+    (either direction); the rigid translation (ω = 0) has none: the contacts carry its load (:func:`rest`)."""
+    gain = np.zeros(model.n_modes)
+    stiff = model.omega > 0
+    gain[stiff] = 1.0 / (model.mass * model.omega[stiff] ** 2)
+    return (model.phi * gain) @ model.phi.T
 
 
 def rest(model: reference.WhirlModel) -> dict[str, Any]:
     """The static equilibrium on the wall (module docstring): displacements u (P, 2) [m], forces (P, 2) [N], normal
     forces (P,) [N], the touching points (bool P), the modal state (2N,) and whether it was found.
 
-    The touching set grows from the point furthest past its wall by the point furthest past its wall, and loses a
-    point the wall would have to pull (F_n < 0), until every touching point pushes and no other is past its wall."""
-    P = model.points.size
+    The string's rigid translation has no stiffness: its share of the loads (the whole of a uniform side load) is
+    carried by the touching points, whose forces balance it (two equations beside each touching point's two), and
+    its position is an unknown. The touching set starts from the tool joints (where a side load lays the string),
+    loses a point the wall would have to pull (F_n < 0) and gains the point furthest past its wall, until every
+    touching point pushes and no other is past its wall. Without a side load nothing touches (the pipe is centred)."""
+    P, N = model.points.size, model.n_modes
     G = flexibility(model)
+    stiff = model.omega > 0
+    rigid = np.flatnonzero(~stiff)
+    R = model.phi[:, rigid]  # (P, r) the rigid modes' shapes at the points
+    held_load = model.mass * model.side[rigid]  # (r,) the side load's generalised force on them, +y [N]
+    static = np.zeros(N)
+    static[stiff] = model.side[stiff] / model.omega[stiff] ** 2
     free = np.zeros((P, 2))
-    free[:, 0] = model.phi @ (model.side / model.omega**2)
-    beyond = np.hypot(free[:, 0], free[:, 1]) / model.clearance
+    free[:, 0] = model.phi @ static
+    loaded = np.any(held_load != 0.0) or np.any(np.hypot(free[:, 0], free[:, 1]) > model.clearance)
     touching = np.zeros(P, bool)
-    if np.max(beyond) > 1:
-        touching[int(np.argmax(beyond))] = True
+    if loaded:
+        touching[:] = model.kinds == 1 if np.any(model.kinds == 1) else True
     forces, found = np.zeros((P, 2)), not touching.any()
+    lift = np.zeros((rigid.size, 2))  # the rigid coordinates (y, z)
     # the friction's regularised sign at rest
     s = whirl_physics.friction_factor(whirl_physics.sliding_velocity(0.0, model.rotary_speed, model.radius),
                                       model.slip_velocity)
+    scale = max(float(np.max(np.abs(held_load))) if held_load.size else 0.0, 1e-300)
+    r = rigid.size
     for _ in range(ACTIVE_SET_STEPS * P):
         idx = np.flatnonzero(touching)
         if idx.size == 0:
             found = True
             break
-        Gaa = G[np.ix_(idx, idx)]
+        Gaa, Ra = G[np.ix_(idx, idx)], R[idx]
         # the touching points' constants, taken out of the residual that the root finder calls many times
         count, slide, stiffness, wall, unloaded = (idx.size, model.friction * s[idx, None], model.stiffness[idx],
                                                    model.clearance[idx], free[idx])
 
         def force_of(x):  # unknowns per touching point: F_n and the angle of n̂ from the low side
-            fn, angle = x[:count], x[count:]
+            fn, angle = x[:count], x[count:2 * count]
             cos, sin = np.cos(angle), np.sin(angle)
             n, t = np.empty((count, 2)), np.empty((count, 2))
             n[:, 0], n[:, 1], t[:, 0], t[:, 1] = cos, sin, -sin, cos
@@ -117,11 +133,17 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
 
         def residual(x):
             f, fn, n = force_of(x)
+            held = x[2 * count:].reshape(r, 2)
             depth = np.sign(fn) * np.abs(fn / stiffness) ** (2.0 / 3.0)
-            return ((unloaded + Gaa @ f - (wall + depth)[:, None] * n) / wall[:, None]).ravel()
+            u = unloaded + Gaa @ f + Ra @ held
+            balance = (np.column_stack((held_load, np.zeros(r))) + Ra.T @ f) / scale
+            return np.concatenate((((u - (wall + depth)[:, None] * n) / wall[:, None]).ravel(), balance.ravel()))
 
-        # start: the touching points held at the wall's low side by rigid supports
-        x0 = np.concatenate((np.linalg.solve(Gaa, free[idx, 0] - model.clearance[idx]), np.zeros(idx.size)))
+        # start: the touching points held at the wall's low side by rigid supports: G F_n − R q_r = free − c and
+        # Rᵀ F_n = the rigid modes' load
+        A = np.block([[Gaa, -Ra], [Ra.T, np.zeros((r, r))]])
+        start = np.linalg.lstsq(A, np.concatenate((free[idx, 0] - model.clearance[idx], held_load)), rcond=None)[0]
+        x0 = np.concatenate((start[:count], np.zeros(count), np.column_stack((start[count:], np.zeros(r))).ravel()))
         sol = optimize.root(residual, x0, method="hybr", options=dict(xtol=1e-13))
         if not (sol.success and np.max(np.abs(residual(sol.x))) < 1e-9):
             break
@@ -131,7 +153,8 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
             continue
         forces[:] = 0.0
         forces[idx] = f
-        reach = np.hypot(*(free + G @ forces).T) / model.clearance
+        lift = sol.x[2 * count:].reshape(r, 2)
+        reach = np.hypot(*(free + G @ forces + R @ lift).T) / model.clearance
         reach[touching] = 0.0
         if np.max(reach) <= 1:
             found = True
@@ -139,10 +162,13 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
         touching[int(np.argmax(reach))] = True
     if not found:
         forces[:] = 0.0
-    u = free + G @ forces
+        lift[:] = 0.0
+    u = free + G @ forces + R @ lift
     _, fn = contact_forces(model, u, np.zeros_like(u))
-    q = np.concatenate(((model.side + model.phi.T @ forces[:, 0] / model.mass) / model.omega**2,
-                        (model.phi.T @ forces[:, 1] / model.mass) / model.omega**2))
+    q = np.zeros(2 * N)
+    q[:N][stiff] = (model.side + model.phi.T @ forces[:, 0] / model.mass)[stiff] / model.omega[stiff] ** 2
+    q[N:][stiff] = (model.phi.T @ forces[:, 1] / model.mass)[stiff] / model.omega[stiff] ** 2
+    q[:N][rigid], q[N:][rigid] = lift[:, 0], lift[:, 1]
     return dict(u=u, forces=forces, normal=fn, touching=touching & (fn > 0), state=q, found=found)
 
 
@@ -341,7 +367,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
     else:
         model = reference.build_model({**inputs, "reference_modes": modes})
         out = dict(model=model, why=None)
-        if not np.all(np.isfinite(model.omega)) or np.any(model.omega <= 0):
+        if not np.all(np.isfinite(model.omega)) or np.any(model.omega[model.wavenumber > 0] <= 0):
             out["why"] = "buckled"
             return out
         rested = out["rest"] = rest(model)

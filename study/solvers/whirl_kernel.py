@@ -30,7 +30,8 @@ The last four entries of z integrate the power balance: work of the applied load
 side load), work of wall friction on the lateral motion, drag dissipation and contact loss, so
 that the energy balance is checked to the integrator's own accuracy.
 
-Right-hand side (per modal mass m = M L/2, k_n = nπ/L, φ_pn = sin k_n x_p):
+Right-hand side (per modal mass m = M L/2, φ_pn = ψ_n(x_p), the periodic basis of
+:func:`study.solvers.reference.mode_shapes`):
 
     q̈ = −ω_n² q − d_n q̇ + ε_n (cos Ωt, sin Ωt) + s_n e_y
          − Σ_g w_g S_gn D |u̇_g| u̇_g / m + Σ_p φ_pn F_p / m
@@ -413,7 +414,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
     part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
     doi:10.1017/S0962492910000048), taken about the step's first force: the free motion under the constant
     force N_0 = k[0] is the free motion about the static deflection u_s = −L⁻¹N_0 (q_s = f/ω² per mode, into
-    ``shift``), so with w = u − u_s, w' = Lw + N(t, w + u_s) − N_0 exactly, and the Dormand–Prince pair is
+    ``shift``; a mode with ω = 0 has none and keeps the plain Lawson form, N_0 in its stages), so with w = u − u_s, w' = Lw + N(t, w + u_s) − N_0 exactly, and the Dormand–Prince pair is
     applied to v(τ) = e^{−τL} w(t + τ): stage s is U_s = u_s + e^{c_s hL}[w_0 + h Σ_j a_sj e^{−c_j hL}(N_j − N_0)].
     The modes' free motion is exact at any step, and so is a rest under constant forces, which the plain
     Lawson form is not (its N_0 turns in e^{−τL} at the modes' frequencies; a contact held against the modes'
@@ -432,8 +433,10 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
         if omega2[m] > 0.0:
             shift[m] = k[0, 2 * N + m] / omega2[m]
             shift[N + m] = k[0, 3 * N + m] / omega2[m]
+    # the energy integrals (L = 0) and the modes without stiffness (ω = 0: no static deflection balances N_0, e.g.
+    # the string's rigid translation) are not shifted: the plain Lawson form, which keeps N_0 in every stage
     for i in range(n):
-        kv[0, i] = 0.0 if i < 4 * N else k[0, i]  # the energy integrals (L = 0) are not shifted
+        kv[0, i] = 0.0 if i < 4 * N and omega2[i % N] > 0.0 else k[0, i]
     for s in range(1, 6):
         for i in range(n):
             acc = 0.0
@@ -445,7 +448,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
             stage[i] += shift[i]
         rhs(t + _C[s] * h, stage, chi, k[s], fc, pen, scratch, sy, False)
         for i in range(n):
-            kv[s, i] = k[s, i] - k[0, i] if i < 4 * N else k[s, i]
+            kv[s, i] = k[s, i] - k[0, i] if i < 4 * N and omega2[i % N] > 0.0 else k[s, i]
         _propagate(ex[1, s - 1], kv[s], kv[s], N)
     for i in range(n):
         vend[i] = z[i] - shift[i] + h * (_A[6, 0] * kv[0, i] + _A[6, 2] * kv[2, i] + _A[6, 3] * kv[3, i]
@@ -455,7 +458,7 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
         znew[i] += shift[i]
     rhs(t + h, znew, chi, k[6], fc, pen, scratch, sy, False)
     for i in range(n):
-        kv[6, i] = k[6, i] - k[0, i] if i < 4 * N else k[6, i]
+        kv[6, i] = k[6, i] - k[0, i] if i < 4 * N and omega2[i % N] > 0.0 else k[6, i]
     _propagate(ex[1, 4], kv[6], kv[6], N)
     for i in range(n):
         stage[i] = h * (_E[0] * kv[0, i] + _E[2] * kv[2, i] + _E[3] * kv[3, i] + _E[4] * kv[4, i]

@@ -94,9 +94,9 @@ CASES = [
     # report no deflection; no point was found. So the gate's within_clearance check is shown on a method
     # registered for this test only (`liar`, via monkeypatch in METHODS) that reports 2 c at the real point.
     pytest.param("unphysical", "liar", {}, "passes the wall", id="unphysical-test-method-2c-deflection"),
-    # source: tests/solvers/test_auto.py - a 15-deg hole: the sag takes the tool joints to the wall, where the
-    # closed-form free whirl does not hold
-    pytest.param("out_of_scope", "free-whirl", {"inclination": 0.2617993877991494}, "reaches the wall",
+    # source: tests/solvers/test_freewhirl.py - a 15-deg hole: the weight lays the string's tool joints on the low
+    # side, where the closed-form free whirl does not hold
+    pytest.param("out_of_scope", "free-whirl", {"inclination": 0.2617993877991494}, "low side",
                  id="out_of_scope-free-whirl-15deg"),
     # source: issue 32 - 10^7 lbf (4.448e7 N) of tension on the paper's pipe (A = 2.86 in^2): an axial stress of
     # 3.5e6 psi, 15.6 GPa in all, 30 times E-75's 75 ksi; it was called ok (the gate's within_yield check)

@@ -17,12 +17,24 @@ import pytest
 from study.solvers import reference, whirl_kernel
 
 
+def _one_mode(inputs):
+    """The model of ``inputs`` with its first bending mode alone (ψ_1 = cos 2πx/L of the periodic basis, index 1):
+    one mode with stiffness (the rigid translation left out)."""
+    import dataclasses
+
+    model = reference.build_model({**inputs, "reference_modes": 2})
+    keep = [1]
+    return dataclasses.replace(model, modes=model.modes[keep], omega=model.omega[keep], phi=model.phi[:, keep],
+                               eccentric=model.eccentric[keep], side=model.side[keep], damping=model.damping[keep],
+                               drag_shapes=model.drag_shapes[:, keep], cache={})
+
+
 def _one_mode_on_a_linear_wall(base):
-    """One mode in one plane, touching at midspan (φ = 1) a linear spring without dashpot (penalty law, e = 1),
+    """One mode in one plane, touching at its crest (φ = 1) a linear spring without dashpot (penalty law, e = 1),
     nothing else acting: a piecewise-linear oscillator."""
-    inputs = {**base, "reference_modes": 1, "contact_points": [0.5], "contact_kinds": [0], "friction": 0.0,
+    inputs = {**base, "contact_points": [0.0], "contact_kinds": [0], "friction": 0.0,
               "eccentricity": 0.0, "reference_damping": "none", "contact_law": "penalty", "restitution": 1.0}
-    model = reference.build_model(inputs)
+    model = _one_mode(inputs)
     assert model.penalty_damping[0] == 0.0 and model.phi[0, 0] == pytest.approx(1.0)
     return model
 
@@ -31,8 +43,8 @@ def _closed_form_cycle(model, v0):
     """Out from the centre at v0, onto the wall, back: (time to the wall, contact time, peak force).
 
     Flight q = (v0/ω) sin ωt reaches c at t1 = asin(ωc/v0)/ω with speed v1 = √(v0² − ω²c²); in contact
-    q̈ = −ω²q − (k/m)(q − c): a harmonic motion about q_e = (k/m)c/Ω² at Ω² = ω² + k/m, which leaves the wall
-    after 2(π − ψ)/Ω, ψ = atan2(v1/Ω, c − q_e), at −v1 (Shaw & Holmes 1983, J. Sound Vib. 90, 129–155,
+    q̈ = −ω²q − (k/m)(q − c): a harmonic motion q − q_e = A cos(Ωτ − ψ) about q_e = (k/m)c/Ω² at Ω² = ω² + k/m,
+    ψ = atan2(v1/Ω, c − q_e), which is at c again, leaving the wall at −v1, after 2ψ/Ω (Shaw & Holmes 1983, J. Sound Vib. 90, 129–155,
     doi:10.1016/0022-460X(83)90407-8: the flight and contact solutions of the piecewise-linear oscillator)."""
     om, c, k, m = model.omega[0], model.clearance[0], model.penalty_stiffness[0], model.mass
     t1 = np.arcsin(om * c / v0) / om
@@ -41,7 +53,7 @@ def _closed_form_cycle(model, v0):
     qe = k / m * c / big**2
     psi = np.arctan2(v1 / big, c - qe)
     amplitude = np.hypot(c - qe, v1 / big)
-    return t1, 2.0 * (np.pi - psi) / big, k * (qe + amplitude - c)
+    return t1, 2.0 * psi / big, k * (qe + amplitude - c)
 
 
 @pytest.mark.parametrize("scheme", reference.SCHEMES)
@@ -96,10 +108,9 @@ def test_the_onset_is_located_within_its_tolerance(paper_inputs, scheme):
 
 
 def _one_mode_hertz(base, **extra):
-    """One mode in one plane touching at midspan, Hertz contact with e = 0.5, nothing else acting."""
-    return reference.build_model({**base, "reference_modes": 1, "contact_points": [0.5], "contact_kinds": [0],
-                                  "friction": 0.0, "eccentricity": 0.0, "reference_damping": "none",
-                                  "restitution": 0.5, **extra})
+    """One mode in one plane touching at its crest, Hertz contact with e = 0.5, nothing else acting."""
+    return _one_mode({**base, "contact_points": [0.0], "contact_kinds": [0], "friction": 0.0, "eccentricity": 0.0,
+                      "reference_damping": "none", "restitution": 0.5, **extra})
 
 
 def test_hunt_crossley_damping_is_set_from_the_approach_speed(paper_inputs):
@@ -124,9 +135,11 @@ def test_a_contact_settling_at_a_vanishing_speed_gets_the_damping_of_the_floor(p
     # √(2 a 1e-10 c) (about 1e-6 m/s, a = s - ω²c), far below ONSET_SPEED_FLOOR, and takes that floor's χ
     from study.solvers.timedomain import calibrated_hysteresis
 
-    unit = _one_mode_hertz(paper_inputs, side_load=1.0)
+    import dataclasses
+
+    unit = _one_mode_hertz(paper_inputs)
     om, c = unit.omega[0], unit.clearance[0]
-    model = _one_mode_hertz(paper_inputs, side_load=2.0 * om**2 * c / unit.side[0])
+    model = dataclasses.replace(unit, side=np.array([2.0 * om**2 * c]))  # a load on this mode alone
     a = model.side[0] - om**2 * c
     assert np.sqrt(2 * a * 1e-10 * c) < 1e-2 * whirl_kernel.ONSET_SPEED_FLOOR
     z0 = np.zeros(8)
@@ -147,13 +160,30 @@ def _clear_of_the_wall(base, **extra):
                                   "reference_damping": "none", **extra})
 
 
+def _forced(base):
+    """Four modes clear of the wall, with linear modal damping, each driven by a turning load ε_n and a fixed one s_n
+    (the rigid translation ψ_0 by the turning load alone: it has no stiffness to hold a fixed one)."""
+    import dataclasses
+
+    model = _clear_of_the_wall(base, eccentricity=0.1 * 0.0254, reference_modes=4, reference_damping="viscous",
+                               damping_ratio=0.05, rotary_speed=20.0)
+    drive = model.eccentric[0] * np.array([1.0, 0.5, 0.25, 0.125])
+    return dataclasses.replace(model, eccentric=drive, side=np.array([0.0, 2.0, 1.0, 0.5]) * drive[0])
+
+
+def _static(model):
+    """s_n/ω_n², 0 where ω_n = 0 (no fixed load there)."""
+    return np.divide(model.side, model.omega**2, out=np.zeros(model.n_modes), where=model.omega > 0)
+
+
 @pytest.mark.parametrize("ratio", [0.0, 0.05, 1.0, 1.5], ids=["undamped", "underdamped", "critical", "overdamped"])
 def test_a_free_modal_oscillator_is_exact_at_large_steps(paper_inputs, ratio):
     # the free motion of each mode, q̈ = −ω² q − 2ζω q̇, over 20 periods of the first mode in steps of 30 periods of the
     # highest, against the matrix exponential of [[0, 1], [−ω², −2ζω]] (scipy.linalg.expm; Moler & Van Loan 2003,
     # doi:10.1137/S00361445024180): exact to rounding (the Dormand–Prince pair on the whole right-hand side is held
-    # within its stability interval, 3.3/ω_max: undamped, 51 129 steps and 7.9e-5 of c at rtol 1e-6, measured; this
-    # one about 170 steps and 4.4e-13 of c)
+    # within its stability interval, 3.3/ω_max: undamped, 51 129 steps and 7.9e-5 of c at rtol 1e-6, measured on the
+    # pinned section; this one 263 steps and up to 8e-11 of c ω on the periodic section, whose highest mode turns
+    # through 4 300 radians; the rigid translation ψ_0, ω = 0, is held still)
     from scipy.linalg import expm
 
     model = _clear_of_the_wall(paper_inputs, reference_damping="viscous" if ratio else "none", damping_ratio=ratio)
@@ -162,8 +192,8 @@ def test_a_free_modal_oscillator_is_exact_at_large_steps(paper_inputs, ratio):
     rng = np.random.default_rng(7)
     z0 = np.zeros(4 * N + 4)
     z0[:2 * N] = 0.01 * c * rng.standard_normal(2 * N)
-    z0[2 * N:4 * N] = 0.01 * c * np.tile(model.omega, 2) * rng.standard_normal(2 * N)
-    end = 20 * 2 * np.pi / model.omega[0]
+    z0[2 * N:4 * N] = 0.01 * c * np.tile(model.omega, 2) * rng.standard_normal(2 * N)  # the rigid translation's 0
+    end = 20 * 2 * np.pi / model.omega[1]  # the first bending mode's (ψ_0, the rigid translation, has ω = 0)
     run = reference.Integrator(model, 1e-6, z0, "lawson")
     run.h = run.h_max = 30 * 2 * np.pi / model.omega[-1]
     run.run(end)
@@ -174,8 +204,8 @@ def test_a_free_modal_oscillator_is_exact_at_large_steps(paper_inputs, ratio):
         flow = expm(end * np.array([[0.0, 1.0], [-model.omega[m] ** 2, -model.damping[m]]]))
         for j in range(2):
             exact = flow @ z0[[j * N + m, (2 + j) * N + m]]
-            assert abs(run.z[j * N + m] - exact[0]) < 1e-12 * c
-            assert abs(run.z[(2 + j) * N + m] - exact[1]) < 1e-12 * c * model.omega[m]
+            assert abs(run.z[j * N + m] - exact[0]) < 1e-10 * c
+            assert abs(run.z[(2 + j) * N + m] - exact[1]) <= 1e-10 * c * max(model.omega[m], model.omega[1])
 
 
 @pytest.mark.parametrize("scheme", ["lawson", "dopri5"])
@@ -184,14 +214,14 @@ def test_a_forced_oscillator_converges_at_fifth_order(paper_inputs, scheme):
     # Re(Q_n e^{iΩt}), Q_n = ε_n/(ω_n² − Ω² + iΩ d_n), plus the static sag s_n/ω_n² is the exact solution (Vance 1988
     # eq. 2.11-2.12); at fixed steps (rtol too loose to reject, steps at h_max) its error over one revolution falls
     # as h^5 (Hairer, Nørsett & Wanner 1993 §II.5; Hochbruck & Ostermann 2010 §2.4 for the Lawson form)
-    model = _clear_of_the_wall(paper_inputs, eccentricity=0.1 * 0.0254, side_load=50.0, reference_modes=4,
-                               reference_damping="viscous", damping_ratio=0.05, rotary_speed=20.0)
+    model = _forced(paper_inputs)
     N = model.n_modes
-    z0 = reference.initial_state(model)
     Q = model.eccentric / (model.omega**2 - model.rotary_speed**2 + 1j * model.rotary_speed * model.damping)
+    z0 = np.concatenate((Q.real + _static(model), Q.imag, (1j * model.rotary_speed * Q).real,
+                         (1j * model.rotary_speed * Q).imag, np.zeros(4)))
     end = model.period
     phase = np.exp(1j * model.rotary_speed * end)
-    exact = np.concatenate(((Q * phase).real + model.side / model.omega**2, (Q * phase).imag,
+    exact = np.concatenate(((Q * phase).real + _static(model), (Q * phase).imag,
                             (1j * model.rotary_speed * Q * phase).real, (1j * model.rotary_speed * Q * phase).imag))
     scale = np.concatenate((np.full(2 * N, np.max(np.abs(Q))), np.full(2 * N, model.rotary_speed * np.max(np.abs(Q)))))
     errors = []
@@ -211,17 +241,17 @@ def test_a_flights_rows_come_from_the_lawson_steps_continuous_extension(paper_in
     # a Lawson step in flight is longer than the rows' spacing (τ/256): its rows are taken at their times from the
     # step's continuous extension (4th order; Hairer, Nørsett & Wanner 1993 §II.6) mapped by e^{θhL}, here within
     # 1e-6 of the forced response's size from the exact Jeffcott whirl plus sag (as above) at rtol 1e-6
-    model = _clear_of_the_wall(paper_inputs, eccentricity=0.1 * 0.0254, side_load=50.0, reference_modes=4,
-                               reference_damping="viscous", damping_ratio=0.05, rotary_speed=20.0)
+    model = _forced(paper_inputs)
     N = model.n_modes
     om = model.rotary_speed
     Q = model.eccentric / (model.omega**2 - om**2 + 1j * om * model.damping)
-    run = reference.Integrator(model, 1e-6, reference.initial_state(model), "lawson-flight")
+    z0 = np.concatenate((Q.real + _static(model), Q.imag, (1j * om * Q).real, (1j * om * Q).imag, np.zeros(4)))
+    run = reference.Integrator(model, 1e-6, z0, "lawson-flight")
     window = run.run(2 * model.period, record=True)
     assert window.times.size > 3 * run.steps  # several rows a step (its steps are at h_max, τ/64)
     np.testing.assert_allclose(np.diff(window.times), model.period / 256, rtol=1e-9)
     phase = np.exp(1j * om * window.times)[:, None]
-    exact = np.hstack(((Q * phase).real + model.side / model.omega**2, (Q * phase).imag, (1j * om * Q * phase).real,
+    exact = np.hstack(((Q * phase).real + _static(model), (Q * phase).imag, (1j * om * Q * phase).real,
                        (1j * om * Q * phase).imag))
     size = np.max(np.abs(Q))
     assert np.max(np.abs(window.states[:, :2 * N] - exact[:, :2 * N])) < 1e-6 * size
