@@ -3,8 +3,9 @@
 
 Three panels: the orbit of the most-touching point of the section in the hole's cross-section, with the wall (the
 clearance circle of that point: the pipe's centre cannot go past it but for the Hertz approach); the normal contact
-forces over the recorded window, one line per point that touches; the deflection along the section at the instant
-of the largest contact force (the worst instant), with the clearance of every contact point. Oilfield units.
+forces over the recorded window, one line per point that touches; the deflection and the bending stress along the
+section at the instant of the largest contact force (the worst instant), with the clearance of every contact point.
+Oilfield units.
 """
 
 from __future__ import annotations
@@ -15,11 +16,13 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from study.charts.design import DPI, Chart, _title
+from study.physics import section
 from study.units import convert
 
 IN = 0.0254
 FT = 0.3048
 LBF = 4.4482216152605
+PSI = 6894.757293168
 
 
 def point_chart(inputs: Mapping[str, Any]) -> Chart:
@@ -69,21 +72,33 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     worst = int(np.argmax(np.max(window.forces[:, :, 2], axis=1))) if touching.size else \
         int(np.argmax(np.hypot(y[:, p], z[:, p])))
     x = np.linspace(0.0, model.span, 193)
-    modes = np.sin(np.outer(x, model.modes * np.pi / model.span))
-    radial = np.hypot(modes @ window.states[worst, :N], modes @ window.states[worst, N:2 * N])
+    # the section's fields at that instant in both directions (reference.periodic_fields: the periodic basis, the
+    # moment the pipe's whole, the hole's curvature included)
+    fy, fz = (reference.periodic_fields(model, window.states[worst:worst + 1, j * N:(j + 1) * N], None, x, j)
+              for j in range(2))
+    radial = np.hypot(fy["deflection"][0], fz["deflection"][0])
+    r_o, r_i = float(inputs["outer_diameter"]) / 2.0, float(inputs["inner_diameter"]) / 2.0
+    bending = np.hypot(fy["moment"][0], fz["moment"][0]) * r_o / float(section.second_moment_of_area(r_o, r_i))
     shape.plot(x / FT, radial / IN, color="C3", lw=1.5, label="radial deflection")
     shape.plot(model.points / FT, model.clearance / IN, ls="none", marker="_", ms=14, mew=2.0, color="k",
                label="clearance at each contact point")
     shape.set_xlabel("position along the section [ft]")
     shape.set_ylabel("radial deflection [in]")
-    shape.set_title(f"deflection along the section at the worst instant ({revolutions[worst]:.2f} rev)", fontsize=9)
-    shape.legend(fontsize=7)
+    shape.set_title(f"deflection and bending along the section at the worst instant ({revolutions[worst]:.2f} rev)",
+                    fontsize=9)
+    stress = shape.twinx()
+    stress.plot(x / FT, bending / PSI, color="C2", lw=1.2, ls="--", label="bending stress (right axis)")
+    stress.set_ylabel("bending stress M r_o / I [psi]")
+    stress.set_ylim(bottom=0.0)
+    lines = shape.get_legend_handles_labels()
+    more = stress.get_legend_handles_labels()
+    shape.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7)
     speed = convert(float(inputs["rotary_speed"]), "rad/s", "rpm")
     load = float(inputs["axial_tension"]) / LBF
     _title(fig, "One point, seen: the reference model's motion", [
         f"{speed:.0f} rpm, {load:,.0f} lbf; whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Ω); "
         f"window of {revolutions[-1]:.1f} revolutions after {run['revolutions']} of transient"], 15.0)
     caption = ("What the pipe does at this point in the reference model: the orbit of its most-touching point inside "
-               "the wall, the contact forces over the recorded window, and the deflection along the section at the "
-               "instant of the largest force.")
+               "the wall, the contact forces over the recorded window, and the deflection and the bending stress along "
+               "the section at the instant of the largest force (the modes' fields; the hole's curvature included).")
     return Chart("point", fig, caption)
