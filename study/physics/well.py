@@ -87,25 +87,31 @@ def _buckled(z):
     return z <= -np.pi**2
 
 
+def _series_part(z):
+    """(|z| < _SERIES_LIMIT, z there and 0 elsewhere): the series are evaluated only where they are used."""
+    small = np.abs(z) < _SERIES_LIMIT
+    return small, np.where(small, z, 0.0)
+
+
 def _u_coth_u(z):
     """u coth u with u = √z (v cot v with v = √−z for z < 0); 1 at z = 0, nan for z ≤ −π²."""
     z = np.asarray(z, dtype=float)
-    small = np.abs(z) < _SERIES_LIMIT
+    small, z_small = _series_part(z)
     with np.errstate(all="ignore"):
         u = np.sqrt(np.abs(z))
         closed = np.where(z > 0, u / np.tanh(u), u / np.tan(u))
-    result = np.where(small, _polyval(_U_COTH_U, z), closed)
+    result = np.where(small, _polyval(_U_COTH_U, z_small), closed)
     return np.where(_buckled(z), np.nan, result)
 
 
 def _u_csch_u(z):
     """u / sinh u with u = √z (v / sin v for z < 0); 1 at z = 0, nan for z ≤ −π². No overflow for large u."""
     z = np.asarray(z, dtype=float)
-    small = np.abs(z) < _SERIES_LIMIT
+    small, z_small = _series_part(z)
     with np.errstate(all="ignore"):
         u = np.sqrt(np.abs(z))
         closed = np.where(z > 0, 2.0 * u * np.exp(-u) / -np.expm1(-2.0 * u), u / np.sin(u))
-    result = np.where(small, _polyval(_U_CSCH_U, z), closed)
+    result = np.where(small, _polyval(_U_CSCH_U, z_small), closed)
     return np.where(_buckled(z), np.nan, result)
 
 
@@ -166,9 +172,9 @@ def support_moment(w, tension, bending_stiffness, spacing):
     (the boundary layer of a taut string). nan at and beyond the span's Euler load in compression.
     """
     z = _span_parameter(tension, bending_stiffness, spacing)
-    small = np.abs(z) < _SERIES_LIMIT
+    small, z_small = _series_part(z)
     with np.errstate(all="ignore"):
-        ratio = np.where(small, _polyval(3.0 * _U_COTH_U[1:], z), 3.0 * (_u_coth_u(z) - 1.0) / z)
+        ratio = np.where(small, _polyval(3.0 * _U_COTH_U[1:], z_small), 3.0 * (_u_coth_u(z) - 1.0) / z)
     return -np.asarray(w, dtype=float) * np.asarray(spacing, dtype=float) ** 2 / 12.0 * ratio
 
 
@@ -179,9 +185,9 @@ def midspan_moment(w, tension, bending_stiffness, spacing):
     T → ∞ (the span is straight there, the moment that of the boundary layers' tail).
     """
     z = _span_parameter(tension, bending_stiffness, spacing)
-    small = np.abs(z) < _SERIES_LIMIT
+    small, z_small = _series_part(z)
     with np.errstate(all="ignore"):
-        ratio = np.where(small, _polyval(-6.0 * _U_CSCH_U[1:], z), 6.0 * (1.0 - _u_csch_u(z)) / z)
+        ratio = np.where(small, _polyval(-6.0 * _U_CSCH_U[1:], z_small), 6.0 * (1.0 - _u_csch_u(z)) / z)
     return np.asarray(w, dtype=float) * np.asarray(spacing, dtype=float) ** 2 / 24.0 * ratio
 
 
@@ -201,12 +207,17 @@ def beam_column_deflection(x, w, tension, bending_stiffness, spacing):
     eta = 2.0 * np.asarray(x, dtype=float) / s - 1.0
     z = _span_parameter(tension, bending_stiffness, spacing)
     z, eta = np.broadcast_arrays(z, eta)
+    outside = np.abs(eta) > 1.0
+    eta = np.clip(eta, -1.0, 1.0)
     one_minus = 1.0 - eta**2
-    small = np.abs(z) < _SERIES_LIMIT
-    # Series: F = ((1 − η²)/2 − N(z)/S(z))/z with N = Σ_{n≥1} (1 − η^{2n}) z^{n−1}/(2n)!, S = sinh u/u.
-    numerator = [(1.0 - eta ** (2 * n)) / math.factorial(2 * n) for n in range(1, _TERMS + 3)]
-    quotient = _series_quotient(numerator, _SINHC, _TERMS + 1)
-    series = -_polyval(np.array(quotient[1:]), z)
+    small, z_small = _series_part(z)
+    series = 0.0
+    if np.any(small):
+        # F = ((1 − η²)/2 − N/S)/z = −Σ_{n≥1} q_n z^{n−1}, q the series of N/S,
+        # N = Σ_{n≥1} (1 − η^{2n}) z^{n−1}/(2n)!, S = sinh u/u
+        numerator = [(1.0 - eta ** (2 * n)) / math.factorial(2 * n) for n in range(1, _TERMS + 3)]
+        quotient = _series_quotient(numerator, _SINHC, _TERMS + 1)
+        series = -_polyval(np.array(quotient[1:]), z_small)
     with np.errstate(all="ignore"):
         u = np.sqrt(np.abs(z))
         a, b = u * (1.0 + eta) / 2.0, u * (1.0 - eta) / 2.0  # a + b = u
@@ -216,7 +227,7 @@ def beam_column_deflection(x, w, tension, bending_stiffness, spacing):
         trig = 2.0 * np.sin(a) * np.sin(b) / (u * np.sin(u))
         closed = (one_minus / 2.0 - np.where(z > 0, hyper, trig)) / z
     shape = np.where(small, series, closed)
-    shape = np.where(_buckled(z) | (np.abs(eta) > 1.0), np.nan, shape)
+    shape = np.where(_buckled(z) | outside, np.nan, shape)
     return np.asarray(w, dtype=float) * s**4 / (16.0 * np.asarray(bending_stiffness, dtype=float)) * shape
 
 
