@@ -120,11 +120,6 @@ def solved_points(ds: xr.Dataset) -> xr.DataArray:
     return _full(ds, "status").isin([STATUS_CODES[name] for name in ANSWERED])
 
 
-def ok_values(ds: xr.Dataset, name: str) -> xr.DataArray:
-    """The output ``name`` over every dimension, NaN where the point is not solved (:func:`solved_points`)."""
-    return _full(ds, name).where(solved_points(ds))
-
-
 def answered_points(ds: xr.Dataset) -> xr.DataArray:
     """True where a point has an answer to show: solved (:func:`solved_points`: ``ok`` or ``yields``), or
     ``not_converged`` with its values kept (an answer with its error stated); other statuses' values (where any)

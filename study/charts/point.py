@@ -19,10 +19,8 @@ from study.charts.design import DPI, Chart, _title
 from study.physics import section
 from study.units import convert
 
-IN = 0.0254
-FT = 0.3048
-LBF = 4.4482216152605
-PSI = 6894.757293168
+#: The oilfield units the chart is drawn in, in SI (study.units: pint's definitions).
+IN, FT, LBF, PSI = (convert(1.0, unit, si) for unit, si in (("in", "m"), ("ft", "m"), ("lbf", "N"), ("psi", "Pa")))
 
 
 def point_chart(inputs: Mapping[str, Any]) -> Chart:

@@ -111,9 +111,9 @@ def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_dec
 
 def test_a_point_that_yields_is_over_yield_not_unanswered_and_the_limit_charts_show_it(study):
     # issue 32: a point past the grade's yield gets status yields (study.solvers.gate.within_yield); its figures
-    # are kept, so the envelope must call its cell over yield (not "no valid answer") and ok_values must keep it.
+    # are kept, so the envelope must call its cell over yield (not "no valid answer") and the limit charts' values (answered_values) must keep it.
     from study.charts.envelope import failures
-    from study.charts.plane import ok_values
+    from study.charts.plane import answered_values
     from study.solvers.result import STATUS_CODES
 
     ds = study.copy(deep=True)
@@ -124,7 +124,7 @@ def test_a_point_that_yields_is_over_yield_not_unanswered_and_the_limit_charts_s
     fails, _ = failures(ds)
     assert bool(fails["over yield"].transpose(*ds.status.dims).values[first])
     assert not bool(fails["no valid answer"].transpose(*ds.status.dims).values[first])
-    shown = ok_values(ds, "yield_utilisation").transpose(*ds.status.dims).values[first]
+    shown = answered_values(ds, "yield_utilisation").transpose(*ds.status.dims).values[first]
     assert shown == 30.0
 
 
