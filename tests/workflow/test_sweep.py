@@ -249,7 +249,9 @@ def test_a_changed_solver_source_recomputes_every_point(tmp_path, reference):
     with pytest.raises(KeyboardInterrupt):
         run_sweep(small_study(), out, scheduler="synchronous", progress=False, on_chunk=interrupt_at(5))
     package = tmp_path / "edited"
-    shutil.copytree(ROOT / "study", package / "study", ignore=shutil.ignore_patterns("__pycache__"))
+    # numba's cache beside the sources comes along (copy2 keeps the time stamps it is keyed on): the copy loads
+    # the compiled kernels instead of compiling them all again (core.py, edited, holds none)
+    shutil.copytree(ROOT / "study", package / "study")
     core = package / "study" / "solvers" / "core.py"
     core.write_text(core.read_text().replace('"peak_contact_force": peak,', '"peak_contact_force": 2.0 * peak,'))
     config = tmp_path / "small.toml"
