@@ -428,8 +428,9 @@ print(json.dumps(dict(peak=peak, process=hwm, status=result.status)))
 """
 
 
-def bench_memory(cases=None) -> list[dict]:
-    """Peak memory per design point of every method (:data:`_MEMORY_SCRIPT`), each in a fresh process: rows
+def bench_memory(cases=None, methods=None) -> list[dict]:
+    """Peak memory per design point of every method (or of ``methods``; :data:`_MEMORY_SCRIPT`), each in a fresh
+    process: rows
     with the case, the method, the point's peak traced allocation [MiB], the process's peak resident memory
     [MiB] (interpreter, solver stack and kernels included) and the point's status."""
     import json
@@ -442,7 +443,7 @@ def bench_memory(cases=None) -> list[dict]:
                       ("default study, first point", STUDY_CONFIG, {})]
     rows = []
     for label, config, overrides in cases:
-        for method in METHODS:
+        for method in methods or METHODS:
             run = subprocess.run([sys.executable, "-c", _MEMORY_SCRIPT, str(config), method, json.dumps(overrides)],
                                  capture_output=True, text=True, timeout=600, check=True)
             got = json.loads(run.stdout.strip().splitlines()[-1])
