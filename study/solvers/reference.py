@@ -606,6 +606,7 @@ def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[
     sheared = cycles[int(np.argmax([c["max_shear_stress"] for c in cycles]))]
     out.update(max_bending_stress=float(np.mean([c["max_bending_stress"] for c in cycles])),
                max_deflection=float(max(c["max_deflection"] for c in cycles)),
+               max_wall_excess=float(np.max([c["max_wall_excess"] for c in cycles])),
                max_normal_stress_x=worst["max_normal_stress_x"],
                max_normal_stress_t=worst["max_normal_stress_t"] + worst["start"] - origin,
                alternating_bending_stress_x=alternating["alternating_bending_stress_x"],
@@ -1026,6 +1027,43 @@ def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None,
     return {"deflection": both[:, :x.size], "moment": moment}
 
 
+def body_wall_excess(model: WhirlModel, x: np.ndarray, uy: np.ndarray, uz: np.ndarray, normal: np.ndarray,
+                     largest_moment: float) -> tuple[float, float]:
+    """How far the pipe body passes its wall beyond the Hertz approach of its contacts, anywhere along it
+    (docs/reference_model.md §2): the largest over the rows (times) and the stations x [m] (X,) of
+    |u(x, t)| − c_b − α(x, t), with u = (``uy``, ``uz``) (T, X) [m], c_b the body's clearance and α the Hertz
+    approach (F_n/K)^{2/3} of the body's contact points at that row (``normal`` (T, P) [N]), linear between
+    neighbouring ones along the periodic string (a contact's own at its station); plus the bound of what lies
+    between the stations, h²/8 max|u''| (h the widest gap between stations; the linear interpolant of the vector
+    u errs by at most that, and |u| of the interpolant is at most its ends' by convexity), with |u''| ≤ (|M| + EI
+    |κ⃗|)/EI from the largest moment ``largest_moment`` [N m] (the hole's curvature κ⃗ is in the moment, not in u).
+    Returns (excess [m], the bound in it [m]); a negative excess: clear of the wall everywhere. NaN without body
+    stations of contact kind in the model (no body clearance to hold it to)."""
+    body = model.kinds == 0
+    if not np.any(body):
+        return float("nan"), float("nan")
+    clearance = float(np.max(model.clearance[body]))
+    at = model.points[body]
+    if model.law == 0:
+        alpha = (np.maximum(normal[:, body], 0.0) / model.stiffness[body]) ** (2.0 / 3.0)
+    else:
+        alpha = np.maximum(normal[:, body], 0.0) / model.penalty_stiffness[body]
+    # the linear interpolation between the body's contact points along the periodic string, as a matrix (X, Pb)
+    order = np.argsort(at)
+    ext = np.concatenate((at[order][-1:] - model.span, at[order], at[order][:1] + model.span))
+    weights = np.zeros((x.size, at.size))
+    j = np.clip(np.searchsorted(ext, x, side="right") - 1, 0, ext.size - 2)
+    share = (x - ext[j]) / (ext[j + 1] - ext[j])
+    cols = np.concatenate((order[-1:], order, order[:1]))
+    np.add.at(weights, (np.arange(x.size), cols[j]), 1.0 - share)
+    np.add.at(weights, (np.arange(x.size), cols[j + 1]), share)
+    excess = float(np.max(np.hypot(uy, uz) - clearance - alpha @ weights.T)) if uy.size else float("nan")
+    ei = model.props["bending_stiffness"]
+    h = float(np.max(np.diff(x))) if x.size > 1 else 0.0
+    bound = h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
+    return excess + bound, bound
+
+
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
              fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
@@ -1077,7 +1115,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        outs.append(dict(max_deflection=float(deflection),
+        excess, _ = body_wall_excess(model, x, uy, uz, window.forces[rows, :, 2], largest)
+        outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
                          max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),
