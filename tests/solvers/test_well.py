@@ -289,3 +289,33 @@ def test_the_gate_calls_a_body_past_its_wall_between_stations_unphysical():
     status, message = gate.within_clearance(values, {"tolerance": 0.01})
     assert status == "unphysical" and "beyond its contacts' Hertz approach" in message
     assert gate.within_clearance({**values, "max_wall_excess": 0.005 * 0.054}, {"tolerance": 0.01}) is None
+
+
+# --- backward whirl --------------------------------------------------------------------------------------------
+
+def test_set_rolling_the_joints_roll_backwards_without_slip_with_the_body_clear():
+    # dry whip: a tool joint rolling without slip on the wall whirls at −Ω R/c (Black 1968; Jansen 1991;
+    # well.rolling_whirl_rate). The default study's pipe (9 ppg, no flow) in a 30° hole, μ = 0.8, 200 rpm, 20 000 lbf, three
+    # contact stations on the body between joints, set on the wall whirling backwards at that rate (the string's rigid
+    # translation at the joints' clearance: not yet its bent rolling shape, so it bounces a few revolutions first, as
+    # many as the last bits of the arithmetic decide, 5-8 measured) settles on rolling: over the last four of 24
+    # revolutions the joints touch throughout, whirl at −R/c within 1 % (the slip of the regularised friction: -2.497
+    # against -2.5 measured) and no point of the body reaches its wall (docs/reference_model.md §7; a drop from the
+    # hole's centre reaches it too, after about 200 revolutions, or bounces chaotically, which needs denser body
+    # stations)
+    inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_body_stations": 3}
+    model = reference.build_model(inputs)
+    N = model.n_modes
+    joint = model.kinds == 1
+    c, R = model.clearance[joint][0], model.radius[joint][0]
+    rate = well.rolling_whirl_rate(1.0, R, c)
+    start = np.zeros(4 * N + 4)
+    start[0] = c / model.phi[np.flatnonzero(joint)[0], 0]
+    start[3 * N] = start[0] * rate * model.rotary_speed
+    run = reference.Integrator(model, 1e-6, start)
+    run.run(20 * model.period)
+    window = run.run(24 * model.period, record=True)
+    assert window.contact_time[joint] == pytest.approx(4 * model.period, rel=1e-9)  # held: rolling, not bouncing
+    assert reference.whirl_measure(model, window)["whirl_frequency_ratio"] == pytest.approx(rate, rel=0.01)
+    values = reference.stresses(inputs, model, window)
+    assert values["max_wall_excess"] < -0.2 * float(np.max(model.clearance))
