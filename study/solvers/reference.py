@@ -1014,8 +1014,11 @@ def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None,
     (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
     hole's curvature in that direction (the pipe follows the curved hole)."""
     x = np.asarray(x, float)
-    shapes = model.shapes(x)
-    both = q @ np.vstack([shapes, model.moment_shapes(x)]).T
+    base = mode_shapes(x, model.span, model.modes)
+    moments = base * (model.props["bending_stiffness"] * model.wavenumber**2)  # each mode's −EI ψ''
+    if model.basis is not None:
+        base, moments = base @ model.basis, moments @ model.basis
+    both = q @ np.vstack([base, moments]).T
     if forces is not None:
         if direction == 0 and model.point_side is not None:
             forces = forces + model.point_side  # the joints' weight at the joints: a point load as the contacts'
@@ -1039,29 +1042,46 @@ def body_wall_excess(model: WhirlModel, x: np.ndarray, uy: np.ndarray, uz: np.nd
     |κ⃗|)/EI from the largest moment ``largest_moment`` [N m] (the hole's curvature κ⃗ is in the moment, not in u).
     Returns (excess [m], the bound in it [m]); a negative excess: clear of the wall everywhere. NaN without body
     stations of contact kind in the model (no body clearance to hold it to)."""
+    rows = row_wall_excess(model, x, uy, uz, normal)
+    bound = wall_excess_bound(model, x, largest_moment)
+    return (float(np.max(rows)) + bound if rows.size else float("nan")), bound
+
+
+def row_wall_excess(model: WhirlModel, x: np.ndarray, uy: np.ndarray, uz: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """(T,) each row's largest |u(x, t)| − c_b − α(x, t) over the stations x [m] (:func:`body_wall_excess`, without
+    the bound between the stations); NaN without body contact points."""
     body = model.kinds == 0
     if not np.any(body):
-        return float("nan"), float("nan")
+        return np.full(uy.shape[0], np.nan)
     clearance = float(np.max(model.clearance[body]))
     at = model.points[body]
     if model.law == 0:
         alpha = (np.maximum(normal[:, body], 0.0) / model.stiffness[body]) ** (2.0 / 3.0)
     else:
         alpha = np.maximum(normal[:, body], 0.0) / model.penalty_stiffness[body]
-    # the linear interpolation between the body's contact points along the periodic string, as a matrix (X, Pb)
-    order = np.argsort(at)
-    ext = np.concatenate((at[order][-1:] - model.span, at[order], at[order][:1] + model.span))
-    weights = np.zeros((x.size, at.size))
-    j = np.clip(np.searchsorted(ext, x, side="right") - 1, 0, ext.size - 2)
-    share = (x - ext[j]) / (ext[j + 1] - ext[j])
-    cols = np.concatenate((order[-1:], order, order[:1]))
-    np.add.at(weights, (np.arange(x.size), cols[j]), 1.0 - share)
-    np.add.at(weights, (np.arange(x.size), cols[j + 1]), share)
-    excess = float(np.max(np.hypot(uy, uz) - clearance - alpha @ weights.T)) if uy.size else float("nan")
+    # the linear interpolation between the body's contact points along the periodic string, as a matrix (X, Pb),
+    # cached on the model per stations
+    key = ("wall", np.asarray(x, float).tobytes())
+    weights = model.cache.get(key)
+    if weights is None:
+        order = np.argsort(at)
+        ext = np.concatenate((at[order][-1:] - model.span, at[order], at[order][:1] + model.span))
+        weights = np.zeros((x.size, at.size))
+        j = np.clip(np.searchsorted(ext, x, side="right") - 1, 0, ext.size - 2)
+        share = (x - ext[j]) / (ext[j + 1] - ext[j])
+        cols = np.concatenate((order[-1:], order, order[:1]))
+        np.add.at(weights, (np.arange(x.size), cols[j]), 1.0 - share)
+        np.add.at(weights, (np.arange(x.size), cols[j + 1]), share)
+        model.cache[key] = weights
+    return np.max(np.hypot(uy, uz) - clearance - alpha @ weights.T, axis=1)
+
+
+def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -> float:
+    """h²/8 max|u''| [m], h the widest gap between the stations x [m], |u''| ≤ (|M| + EI |κ⃗|)/EI with the largest
+    moment ``largest_moment`` [N m] (:func:`body_wall_excess`)."""
     ei = model.props["bending_stiffness"]
     h = float(np.max(np.diff(x))) if x.size > 1 else 0.0
-    bound = h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
-    return excess + bound, bound
+    return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
@@ -1100,6 +1120,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
     cos_fibre, sin_fibre = np.cos(psi), np.sin(psi)
+    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once
+    excess_rows = row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
@@ -1115,7 +1137,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        excess, _ = body_wall_excess(model, x, uy, uz, window.forces[rows, :, 2], largest)
+        excess = (float(np.max(excess_rows[rows])) if stop > first else float("nan")) + wall_excess_bound(model, x, largest)
         outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
