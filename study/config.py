@@ -127,6 +127,14 @@ FIELDS: tuple[Field, ...] = (
           display_unit="in", **_NON_NEGATIVE),
     Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
           default=ReferenceOptions.default("tool_joint_diameter"), display_unit="in", **_POSITIVE),
+    Field("pipe.tool_joint_inner_diameter", "tool_joint_inner_diameter", "tool-joint bore (method reference: the "
+          "joint's mass beyond the plain pipe's is lumped at the joints; default 3 1/4 in, the 6 1/4 x 3 1/4-in NC46 "
+          "joint of 4 1/2-in 16.60 lb/ft pipe)", "m", default=ReferenceOptions.default("tool_joint_inner_diameter"),
+          display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.tool_joint_length", "tool_joint_length", "tool-joint length, box and pin (method reference: the "
+          "joint's mass beyond the plain pipe's is lumped at the joints; default 20 in, about 0.5 m; 0: no joint "
+          "mass, e.g. where pipe.linear_mass is the adjusted weight that counts the joints already)", "m",
+          default=ReferenceOptions.default("tool_joint_length"), display_unit="in", **_NON_NEGATIVE),
     Field("pipe.joint_length", "joint_length", "length of one joint of pipe, tool joint to tool joint (API Range 2: "
           "about 31 ft; the reference model's contact stations and the critical speeds of a joint)", "m",
           default=ReferenceOptions.default("joint_length"), display_unit="ft", **_POSITIVE),
@@ -539,6 +547,8 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
 
     below("inner_diameter", "outer_diameter", "a pipe wall needs thickness")
     below("outer_diameter", "hole_diameter", "the pipe must fit in the hole with a clearance")
+    below("tool_joint_inner_diameter", "tool_joint_diameter", "a tool joint's wall needs thickness")
+    below("tool_joint_length", "joint_length", "the tool joint is a part of the joint of pipe")
     below("min_span", "max_span", "the span search needs a range")
     yield_hi = span("yield_strength")[1]
     tensile_lo = span("tensile_strength")[0]

@@ -73,6 +73,9 @@ PSI = LBF / 0.0254**2
         ("load.rotary_speed", '"5 rev/s"', 5 * 2 * np.pi),
         ("load.rotary_speed", "31.4", 31.4),
         ("solver.max_span", '"1000 ft"', 304.8),
+        ("pipe.tool_joint_inner_diameter", '"3.25 in"', 3.25 * 0.0254),
+        ("pipe.tool_joint_length", '"20 in"', 0.508),
+        ("pipe.tool_joint_length", '"0.5 m"', 0.5),
     ],
     ids=lambda v: v if isinstance(v, str) else None,
 )
@@ -121,6 +124,10 @@ BAD = [
     ('[sweep] axes = { "load.rotary_speed" = { start = "50 rpm", stop = "300 rpm", num = 0 } }', "num = 0"),
     ('[sweep] axes = { "load.rotary_speed" = [] }', "at least one value"),
     ('[sweep] axes = { "pipe.inner_diameter" = ["3 in", "4.6 in"] }', "pipe.inner_diameter"),
+    ('[pipe] tool_joint_length = "-1 in"', "pipe.tool_joint_length = '-1 in'"),
+    ('[pipe] tool_joint_inner_diameter = "7 in"', "pipe.tool_joint_inner_diameter = 0.1778 m: must be < "
+                                                  "pipe.tool_joint_diameter"),  # the joint's bore >= its OD
+    ('[pipe] tool_joint_length = "40 ft"', "pipe.tool_joint_length = 12.192 m: must be < pipe.joint_length"),
     ("[sweep] chunk_size = 0", "sweep.chunk_size = 0"),
     ("[sweep] chunksize = 10", "did you mean 'chunk_size'"),
 ]

@@ -271,3 +271,30 @@ def rolling_whirl_rate(rotary_speed, radius, clearance):
     :func:`study.physics.whirl.rolling_whirl_ratio` times Ω.
     """
     return np.asarray(rotary_speed, dtype=float) * whirl.rolling_whirl_ratio(radius, clearance)
+
+
+def tool_joint_excess(steel_density, joint_outer_diameter, joint_inner_diameter, joint_length, pipe_mass,
+                      pipe_outer_diameter, pipe_inner_diameter, mud_density):
+    """The mass [kg] and the buoyed weight [N] a tool joint adds to the string beyond the plain pipe's, as a point
+    at the joint (docs/reference_model.md §9).
+
+    A joint of outer diameter D_tj, bore d_tj and length ℓ (box and pin) replaces ℓ of plain pipe, whose mass per
+    length m_p (the plain-end weight, API Spec 5DP) the string's mass per length already counts:
+    m_j = ρ_s π/4 (D_tj² − d_tj²) ℓ − m_p ℓ + ρ_mud π/4 (d_tj² − d²) ℓ (its steel beyond the plain pipe's, and the
+    mud inside its bore beyond the pipe's, which moves with it); the buoyed weight of that excess, Archimedes' on
+    the annular mud it displaces beyond the body's, W_j = (m_j − ρ_mud π/4 (D_tj² − D²) ℓ) g (the pipe's own, as
+    :func:`buoyed_weight`). The mud's added mass outside the joint is not in it (a half-metre joint lets the mud
+    flow round its ends, which the plane added-mass formula does not).
+
+    steel_density ρ_s [kg/m³]; joint_outer_diameter D_tj, joint_inner_diameter d_tj, joint_length ℓ [m]; pipe_mass
+    m_p [kg/m]; pipe_outer_diameter D, pipe_inner_diameter d [m]; mud_density ρ_mud [kg/m³]. ℓ = 0 gives (0, 0).
+    """
+    length = np.asarray(joint_length, dtype=float)
+    quarter = 0.25 * np.pi * length
+    D_tj, d_tj = np.asarray(joint_outer_diameter, dtype=float), np.asarray(joint_inner_diameter, dtype=float)
+    D, d, rho = (np.asarray(pipe_outer_diameter, dtype=float), np.asarray(pipe_inner_diameter, dtype=float),
+                 np.asarray(mud_density, dtype=float))
+    mass = (np.asarray(steel_density, dtype=float) * quarter * (D_tj**2 - d_tj**2)
+            - np.asarray(pipe_mass, dtype=float) * length + rho * quarter * (d_tj**2 - d**2))
+    weight = (mass - rho * quarter * (D_tj**2 - D**2)) * whirl.GRAVITY
+    return (mass if mass.ndim else float(mass)), (weight if weight.ndim else float(weight))

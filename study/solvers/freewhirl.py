@@ -25,9 +25,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import section, whirl
+from study.physics import section, well, whirl
 from study.solvers.options import ReferenceOptions, study_tolerance
-from study.solvers.reference import mode_shapes, mode_wavenumbers, side_loads
+from study.solvers.reference import contact_layout, joint_modes, mode_shapes, mode_wavenumbers, side_loads
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -52,17 +52,25 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
     L, M, Om = float(option.section_length), props["mass_per_length"], float(inputs["rotary_speed"])
     n = np.arange(modes)
     k = mode_wavenumbers(L, modes)
-    omega = np.sqrt((props["bending_stiffness"] * k**4 + props["effective_tension"] * k**2) / M)
+    # the tool joints' mass lumped at the joints, as the reference model's (reference.build_model, joint_modes)
+    joint_mass = well.tool_joint_excess(inputs.get("pipe_density") or 7850.0, float(option.tool_joint_diameter),
+                                        float(option.tool_joint_inner_diameter), float(option.tool_joint_length),
+                                        props["pipe_mass"], inputs["outer_diameter"], inputs["inner_diameter"],
+                                        inputs["mud_density"])[0]
+    joints = contact_layout(L, float(option.joint_length), 0)[0]
+    omega, basis = joint_modes(L, modes, M, props["bending_stiffness"], props["effective_tension"], joints,
+                               max(joint_mass, 0.0))
+    lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
     mass = 0.5 * M * L
     factors = np.zeros(modes)
-    factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: the uniform loads drive the rigid translation alone
-    eccentric = whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors / mass
+    factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: a uniform load drives the rigid translation of the basis alone
+    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors) / mass
     w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)
     x = np.linspace(0.0, L, points)
     gx, gw = whirl.gauss_legendre(2 * modes + 8)
     gauss_x, gauss_w = 0.5 * L * (gx + 1.0), 0.5 * L * gw
-    gauss_shapes = mode_shapes(gauss_x, L, modes)
+    gauss_shapes = lift(mode_shapes(gauss_x, L, modes))
     drag = props["drag_coefficient_per_length"]
     stiffness = np.diag(omega**2 - Om**2).astype(complex)
     a = eccentric / (omega**2 - Om**2) + 0j
@@ -75,10 +83,11 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
         a = new
         if change < SETTLED:
             break
-    derivative = {d: mode_shapes(x, L, modes, d) for d in (0, 2, 3)}
+    derivative = {d: lift(mode_shapes(x, L, modes, d)) for d in (0, 2, 3)}
     return dict(x=x, L=L, n=n, k=k, omega=omega, rotary_speed=Om, sag={d: s @ sag_modal for d, s in derivative.items()},
                 whirl={d: s @ a for d, s in derivative.items()}, sag_modal=sag_modal, whirl_modal=a,
-                iterations=iteration, change=change, props=props, option=option, side_load=w_side)
+                iterations=iteration, change=change, props=props, option=option, side_load=w_side, basis=basis,
+                joint_mass=joint_mass)
 
 
 def clearances(inputs: Mapping[str, Any], x: np.ndarray, option: ReferenceOptions) -> tuple[np.ndarray, np.ndarray]:
@@ -142,9 +151,10 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     i_b, i_a, i_s = int(np.argmax(bending)), int(np.argmax(alternating)), int(np.argmax(shear))
     # truncation: the stress carried by the upper half of the odd modes kept
     upper = state["n"] >= state["n"].size // 2
-    tail = ei * scale * float(np.max(np.abs(mode_shapes(x, L, state["n"].size)[:, upper] * state["k"][upper] ** 2
-                                            @ (np.abs(state["whirl_modal"][upper])
-                                               + np.abs(state["sag_modal"][upper])))))
+    moments = mode_shapes(x, L, state["n"].size) * state["k"] ** 2  # each mode's −ψ'' (on the joints' modes)
+    moments = moments if state["basis"] is None else moments @ state["basis"]
+    tail = ei * scale * float(np.max(np.abs(moments[:, upper] @ (np.abs(state["whirl_modal"][upper])
+                                                                  + np.abs(state["sag_modal"][upper])))))
     result.values.update(
         max_deflection=float(np.max(reach)), max_bending_stress=float(bending[i_b]),
         max_normal_stress=float(axial + bending[i_b]), max_normal_stress_x=float(x[i_b]),

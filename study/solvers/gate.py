@@ -11,8 +11,9 @@ The checks, in order (each a plain function ``check(values, inputs) -> problem |
 
 - ``finite``: the principal outputs (:data:`PRINCIPAL`) that a method reports are finite (``failed``).
 - ``within_clearance``: the largest deflection stays inside the hole, |y| ≤ c (1 + tol) + α_max — the
-  clearance c, the study's relative tolerance and, at a contact, the Hertz approach α_max
-  (``unphysical``).
+  clearance c, the study's relative tolerance and, at a contact, the Hertz approach α_max — and, where the method
+  reports it (``max_wall_excess``, the reference model), no point of the body passes its wall by more than c tol
+  beyond its contacts' own Hertz approach (``unphysical``).
 - ``hertz_valid``: the contact ellipse at the peak contact force is a Hertz contact
   (:func:`study.physics.hertz.contact_validity`: small beside the radii of curvature and the span, no
   longer than the pipe is wide, not degenerate); the ellipse is computed here from the peak force and
@@ -68,6 +69,11 @@ def within_clearance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Pr
         return ("unphysical", f"the largest deflection {deflection:.4g} m ({deflection / clearance:.4g} c) "
                               f"passes the wall: the bound is the clearance {clearance:.4g} m (1 + tolerance) plus "
                               f"the Hertz approach {approach:.4g} m")
+    excess = values.get("max_wall_excess")  # anywhere along the body, beyond each contact's own approach
+    if excess is not None and np.isfinite(excess) and excess > clearance * study_tolerance(inputs):
+        return ("unphysical", f"the pipe body passes its wall by up to {excess:.4g} m ({excess / clearance:.3g} c) "
+                              "beyond its contacts' Hertz approach between its contact stations (more "
+                              "reference_body_stations hold it)")
     return None
 
 

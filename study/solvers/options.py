@@ -197,6 +197,9 @@ class ReferenceOptions(MethodOptions):
 
     eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
     tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
+    #: the tool joint's bore and length (box and pin), whose mass beyond the plain pipe's is lumped at the joints [m]
+    tool_joint_inner_diameter: float = 3.25 * 0.0254
+    tool_joint_length: float = 20 * 0.0254
     joint_length: float = 31 * 0.3048  #: tool joint to tool joint [m]
     section_length: float = 93 * 0.3048  #: the periodic section of the string, three joints [m]
     #: contact stations on the pipe body between neighbouring tool joints, evenly spaced (reference model)

@@ -115,6 +115,13 @@ class WhirlModel:
     eccentricity: float = 0.0
     frame: float = 0.0  #: angle β of the model's +y from the hole's low side towards +z: the side load's direction [rad]
     hole_curvature: np.ndarray = field(default_factory=lambda: np.zeros(2))  #: κ⃗ of the hole in the model's frame [1/m]
+    #: (N, N) the modes on the periodic basis with the tool joints' mass (:func:`joint_modes`); None: the basis itself
+    basis: np.ndarray | None = None
+    joint_mass: float = 0.0  #: m_j, each tool joint's mass beyond the plain pipe's, lumped at the joint [kg]
+    joint_weight: float = 0.0  #: the side component of each joint's buoyed weight beyond the pipe's [N]
+    #: (P,) the joints' weight at the contact points that are joints, along the model's +y [N] (None: none), for the
+    #: quasi-static correction (:func:`periodic_fields`), which completes it as it completes the contact forces
+    point_side: np.ndarray | None = None
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -150,8 +157,15 @@ class WhirlModel:
         return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
 
     def shapes(self, x, derivative: int = 0) -> np.ndarray:
-        """(X, N) the modes' shapes (or their ``derivative``-th derivative along x) at x [m]: :func:`mode_shapes`."""
-        return mode_shapes(x, self.span, self.modes, derivative)
+        """(X, N) the modes' shapes (or their ``derivative``-th derivative along x) at x [m]: :func:`mode_shapes`, on
+        the joints' modes (:attr:`basis`) where the tool joints' mass is lumped."""
+        out = mode_shapes(x, self.span, self.modes, derivative)
+        return out if self.basis is None else out @ self.basis
+
+    def moment_shapes(self, x) -> np.ndarray:
+        """(X, N) each mode's moment −EI ψ_n'' at x [m] per unit coordinate [N m/m]: EI k_n² ψ_n on the basis."""
+        out = mode_shapes(x, self.span, self.modes) * (self.props["bending_stiffness"] * self.wavenumber**2)
+        return out if self.basis is None else out @ self.basis
 
     def system(self) -> tuple:
         """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple)."""
@@ -201,6 +215,58 @@ def mode_shapes(x, span: float, modes, derivative: int = 0) -> np.ndarray:
     rigid = n == 0
     out[:, rigid] = 1.0 / np.sqrt(2.0) if derivative == 0 else 0.0
     return out
+
+
+def joint_modes(span: float, modes, mass_per_length: float, bending_stiffness: float, tension: float,
+                joints, joint_mass: float) -> tuple[np.ndarray, np.ndarray | None]:
+    """ω_n [rad/s] (N,) and the modes (N, N) of the periodic section with a point mass ``joint_mass`` m_j [kg] at each
+    of ``joints`` (x_j [m], tool joints; docs/reference_model.md §1): the generalized eigenproblem K a = ω² M a of
+    the periodic basis (:func:`mode_shapes`), K = (L/2) diag(EI k_n⁴ + T k_n²), M = (M L/2) I + m_j Σ_j ψ(x_j) ψ(x_j)ᵀ
+    (Rayleigh–Ritz; scipy.linalg.eigh), column n the coefficients of mode n on the basis, scaled to the one modal
+    mass M L/2 (aᵀ M a = M L/2), so the kernel takes them as it takes the basis. The joints of a periodic section
+    lie symmetrically about its middle (x → L − x maps joint to joint), so M couples the symmetric basis functions
+    (ψ_0, the cosines: odd n and 0) only among themselves and the antisymmetric (the sines) likewise: each family is
+    solved apart and its modes, in rising frequency, take its basis functions' places (mode 0 is the rigid
+    translation, ω_0 = 0 exactly; each mode keeps a parity, which the kernel's drag sums use). ω is NaN where
+    ω² < 0 (buckled). Without joint mass the basis itself: (ω, None)."""
+    n = _indices(modes)
+    L = float(span)
+    k = mode_wavenumbers(L, n)
+    stiffness = 0.5 * L * (bending_stiffness * k**4 + tension * k**2)
+    mass = 0.5 * mass_per_length * L
+    if float(joint_mass) == 0.0:
+        with np.errstate(invalid="ignore"):
+            omega2 = (bending_stiffness * k**4 + tension * k**2) / mass_per_length  # as the basis' ω always was
+            return np.where(omega2 >= 0.0, np.sqrt(np.maximum(omega2, 0.0)), np.nan), None
+    from scipy.linalg import eigh
+
+    shapes = mode_shapes(np.asarray(joints, float), L, n)  # (J, N)
+    matrix = mass * np.eye(n.size) + float(joint_mass) * shapes.T @ shapes
+    omega2 = np.zeros(n.size)
+    basis = np.zeros((n.size, n.size))
+    for family in ((n == 0) | (n % 2 == 1), (n > 0) & (n % 2 == 0)):
+        at = np.flatnonzero(family)
+        if at.size == 0:
+            continue
+        values, vectors = eigh(np.diag(stiffness[at]), matrix[np.ix_(at, at)])
+        rigid = k[at] == 0.0
+        order = np.argsort(values, kind="stable")
+        if np.any(rigid):  # the rigid translation first: the eigenvalue nearest 0 (a buckled mode's is below it)
+            first = int(np.argmin(np.abs(values)))
+            order = np.concatenate(([first], order[order != first]))
+        vectors = vectors[:, order] * np.sqrt(mass)  # eigh's vectors have aᵀ M a = 1
+        values = values[order]
+        if np.any(rigid):  # the rigid translation: no stiffness, ω = 0 exactly, a constant
+            values[0] = 0.0
+            vectors[:, 0] = 0.0
+            vectors[rigid, 0] = np.sqrt(mass / matrix[np.ix_(at, at)][np.ix_(rigid, rigid)][0, 0])
+        # each mode's sign: its largest coefficient positive (the basis function it grew from)
+        sign = np.sign(vectors[np.argmax(np.abs(vectors), axis=0), np.arange(at.size)])
+        omega2[at] = values
+        basis[np.ix_(at, at)] = vectors * sign
+    with np.errstate(invalid="ignore"):
+        omega = np.where(omega2 >= 0.0, np.sqrt(np.maximum(omega2, 0.0)), np.nan)
+    return omega, basis
 
 
 def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> tuple[np.ndarray, np.ndarray]:
@@ -271,11 +337,26 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         raise ValueError(f"reference_modes = {N}: at least 1")
     modes = np.arange(N)
     M = props["mass_per_length"]
-    k = mode_wavenumbers(L, N)
-    with np.errstate(invalid="ignore"):
-        # ω_n² = (EI k⁴ + T k²)/M; a compressed section whose first bending mode has ω² < 0 buckles (NaN)
-        omega2 = (props["bending_stiffness"] * k**4 + props["effective_tension"] * k**2) / M
-        omega = np.where(omega2 >= 0.0, np.sqrt(np.maximum(omega2, 0.0)), np.nan)
+    # the tool joints' mass beyond the plain pipe's, lumped at the joints (docs/reference_model.md §1, §9)
+    tj_bore, tj_length = float(option.tool_joint_inner_diameter), float(option.tool_joint_length)
+    if not 0.0 <= tj_bore < 2 * tj:
+        raise ValueError(f"pipe.tool_joint_inner_diameter = {tj_bore:.6g} m: must be >= 0 and smaller than "
+                         f"pipe.tool_joint_diameter ({2 * tj:.6g} m)")
+    if not 0.0 <= tj_length < joint:
+        raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m: must be >= 0 and shorter than "
+                         f"pipe.joint_length ({joint:.6g} m)")
+    joint_mass, joint_weight = well.tool_joint_excess(
+        inputs.get("pipe_density") or 7850.0, 2 * tj, tj_bore, tj_length, props["pipe_mass"], 2 * r_o,
+        inputs["inner_diameter"], inputs["mud_density"])
+    if joint_mass < 0.0:
+        raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m with pipe.tool_joint_diameter = {2 * tj:.6g} m, "
+                         f"pipe.tool_joint_inner_diameter = {tj_bore:.6g} m makes a joint {-joint_mass:.4g} kg lighter "
+                         "than the plain pipe it replaces: set pipe.tool_joint_length = 0 where pipe.linear_mass "
+                         "counts the joints already")
+    joint_x = contact_layout(L, joint, 0)[0]
+    joint_side = joint_weight * float(np.sin(float(inputs.get("inclination") or 0.0)))  # along the low side
+    # ω_n and the modes with the joints' mass (the basis itself without); NaN where ω² < 0: the section buckles
+    omega, basis = joint_modes(L, N, M, props["bending_stiffness"], props["effective_tension"], joint_x, joint_mass)
     if inputs.get("contact_points") is not None:
         x = np.atleast_1d(np.asarray(inputs["contact_points"], float)) * L
         kinds = np.atleast_1d(np.asarray(inputs.get("contact_kinds", np.zeros(x.size)), int))
@@ -288,26 +369,39 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     K = np.asarray(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum), float)
     phi = mode_shapes(x, L, N)
     mass = 0.5 * M * L
+    lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
+    phi = lift(phi)
     Om = float(inputs["rotary_speed"])
     eps = float(option.eccentricity)
     factors = np.zeros(N)
     factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
-    eccentric = whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors / mass
+    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors) / mass  # the body's, not the joints'
     w_y, w_z, curvature = side_loads(inputs, props)
+    if joint_side and inputs.get("side_load") is None:
+        w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
     # the scene is axisymmetric but for the side load, whose direction is constant: the model's frame is the hole's
     # turned by the side load's angle β, so that the load lies along its +y (every output is the same in any frame)
     frame = float(np.arctan2(w_z, w_y)) if (w_y or w_z) else 0.0
     w_side = float(np.hypot(w_y, w_z))
     cb, sb = np.cos(frame), np.sin(frame)
     hole_curvature = np.array([cb * curvature[0] + sb * curvature[1], -sb * curvature[0] + cb * curvature[1]])
-    side = w_side * factors / mass
+    load = w_side * factors
+    if joint_side and inputs.get("side_load") is None:
+        # the joints' weight at the joints less its mean (in w_side): a load at the supports, along the low side (its
+        # part across the model's +y, where a walking dogleg turns the frame, is left out: docs/reference_model.md §9)
+        load = load + joint_side * cb * (mode_shapes(joint_x, L, N).sum(axis=0) - joint_x.size / L * factors)
+        at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)
+        point_side = np.where(at_joint, joint_side * cb, 0.0) if np.any(at_joint) else None
+    else:
+        point_side = None
+    side = lift(load) / mass
     damping_model = option.reference_damping
     damping = np.zeros(N)
     if damping_model == "viscous":
         damping = 2.0 * float(option.damping_ratio) * omega
     G = 2 * N + 8
     gx, gw = whirl.gauss_legendre(G)
-    shapes = mode_shapes(0.5 * L * (gx + 1), L, N)
+    shapes = lift(mode_shapes(0.5 * L * (gx + 1), L, N))
     drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
     e = float(inputs["restitution"])
     law = CONTACT_LAWS.index(option.contact_law)
@@ -323,7 +417,8 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       friction=mu, slip_velocity=float(option.slip_velocity),
                       restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
-                      eccentricity=eps, frame=frame, hole_curvature=hole_curvature)
+                      eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
+                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side)
 
 
 @dataclass
@@ -511,6 +606,7 @@ def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[
     sheared = cycles[int(np.argmax([c["max_shear_stress"] for c in cycles]))]
     out.update(max_bending_stress=float(np.mean([c["max_bending_stress"] for c in cycles])),
                max_deflection=float(max(c["max_deflection"] for c in cycles)),
+               max_wall_excess=float(np.max([c["max_wall_excess"] for c in cycles])),
                max_normal_stress_x=worst["max_normal_stress_x"],
                max_normal_stress_t=worst["max_normal_stress_t"] + worst["start"] - origin,
                alternating_bending_stress_x=alternating["alternating_bending_stress_x"],
@@ -887,10 +983,16 @@ def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
     k = model.wavenumber
     flexible = k > 0  # the kept modes with a static term (the rigid translation has none)
     at = model.points
-    shapes = model.shapes(x)  # (X, N)
     gain = np.zeros(N)
-    gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
-    kept_moment = (model.phi * gain * ei * k**2) @ shapes.T
+    if model.basis is None:
+        shapes, kept_at = model.shapes(x), model.phi  # (X, N), (P, N)
+        gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
+    else:
+        # with the joints' mass the kept modes span the same basis functions: their static part is the basis' own, a
+        # matter of stiffness alone (the static field the correction completes balances the load's mean uniformly)
+        shapes, kept_at = mode_shapes(x, L, model.modes), mode_shapes(at, L, model.modes)
+        gain[flexible] = 1.0 / (0.5 * L * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
+    kept_moment = (kept_at * gain * ei * k**2) @ shapes.T
     moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
     # the deflection: the harmonics above the kept ones (and the sine of a harmonic whose cosine alone is kept)
     full = mode_shapes(x, L, 2 * STATIC_TAIL_HARMONICS + 1)
@@ -912,15 +1014,74 @@ def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None,
     (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
     hole's curvature in that direction (the pipe follows the curved hole)."""
     x = np.asarray(x, float)
-    shapes = model.shapes(x)
-    both = q @ np.vstack([shapes, shapes * (model.props["bending_stiffness"] * model.wavenumber**2)]).T
+    base = mode_shapes(x, model.span, model.modes)
+    moments = base * (model.props["bending_stiffness"] * model.wavenumber**2)  # each mode's −EI ψ''
+    if model.basis is not None:
+        base, moments = base @ model.basis, moments @ model.basis
+    both = q @ np.vstack([base, moments]).T
     if forces is not None:
+        if direction == 0 and model.point_side is not None:
+            forces = forces + model.point_side  # the joints' weight at the joints: a point load as the contacts'
         both = both + forces @ static_correction(model, x)
     moment = both[:, x.size:]
     if direction is not None and model.hole_curvature[direction] != 0.0:
         # the pipe follows the hole: its curvature is the hole's κ⃗ plus its own u'', M = −EI (κ⃗ + u'')
         moment = moment - model.props["bending_stiffness"] * model.hole_curvature[direction]
     return {"deflection": both[:, :x.size], "moment": moment}
+
+
+def body_wall_excess(model: WhirlModel, x: np.ndarray, uy: np.ndarray, uz: np.ndarray, normal: np.ndarray,
+                     largest_moment: float) -> tuple[float, float]:
+    """How far the pipe body passes its wall beyond the Hertz approach of its contacts, anywhere along it
+    (docs/reference_model.md §2): the largest over the rows (times) and the stations x [m] (X,) of
+    |u(x, t)| − c_b − α(x, t), with u = (``uy``, ``uz``) (T, X) [m], c_b the body's clearance and α the Hertz
+    approach (F_n/K)^{2/3} of the body's contact points at that row (``normal`` (T, P) [N]), linear between
+    neighbouring ones along the periodic string (a contact's own at its station); plus the bound of what lies
+    between the stations, h²/8 max|u''| (h the widest gap between stations; the linear interpolant of the vector
+    u errs by at most that, and |u| of the interpolant is at most its ends' by convexity), with |u''| ≤ (|M| + EI
+    |κ⃗|)/EI from the largest moment ``largest_moment`` [N m] (the hole's curvature κ⃗ is in the moment, not in u).
+    Returns (excess [m], the bound in it [m]); a negative excess: clear of the wall everywhere. NaN without body
+    stations of contact kind in the model (no body clearance to hold it to)."""
+    rows = row_wall_excess(model, x, uy, uz, normal)
+    bound = wall_excess_bound(model, x, largest_moment)
+    return (float(np.max(rows)) + bound if rows.size else float("nan")), bound
+
+
+def row_wall_excess(model: WhirlModel, x: np.ndarray, uy: np.ndarray, uz: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """(T,) each row's largest |u(x, t)| − c_b − α(x, t) over the stations x [m] (:func:`body_wall_excess`, without
+    the bound between the stations); NaN without body contact points."""
+    body = model.kinds == 0
+    if not np.any(body):
+        return np.full(uy.shape[0], np.nan)
+    clearance = float(np.max(model.clearance[body]))
+    at = model.points[body]
+    if model.law == 0:
+        alpha = (np.maximum(normal[:, body], 0.0) / model.stiffness[body]) ** (2.0 / 3.0)
+    else:
+        alpha = np.maximum(normal[:, body], 0.0) / model.penalty_stiffness[body]
+    # the linear interpolation between the body's contact points along the periodic string, as a matrix (X, Pb),
+    # cached on the model per stations
+    key = ("wall", np.asarray(x, float).tobytes())
+    weights = model.cache.get(key)
+    if weights is None:
+        order = np.argsort(at)
+        ext = np.concatenate((at[order][-1:] - model.span, at[order], at[order][:1] + model.span))
+        weights = np.zeros((x.size, at.size))
+        j = np.clip(np.searchsorted(ext, x, side="right") - 1, 0, ext.size - 2)
+        share = (x - ext[j]) / (ext[j + 1] - ext[j])
+        cols = np.concatenate((order[-1:], order, order[:1]))
+        np.add.at(weights, (np.arange(x.size), cols[j]), 1.0 - share)
+        np.add.at(weights, (np.arange(x.size), cols[j + 1]), share)
+        model.cache[key] = weights
+    return np.max(np.hypot(uy, uz) - clearance - alpha @ weights.T, axis=1)
+
+
+def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -> float:
+    """h²/8 max|u''| [m], h the widest gap between the stations x [m], |u''| ≤ (|M| + EI |κ⃗|)/EI with the largest
+    moment ``largest_moment`` [N m] (:func:`body_wall_excess`)."""
+    ei = model.props["bending_stiffness"]
+    h = float(np.max(np.diff(x))) if x.size > 1 else 0.0
+    return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
@@ -959,6 +1120,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
     cos_fibre, sin_fibre = np.cos(psi), np.sin(psi)
+    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once
+    excess_rows = row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
@@ -968,13 +1131,14 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         largest, it, ix, deflection, shear, jt, jx, half = stress_kernel.window_extremes(
             my, mz, uy, uz, x, cos_turn[rows], sin_turn[rows], cos_fibre, sin_fibre)
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
-        shapes = model.shapes(x[ix])[0] * ei * k**2
+        shapes = model.shapes(x[ix])[0] * ei * k**2 if model.basis is None else model.moment_shapes(x[ix])[0]
         qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
         bend = ei * model.hole_curvature  # the hole's curvature: exact, in no mode
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        outs.append(dict(max_deflection=float(deflection),
+        excess = (float(np.max(excess_rows[rows])) if stop > first else float("nan")) + wall_excess_bound(model, x, largest)
+        outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
                          max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),

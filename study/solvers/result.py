@@ -101,6 +101,8 @@ OUTPUTS = {
     "impulse": ("N s", "impulse of one impact m_e (1 + e) V_p"),
     "axial_curvature": ("m-1", "curvature of the bent pipe at the contact"),
     "max_approach": ("m", "maximum Hertz approach of pipe and wall"),
+    "max_wall_excess": ("m", "largest distance the pipe body passes its wall beyond its contacts' Hertz approach, "
+                             "anywhere along it (a bound; negative: clear; method reference)"),
     "hertz_duration": ("s", "duration of the elastic Hertz impact T_H"),
     "contact_duration": ("s", "duration of the contact (Lee's half-sine T_L; time domain: as integrated)"),
     "hertz_peak_force": ("N", "peak force of the elastic Hertz impact"),

@@ -297,3 +297,26 @@ def test_rolling_whirl_rate():
     assert well.rolling_whirl_rate(omega, 3.125 * IN, 1.25 * IN) * 60 / (2 * np.pi) == pytest.approx(-300.0)
     np.testing.assert_allclose(well.rolling_whirl_rate(np.array([0.0, omega]), 2.25 * IN, 2.125 * IN),
                                [0.0, -omega * 2.25 / 2.125], rtol=1e-14)
+
+
+def test_a_tool_joint_adds_its_steel_and_bore_beyond_the_plain_pipe_and_their_buoyed_weight():
+    # docs/reference_model.md §9: a 6 1/4 x 3 1/4-in joint of 20 in is ρ_s π/4 (D² − d²) ℓ = 57.6 kg of steel (by
+    # hand: 7850 kg/m³ x 0.014442 m² x 0.508 m); with no pipe, no mud it is all of the lumped mass and its weight m g
+    D, d, length = 6.25 * 0.0254, 3.25 * 0.0254, 0.508
+    steel = 7850.0 * 0.25 * np.pi * (D**2 - d**2) * length
+    assert steel == pytest.approx(57.59, abs=0.01)
+    mass, weight = well.tool_joint_excess(7850.0, D, d, length, 0.0, 0.0, 0.0, 0.0)
+    assert mass == pytest.approx(steel, rel=1e-12) and weight == pytest.approx(steel * 9.80665, rel=1e-12)
+    # a "joint" the size of the pipe (same diameters, the pipe's own steel mass per length) adds nothing, in any mud
+    r_o, r_i = 0.05715, 0.04859
+    m_p = 7850.0 * np.pi * (r_o**2 - r_i**2)
+    assert well.tool_joint_excess(7850.0, 2 * r_o, 2 * r_i, length, m_p, 2 * r_o, 2 * r_i, 1198.0) == \
+        pytest.approx((0.0, 0.0), abs=1e-12)
+    # Archimedes on the excess: the mud in the joint's smaller bore is gone from the mass, the annular mud its larger
+    # outside displaces from the weight; a zero length adds nothing
+    rho = 1198.0
+    mass, weight = well.tool_joint_excess(7850.0, D, d, length, m_p, 2 * r_o, 2 * r_i, rho)
+    quarter = 0.25 * np.pi * length
+    assert mass == pytest.approx(steel - m_p * length + rho * quarter * (d**2 - (2 * r_i) ** 2), rel=1e-12)
+    assert weight == pytest.approx((mass - rho * quarter * (D**2 - (2 * r_o) ** 2)) * 9.80665, rel=1e-12)
+    assert well.tool_joint_excess(7850.0, D, d, 0.0, m_p, 2 * r_o, 2 * r_i, rho) == (0.0, 0.0)

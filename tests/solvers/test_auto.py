@@ -72,11 +72,14 @@ def test_clear_of_the_wall_the_free_whirl_answers_and_agrees_with_the_reference(
     assert list(result.extras["methods_tried"]) == ["free-whirl"]
     ref = solve_point({**paper, "reference_revolutions": 120}, "reference")  # settled: periodic after 61
     assert "periodic every 1 revolution" in ref.message
-    # the string whirls as a rigid body and does not bend; its centre is neutral in a vertical hole (nothing holds
-    # it), and the reference model's drifts 0.6 mm off the axis while the mud's drag lags its start-up whirl, so the
-    # deflections differ by that offset and the stresses (axial alone) agree
-    for name in ("max_normal_stress", "max_bending_stress"):
-        assert result.values[name] == pytest.approx(ref.values[name], rel=0.01, abs=1.0), name
+    # the string whirls nearly as a rigid body; its centre is neutral in a vertical hole (nothing holds it), and the
+    # reference model's drifts 0.6 mm off the axis while the mud's drag lags its start-up whirl, so the deflections
+    # differ by that offset and the normal stresses (nearly axial alone) agree. The tool joints' mass, which the
+    # body's unbalance drives through the body, bends it a little (84 psi with 61 modes): point inertia forces, whose
+    # moment the reference model's 16 modes carry to 1/n² terms (70 psi, 17 % below; docs/reference_model.md §9)
+    assert result.values["max_normal_stress"] == pytest.approx(ref.values["max_normal_stress"], rel=0.01)
+    assert 0.0 < result.values["max_bending_stress"] < 0.05 * result.values["max_normal_stress"]
+    assert ref.values["max_bending_stress"] == pytest.approx(result.values["max_bending_stress"], rel=0.25)
     assert result.values["max_deflection"] <= ref.values["max_deflection"]
 
 

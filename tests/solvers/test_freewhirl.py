@@ -7,6 +7,7 @@ import pytest
 
 from study import config
 from study.solvers import freewhirl, solve_point
+from study.solvers.reference import mode_shapes
 
 ROOT = Path(__file__).resolve().parents[2]
 DEG = np.pi / 180
@@ -29,7 +30,9 @@ def test_without_drag_the_whirl_is_a_rigid_jeffcott_rotor(paper):
     # Omega^2 of a mass M per length on a support of natural frequency omega is (m_p/M) eps r^2/(1 - r^2), r =
     # Omega/omega; a uniform load drives the string's rigid translation alone (omega = 0, r -> infinity): a circle of
     # radius (m_p/M) eps at every section, opposite the unbalance, and no bending
-    inputs = {**paper, "drag_coefficient": 0.0}
+    # radius (m_p/M) eps at every section, opposite the unbalance, and no bending (without the tool joints' mass,
+    # which the body's unbalance would bend the string against)
+    inputs = {**paper, "drag_coefficient": 0.0, "tool_joint_length": 0.0}
     state = freewhirl.steady_state(inputs)
     props = state["props"]
     radius = props["pipe_mass"] / props["mass_per_length"] * paper["eccentricity"]
@@ -52,3 +55,23 @@ def test_a_whirl_reaching_the_wall_is_out_of_scope(paper):
     result = solve_point({**paper, "eccentricity": 4 * 0.0254}, "free-whirl")
     assert result.status == "out_of_scope" and "tool joint" in result.message
     assert "max_normal_stress" not in result.values
+
+
+def test_with_the_joints_mass_the_string_whirls_about_its_centre_of_mass(paper):
+    # Newton for the whole string, nothing holding it (no drag, clear of the wall): the turning load on the body,
+    # m_p ε Ω² L, balances the centrifugal force of the whole mass on its centre's circle, so the mass-weighted mean
+    # deflection (∫ M u dx + Σ m_j u(x_j))/(M L + Σ m_j) is a circle of radius m_p ε L/(M L + Σ m_j), opposite the
+    # unbalance; the joints lag the body, so the string bends a little (the uniform circle without them: above)
+    state = freewhirl.steady_state({**paper, "drag_coefficient": 0.0})
+    props, L = state["props"], state["L"]
+    m_j = state["joint_mass"]
+    assert m_j > 40.0
+    x, whirl = state["x"], state["whirl"][0]
+    spacing = x[1] - x[0]
+    body = np.sum(whirl[:-1]) * spacing  # the periodic trapezoid rule: exact for the modes' trigonometric sums
+    joints = mode_shapes([0.0, L / 3, 2 * L / 3], L, state["n"].size) @ state["basis"] @ state["whirl_modal"]
+    total = props["mass_per_length"] * L + 3 * m_j
+    centre = (props["mass_per_length"] * body + m_j * np.sum(joints)) / total
+    radius = props["pipe_mass"] * paper["eccentricity"] * L / total
+    assert abs(centre) == pytest.approx(radius, rel=1e-9)
+    assert np.max(np.abs(whirl)) > abs(centre) > np.min(np.abs(whirl))  # bent: not one circle

@@ -51,8 +51,10 @@ def test_the_static_moment_of_a_point_load_on_the_periodic_beam_column_is_its_se
 
 def test_a_free_rigid_section_under_a_constant_side_load_accelerates_as_w_over_m():
     # Newton: a body of mass M per length under w per length, nothing else: u = w t²/(2M). The string's rigid
-    # translation has ω = 0, where the Lawson step keeps its plain form (whirl_kernel._lawson_step)
-    inputs = _default(100, 10, hole_diameter=0.5, eccentricity=0.0, reference_damping="none", side_load=30.0)
+    # translation has ω = 0, where the Lawson step keeps its plain form (whirl_kernel._lawson_step); without the tool
+    # joints' mass, which a uniform load would bend the string against
+    inputs = _default(100, 10, hole_diameter=0.5, eccentricity=0.0, reference_damping="none", side_load=30.0,
+                      tool_joint_length=0.0)
     model = reference.build_model(inputs)
     N = model.n_modes
     for scheme in reference.SCHEMES:
@@ -61,6 +63,67 @@ def test_a_free_rigid_section_under_a_constant_side_load_accelerates_as_w_over_m
         u = run.z[0] * model.phi[0, 0]
         assert u == pytest.approx(0.5 * 30.0 / model.props["mass_per_length"] * 0.05**2, rel=1e-12), scheme
         assert np.all(run.z[1:N] == 0.0)  # a uniform load bends nothing
+
+
+def _joint_system(model, joint_mass):
+    """The periodic basis' stiffness (diagonal) and mass matrices with ``joint_mass`` at each tool joint."""
+    L, n = model.span, model.modes
+    k = reference.mode_wavenumbers(L, n)
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    joints = reference.contact_layout(L, L / 3, 0)[0]
+    shapes = reference.mode_shapes(joints, L, n)
+    return 0.5 * L * (ei * k**4 + tn * k**2), 0.5 * model.props["mass_per_length"] * L * np.eye(n.size) + \
+        joint_mass * shapes.T @ shapes
+
+
+def test_the_joints_mass_makes_modes_of_the_generalized_eigenproblem():
+    # docs/reference_model.md §1: K a = ω² M a on the periodic basis with the joints' point masses (Rayleigh-Ritz)
+    inputs = _default(100, 10)
+    model = reference.build_model(inputs)
+    m_j = model.joint_mass
+    assert m_j > 40.0  # the default 6 1/4 x 3 1/4-in joint of 20 in: 45 kg beyond the plain pipe's
+    K, M = _joint_system(model, m_j)
+    B = model.basis
+    # the modes are M- and K-orthogonal, each of the one modal mass M L/2 the kernel divides by
+    np.testing.assert_allclose(B.T @ M @ B, model.mass * np.eye(model.n_modes), atol=1e-9 * model.mass)
+    np.testing.assert_allclose(B.T @ (K[:, None] * B), model.mass * np.diag(model.omega**2),
+                               atol=1e-9 * model.mass * model.omega[-1] ** 2)
+    # the rigid translation: a constant whose mass is the string's, M L + Σ m_j (Newton)
+    assert model.omega[0] == 0.0 and np.count_nonzero(B[:, 0]) == 1
+    assert B[0, 0] ** 2 * (model.props["mass_per_length"] * model.span + 3 * m_j) == pytest.approx(
+        model.props["mass_per_length"] * model.span, rel=1e-12)
+    # sin 2π·3x/L has its nodes at the joints (x = 0, L/3, 2L/3): the masses do not move, ω is the basis' own
+    plain = reference.build_model({**inputs, "tool_joint_length": 0.0})
+    assert model.omega[6] == pytest.approx(plain.omega[6], rel=1e-12)
+    assert np.all(model.omega[1:] <= plain.omega[1:] * (1 + 1e-12))  # more mass, no stiffer: no mode rises
+    # Rayleigh's principle: the first bending mode lies at or below the quotient of its trial function cos 2πx/L,
+    # which the joints' masses see as Σ cos² = 3/2 of m_j, ω² ≤ (EI k⁴ + T k²)/(M + 3 m_j/(2·L/2)); with that function
+    # and the constant alone (3 modes) the cosine is M-orthogonal to the constant (Σ cos = 0) and it is exact
+    ceiling = np.sqrt(K[1] / M[1, 1])
+    assert model.omega[1] <= ceiling and model.omega[1] == pytest.approx(ceiling, rel=0.02)
+    three = reference.build_model({**inputs, "reference_modes": 3})
+    assert three.omega[1] == pytest.approx(ceiling, rel=1e-12)
+    # without the joints' mass the basis itself, and the frequencies of before
+    assert plain.basis is None
+    np.testing.assert_array_equal(plain.omega, np.where(np.arange(16) == 0, 0.0, np.sqrt(
+        (plain.props["bending_stiffness"] * plain.wavenumber**4 + plain.props["effective_tension"]
+         * plain.wavenumber**2) / plain.props["mass_per_length"])))
+
+
+def test_a_free_string_with_its_joints_accelerates_as_its_whole_mass():
+    # Newton: the string's centre of mass under the side load w L, nothing else, moves w L t²/(2 (M L + Σ m_j)) — the
+    # rigid translation's coordinate; the uniform load against the joints' point masses also bends it (the modes
+    # above the rigid one, which the joints' mass couples to the load)
+    inputs = _default(100, 10, hole_diameter=0.5, eccentricity=0.0, reference_damping="none", side_load=30.0)
+    model = reference.build_model(inputs)
+    N = model.n_modes
+    total = model.props["mass_per_length"] * model.span + 3 * model.joint_mass
+    for scheme in reference.SCHEMES:
+        run = reference.Integrator(model, 1e-6, np.zeros(4 * N + 4), scheme)
+        run.run(0.05)
+        u = run.z[0] * model.phi[0, 0]
+        assert u == pytest.approx(0.5 * 30.0 * model.span / total * 0.05**2, rel=1e-12), scheme
+        assert np.any(run.z[1:N] != 0.0)
 
 
 @pytest.mark.parametrize("klbf", [0, 10, 30])
@@ -78,7 +141,13 @@ def test_at_rest_every_joint_carries_its_share_on_a_continuous_beam_column(klbf)
                                       inputs["outer_diameter"] / 2, np.radians(30.0)))
     joints = model.kinds == 1
     spacing = model.span / np.count_nonzero(joints)
-    np.testing.assert_allclose(rest["normal"][joints], w * spacing, rtol=1e-9)
+    # and each joint its own weight beyond the plain pipe's (the lumped joint, well.tool_joint_excess), which
+    # lies on the support and does not bend the body
+    joint = well.tool_joint_excess(7850.0, inputs["tool_joint_diameter"], inputs["tool_joint_inner_diameter"],
+                                   inputs["tool_joint_length"], props["pipe_mass"], inputs["outer_diameter"],
+                                   inputs["inner_diameter"], inputs["mud_density"])[1] * np.sin(np.radians(30.0))
+    assert joint > 0.1 * w * spacing
+    np.testing.assert_allclose(rest["normal"][joints], w * spacing + joint, rtol=1e-9)
     assert np.all(rest["touching"] == joints)
     ei, tension = props["bending_stiffness"], props["effective_tension"]
     x = np.linspace(0.0, spacing, 41)
@@ -105,8 +174,10 @@ def test_friction_turns_the_resting_string_aside_by_its_friction_angle():
     s = whirl_physics.friction_factor(model.rotary_speed * model.radius[joints], model.slip_velocity)
     angle = np.arctan2(rest["u"][joints, 1], rest["u"][joints, 0])
     np.testing.assert_allclose(angle, -np.arctan(0.3 * s), rtol=1e-9)
-    w = model.side[0] * model.mass / (model.span / np.sqrt(2.0))
-    np.testing.assert_allclose(rest["normal"][joints], w * model.span / 3 / np.sqrt(1 + (0.3 * s) ** 2), rtol=1e-9)
+    # the side load each joint carries, the body's and its own weight (the rigid translation's generalised force
+    # over ψ_0's sum at the joints)
+    share = model.side[0] * model.mass / (3 * model.phi[joints, 0].mean())
+    np.testing.assert_allclose(rest["normal"][joints], share / np.sqrt(1 + (0.3 * s) ** 2), rtol=1e-9)
 
 
 # --- a curved hole ---------------------------------------------------------------------------------------------
@@ -174,3 +245,86 @@ def test_the_answer_does_not_depend_on_the_section_holding_three_or_six_joints(r
     assert three.status == six.status == "ok"
     for name in ("peak_contact_force", "max_normal_stress", "alternating_bending_stress"):
         assert six.values[name] == pytest.approx(three.values[name], rel=5e-4), name
+
+
+# --- contact anywhere along the pipe ---------------------------------------------------------------------------
+
+
+def test_the_body_wall_excess_bounds_every_point_between_the_stations():
+    # docs/reference_model.md §2: on stations h apart, max|u(x)| ≤ max over the stations + h²/8 max|u''| (the linear
+    # interpolant's error, de Boor, A Practical Guide to Splines, ch. II; |u| of the interpolant is at most its ends'
+    # by convexity): the excess stated on the 97 stations of the stresses is at least the true excess on a grid 64
+    # times finer, and above it by no more than the bound, for random modal fields of the periodic string
+    model = reference.build_model(_default(100, 10))
+    rng = np.random.default_rng(33)
+    coarse = np.unique(np.concatenate([np.linspace(0.0, model.span, 97), model.points]))
+    fine = np.linspace(0.0, model.span, 64 * 96 + 1)
+    c_b = float(np.max(model.clearance))
+    ei = model.props["bending_stiffness"]
+    quiet = np.zeros((1, model.points.size))  # no contact force: no approach
+    for _ in range(5):
+        q = rng.normal(size=(2, model.n_modes)) * c_b / (1.0 + np.arange(model.n_modes)) ** 2
+        q[:, 0] = c_b  # lying towards the wall
+        u = [model.shapes(coarse) @ q[j] for j in range(2)]
+        moment = np.hypot(*(model.moment_shapes(fine) @ q[j] for j in range(2)))
+        excess, bound = reference.body_wall_excess(model, coarse, u[0][None], u[1][None], quiet, np.max(moment))
+        true = float(np.max(np.hypot(*(model.shapes(fine) @ q[j] for j in range(2))))) - c_b
+        h = np.max(np.diff(coarse))
+        assert bound == pytest.approx(h * h / 8 * np.max(moment) / ei, rel=1e-12)
+        assert true <= excess <= true + bound
+    # a body contact pressed in by its Hertz approach (F/K)^(2/3) is at its wall, not past it
+    body = np.flatnonzero(model.kinds == 0)[0]
+    force = np.zeros((1, model.points.size))
+    force[0, body] = 2000.0
+    alpha = (2000.0 / model.stiffness[body]) ** (2 / 3)
+    at = np.array([model.points[body]])
+    excess, bound = reference.body_wall_excess(model, at, np.array([[c_b + alpha]]), np.zeros((1, 1)), force, 0.0)
+    assert bound == 0.0 and excess == pytest.approx(0.0, abs=1e-15)
+
+
+def test_the_gate_calls_a_body_past_its_wall_between_stations_unphysical():
+    from study.solvers import gate
+
+    values = {"max_deflection": 0.05, "clearance": 0.054, "max_wall_excess": 0.02 * 0.054}
+    status, message = gate.within_clearance(values, {"tolerance": 0.01})
+    assert status == "unphysical" and "beyond its contacts' Hertz approach" in message
+    assert gate.within_clearance({**values, "max_wall_excess": 0.005 * 0.054}, {"tolerance": 0.01}) is None
+
+
+# --- backward whirl --------------------------------------------------------------------------------------------
+
+def test_set_rolling_the_joints_roll_backwards_without_slip_with_the_body_clear():
+    # dry whip: a tool joint rolling without slip on the wall whirls at −Ω R/c (Black 1968; Jansen 1991;
+    # well.rolling_whirl_rate). The default study's pipe (9 ppg, no flow) in a 30° hole, μ = 0.8, 200 rpm, 20 000 lbf,
+    # three contact stations on the body between joints, set on the wall whirling backwards at that rate (the string's
+    # rigid translation at the joints' clearance: not its bent rolling shape, so it bounces first, for as many
+    # revolutions as the last bits of the arithmetic decide, 5-8 measured) settles on rolling: four revolutions in a
+    # row with the joints touching throughout, whirling at −R/c within 1 % (the slip of the regularised friction:
+    # −2.497 against −2.5 measured), and, rolling on, no point of the body at its wall (docs/reference_model.md §7; a
+    # drop from the hole's centre reaches it too, after about 200 revolutions, or bounces chaotically with the body
+    # past its wall between three stations, which needs denser body stations)
+    inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_body_stations": 3}
+    model = reference.build_model(inputs)
+    N = model.n_modes
+    joint = model.kinds == 1
+    c, R = model.clearance[joint][0], model.radius[joint][0]
+    rate = well.rolling_whirl_rate(1.0, R, c)
+    start = np.zeros(4 * N + 4)
+    start[0] = c / model.phi[np.flatnonzero(joint)[0], 0]
+    start[3 * N] = start[0] * rate * model.rotary_speed
+    run = reference.Integrator(model, 1e-6, start)
+    held = []
+    for _ in range(60):
+        revolution = run.run(run.t + model.period, record=True)
+        rolling = (np.all(revolution.contact_time[joint] >= (1 - 1e-9) * model.period)
+                   and reference.whirl_measure(model, revolution)["whirl_frequency_ratio"] == pytest.approx(rate, rel=0.01))
+        held = held + [revolution] if rolling else []
+        if len(held) == 4:
+            break
+    assert len(held) == 4, "no four revolutions of rolling in 60"
+    # rolling on: after 8 more revolutions (the start's ringing gone) the body is clear of its wall by a fifth of it
+    run.run(run.t + 8 * model.period)
+    window = run.run(run.t + 4 * model.period, record=True)
+    assert np.all(window.contact_time[joint] >= (1 - 1e-9) * 4 * model.period)
+    assert reference.whirl_measure(model, window)["whirl_frequency_ratio"] == pytest.approx(rate, rel=0.01)
+    assert reference.stresses(inputs, model, window)["max_wall_excess"] < -0.2 * float(np.max(model.clearance))

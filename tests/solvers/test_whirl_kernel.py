@@ -22,7 +22,7 @@ def _one_mode(inputs):
     one mode with stiffness (the rigid translation left out)."""
     import dataclasses
 
-    model = reference.build_model({**inputs, "reference_modes": 2})
+    model = reference.build_model({**inputs, "reference_modes": 2, "tool_joint_length": 0.0})  # the basis itself
     keep = [1]
     return dataclasses.replace(model, modes=model.modes[keep], omega=model.omega[keep], phi=model.phi[:, keep],
                                eccentric=model.eccentric[keep], side=model.side[keep], damping=model.damping[keep],
