@@ -379,32 +379,6 @@ def test_a_stationary_bouncing_ends_its_transient_early_within_its_stated_error(
         assert off < 2.0 * (early.extras["convergence"][name]["total"] + full.extras["convergence"][name]["total"]), name
 
 
-def test_the_quasi_static_correction_of_strikes_counts_its_own_size_in_the_error(default_study):
-    # configs/default.toml at 175 rpm, 5 000 lbf, e = 0.3, 12 ppg, no flow: the joints bounce in contacts of
-    # 15-20 ms (16 modes), long enough for the correction to apply in some windows, where it multiplied the max
-    # normal stress 7 times (158 against 21.8 MPa) and with 32 modes 3 times (docs/reference_model.md §9). Which
-    # windows it applies in is chaos; so the window of a run is taken here with the correction applied and without
-    point = Grid(dict(default_study.inputs), dict(default_study.axes)).point(162)
-    assert point["rotary_speed"] == pytest.approx(175 * np.pi / 30) and point["restitution"] == 0.3
-    run = reference.simulate(point)
-    window, model, cycles = run["window"], run["model"], run["cycles"]
-    assert np.sum(window.onsets) > 0  # it strikes the wall
-    first = np.searchsorted(window.times, [c["start"] for c in cycles])
-    segments = list(zip(first, list(first[1:]) + [window.times.size]))
-    corrected = [dict(v, correction=True, start=c["start"], peak_contact_force=c["peak_contact_force"])
-                 for v, c in zip(reference.stresses(point, model, window, correction=True, segments=segments), cycles)]
-    plain = reference.uncorrected_means(point, model, window, corrected)
-    for name in plain:
-        value = float(np.mean([c[name] for c in corrected]))
-        assert plain[name] < value, name  # the strikes' static moment adds to the bending
-        summary = {**reference.window_summary(corrected, reference.settling(corrected, [])), name: value}
-        parts = reference.convergence(point, model, window, summary, reference.settling(corrected, []), False,
-                                      uncorrected=plain)
-        assert parts[name]["modes"] >= 1.0 - plain[name] / value - 1e-12, name
-    # not where the correction was not applied, nor where nothing strikes
-    assert reference.uncorrected_means(point, model, window, [dict(c, correction=False) for c in corrected]) is None
-
-
 def test_an_unknown_integrator_scheme_is_refused_naming_the_option(base):
     model = reference.build_model({**base, "reference_modes": 2})
     with pytest.raises(ValueError, match="reference_integrator = 'rk4'; allowed: lawson, lawson-flight, dopri5"):
