@@ -64,13 +64,12 @@ PHASES = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
 def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Forces on the pipe (..., P, 2) [N] and normal forces (..., P) [N] at displacements u and velocities v
     (..., P, 2) [m, m/s] of the contact points: the reference model's law (Hertz, sliding Coulomb friction on
-    v_s = u̇·t̂ + Ω r_p regularised over v_ε) without the Hunt–Crossley term; the Hertz spring in series with the
-    residual flexibility of the modes left out (:func:`study.solvers.reference.series_contact`)."""
+    v_s = u̇·t̂ + Ω r_p regularised over v_ε) without the Hunt–Crossley term."""
     r = np.hypot(u[..., 0], u[..., 1])
     depth = np.maximum(r - model.clearance, 0.0)
     safe = np.where(r > 0, r, 1.0)
     ny, nz = u[..., 0] / safe, u[..., 1] / safe
-    fn = reference.series_contact(depth, model.stiffness, model.flexibility)[1]
+    fn = model.stiffness * depth**1.5
     vs = whirl_physics.sliding_velocity(-v[..., 0] * nz + v[..., 1] * ny, model.rotary_speed, model.radius)
     ft = -model.friction * fn * whirl_physics.friction_factor(vs, model.slip_velocity)
     return np.stack((-fn * ny - ft * nz, -fn * nz + ft * ny), axis=-1), fn
@@ -124,7 +123,6 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
         # the touching points' constants, taken out of the residual that the root finder calls many times
         count, slide, stiffness, wall, unloaded = (idx.size, model.friction * s[idx, None], model.stiffness[idx],
                                                    model.clearance[idx], free[idx])
-        series = model.flexibility[idx]  # the modes left out, in series with the Hertz spring
 
         def force_of(x):  # unknowns per touching point: F_n and the angle of n̂ from the low side
             fn, angle = x[:count], x[count:2 * count]
@@ -136,7 +134,7 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
         def residual(x):
             f, fn, n = force_of(x)
             held = x[2 * count:].reshape(r, 2)
-            depth = np.sign(fn) * np.abs(fn / stiffness) ** (2.0 / 3.0) + series * fn
+            depth = np.sign(fn) * np.abs(fn / stiffness) ** (2.0 / 3.0)
             u = unloaded + Gaa @ f + Ra @ held
             balance = (np.column_stack((held_load, np.zeros(r))) + Ra.T @ f) / scale
             return np.concatenate((((u - (wall + depth)[:, None] * n) / wall[:, None]).ravel(), balance.ravel()))

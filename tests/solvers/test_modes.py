@@ -87,43 +87,40 @@ def test_a_held_contact_sees_the_continuous_beams_static_flexibility(paper_input
         np.testing.assert_allclose(np.diag(correction), m.residual, rtol=1e-9)
 
 
-def _rest_fields(paper_inputs, n, x, **extra):
-    """The deflection (2, X) along the section of the string at rest on the wall of an 8-degree hole
-    (study.solvers.sliding.rest, the reference model's start) with n modes: the modes plus the quasi-static
-    correction of the contact forces."""
-    from study.solvers import sliding
-
-    m = reference.build_model({**paper_inputs, "inclination": np.radians(8), "reference_modes": n, **extra})
-    rested = sliding.rest(m)
-    assert rested["found"]
-    q = rested["state"]
-    return np.stack([reference.periodic_fields(m, q[None, j * n:(j + 1) * n], rested["forces"][None, :, j],
-                                               x)["deflection"][0] for j in range(2)])
-
-
-def test_a_held_contact_rests_as_the_continuous_beam_whatever_the_modes(paper_inputs):
-    # one frictionless contact (the joint at 0) holding the string up: with the residual flexibility in series with
-    # its Hertz spring the deflection along the section is the continuous beam-column's (the same with 4 and 64
-    # modes, to rounding: 2e-16 measured); with the kept modes alone the string sits f F off (8e-3 of the deflection
-    # with 4 modes, 2e-4 with 16)
-    x = np.linspace(0.0, L, 13)
-    one = dict(contact_points=[0.0], contact_kinds=[1], friction=0.0)
-    exact = _rest_fields(paper_inputs, 64, x, **one)
-    scale = np.max(np.abs(exact))
-    assert np.max(np.abs(_rest_fields(paper_inputs, 4, x, **one) - exact)) < 1e-12 * scale
-    assert np.max(np.abs(_rest_fields(paper_inputs, 4, x, reference_residual="none", **one) - exact)) > 1e-3 * scale
-
-
-def test_the_rest_on_three_joints_with_friction_converges_faster_with_the_series_flexibility(paper_inputs):
-    # three joints and friction: the series spring takes the point's own normal force only, not the other contacts'
-    # nor the friction's (the residual flexibility's cross and tangential terms), so the rest converges as they
-    # vanish (measured relative to 64 modes: 6.0e-3, 6.7e-5, 5.5e-6 at 4, 16, 32 modes; 1.0e-2, 2.0e-4 without)
-    x = np.linspace(0.0, L, 13)
-    exact = _rest_fields(paper_inputs, 64, x)
-    scale = np.max(np.abs(exact))
-    off = {n: np.max(np.abs(_rest_fields(paper_inputs, n, x) - exact)) / scale for n in (16, 32)}
-    plain = np.max(np.abs(_rest_fields(paper_inputs, 16, x, reference_residual="none") - exact)) / scale
-    assert off[16] < 2e-4 and off[32] < off[16] / 5 and off[16] < plain / 2, (off, plain)
+@pytest.mark.parametrize("n", [4, 16])
+def test_a_held_contact_is_at_rest_where_the_continuous_beam_rests(paper_inputs, n):
+    # one frictionless contact (the joint at 0) holding up the string under its side load w: the continuous beam
+    # rests on it with F = w L, the Hertz approach δ_H = (F/K)^(2/3) and the bending G(x − x_p) F
+    # (periodic_point_deflection). Its kept modes' static part, ψ_n(x_p) F/(m ω_n²), with the rigid translation placing
+    # the point at c + δ_H + f F (the Hertz approach plus the residual flexibility's), is at rest in the kernel's
+    # equations (every acceleration zero) whatever n; with the kept modes' plain Hertz law it is not
+    for residual, at_rest in (("series", True), ("none", False)):
+        m = reference.build_model({**paper_inputs, "inclination": np.radians(8), "reference_modes": n,
+                                   "contact_points": [0.0], "contact_kinds": [1], "friction": 0.0, "eccentricity": 0.0,
+                                   "reference_damping": "none", "reference_residual": residual})
+        w = m.side[0] * m.mass / m.phi[0, 0] / m.span  # the side load per length [N/m] from its modal force
+        F = w * m.span
+        f = float(reference.residual_flexibility(m)[0])
+        gain = np.zeros(n)
+        gain[1:] = 1.0 / (m.mass * m.omega[1:] ** 2)
+        z = np.zeros(4 * n + 4)
+        z[1:n] = -m.phi[0, 1:] * F * gain[1:]  # the force on the pipe pushes it off the low side (−y)
+        total = m.clearance[0] + (F / m.stiffness[0]) ** (2.0 / 3.0) + f * F
+        z[0] = (total - m.phi[0, 1:] @ z[1:n]) / m.phi[0, 0]
+        sy = whirl_kernel.kernel_system(m.system())
+        out, fc, pen = np.zeros(z.size), np.zeros((1, 3)), np.zeros((1, 2))
+        whirl_kernel.rhs(0.0, z, np.zeros(1), out, fc, pen, np.zeros((6, m.drag_weights.size)), sy)
+        accel = np.max(np.abs(out[2 * n:4 * n])) / (m.side[0])
+        assert bool(accel < 1e-9) is at_rest, (residual, accel, fc[0, 2] / F)
+        if at_rest:
+            # and the field along the section (modes plus the correction) is the continuous beam's
+            x = np.linspace(0.0, m.span, 13)
+            field = reference.periodic_fields(m, z[None, :n], fc[None, :, 0], x)["deflection"][0]
+            # the contact at c + δ_H, the string sagging towards the low side away from it by (G(0) − G(s)) F
+            ei, tn = m.props["bending_stiffness"], m.props["effective_tension"]
+            sag = (reference.periodic_point_deflection(0.0, m.span, ei, tn)
+                   - reference.periodic_point_deflection(x, m.span, ei, tn)) * F
+            np.testing.assert_allclose(field, total - f * F + sag, rtol=1e-9)
 
 
 def _default_point(rpm, klbf, restitution, ppg, flow):

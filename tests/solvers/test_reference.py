@@ -110,10 +110,12 @@ def _rolling(base, kind, **extra):
     """A section dropped from rest onto the low side of a 30-degree hole, touching at midspan only, high friction.
 
     Dropped: the impact sets it whirling. Laid on the wall at rest (the default start) it stays there, sliding
-    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger."""
+    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger. The kinematics of rolling on
+    the kept modes' contact: three modes, without the residual flexibility of the modes left out (with three modes
+    most of the beam's, docs/reference_model.md §2.1), which softens the contact into bouncing."""
     return {**base, "contact_points": [0.5], "contact_kinds": [kind], "friction": 1.0, "inclination": np.pi / 6,
             "reference_modes": 3, "reference_revolutions": 20, "reference_window": 4, "reference_initial": "rest",
-            **extra}
+            "reference_max_modes": 3, "reference_residual": "none", **extra}
 
 
 @pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)],
@@ -232,7 +234,9 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     # joints, 0.9 % here): its stated error says so, and more revolutions than the budget would bring it within 1 %
     from study.solvers import gate
 
-    point = _default_point(default_study, 100, 5, 0.3, 9, 0.0)
+    # (the kept modes' stiff contact, without the residual flexibility of docs/reference_model.md §2.1: with it the
+    # joints' contact is softer and this point settles within 0.6 % in 46 revolutions)
+    point = {**_default_point(default_study, 100, 5, 0.3, 9, 0.0), "reference_residual": "none"}
     raw = reference.solve(point)
     short = gate.admit(raw, point)  # as solve_point does
     assert short.extras["whirl"] == "sliding"
