@@ -1029,7 +1029,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
 
     With ``segments`` (row ranges [start, stop) of the recording), a list of those values per segment, times
     from each segment's first row (the fields computed once for all). ``modal_quarter_fraction``: the share of
-    the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (:func:`modal_error`).
+    the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (truncation indicators).
     """
     N = model.n_modes
     L = model.span
@@ -1044,7 +1044,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     area = model.props["steel_area"]
     k = model.wavenumber
     upper = model.modes >= N // 2
-    second = (model.modes >= N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
+    second = (model.modes >= N // 4) & ~upper  # the quarter below: how fast the modal terms fall
     turn = model.rotary_speed * window.times
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range

@@ -7,7 +7,6 @@ import pytest
 
 from study.solvers import METHODS, reference, solve_point
 from study.solvers.options import ReferenceOptions
-from study.workflow.grid import Grid
 
 
 @pytest.fixture(scope="module")
