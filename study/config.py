@@ -239,6 +239,9 @@ FIELDS: tuple[Field, ...] = (
           default=SdofOptions.default("sdof_mass"), choices=SdofOptions.choices("sdof_mass")),
     Field("solver.reference_modes", "reference_modes", "modes per lateral direction of the reference model", "",
           default=ReferenceOptions.default("reference_modes"), integer=True, lower=1.0),
+    Field("solver.reference_max_modes", "reference_max_modes", "most modes per lateral direction the reference model "
+          "doubles to where the modes left out take its figures over half of solver.tolerance", "",
+          default=ReferenceOptions.default("reference_max_modes"), integer=True, lower=1.0),
     Field("solver.reference_revolutions", "reference_revolutions", "most revolutions of the reference model's "
           "transient", "", default=ReferenceOptions.default("reference_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",

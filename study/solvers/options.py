@@ -205,7 +205,10 @@ class ReferenceOptions(MethodOptions):
     #: contact stations on the pipe body between neighbouring tool joints, evenly spaced (reference model)
     reference_body_stations: int = 1
     friction: float = 0.3  #: Coulomb coefficient of pipe on wall
-    reference_modes: int = 16  #: modes per lateral direction
+    reference_modes: int = 16  #: modes per lateral direction (the first count tried)
+    #: the most modes per direction: the count doubles from reference_modes while the modal part of an error is over
+    #: half the study's tolerance (reference.solve)
+    reference_max_modes: int = 64
     reference_revolutions: int = 40  #: most revolutions of the transient
     reference_window: int = 6  #: revolutions of the output window (and of each extension of the record)
     reference_max_revolutions: int = 100  #: revolution budget of a run that has not converged (transient included)
@@ -219,3 +222,5 @@ class ReferenceOptions(MethodOptions):
     reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]
+    #: the modes left out at a contact: their static flexibility in series with its spring ("series"), or nothing
+    reference_residual: str = option("series", ("series", "none"))

@@ -122,6 +122,9 @@ class WhirlModel:
     #: (P,) the joints' weight at the contact points that are joints, along the model's +y [N] (None: none), for the
     #: quasi-static correction (:func:`periodic_fields`), which completes it as it completes the contact forces
     point_side: np.ndarray | None = None
+    #: (P,) residual flexibility of the modes left out at each contact point [m/N], in series with its Hertz spring
+    #: (:func:`residual_flexibility`; empty: the kept modes alone)
+    residual: np.ndarray = field(default_factory=lambda: np.zeros(0))
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -173,7 +176,12 @@ class WhirlModel:
                          float(self.law), self.hysteresis])
         return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
                 self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
-                fpar)
+                fpar, self.flexibility)
+
+    @property
+    def flexibility(self) -> np.ndarray:
+        """(P,) the residual flexibility in series with each contact's Hertz spring [m/N] (zeros where none)."""
+        return self.residual if self.residual.size == self.points.size else np.zeros(self.points.size)
 
     def energy(self, z) -> float:
         """Σ ½ m (q̇² + ω² q²) over both directions plus the contacts' elastic energy [J]."""
@@ -183,7 +191,11 @@ class WhirlModel:
         w2 = np.concatenate((self.omega, self.omega)) ** 2
         y, w = self.phi @ z[:N], self.phi @ z[N:2 * N]
         d = np.maximum(np.hypot(y, w) - self.clearance, 0.0)
-        contact = 0.4 * self.stiffness * d**2.5 if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
+        if self.law == 0:  # the Hertz spring's 2/5 K δ_H^{5/2} and the series flexibility's f F²/2
+            approach, force = series_contact(d, self.stiffness, self.flexibility)
+            contact = 0.4 * self.stiffness * approach**2.5 + 0.5 * self.flexibility * force**2
+        else:
+            contact = 0.5 * self.penalty_stiffness * d**2
         return float(0.5 * self.mass * np.sum(v**2 + w2 * q**2) + np.sum(contact))
 
 
@@ -267,6 +279,64 @@ def joint_modes(span: float, modes, mass_per_length: float, bending_stiffness: f
     with np.errstate(invalid="ignore"):
         omega = np.where(omega2 >= 0.0, np.sqrt(np.maximum(omega2, 0.0)), np.nan)
     return omega, basis
+
+
+def periodic_point_deflection(s, span: float, bending_stiffness: float, tension: float):
+    """The static deflection [m per N] at a distance s [m] along the string from a unit point load on the periodic
+    beam-column of period L, EI u^(4) − T u'' = δ(x − a) − 1/L (the load's mean carried by the rigid translation),
+    without the rigid translation: the modes' static sum G(s) = (2/L) Σ_{j≥1} cos(k_j s)/(EI k_j⁴ + T k_j²),
+    k_j = 2πj/L, in closed form. With 1/(k²(k² + a²)) = (1/a²)(1/k² − 1/(k² + a²)), a² = T/EI, it is
+    (1/T)[B(s) − M(s)]: M the moment of :func:`periodic_point_moment` (Gradshteyn & Ryzhik 1.445.2), B its tensionless
+    limit (G&R 1.443.3); where |a²| L² < 1e-3 (the difference cancels) the series in a² instead,
+    (2/(L EI)) Σ_m (−a²)^m Σ_j cos(k_j s)/k_j^{4+2m}, its m = 0, 1 terms in closed form (the Bernoulli polynomials of
+    G&R 1.443.6; L³/(720 EI) and −a² L⁵/(30240 EI) at s = 0), the next left out (below 1e-6 relative there)."""
+    L = float(span)
+    sp = np.mod(np.asarray(s, float), L)
+    ei = float(bending_stiffness)
+    a2 = float(tension) / ei
+    if abs(a2) * L * L >= 1e-3:
+        tensionless = periodic_point_moment(sp, L, ei, 0.0)
+        return (tensionless - periodic_point_moment(sp, L, ei, float(tension))) / float(tension)
+    x = sp / L  # Σ_j cos(2πjx)/j^{2n} = (−1)^{n+1} (2π)^{2n} B_2n(x)/(2 (2n)!), 0 ≤ x ≤ 1
+    b4 = x**4 - 2 * x**3 + x**2 - 1.0 / 30.0
+    b6 = x**6 - 3 * x**5 + 2.5 * x**4 - 0.5 * x**2 + 1.0 / 42.0
+    s4 = -(2 * np.pi) ** 4 * b4 / (2 * 24.0)
+    s6 = (2 * np.pi) ** 6 * b6 / (2 * 720.0)
+    kL = L / (2 * np.pi)
+    return 2.0 / (L * ei) * (kL**4 * s4 - a2 * kL**6 * s6)
+
+
+def residual_flexibility(model: "WhirlModel") -> np.ndarray:
+    """(P,) the static flexibility of the modes left out at each contact point [m/N], f_p = Σ_{n ≥ N} ψ_n(x_p)²/(m ω_n²)
+    (m = M L/2): the periodic beam-column's whole, :func:`periodic_point_deflection` at s = 0, less the kept modes'
+    terms (the rigid translation has none). It vanishes as N grows (like N⁻³: terms like j⁻⁴); in series with a
+    contact's Hertz spring (:func:`study.solvers.whirl_kernel.series_hertz`) it makes a held contact's static answer
+    the continuous beam's (docs/reference_model.md §2.1)."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    whole = float(periodic_point_deflection(0.0, model.span, ei, tn))
+    gain = np.zeros(model.n_modes)
+    flexible = model.wavenumber > 0
+    gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
+    return np.maximum(whole - (model.phi**2) @ gain, 0.0)
+
+
+def series_contact(d, stiffness, flexibility) -> tuple[np.ndarray, np.ndarray]:
+    """The Hertz approach δ_H [m] and normal force F [N] of Hertz springs K [N m^-3/2] (``stiffness``) in series with
+    the flexibility f [m/N] at total approaches d [m] (0 where d ≤ 0): δ_H + f F = d, F = K δ_H^{3/2}, by the Newton
+    iteration of :func:`study.solvers.whirl_kernel.series_hertz`, vectorised."""
+    d = np.maximum(np.asarray(d, float), 0.0)
+    K = np.broadcast_to(np.asarray(stiffness, float), d.shape)
+    c = np.broadcast_to(np.asarray(flexibility, float), d.shape) * K
+    x = np.sqrt(d)
+    on = (c > 0) & (d > 0)
+    x[on] = np.minimum(x[on], np.cbrt(d[on] / c[on]))
+    for _ in range(40):
+        step = np.zeros_like(x)
+        step[on] = (c[on] * x[on] ** 3 + x[on] ** 2 - d[on]) / (3.0 * c[on] * x[on] ** 2 + 2.0 * x[on])
+        x = x - step
+        if np.all(step <= 1e-15 * x):
+            break
+    return x * x, K * x**3
 
 
 def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> tuple[np.ndarray, np.ndarray]:
@@ -411,7 +481,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     kp = 1.5 * K * np.sqrt(alpha)
     le = np.log(max(e, 1e-12))
     cp = 2.0 * (-le / np.sqrt(np.pi**2 + le**2)) * np.sqrt(kp * m_eff)
-    return WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
+    model = WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
                       clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
                       damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
                       friction=mu, slip_velocity=float(option.slip_velocity),
@@ -419,6 +489,12 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
                       joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side)
+    if option.reference_residual == "series" and np.all(np.isfinite(omega)):
+        # the modes left out respond to a contact force statically: their flexibility at the point in series with its
+        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1
+        model.residual = residual_flexibility(model)
+        model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
+    return model
 
 
 @dataclass
@@ -580,9 +656,9 @@ def merge(windows: list[Window]) -> Window:
 
 def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
     """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
-    :func:`stresses` (with the quasi-static correction where :func:`quasi_static_applies` over them all; the
-    fields computed once) and the peak contact force, exact at every step of the integrator; ``correction``
-    says whether the correction was applied, ``start`` is the cycle's start [s]."""
+    :func:`stresses` (with the quasi-static correction of the modes left out wherever a contact force acts,
+    :func:`quasi_static_applies`; the fields computed once) and the peak contact force, exact at every step of the
+    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]."""
     joined = merge(cycles)
     correction = quasi_static_applies(model, joined)
     ends = np.cumsum([c.times.size for c in cycles])
@@ -683,39 +759,72 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     return out
 
 
-def modal_error(model: WhirlModel, window: Window, tail: float, quarter: float, correction: bool) -> float:
-    """Relative error of the bending moment from the modes left out, from the shares of the largest moment that
-    the modes N/2 … N (``tail``) and N/4 … N/2 (``quarter``) carry. At a contact: the tail itself, what the modes
-    above N carry where the modal moments fall like a point load's, 1/n² (an impact's fall no faster). With the
-    quasi-static correction (held contacts) the static part of the modes left out is exact and what is left is
-    their dynamic amplification, 1/(1 − ρ²) − 1 ≈ ρ², ρ = (2π / the shortest mean contact) / ω_{N+1}. Clear of
-    the wall the loads are distributed and the terms fall faster: for terms like n^−p the ratio r = tail/quarter
-    is 2^(1−p) and the modes above N carry tail·r/(1 − r), taken as at most the tail (r ≥ 1/2, or N < 8)."""
-    left = float(tail)
-    clear = not (np.any(window.contact_time > 0) or np.any(window.onsets > 0))
-    if clear and model.n_modes >= 8 and quarter > 0:
-        r = tail / quarter
-        left = tail * min(1.0, r / (1.0 - r)) if r < 1.0 else left
-    if not correction:
-        return left
+#: The figures whose modal part :func:`modal_check` measures: the design figures, the bending stress and the deflection.
+MODAL_FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_bending_stress",
+                 "max_deflection")
+
+
+def quasi_static_ratio(model: WhirlModel, window: Window) -> float:
+    """(2π/(ω_{N+1} T_c))², at most 1: how far the first mode left out is from responding statically to the window's
+    contacts, T_c the shortest mean contact (contact time over onsets per touching point; the window's length for a
+    contact held throughout). A mode of frequency ω under a force that changes over a time T responds statically but
+    for a remainder of relative size (2π/(ω T))² (its static response's second derivative over ω²); a held contact's
+    is nil, an impact's (shorter than that mode's period) the whole. 0 without contact."""
     touching = window.contact_time > 0
+    if not np.any(touching):
+        return 0.0
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
     ratio = 2.0 * np.pi / (model.first_left_out() * float(np.min(durations)))
-    return float(left * min(1.0, ratio**2))
+    return float(min(1.0, ratio**2))
 
 
-def uncorrected_means(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
-                      cycles: list[Mapping[str, Any]]) -> dict[str, float] | None:
-    """Where the quasi-static correction was applied to a pipe that strikes the wall (contact onsets in the
-    window), the stress figures (means over the cycles, as :func:`window_summary`) without it; else None. The
-    correction's size is not converged in the modes at such points (docs/reference_model.md §9), and the
-    difference is counted in the figures' modal error (:func:`convergence`)."""
-    if not cycles or not all(c["correction"] for c in cycles) or not np.any(window.onsets > 0):
-        return None
+def modal_check(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
+                cycles: list[Mapping[str, Any]]) -> dict[str, float]:
+    """The modal part of each figure's error (relative), measured on the run (docs/reference_model.md §3.1): the size
+    of what the modes left out were given — the quasi-static correction of the fields and the residual flexibility in
+    series with the contacts (:func:`residual_flexibility`) — times :func:`quasi_static_ratio`, how far they are from
+    responding statically (1 at impacts: the whole correction; nil for held contacts, where it is exact). Stresses
+    and deflection: the cycles' figures recomputed from the same motion and forces without the correction, the mean
+    over the cycles of each cycle's difference over the figure's mean (the largest deflection: its difference).
+    Peak contact force: at each cycle's largest recorded force, the Hertz force K d^{3/2} at the contact's total
+    approach d against the series force there (:func:`series_contact`), the mean of their relative differences: how
+    much the flexibility of the modes left out softened the contact. Both vanish as the modes grow (the residual
+    flexibility like N⁻³). Zeros without contact."""
+    out = dict.fromkeys(MODAL_FIGURES, 0.0)
+    ratio = quasi_static_ratio(model, window)
+    if not cycles or window.times.size == 0 or ratio == 0.0:
+        return out
     first = np.searchsorted(window.times, [c["start"] for c in cycles])
     segments = list(zip(first, list(first[1:]) + [window.times.size]))
     plain = stresses(inputs, model, window, correction=False, segments=segments)
-    return {name: float(np.mean([v[name] for v in plain])) for name in ("max_normal_stress", "alternating_bending_stress")}
+    for name in ("max_normal_stress", "alternating_bending_stress", "max_bending_stress"):
+        mean = float(np.mean([c[name] for c in cycles]))
+        if name == "alternating_bending_stress":  # relative to the bending it alternates within (convergence)
+            mean = max(mean, float(np.mean([c["max_bending_stress"] for c in cycles])))
+        if mean > 0:
+            out[name] = ratio * float(np.mean([abs(a[name] - c[name]) for a, c in zip(plain, cycles)]) / mean)
+    largest = max(c["max_deflection"] for c in cycles)
+    if largest > 0:
+        out["max_deflection"] = ratio * abs(max(a["max_deflection"] for a in plain) - largest) / largest
+    # the peak force: the Hertz force at each cycle's largest recorded force's total approach against the series one
+    N = model.n_modes
+    flexibility = model.flexibility if np.any(model.flexibility > 0) else residual_flexibility(model)
+    fn = window.forces[:, :, 2]
+    changes = []
+    for a, b in segments:
+        if b <= a or not np.any(fn[a:b] > 0):
+            continue
+        row, p = np.unravel_index(int(np.argmax(fn[a:b])), fn[a:b].shape)
+        q = window.states[a + row]
+        d = float(np.hypot(model.phi[p] @ q[:N], model.phi[p] @ q[N:2 * N]) - model.clearance[p])
+        if d <= 0:
+            continue
+        series = float(series_contact(np.array([d]), model.stiffness[p], flexibility[p])[1][0])
+        hertz = float(model.stiffness[p] * d**1.5)
+        if model.law == 0 and series > 0:
+            changes.append(hertz / series - 1.0)
+    out["peak_contact_force"] = ratio * float(np.mean(changes)) if changes else 0.0
+    return out
 
 
 #: A bending stress below this share of the max normal stress is nothing (the rounding of a string whirling as a
@@ -725,27 +834,19 @@ NEGLIGIBLE_BENDING = 1e-9
 
 def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
                 stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None,
-                uncorrected: Mapping[str, float] | None = None) -> dict:
+                modal: Mapping[str, float] | None = None) -> dict:
     """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
     larger of the standard error and the drift from the preceding stretch; the periodicity tolerance when the
     motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
     which is whole but with ``reference_damping = "viscous"``),
-    ``modes`` (:func:`modal_error`, on the bending part; not stated for the contact force; at least the relative
-    change of a stress figure without the quasi-static correction where ``uncorrected``,
-    :func:`uncorrected_means`, gives it); ``total`` their sum. The alternating stress's error is relative to the
-    larger of it and the max bending stress."""
+    ``modes`` (measured on the run, :func:`modal_check`, given as ``modal``; 0 where not given); ``total`` their
+    sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
     option = ReferenceOptions.from_inputs(inputs)
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
     integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
-    tail = modal_error(model, window, values["modal_tail_fraction"], values["modal_quarter_fraction"],
-                       values["correction"])
     normal = values["max_normal_stress"]
-    bending_share = (normal - abs(inputs["axial_tension"]) / model.props["steel_area"]) / normal if normal > 0 else 0.0
-    modes = {"peak_contact_force": 0.0, "max_normal_stress": tail * bending_share, "alternating_bending_stress": tail}
-    for name, plain in (uncorrected or {}).items():
-        if values[name] > 0:
-            modes[name] = max(modes[name], abs(1.0 - plain / values[name]))
+    modes = {name: float((modal or {}).get(name, 0.0)) for name in FIGURES}
     # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
     # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing; and a
     # bending stress below NEGLIGIBLE_BENDING of the normal stress (the rounding of a string whirling as a rigid body,
@@ -782,7 +883,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
     the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
-    (the transient ended as the bouncing was found stationary), uncorrected (:func:`uncorrected_means` of the
+    (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
     window).
     """
     option = ReferenceOptions.from_inputs(inputs)
@@ -839,7 +940,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
         window_cycles, preceding, window = list(zip(blocks, cycle_values(inputs, model, blocks))), [], merge(blocks)
-        uncorrected = uncorrected_means(inputs, model, window, [v for _, v in window_cycles])
+        modal = modal_check(inputs, model, window, [v for _, v in window_cycles])
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
@@ -867,9 +968,9 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             stats = settling([v for _, v in window_cycles], preceding, ratio)
             window = merge([c for c, _ in window_cycles])
             cycles = [v for _, v in window_cycles]
-            uncorrected = uncorrected_means(inputs, model, window, cycles)
+            modal = modal_check(inputs, model, window, cycles)
             errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
-                                 uncorrected=uncorrected)
+                                 modal=modal)
             used = len(states) - 1
             more = 0.0  # the revolutions more that the figures over the tolerance need, as far as can be foreseen
             for name, e in errors.items():
@@ -894,7 +995,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
                 budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
-                stationary=bouncing, uncorrected=uncorrected)
+                stationary=bouncing, modal=modal)
 
 
 # --- outputs -----------------------------------------------------------------------------------------
@@ -931,19 +1032,12 @@ def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
 
 
 def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
-    """Whether the modes left out respond statically to the contacts: the first of them, ω_{N+1}, has a
-    period no longer than the shortest mean contact (contact time over onsets per touching point; the whole
-    window for a contact that never opens). False without contact."""
-    touching = (window.contact_time > 0)
-    if not np.any(touching):
-        return False
-    durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
-    return bool(model.first_left_out() * np.min(durations) >= 2.0 * np.pi)
+    """Whether the quasi-static correction of the modes left out (:func:`static_correction`) enters the window's
+    stresses: wherever a contact force acts in it. It is applied to every contact force at every instant, in step
+    with the residual flexibility the contact's spring has in series (:func:`residual_flexibility`), and is not
+    switched on or off by the contacts' durations (docs/reference_model.md §2.1, §3). False without contact."""
+    return bool(np.any(window.contact_time > 0) or np.any(window.onsets > 0))
 
-
-#: Highest harmonic of the static tail sum of the deflection correction (its terms fall like j⁻⁴: those left out
-#: are below 3e-4 of the correction above the default 16 modes).
-STATIC_TAIL_HARMONICS = 256
 
 
 def periodic_point_moment(s, span: float, bending_stiffness: float, tension: float):
@@ -972,7 +1066,7 @@ def periodic_point_moment(s, span: float, bending_stiffness: float, tension: flo
 def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
     """Per unit force at each contact point, the static deflection and moment of the modes left out on the stations
     x [m], [y_s, m_s] (P, 2X): the full static field of a point load on the periodic beam-column
-    (:func:`periodic_point_moment`; the deflection's modes summed to :data:`STATIC_TAIL_HARMONICS`) minus the
+    (:func:`periodic_point_moment`, :func:`periodic_point_deflection`, both in closed form) minus the
     kept modes' static terms ψ_n(x_p) ψ_n(x)/(m ω_n²) (the rigid translation has no static term: the load's mean
     is carried by the other contacts). Cached on the model per stations."""
     key = np.asarray(x, float).tobytes()
@@ -994,12 +1088,9 @@ def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
         gain[flexible] = 1.0 / (0.5 * L * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
     kept_moment = (kept_at * gain * ei * k**2) @ shapes.T
     moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
-    # the deflection: the harmonics above the kept ones (and the sine of a harmonic whose cosine alone is kept)
-    full = mode_shapes(x, L, 2 * STATIC_TAIL_HARMONICS + 1)
-    every = mode_wavenumbers(L, 2 * STATIC_TAIL_HARMONICS + 1)
-    tail = (every > 0) & ~np.isin(np.arange(every.size), model.modes)
-    g = (2.0 / L) / (ei * every[tail] ** 4 + tn * every[tail] ** 2)
-    deflection = (mode_shapes(at, L, every.size)[:, tail] * g) @ full[:, tail].T
+    # the deflection likewise: the whole static field in closed form (:func:`periodic_point_deflection`) less the kept
+    # modes' terms (the harmonics above the kept ones, and the sine of a harmonic whose cosine alone is kept)
+    deflection = periodic_point_deflection(x[None, :] - at[:, None], L, ei, tn) - (model.phi * gain) @ shapes.T
     out = np.hstack([deflection, moment])
     out.flags.writeable = False
     model.cache[key] = out
@@ -1090,17 +1181,16 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     docs/reference_model.md §3).
 
     Moments M_y, M_z (−EI (κ_y + y''), −EI (κ_z + z'')) from :func:`periodic_fields` in each direction
-    (the modes, plus with ``correction`` the quasi-static correction for the contact forces — right
-    only when the modes left out are fast beside the contacts, :func:`quasi_static_applies`: for an
-    impact shorter than their periods they respond to its impulse, not statically, and the
-    correction would put the static moment of the peak force into the pipe); bending stress |M| r_o/I; the
+    (the modes, plus with ``correction`` the quasi-static correction for the contact forces: the static response
+    of the modes left out, whose flexibility the contacts have in series, :func:`residual_flexibility`; what the
+    modes above N do beyond it is in :func:`modal_check`); bending stress |M| r_o/I; the
     alternating stress is half the range, over the window, of the stress of one fibre of the turning
     pipe, (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I, at the worst fibre ψ and section; shear force
     dM/dx (the −EI y''' part, by differences of the corrected moment), shear stress 2|V|/A_s.
 
     With ``segments`` (row ranges [start, stop) of the recording), a list of those values per segment, times
     from each segment's first row (the fields computed once for all). ``modal_quarter_fraction``: the share of
-    the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (:func:`modal_error`).
+    the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (truncation indicators).
     """
     N = model.n_modes
     L = model.span
@@ -1115,7 +1205,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     area = model.props["steel_area"]
     k = model.wavenumber
     upper = model.modes >= N // 2
-    second = (model.modes >= N // 4) & ~upper  # the quarter below: how fast the modal terms fall (modal_error)
+    second = (model.modes >= N // 4) & ~upper  # the quarter below: how fast the modal terms fall
     turn = model.rotary_speed * window.times
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
@@ -1176,7 +1266,42 @@ def energy_balance(model: WhirlModel, window: Window) -> dict[str, float]:
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The ``reference`` method (module docstring). Values (SI) are listed in ``docs/reference_model.md``."""
+    """The ``reference`` method (module docstring). Values (SI) are listed in ``docs/reference_model.md``.
+
+    The mode count is chosen per point: from ``reference_modes`` it doubles (or grows by the power of two that the
+    residual flexibility's N⁻³ foresees) while the modal part of a design figure's error (:func:`modal_check`) is over
+    half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
+    figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
+    start = time.perf_counter()
+    option = ReferenceOptions.from_inputs(inputs)
+    tolerance = study_tolerance(inputs)
+    count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
+    tried = []
+    while True:
+        result = solve_with_modes({**inputs, "reference_modes": count})
+        parts = result.extras.get("convergence") or {}
+        modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
+        tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
+                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES}))
+        if result.status != "ok" or modal <= 0.5 * tolerance or 2 * count > top:
+            break
+        # the next count: doubled, or more where the modal part is far over (the residual flexibility falls like N⁻³,
+        # so a part m asks about (m / (tolerance/2))^(1/3) times the modes): a choice of the count only, the part
+        # stated is the one measured with it
+        factor = 2 ** max(1, int(np.ceil(np.log2(max(modal / (0.5 * tolerance), 1.0)) / 3.0)))
+        while count * factor > top:
+            factor //= 2
+        count *= factor
+    result.extras["modes_tried"] = tried
+    if len(tried) > 1:
+        result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
+                           + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
+    """One run of the ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count)."""
     start = time.perf_counter()
     result = PointResult(method=METHOD)
     model = build_model(inputs)
@@ -1224,9 +1349,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
-    uncorrected = run["uncorrected"]
-    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"],
-                         uncorrected=uncorrected)
+    modal = run["modal"]
+    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
     correction = summary.pop("correction")
     quarter = summary.pop("modal_quarter_fraction")
     vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
@@ -1234,6 +1358,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
                          energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
+                         modal_error={name: float(v) for name, v in (modal or {}).items()},
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
                                       for name, e in errors.items()})
     option = ReferenceOptions.from_inputs(inputs)
@@ -1247,7 +1372,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                    f"budget of {option.reference_max_revolutions} (solver.reference_max_revolutions)")
     figures = ", ".join(f"{FIGURES[name][1]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
                         f"integrator {e['integrator']:.1e}, "
-                        f"{'modes not stated' if name == 'peak_contact_force' else format(e['modes'], '.2%') + ' modes'})"
+                        f"modes {e['modes']:.2%})"
                         for name, e in errors.items())
     messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
                 (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
@@ -1258,13 +1383,9 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 f" (largest seen: window_largest_*){stopped}",
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
                 f"{float(option.reference_rtol):g}"
-                f"{' (with the quasi-static correction for the modes left out)' if correction else ''}",
+                f"{' and the residual flexibility and quasi-static correction of the modes left out' if correction else ''}"
+                f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})",
                 f"error of each figure (its largest part): {figures}"]
-    if uncorrected:
-        messages.append("the quasi-static correction applied to a pipe that strikes the wall, its size not converged "
-                        f"in the modes: without it the max normal stress would be {uncorrected['max_normal_stress']:.4g}"
-                        f" Pa, the alternating stress {uncorrected['alternating_bending_stress']:.4g} Pa (counted in "
-                        "the modes part)")
     # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"

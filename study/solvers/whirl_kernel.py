@@ -38,8 +38,10 @@ Right-hand side (per modal mass m = M L/2, φ_pn = ψ_n(x_p), the periodic basis
 
 with the contact force on the pipe at point p, penetration δ = |u_p| − c_p, outward normal n̂,
 t̂ = e_x × n̂:  F_p = −F_n n̂ − μ F_n v_s/√(v_s² + v_ε²) t̂, v_s = u̇_p·t̂ + Ω r_p, and
-F_n = K_p δ^{3/2}(1 + χ_p δ̇)₊ (law 0, Hertz with Hunt–Crossley damping) or (k_p δ + c_p δ̇)₊ (law 1,
-linear penalty spring-dashpot).
+F_n = F_s(δ)(1 + χ_p δ̇)₊ (law 0, Hertz with Hunt–Crossley damping) or (k_p δ + c_p δ̇)₊ (law 1,
+linear penalty spring-dashpot). F_s is the Hertz spring K_p δ_H^{3/2} in series with the residual flexibility f_p
+of the modes left out at the point (:func:`series_hertz`; f_p = 0: Hertz alone; docs/reference_model.md §2.1);
+the penalty's k_p has it folded in by the model.
 """
 
 from __future__ import annotations
@@ -112,6 +114,25 @@ def point_state(z, phi, p, N):
     return y, w, yd, wd
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def series_hertz(d, K, f):
+    """The normal force [N] of the Hertz spring K δ_H^{3/2} [N m^-3/2] in series with the flexibility f [m/N] (the
+    modes left out, docs/reference_model.md §2.1) at the total approach d > 0 [m]: δ_H + f F = d, F = K δ_H^{3/2}.
+    With x = √δ_H, g(x) = f K x³ + x² − d = 0 by Newton's method from the smaller of √d and (d/(f K))^{1/3}: each
+    term of g alone reaches d there, so the start lies above the root, and g is increasing and convex for x > 0, so
+    the iterates fall monotonically onto it (quadratically near it). f = 0: K d^{3/2} exactly."""
+    if f <= 0.0:
+        return K * d * np.sqrt(d)
+    c = f * K
+    x = min(np.sqrt(d), (d / c) ** (1.0 / 3.0))
+    for _ in range(40):
+        step = (c * x * x * x + x * x - d) / (3.0 * c * x * x + 2.0 * x)
+        x -= step
+        if step <= 1e-15 * x:
+            break
+    return K * x * x * x
+
+
 @numba.njit(cache=True, nogil=True)
 def drag_halves(S):
     """The drag shapes S (G, N) at symmetric points (Gauss–Legendre nodes: x_{G−1−g} = L − x_g) as :func:`rhs` sums
@@ -136,14 +157,15 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (6, G) holds the drag points' velocities and
     their half sums.
 
-    sy = (omega2, damping, eccentric, side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,)):
+    sy = (omega2, damping, eccentric, side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
+    fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring):
     the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
     there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
     mode's drag the sum over the pairs of its shape times the pair's forces added (symmetric) or subtracted —
     half the multiplications of the sums over all G points (:func:`drag_halves`).
     """
-    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy
     N = omega2.size
     G = wts.size
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
@@ -253,7 +275,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
             dd = yd * ny + wd * nz  # δ̇
             vt = -yd * nz + wd * ny  # u̇·t̂, t̂ = (−n_z, n_y)
             if law == 0:
-                elastic = K[p] * d * np.sqrt(d)
+                elastic = series_hertz(d, K[p], fr[p])
                 fn = max(elastic * (1.0 + chi[p] * dd), 0.0)
             else:
                 elastic = kp[p] * d
@@ -614,10 +636,12 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
 
 def kernel_system(sy: tuple) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
-    S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`)."""
-    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar = sy
+    S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`) before
+    the residual flexibility per point."""
+    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy
     SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
-    return omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity
+    return (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity,
+            np.ascontiguousarray(fr, dtype=float))
 
 
 def workspace(n_modes: int, n_points: int, n_drag: int) -> tuple:
@@ -651,7 +675,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     remains. ``sy`` as for :func:`rhs` (:func:`kernel_system`), ``work`` its room (:func:`workspace`): advance
     allocates nothing and calls no compiled function (everything it calls is inlined: :data:`FASTMATH`).
     """
-    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])

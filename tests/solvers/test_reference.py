@@ -7,7 +7,6 @@ import pytest
 
 from study.solvers import METHODS, reference, solve_point
 from study.solvers.options import ReferenceOptions
-from study.workflow.grid import Grid
 
 
 @pytest.fixture(scope="module")
@@ -112,10 +111,12 @@ def _rolling(base, kind, **extra):
     """A section dropped from rest onto the low side of a 30-degree hole, touching at midspan only, high friction.
 
     Dropped: the impact sets it whirling. Laid on the wall at rest (the default start) it stays there, sliding
-    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger."""
+    (test_laid_on_the_wall_it_slides): both motions exist, as dry whip needs a trigger. The kinematics of rolling on
+    the kept modes' contact: three modes, without the residual flexibility of the modes left out (with three modes
+    most of the beam's, docs/reference_model.md §2.1), which softens the contact into bouncing."""
     return {**base, "contact_points": [0.5], "contact_kinds": [kind], "friction": 1.0, "inclination": np.pi / 6,
             "reference_modes": 3, "reference_revolutions": 20, "reference_window": 4, "reference_initial": "rest",
-            **extra}
+            "reference_max_modes": 3, "reference_residual": "none", **extra}
 
 
 @pytest.mark.parametrize("kind, expected", [(0, -2.25 / 2.125), (1, -3.125 / 1.25)],
@@ -234,7 +235,9 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     # joints, 0.9 % here): its stated error says so, and more revolutions than the budget would bring it within 1 %
     from study.solvers import gate
 
-    point = _default_point(default_study, 100, 5, 0.3, 9, 0.0)
+    # (the kept modes' stiff contact, without the residual flexibility of docs/reference_model.md §2.1: with it the
+    # joints' contact is softer and this point settles within 0.6 % in 46 revolutions)
+    point = {**_default_point(default_study, 100, 5, 0.3, 9, 0.0), "reference_residual": "none"}
     raw = reference.solve(point)
     short = gate.admit(raw, point)  # as solve_point does
     assert short.extras["whirl"] == "sliding"
@@ -381,32 +384,6 @@ def test_a_stationary_bouncing_ends_its_transient_early_within_its_stated_error(
     for name in reference.FIGURES:
         off = abs(early.values[name] / full.values[name] - 1.0)
         assert off < 2.0 * (early.extras["convergence"][name]["total"] + full.extras["convergence"][name]["total"]), name
-
-
-def test_the_quasi_static_correction_of_strikes_counts_its_own_size_in_the_error(default_study):
-    # configs/default.toml at 175 rpm, 5 000 lbf, e = 0.3, 12 ppg, no flow: the joints bounce in contacts of
-    # 15-20 ms (16 modes), long enough for the correction to apply in some windows, where it multiplied the max
-    # normal stress 7 times (158 against 21.8 MPa) and with 32 modes 3 times (docs/reference_model.md §9). Which
-    # windows it applies in is chaos; so the window of a run is taken here with the correction applied and without
-    point = Grid(dict(default_study.inputs), dict(default_study.axes)).point(162)
-    assert point["rotary_speed"] == pytest.approx(175 * np.pi / 30) and point["restitution"] == 0.3
-    run = reference.simulate(point)
-    window, model, cycles = run["window"], run["model"], run["cycles"]
-    assert np.sum(window.onsets) > 0  # it strikes the wall
-    first = np.searchsorted(window.times, [c["start"] for c in cycles])
-    segments = list(zip(first, list(first[1:]) + [window.times.size]))
-    corrected = [dict(v, correction=True, start=c["start"], peak_contact_force=c["peak_contact_force"])
-                 for v, c in zip(reference.stresses(point, model, window, correction=True, segments=segments), cycles)]
-    plain = reference.uncorrected_means(point, model, window, corrected)
-    for name in plain:
-        value = float(np.mean([c[name] for c in corrected]))
-        assert plain[name] < value, name  # the strikes' static moment adds to the bending
-        summary = {**reference.window_summary(corrected, reference.settling(corrected, [])), name: value}
-        parts = reference.convergence(point, model, window, summary, reference.settling(corrected, []), False,
-                                      uncorrected=plain)
-        assert parts[name]["modes"] >= 1.0 - plain[name] / value - 1e-12, name
-    # not where the correction was not applied, nor where nothing strikes
-    assert reference.uncorrected_means(point, model, window, [dict(c, correction=False) for c in corrected]) is None
 
 
 def test_an_unknown_integrator_scheme_is_refused_naming_the_option(base):
