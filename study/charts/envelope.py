@@ -3,8 +3,10 @@
 A cell is safe when every point in it (over every other swept input) is
 
 - solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to be safe) — or ``not_converged`` to the
-  study's tolerance but decided all the same: every limit below holds, or one fails, with its stresses off by
-  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer; stresses that
+  study's tolerance but decided all the same: every limit below holds, or one fails, with its figure off by
+  :data:`MARGIN` times its error — the figure's own where the point states it (the max normal stress's for yield,
+  the fatigue life's, the alternating stress's for endurance: :func:`study.charts.plane.figure_errors`), else the
+  point's error estimate as a stress error (a design decision far from a limit needs no 1 % answer; stresses that
   might be off by 100 % or more can show a limit holds, never that it fails);
 - below yield: ``yield_utilisation`` ≤ 1;
 - long-lived: ``fatigue_life`` ≥ the target (default :data:`~study.charts.limits.DEFAULT_TARGET_LIFE_HOURS`
