@@ -31,7 +31,8 @@ from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.physics.well import DOGLEG_DIRECTIONS, MAX_DOGLEG_SEVERITY
-from study.solvers.options import (DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
+from study.solvers.options import (DEFAULT_STATISTICAL_TOLERANCE, DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES,
+                                   METHOD_DESCRIPTIONS, CrosscheckOptions,
                                    DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
                                    TimeDomainOptions)
 from study.units import UnitProblem, parse_angle_per_length, parse_quantity
@@ -200,6 +201,11 @@ FIELDS: tuple[Field, ...] = (
     Field("solver.tolerance", "tolerance", "relative accuracy asked of every method's answer (its error "
           "estimate; the max normal stress for the periodic methods): a result above it is not_converged", "",
           default=DEFAULT_TOLERANCE, lower=0.0, lower_open=True),
+    Field("solver.statistical_tolerance", "statistical_tolerance", "relative accuracy asked of a figure that is a "
+          "mean over the revolutions of a motion that does not repeat (the reference model's bouncing pipe; the "
+          "fatigue damage rate is held to (1 + it)^5 - 1): a result above it is not_converged", "",
+          default=DEFAULT_STATISTICAL_TOLERANCE, lower=0.0, upper=1.0, lower_open=True, upper_open=True,
+          why="it is a relative error of a mean: 0.05 asks for 5 %"),
     Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "",
           default=SeriesOptions.default("harmonics"),
           integer=True, lower=1.0),
@@ -247,7 +253,8 @@ FIELDS: tuple[Field, ...] = (
     Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",
           default=ReferenceOptions.default("reference_window"), integer=True, lower=1.0),
     Field("solver.reference_max_revolutions", "reference_max_revolutions", "revolution budget of the reference "
-          "model's run while its figures have not converged to solver.tolerance (transient included)", "",
+          "model's run while its figures have not converged to their tolerance (solver.statistical_tolerance where the "
+          "motion does not repeat; transient included)", "",
           default=ReferenceOptions.default("reference_max_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
           default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),

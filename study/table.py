@@ -37,7 +37,8 @@ ERROR_OF = {
     "reference": "the worst of peak contact force, max normal stress and alternating bending stress",
 }
 FIGURE_NAMES = {"peak_contact_force": "peak contact force", "max_normal_stress": "max normal stress",
-                "alternating_bending_stress": "alternating bending stress"}
+                "alternating_bending_stress": "alternating bending stress",
+                "damage_rate": "fatigue damage rate (as the stress error that makes it)"}
 
 #: Outputs a method returns beside :data:`OUTPUTS` (``extras``, and scalars some methods add to their values):
 #: name -> (SI unit, or None for a text, flag or record; what it is).
@@ -179,11 +180,12 @@ def _record(name: str, value: Mapping) -> str:
 
 
 def error_of(result) -> str:
-    """Which figure the result's error estimate is the relative error of."""
+    """Which figure the result's error estimate is the relative error of (by each figure's error as a stress error,
+    ``equivalent``, where the record states it)."""
     record = result.extras.get("convergence")
     if isinstance(record, Mapping):
-        totals = {figure: entry["total"] for figure, entry in record.items()
-                  if isinstance(entry, Mapping) and _is_number(entry.get("total"))}
+        totals = {figure: entry.get("equivalent", entry.get("total")) for figure, entry in record.items()
+                  if isinstance(entry, Mapping) and _is_number(entry.get("equivalent", entry.get("total")))}
         if totals:
             worst = max(totals, key=totals.get)
             return f"the worst figure, the {FIGURE_NAMES.get(worst, worst)} (each figure's: convergence)"

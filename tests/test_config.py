@@ -129,6 +129,10 @@ BAD = [
                                                   "pipe.tool_joint_diameter"),  # the joint's bore >= its OD
     ('[pipe] tool_joint_length = "40 ft"', "pipe.tool_joint_length = 12.192 m: must be < pipe.joint_length"),
     ("[sweep] chunk_size = 0", "sweep.chunk_size = 0"),
+    # issue 36: the tolerance of statistical figures is a relative error in (0, 1)
+    ("[solver] statistical_tolerance = 0", "solver.statistical_tolerance = 0: must be a finite number > 0 and < 1 "
+                                           "(it is a relative error of a mean: 0.05 asks for 5 %)"),
+    ("[solver] statistical_tolerance = 5", "solver.statistical_tolerance = 5: must be a finite number > 0 and < 1"),
     ("[sweep] chunksize = 10", "did you mean 'chunk_size'"),
 ]
 

@@ -3,8 +3,10 @@
 A cell is safe when every point in it (over every other swept input) is
 
 - solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to be safe) — or ``not_converged`` to the
-  study's tolerance but decided all the same: every limit below holds, or one fails, with its stresses off by
-  :data:`MARGIN` times its error estimate (a design decision far from a limit needs no 1 % answer; stresses that
+  study's tolerance but decided all the same: every limit below holds, or one fails, with its figure off by
+  :data:`MARGIN` times its error — the figure's own where the point states it (the max normal stress's for yield,
+  the fatigue life's, the alternating stress's for endurance: :func:`study.charts.plane.figure_errors`), else the
+  point's error estimate as a stress error (a design decision far from a limit needs no 1 % answer; stresses that
   might be off by 100 % or more can show a limit holds, never that it fails);
 - below yield: ``yield_utilisation`` ≤ 1;
 - long-lived: ``fatigue_life`` ≥ the target (default :data:`~study.charts.limits.DEFAULT_TARGET_LIFE_HOURS`
@@ -36,8 +38,8 @@ from study.charts.critical import in_band
 from study.charts.design import DPI, Chart, _full, _title
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
-from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, caption_from, draw_boundary, ok_points, plane,
-                                plane_axes, solved_points, worst_in_cells)
+from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, bounds, caption_from, draw_boundary,  # noqa: F401
+                                figure_errors, ok_points, plane, plane_axes, solved_points, worst_in_cells)
 from study.solvers.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
@@ -63,21 +65,20 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
     if not target_hours > 0:
         raise ValueError(f"target_hours = {target_hours!r}; allowed: a positive number of hours")
     ok = solved_points(ds)  # ok, or yields: solved, and a yielding point fails the yield limit below
-    off = _stress_margin(ds)  # NaN where a point is ok or has no estimate
-    rough = np.isfinite(off)
-    can_fail = rough & (off < 1.0)  # stresses off by 100 % or more might be nil: such a point cannot fail a limit
+    rough = _rough(ds)  # not converged, its error stated
     with np.errstate(invalid="ignore", divide="ignore"):
-        use = _limit(ds, "yield_utilisation")
-        yield_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
-        yield_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
+        use, low, high = _bounded(ds, "yield_utilisation")
+        yield_fails = (ok & ~(use <= 1.0)) | (rough & (low > 1.0))
+        yield_holds = (ok & (use <= 1.0)) | (rough & (high <= 1.0))
         if criterion == "life":
-            life, target = _limit(ds, "fatigue_life"), target_hours * HOUR
-            fatigue_fails = (ok & ~(life >= target)) | (can_fail & (life * (1 - off) ** -LIFE_SLOPE < target))
-            fatigue_holds = (ok & (life >= target)) | (rough & (life * (1 + off) ** -LIFE_SLOPE >= target))
+            target = target_hours * HOUR
+            life, low, high = _bounded(ds, "fatigue_life")
+            fatigue_fails = (ok & ~(life >= target)) | (rough & (high < target))
+            fatigue_holds = (ok & (life >= target)) | (rough & (low >= target))
         else:
-            use = _limit(ds, "endurance_utilisation")
-            fatigue_fails = (ok & ~(use <= 1.0)) | (can_fail & (use * (1 - off) > 1.0))
-            fatigue_holds = (ok & (use <= 1.0)) | (rough & (use * (1 + off) <= 1.0))
+            use, low, high = _bounded(ds, "endurance_utilisation")
+            fatigue_fails = (ok & ~(use <= 1.0)) | (rough & (low > 1.0))
+            fatigue_holds = (ok & (use <= 1.0)) | (rough & (high <= 1.0))
     # decided: ok, or every limit held or one failed within the margin
     answered = ok | (rough & ((yield_holds & fatigue_holds) | yield_fails | fatigue_fails))
     over_yield, fatigue = answered & yield_fails, answered & fatigue_fails
@@ -87,14 +88,22 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
     return {"no valid answer": ~answered, "over yield": over_yield, "fatigue": fatigue, "critical speed": critical}, checked
 
 
-def _stress_margin(ds: xr.Dataset) -> xr.DataArray:
-    """Per point not converged to the study's tolerance, :data:`MARGIN` times its error estimate (relative); NaN
-    elsewhere (ok points, other statuses, no estimate)."""
+def _rough(ds: xr.Dataset) -> xr.DataArray:
+    """True where a point is not converged to its tolerance and states its error estimate."""
     if "status" not in ds.data_vars or "error_estimate" not in ds.data_vars:
-        return xr.full_like(ok_points(ds), np.nan, dtype=float)
-    rough = _full(ds, "status") == STATUS_CODES["not_converged"]
-    off = MARGIN * _full(ds, "error_estimate")
-    return off.where(rough & np.isfinite(off))
+        return xr.zeros_like(ok_points(ds), dtype=bool)
+    return (_full(ds, "status") == STATUS_CODES["not_converged"]) & np.isfinite(_full(ds, "error_estimate"))
+
+
+def _bounded(ds: xr.Dataset, name: str) -> tuple[xr.DataArray, xr.DataArray, xr.DataArray]:
+    """The output ``name`` (NaN where absent) and its low and high bounds with each point's error of it times
+    :data:`MARGIN` (:func:`study.charts.plane.bounds`: the figure's own error where the point states it, else its
+    error estimate as a stress error; a stress off by 100 % or more might be nil, so such a point cannot fail a
+    limit)."""
+    values = _limit(ds, name)
+    errors, own = figure_errors(ds, name)
+    low, high = bounds(values.values, errors.transpose(*values.dims).values, own.transpose(*values.dims).values, name)
+    return values, values.copy(data=low), values.copy(data=high)
 
 
 def decided_within_error(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"

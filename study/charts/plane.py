@@ -142,6 +142,49 @@ def point_errors(ds: xr.Dataset) -> xr.DataArray:
     return _full(ds, "error_estimate").fillna(0.0)
 
 
+#: The output whose own relative error a figure's uncertainty is (the reference model states them by figure), where the
+#: dataset has it; elsewhere the point's error estimate, a stress error, stands for it (:func:`figure_errors`).
+FIGURE_ERRORS = {"yield_utilisation": "max_normal_stress_error", "max_normal_stress": "max_normal_stress_error",
+                 "endurance_utilisation": "alternating_bending_stress_error",
+                 "equivalent_alternating_stress": "alternating_bending_stress_error",
+                 "alternating_bending_stress": "alternating_bending_stress_error",
+                 "peak_contact_force": "peak_contact_force_error", "fatigue_life": "fatigue_life_error",
+                 "damage_rate": "fatigue_life_error"}
+#: Figures that go as the stress to the power −:data:`LIFE_SLOPE` where only a stress error is known.
+LIFE_FIGURES = ("fatigue_life",)
+
+
+def figure_errors(ds: xr.Dataset, name: str) -> tuple[xr.DataArray, xr.DataArray]:
+    """Each point's relative error of the output ``name`` and whether it is the figure's own (True) or the point's
+    error estimate standing for it (False; 0 where there is none): :data:`FIGURE_ERRORS`. A fatigue life's own error
+    e is its damage rate's (the life within life/(1 ± e)); a stress error d moves it by (1 ± d)^−LIFE_SLOPE."""
+    fallback = point_errors(ds)
+    own = FIGURE_ERRORS.get(name)
+    if own is None or own not in ds.data_vars:
+        return fallback, xr.zeros_like(fallback, dtype=bool)
+    mine = _full(ds, own)
+    has = np.isfinite(mine)
+    return mine.where(has, fallback), has
+
+
+def bounds(values, error, own, name: str, margin: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) of ``values`` of the output ``name`` with their relative ``error`` times ``margin`` (default
+    :data:`MARGIN`) either way: a fatigue life with its own error (``own``) within life/(1 ± m e), with a stress error
+    within life (1 ± m e)^−LIFE_SLOPE; another figure within value (1 ± m e). A bound past nothing (m e ≥ 1) is
+    unbounded: 0 below a figure, inf above a life (the stresses might be nil)."""
+    m = MARGIN if margin is None else margin
+    off = m * np.asarray(error, dtype=float)
+    values = np.asarray(values, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        if name in LIFE_FIGURES:
+            own = np.asarray(own, dtype=bool)
+            low = np.where(own, values / (1.0 + off), values * (1.0 + off) ** -LIFE_SLOPE)
+            high = np.where(off < 1.0, np.where(own, values / (1.0 - off), values * (1.0 - off) ** -LIFE_SLOPE),
+                            np.inf)
+            return low, high
+        return values * np.maximum(1.0 - off, 0.0), values * (1.0 + off)
+
+
 def _cells(p: "Plane", da: xr.DataArray) -> np.ndarray:
     """``da`` over the dataset's dimensions as (load, speed, points of the cell): the fixed dimensions at their value,
     the reduced ones stacked."""
@@ -153,10 +196,11 @@ def _cells(p: "Plane", da: xr.DataArray) -> np.ndarray:
 
 def worst_in_cells(ds: xr.Dataset, name: str, how: str, p: "Plane | None" = None) -> dict[str, np.ndarray]:
     """Per rotary speed × axial load cell, the worst ``name`` (``how``: "max" or "min") over every answered point
-    (ok, and not converged with its values: undecided ones included), the relative error estimate of the point that
-    gives it, whether that point is not ok (``rough``), and the worst case over the cell with each point's stresses
-    off by :data:`MARGIN` times its error estimate (``bound``: a stress or utilisation goes as the stress, a fatigue
-    life — the one "min" figure — as the stress to the power −:data:`LIFE_SLOPE`).
+    (ok, and not converged with its values: undecided ones included), the relative error of the figure at the point
+    that gives it (:func:`figure_errors`: its own where stated, else the point's error estimate), whether that point
+    is not ok (``rough``), and the worst case over the cell with each point's figure off by :data:`MARGIN` times its
+    error (``bound``, :func:`bounds`: a stress or utilisation goes as the stress, a fatigue life — the one "min"
+    figure — within life/(1 + 2e) with its own error e, or as the stress to the power −:data:`LIFE_SLOPE`).
 
     Returns ``{"value", "error", "rough", "bound"}`` arrays (load × speed), NaN (False) where the cell has no
     answered point."""
@@ -164,11 +208,11 @@ def worst_in_cells(ds: xr.Dataset, name: str, how: str, p: "Plane | None" = None
         raise ValueError(f"how = {how!r}; allowed: max, min")
     p = p or plane(ds)
     values = _cells(p, _full(ds, name).where(answered_points(ds)))
-    error = _cells(p, point_errors(ds))
+    errors, own = figure_errors(ds, name)
+    error = _cells(p, errors)
     rough = _cells(p, ~solved_points(ds))
-    off = MARGIN * error
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        bound = values * (1.0 + off) if how == "max" else values * (1.0 + off) ** -LIFE_SLOPE
+    low, high = bounds(values, error, _cells(p, own), name)
+    bound = high if how == "max" else low
     empty = np.all(np.isnan(values), axis=-1)
     fill = -np.inf if how == "max" else np.inf
     pick = np.where(np.isnan(values), fill, values)

@@ -57,7 +57,9 @@ def sweep_summary(ds: xr.Dataset, seconds: float | None = None, report: Path | N
         counts = Counter(r["verdict"] for r in rows)
         lines.append(f"  envelope ({_criterion_text(target_hours, criterion)}, below yield, outside ±15 % of the "
                      f"joint's critical speeds at 1× and 2×): {len(rows)} rotary speed x axial load cells: "
-                     + ", ".join(f"{counts.get(v, 0)} {v}" for v in VERDICTS))
+                     + ", ".join(f"{counts.get(v, 0)} {v}" for v in VERDICTS)
+                     + f" (decided: {len(rows) - counts.get('undecided', 0)} of {len(rows)}, "
+                       f"{(len(rows) - counts.get('undecided', 0)) / len(rows):.0%})")
         undecided = dict(safe_ranges(rows, "undecided"))
         for load, speeds in safe_ranges(rows):
             line = f"    {load}: safe {speeds}"

@@ -162,36 +162,102 @@ def damage_rate(equivalent_amplitude, rotary_speed, cycles_per_revolution=1.0, c
         return np.where(n > 0.0, cycles_per_second / np.where(n > 0.0, n, 1.0), np.inf)
 
 
-def rainflow_cycles(stress) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def reversal_indices(stress) -> np.ndarray:
+    """Indices of the reversals (turning points) of a history, its first and last point included: what ASTM E1049
+    §5.4.4's rainflow counting reads of it (a plateau counts once, at its first point, as the ``rainflow`` package's
+    ``reversals`` does). In numpy, so that a long recorded history reaches the counting as its few reversals."""
+    x = np.asarray(stress, dtype=float).ravel()
+    if x.size < 3:
+        return np.arange(x.size)
+    moved = np.flatnonzero(np.concatenate(([True], np.diff(x) != 0.0)))  # the first point of every plateau
+    step = np.diff(x[moved])
+    turns = np.flatnonzero(step[:-1] * step[1:] < 0.0) + 1
+    keep = np.concatenate(([0], turns, [moved.size - 1])) if moved.size > 1 else np.array([0])
+    return moved[keep]
+
+
+def rainflow_cycles(stress, with_ends: bool = False):
     """The cycles of a stress history [Pa] by rainflow counting (ASTM E1049-85 (2017) §5.4.4, as implemented by the
-    ``rainflow`` package): their ranges Δσ [Pa], means [Pa] and counts (1 a full cycle, 0.5 a half), each (C,).
-    A history whose impacts put several cycles into a revolution counts each, where one cycle per revolution of the
-    largest range would miss the smaller ones."""
+    ``rainflow`` package): their ranges Δσ [Pa], means [Pa] and counts (1 a full cycle, 0.5 a half), each (C,);
+    with ``with_ends`` also the indices into ``stress`` of each cycle's two reversals, in time order. A history whose
+    impacts put several cycles into a revolution counts each, where one cycle per revolution of the largest range
+    would miss the smaller ones. The history is reduced to its reversals first (:func:`reversal_indices`: the same
+    count)."""
     import rainflow
 
-    rows = list(rainflow.extract_cycles(np.asarray(stress, dtype=float).ravel()))
+    x = np.asarray(stress, dtype=float).ravel()
+    where = reversal_indices(x)
+    rows = list(rainflow.extract_cycles(x[where]))
     if not rows:
-        return np.zeros(0), np.zeros(0), np.zeros(0)
-    ranges, means, counts = (np.array(column, dtype=float) for column in list(zip(*rows))[:3])
+        empty = (np.zeros(0), np.zeros(0), np.zeros(0))
+        return (*empty, np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)) if with_ends else empty
+    columns = list(zip(*rows))
+    ranges, means, counts = (np.array(column, dtype=float) for column in columns[:3])
+    if with_ends:
+        return (ranges, means, counts, where[np.asarray(columns[3], dtype=np.int64)],
+                where[np.asarray(columns[4], dtype=np.int64)])
     return ranges, means, counts
 
 
-def history_damage_rate(stress, duration, tensile_strength, yield_strength=None, *, stress_concentration=1.0,
-                        correction: str = "goodman", curve: str = "B1"):
-    """Miner's damage per second [1/s] of a fibre's stress history [Pa] lasting ``duration`` [s]: the cycles by
-    rainflow counting (:func:`rainflow_cycles`), each cycle's amplitude Δσ/2 times the stress concentration
-    K_t and corrected for its own mean (:func:`equivalent_alternating_stress`), its damage count/N(2 σ_ar)
-    (:func:`cycles_to_failure`), summed (Miner 1945) and divided by the duration. For a history of whole
-    sinusoidal cycles about a constant mean it equals :func:`damage_rate` at one cycle per period."""
-    ranges, means, counts = rainflow_cycles(stress)
+def history_damage(stress, tensile_strength, yield_strength=None, *, stress_concentration=1.0,
+                   correction: str = "goodman", curve: str = "B1", segments=None, at=None):
+    """Miner's damage [-] of a fibre's stress history [Pa]: the cycles by rainflow counting
+    (:func:`rainflow_cycles`), each cycle's amplitude Δσ/2 times the stress concentration K_t and corrected for its
+    own mean (:func:`equivalent_alternating_stress`), its damage count/N(2 σ_ar) (:func:`cycles_to_failure`),
+    summed (Miner 1945).
+
+    With ``segments`` (the first index of each of consecutive stretches of the history, the first 0) the damage of
+    each stretch (S,): each cycle's damage spread over the stretches that the time between its two reversals spans,
+    in proportion (``at``: the time of each point of the history, default its index), so that the revolutions of a
+    periodic history get the same damage each wherever its cycles close, and the stretches' damages sum to the
+    history's; their scatter says how well a mean over the stretches (revolutions) is known."""
+    x = np.asarray(stress, dtype=float).ravel()
+    ranges, means, counts, begins, ends = rainflow_cycles(x, with_ends=True)
     if ranges.size == 0:
-        return 0.0
+        return np.zeros(len(segments)) if segments is not None else 0.0
     amplitude = equivalent_alternating_stress(0.5 * np.asarray(stress_concentration, dtype=float) * ranges, means,
                                               tensile_strength, yield_strength, correction)
     n = cycles_to_failure(2.0 * amplitude, curve)
     with np.errstate(divide="ignore", invalid="ignore"):
         damage = np.where(n > 0.0, counts / np.where(n > 0.0, n, 1.0), np.inf)
-    return float(np.sum(damage) / float(duration))
+    if segments is None:
+        return float(np.sum(damage))
+    starts = np.asarray(segments, dtype=np.int64)
+    at = np.arange(x.size, dtype=float) if at is None else np.asarray(at, dtype=float)
+    return _spread(damage, at[begins], at[ends], at[starts], at[-1])
+
+
+def _spread(damage, begin, end, lows, last) -> np.ndarray:
+    """Each cycle's ``damage`` spread over the stretches [lows[k], lows[k + 1]) (the last up to ``last``) in
+    proportion to their overlap with its span [begin, end]; a cycle of no span wholly in the stretch of its end."""
+    lows = np.asarray(lows, dtype=float)
+    highs = np.append(lows[1:], max(float(last), lows[-1]))
+    out = np.zeros(lows.size)
+    first = np.clip(np.searchsorted(lows, begin, side="right") - 1, 0, lows.size - 1)
+    final = np.clip(np.searchsorted(lows, end, side="right") - 1, 0, lows.size - 1)
+    span = end - begin
+    point = (span <= 0.0) | (first == final)
+    np.add.at(out, final[point], damage[point])
+    for d, a, b, i, j in zip(damage[~point], begin[~point], end[~point], first[~point], final[~point]):
+        overlap = np.minimum(highs[i:j + 1], b) - np.maximum(lows[i:j + 1], a)
+        out[i:j + 1] += d * np.maximum(overlap, 0.0) / (b - a)
+    return out
+
+
+def history_damage_rate(stress, duration, tensile_strength, yield_strength=None, *, stress_concentration=1.0,
+                        correction: str = "goodman", curve: str = "B1"):
+    """Miner's damage per second [1/s] of a fibre's stress history [Pa] lasting ``duration`` [s]:
+    :func:`history_damage` over the duration. For a history of whole sinusoidal cycles about a constant mean it
+    equals :func:`damage_rate` at one cycle per period."""
+    return history_damage(stress, tensile_strength, yield_strength, stress_concentration=stress_concentration,
+                          correction=correction, curve=curve) / float(duration)
+
+
+def damage_exponent(curve: str = "B1") -> float:
+    """The exponent m by which Miner's damage goes with the stress, D ∝ σ^m, below the curve's knee (its second
+    slope m₂, 5 for every curve of DNV-RP-C203 Table 2-1): a relative stress error e is a damage error
+    (1 + e)^m − 1 there (27.6 % for 5 %)."""
+    return float(_curve(curve).m2)
 
 
 def fatigue_life(damage_rate_per_second):

@@ -55,9 +55,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, section, well, whirl
+from study.physics import fatigue, hertz, limits, section, well, whirl
 from study.solvers import stress_kernel, whirl_kernel
-from study.solvers.options import ReferenceOptions, study_tolerance
+from study.solvers.options import ReferenceOptions, statistical_tolerance, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
 from study.solvers.timedomain import calibrated_hysteresis, settled_period
@@ -615,6 +615,13 @@ def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
 FIGURES = {"peak_contact_force": ("window_largest_contact_force", "peak force"),
            "max_normal_stress": ("window_largest_normal_stress", "max normal stress"),
            "alternating_bending_stress": ("window_largest_alternating_stress", "alternating stress")}
+#: The statistic of the fatigue damage beside :data:`FIGURES`: Miner's damage per cycle of the worst fibre's stress
+#: history, counted by rainflow (:func:`fibre_damage`), named as the output it is reported as (per second; its
+#: relative error the same), whose inverse is the fatigue life.
+DAMAGE = "damage_rate"
+#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on: the worst of them is
+#: the figure (its damage 5 % below the worst fibre's at most where the bending is a rotating one, cos(π/8)^5).
+DAMAGE_FIBRES = 8
 #: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
 #: this many of their combined standard errors (a two-sided z-test at about 95 %).
 DRIFT_SIGNIFICANCE = 2.0
@@ -658,13 +665,48 @@ def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Wind
     """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
     :func:`stresses` (with the quasi-static correction of the modes left out wherever a contact force acts,
     :func:`quasi_static_applies`; the fields computed once) and the peak contact force, exact at every step of the
-    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]."""
+    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]; :data:`DAMAGE` the Miner's
+    damage of each of :data:`DAMAGE_FIBRES` fibres in the cycle (F,), counted by rainflow over the cycles' joined
+    history at the section of their largest alternating stress (:func:`fibre_damage`)."""
     joined = merge(cycles)
     correction = quasi_static_applies(model, joined)
     ends = np.cumsum([c.times.size for c in cycles])
     segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
-    return [dict(values, peak_contact_force=float(np.max(c.peak)), correction=correction, start=c.start)
-            for values, c in zip(stresses(inputs, model, joined, correction=correction, segments=segments), cycles)]
+    values = stresses(inputs, model, joined, correction=correction, segments=segments)
+    station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
+    damage = fibre_damage(inputs, model, joined, station, [first for first, _ in segments], correction)
+    return [dict(v, peak_contact_force=float(np.max(c.peak)), correction=correction, start=c.start, **{DAMAGE: d})
+            for v, c, d in zip(values, cycles, damage)]
+
+
+def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float,
+                 correction: bool = True, fibres: int = DAMAGE_FIBRES) -> np.ndarray:
+    """(R, F) the normal stress [Pa] of ``fibres`` fibres of the turning pipe, at ψ = 2πk/F from the fibre that
+    faces +y at t = 0, at the section x = ``station`` [m] over the window's rows: T0/A_s plus
+    (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I (the moments of :func:`periodic_fields`, with the quasi-static
+    correction where ``correction``; the fibre stress whose half range over a cycle is the alternating stress of
+    :func:`stresses`)."""
+    N = model.n_modes
+    x = np.array([float(station)])
+    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.forces[:, :, j] if correction
+                               else None, x, j)["moment"][:, 0] for j in range(2)]
+    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    scale = r_o / float(section.second_moment_of_area(r_o, r_i))
+    angle = model.rotary_speed * window.times[:, None] + 2.0 * np.pi * np.arange(fibres)[None, :] / fibres
+    bending = moments[0][:, None] * np.cos(angle) + moments[1][:, None] * np.sin(angle)
+    return inputs["axial_tension"] / model.props["steel_area"] + scale * bending
+
+
+def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float, starts,
+                 correction: bool = True) -> np.ndarray:
+    """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
+    each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
+    counted by rainflow (ASTM E1049, :func:`study.physics.limits.history_damage` with the point's strengths, stress
+    concentration, S-N curve and mean-stress correction), each cycle in the stretch where it closes, so that several
+    cycles a revolution (impacts ringing the pipe) count each and the stretches' damages sum to the window's."""
+    stress = fibre_stress(inputs, model, window, station, correction)
+    options = {name: inputs[name] for name in limits.LIMIT_INPUTS if inputs.get(name) is not None}
+    return np.column_stack([limits.history_damage(stress[:, k], starts, **options) for k in range(stress.shape[1])])
 
 
 def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
@@ -741,14 +783,21 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     out = {}
     h = len(window)
     settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
-    for name in FIGURES:
-        x = np.array([v[name] for v in window])
+    for name in (*FIGURES, DAMAGE):
+        if name not in window[0]:
+            continue
+        x = np.array([v[name] for v in window], float)
+        fibre = None
+        if x.ndim == 2:  # the damage per fibre: the fibre of the largest mean over the window
+            fibre = int(np.argmax(np.mean(x, axis=0)))
+            x = x[:, fibre]
         value, largest = float(np.mean(x)), float(np.max(x))
         size = max(abs(value), 1e-300)
         error = standard_error(x) if np.ptp(x) > 0 else 0.0
         drift, significant = 0.0, False
         if preceding:
-            before = np.array([v[name] for v in preceding])
+            before = np.array([v[name] for v in preceding], float)
+            before = before[:, fibre] if fibre is not None else before
             change = abs(value - float(np.mean(before)))
             spread = np.hypot(np.nan_to_num(error, nan=np.inf), standard_error(before) if np.ptp(before) > 0 else 0.0)
             drift, significant = change / size, bool(change > DRIFT_SIGNIFICANCE * spread)
@@ -756,6 +805,8 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
         part = max(error, drift / (1.0 - ratio**h) if settles else drift)
         out[name] = dict(value=value, largest=largest, error=error, drift=drift, significant=significant,
                          window=float(part))
+        if fibre is not None:
+            out[name]["fibre"] = fibre
     return out
 
 
@@ -856,13 +907,32 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
         modes = {name: 0.0 for name in modes}
     scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
                                                floor)}
+    # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
+    exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
+    modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
     out = {}
     for name, s in stats.items():
         share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
         window_part = float(option.reference_tolerance) if periodic else s["window"] * share
-        parts = dict(window=window_part, integrator=integrator, modes=modes[name])
-        out[name] = dict(parts, total=float(sum(parts.values())), dominant=max(parts, key=parts.get))
+        own = (1.0 + integrator) ** exponent - 1.0 if name == DAMAGE else integrator
+        parts = dict(window=window_part, integrator=own, modes=modes[name])
+        total = float(sum(parts.values()))
+        out[name] = dict(parts, total=total, dominant=max(parts, key=parts.get),
+                         equivalent=stress_equivalent(name, total, exponent))
     return out
+
+
+def stress_equivalent(name: str, error: float, exponent: float) -> float:
+    """A figure's relative error as the stress error that makes it: the damage's (:data:`DAMAGE`) (1 + e)^(1/m) − 1
+    (D ∝ σ^m), the stress figures' and the force's the error itself. The point's ``error_estimate`` is the largest
+    of these, held against the tolerance as a stress error."""
+    return float((1.0 + error) ** (1.0 / exponent) - 1.0) if name == DAMAGE else float(error)
+
+
+def figure_tolerance(name: str, tolerance: float, exponent: float) -> float:
+    """The relative error a figure may have at the stress ``tolerance``: the damage's (:data:`DAMAGE`)
+    (1 + tolerance)^m − 1 (27.6 % for 5 % on m = 5), the others' the tolerance."""
+    return float((1.0 + tolerance) ** exponent - 1.0) if name == DAMAGE else float(tolerance)
 
 
 def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
@@ -894,7 +964,8 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
-    tolerance = study_tolerance(inputs)
+    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: its figures are means
+    exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     tol = float(option.reference_tolerance)
     N = model.n_modes
     scale = model.state_scale()
@@ -947,10 +1018,10 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
         kept = kept if bouncing else kept[-n_window:]
         record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
         first = 0  # the record's first revolution
-        grow = not bouncing
+        step = 0 if bouncing else n_window  # revolutions to add before the next look
         while True:
             added = []
-            for _ in range(n_window if grow else 0):
+            for _ in range(step):
                 added.append(run.run(run.t + tau, record=True))
                 if run.outcome != whirl_kernel.OK:
                     return failed("in the output window")
@@ -960,12 +1031,18 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 live = record[first:]  # the cycles still recorded: one decision on the correction for them all
                 if len({values["correction"] for _, values in live}) > 1:
                     record[first:] = zip([c for c, _ in live], cycle_values(inputs, model, [c for c, _ in live]))
-            grow = True
             half = (len(record) - first) // 2
             preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
             window_cycles = record[len(record) - half:]
             ratio = settle_ratio(states, scale)
             stats = settling([v for _, v in window_cycles], preceding, ratio)
+            stationary_record = not np.isfinite(ratio) and not any(s["significant"] for s in stats.values())
+            if stationary_record:
+                # the halves agree and nothing settles: the figures are means over the whole record, their window
+                # part its standard error; the halves' drifts are kept as what they were (window_spread)
+                whole = settling([v for _, v in record[len(record) - 2 * half:]], [], ratio)
+                stats = {name: dict(whole[name], drift=stats[name]["drift"]) for name in whole}
+                window_cycles, preceding = record[len(record) - 2 * half:], []
             window = merge([c for c, _ in window_cycles])
             cycles = [v for _, v in window_cycles]
             modal = modal_check(inputs, model, window, cycles)
@@ -974,20 +1051,25 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             used = len(states) - 1
             more = 0.0  # the revolutions more that the figures over the tolerance need, as far as can be foreseen
             for name, e in errors.items():
-                room = tolerance - (e["total"] - e["window"])  # what the window part may be
-                if e["total"] <= tolerance:
+                limit = figure_tolerance(name, tolerance, exponent)
+                room = limit - (e["total"] - e["window"])  # what the window part may be
+                if e["total"] <= limit:
                     continue
                 if room <= 0:
                     more = np.inf  # the integrator or the modes take it over: more revolutions do not help
                 elif np.isfinite(ratio) and e["window"] > stats[name]["error"]:  # settling: the drifts shrink by ρ
                     more = max(more, np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0)
-                else:  # the standard error falls as the root of the window's length, twice that recorded
-                    more = max(more, 2.0 * half * ((e["window"] / room) ** 2 - 1.0))
+                else:  # the standard error falls as the root of the window's length (half the record's if settling)
+                    length = len(window_cycles) * (1 if stationary_record else 2)
+                    more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
             needed = used + more
             if more == 0.0 or used + max(more, n_window) > budget:
                 budget_spent = more > 0.0
                 break
-            if any(stats[name]["significant"] for name in FIGURES):
+            # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
+            # the record's length again (a forecast from a short record's scatter is itself rough): few looks
+            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window))))
+            if any(s["significant"] for s in stats.values()):
                 first = len(record) - half  # still settling: drop the first half
             for i in range(first):
                 record[i] = (None, record[i][1])  # free the recordings no longer needed
@@ -995,7 +1077,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
                 budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
-                stationary=bouncing, modal=modal)
+                stationary=bouncing, modal=modal, stats=None if period else stats)
 
 
 # --- outputs -----------------------------------------------------------------------------------------
@@ -1346,15 +1428,20 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
         approach = ((peak / model.stiffness[body]) ** (2.0 / 3.0) if model.law == 0
                     else peak / model.penalty_stiffness[body])
         vals["max_approach"] = float(np.max(approach))
-    stats = settling(cycles, run["preceding"], run.get("ratio", np.nan))
+    stats = run.get("stats") or settling(cycles, run["preceding"], run.get("ratio", np.nan))
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
     modal = run["modal"]
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
     correction = summary.pop("correction")
     quarter = summary.pop("modal_quarter_fraction")
+    damage = summary.pop(DAMAGE)  # the worst fibre's mean damage per cycle
     vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
-    result.error_estimate = float(max(e["total"] for e in errors.values()))
+    # the damage rate counted by rainflow (add_limits keeps it and gives its fatigue life), its error the life's
+    vals.update(damage_rate=float(damage * len(cycles) / (window.end - window.start)),
+                fatigue_life_error=errors[DAMAGE]["total"], statistical_figures=float(not periodic),
+                **{f"{name}_error": errors[name]["total"] for name in FIGURES})
+    result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
                          energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
@@ -1370,7 +1457,8 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
                    "them over)" if not np.isfinite(needed) else
                    f"; about {needed:.0f} revolutions in all would bring them within the tolerance, more than the "
                    f"budget of {option.reference_max_revolutions} (solver.reference_max_revolutions)")
-    figures = ", ".join(f"{FIGURES[name][1]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
+    names = {**{name: label for name, (_, label) in FIGURES.items()}, DAMAGE: "fatigue damage rate"}
+    figures = ", ".join(f"{names[name]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
                         f"integrator {e['integrator']:.1e}, "
                         f"modes {e['modes']:.2%})"
                         for name, e in errors.items())
@@ -1385,7 +1473,10 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
                 f"{float(option.reference_rtol):g}"
                 f"{' and the residual flexibility and quasi-static correction of the modes left out' if correction else ''}"
                 f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})",
-                f"error of each figure (its largest part): {figures}"]
+                f"error of each figure (its largest part): {figures}",
+                (f"held to solver.statistical_tolerance {statistical_tolerance(inputs):.3g} (means over the revolutions"
+                 f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
+                 f"held to solver.tolerance {study_tolerance(inputs):.3g}")]
     # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"

@@ -13,7 +13,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import section
+from study.physics import fatigue, section
 from study.physics.limits import LIMIT_INPUTS, design_limits
 from study.solvers.result import PointResult
 
@@ -22,19 +22,31 @@ LIMIT_OUTPUTS = ("yield_utilisation", "endurance_utilisation", "equivalent_alter
                  "fatigue_life")
 
 
+def limit_options(inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """The point's limit options (:data:`LIMIT_INPUTS` that are set), as keywords of
+    :func:`study.physics.limits.design_limits` and :func:`study.physics.limits.history_damage`."""
+    return {name: inputs[name] for name in LIMIT_INPUTS if inputs.get(name) is not None}
+
+
 def add_limits(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
     """``result`` with :data:`LIMIT_OUTPUTS` in its values where it has the max normal and alternating bending
-    stresses (unchanged otherwise)."""
+    stresses (unchanged otherwise). Where the method counted the damage itself (a finite ``damage_rate`` in its
+    values: the reference model's rainflow count of the worst fibre's stress history, docs/model.md §5.1) that rate
+    and its fatigue life are kept; elsewhere the damage is one cycle of the alternating stress per revolution
+    (``cycles_per_revolution``)."""
     values = result.values
     normal, alternating = values.get("max_normal_stress"), values.get("alternating_bending_stress")
     if normal is None or alternating is None or not (np.isfinite(normal) and np.isfinite(alternating)):
         return result
     area = values.get("steel_area") or float(section.steel_area(inputs["outer_diameter"] / 2.0,
                                                                 inputs["inner_diameter"] / 2.0))
-    options = {name: inputs[name] for name in LIMIT_INPUTS if inputs.get(name) is not None}
-    limits = design_limits(normal, alternating, inputs["axial_tension"] / area, inputs["rotary_speed"], **options)
+    counted = values.get("damage_rate")
+    counted = float(counted) if counted is not None and np.isfinite(counted) else None
+    limits = design_limits(normal, alternating, inputs["axial_tension"] / area, inputs["rotary_speed"],
+                           **limit_options(inputs))
+    rate = float(limits.damage_rate) if counted is None else counted
     values.update(yield_utilisation=float(limits.yield_utilisation),
                   endurance_utilisation=float(limits.endurance_utilisation),
                   equivalent_alternating_stress=float(limits.equivalent_amplitude),
-                  damage_rate=float(limits.damage_rate), fatigue_life=float(limits.fatigue_life))
+                  damage_rate=rate, fatigue_life=float(fatigue.fatigue_life(rate)))
     return result

@@ -208,3 +208,40 @@ def test_the_map_colours_each_cell_as_the_table_s_verdict_and_its_caption_names_
         assert (k == 0) == (r["verdict"] == "safe") and (k == undecided) == (r["verdict"] == "undecided"), r
     legend = figure_labels(chart.figure)["legend"]
     assert all(entry in chart.caption for entry in legend[1:])  # legend[0] is its title
+
+
+def test_each_limit_is_decided_with_its_own_figure_error_where_the_point_states_it(study):
+    # issue 36: a bouncing point's error estimate is its worst figure's (often the peak contact force, a statistic
+    # that scatters most and decides no limit); the yield limit is decided with the max normal stress's own error and
+    # the fatigue life with its own (the damage rate's, life within life/(1 +- 2e)), where the point states them
+    from study.charts.envelope import MARGIN, decided_within_error, failures
+    from study.solvers.result import STATUS_CODES
+
+    ds = study.copy(deep=True)
+    dims = ds.status.dims
+    ok = (ds.status == STATUS_CODES["ok"]) & (ds.yield_utilisation < 0.5)
+    nan = xr.full_like(ds.status, np.nan, dtype=float)
+    ds = ds.assign(fatigue_life=ds.fatigue_life.broadcast_like(ds.status).transpose(*dims).copy(),
+                   error_estimate=nan.copy(), max_normal_stress_error=nan.copy(), fatigue_life_error=nan.copy())
+    a, b, c = (tuple(i) for i in np.argwhere(ok.transpose(*dims).values)[:3])
+    target = 1000 * 3600.0
+    # (life / target, the point's error estimate, max normal stress error, fatigue life error)
+    cases = {a: (3.0, 0.6, 0.02, 0.10),  # holds: 3 / (1 + 2 x 0.1) = 2.5 >= 1; by the estimate 3 x 2.2^-5 < 1: open
+             b: (0.5, 0.6, 0.02, 0.10),  # fails: 0.5 / (1 - 2 x 0.1) = 0.625 < 1, decided, though 0.6 >= 1/2
+             c: (0.5, 0.6, 0.02, 0.30)}  # open: 0.5 / (1 - 2 x 0.3) = 1.25 > 1
+    for where, (life, estimate, stress, damage) in cases.items():
+        ds.status.values[where] = STATUS_CODES["not_converged"]
+        ds.fatigue_life.values[where] = life * target
+        ds.error_estimate.values[where] = estimate
+        ds.max_normal_stress_error.values[where] = stress
+        ds.fatigue_life_error.values[where] = damage
+    assert MARGIN == 2.0  # the bounds above
+    decided = decided_within_error(ds).transpose(*dims)
+    fails, _ = failures(ds)
+    fatigue = fails["fatigue"].transpose(*dims)
+    assert bool(decided.values[a]) and bool(decided.values[b]) and not bool(decided.values[c])
+    assert not bool(fatigue.values[a]) and bool(fatigue.values[b]) and not bool(fatigue.values[c])
+    # without the figures' own errors the point's estimate stands for them (a stress error of 60 %: 2 x 0.6 >= 1,
+    # the stresses might be nil): none of the three is decided
+    plain = ds.drop_vars(["max_normal_stress_error", "fatigue_life_error"])
+    assert not any(bool(decided_within_error(plain).transpose(*dims).values[w]) for w in (a, b, c))

@@ -177,3 +177,45 @@ def test_impacts_add_the_small_cycles_one_cycle_a_revolution_misses():
 
 def test_an_empty_history_does_no_damage():
     assert fatigue.history_damage_rate(np.full(10, 5 * MPA), 1.0, 700e6) == 0.0
+
+
+def test_reversals_in_numpy_count_as_the_rainflow_package_does():
+    # fatigue.rainflow_cycles reduces a history to its reversals first; the package's own count of the whole
+    # history (rainflow.extract_cycles, ASTM E1049 §5.4.4) is the reference, plateaus and repeated values included
+    import rainflow
+
+    rng = np.random.default_rng(3)
+    for _ in range(50):
+        x = np.round(rng.normal(size=int(rng.integers(1, 80))), 1)  # rounded: plateaus and repeats
+        expected = sorted((r, m, c) for r, m, c, *_ in rainflow.extract_cycles(x))
+        ranges, means, counts = fatigue.rainflow_cycles(x)
+        assert np.allclose(np.reshape(expected, (-1, 3)), np.reshape(sorted(zip(ranges, means, counts)), (-1, 3)))
+
+
+def test_three_strikes_a_revolution_do_three_times_the_damage_of_one_cycle_a_revolution():
+    # closed form: a fibre whose stress rings through three whole cycles of the same range each revolution (three
+    # impacts) counts three cycles a revolution by rainflow; one cycle a revolution of that alternating stress
+    # (fatigue.damage_rate, rotating bending) does a third of the damage. fatigue.damage_rate at Ω = 2π rad/s is the
+    # damage of one revolution
+    revolutions, amplitude, mean, strength = 12, 80 * MPA, 40 * MPA, 517e6 * 1.3
+    one_cycle = float(fatigue.damage_rate(fatigue.equivalent_alternating_stress(amplitude, mean, strength), 2 * np.pi))
+    # sampled (64 points a cycle, the peaks between the samples): the rate over the history, to the sampling
+    t = np.linspace(0.0, revolutions, revolutions * 3 * 64 + 1)  # time in revolutions
+    sampled = mean + amplitude * np.sin(2 * np.pi * 3 * t + 0.1)
+    assert fatigue.history_damage_rate(sampled, revolutions, strength) / one_cycle == pytest.approx(3.0, rel=0.03)
+    # its reversals alone, exactly +-amplitude: rainflow counts each range as a half cycle (ASTM E1049 §5.4.4, every
+    # range equal to the one before), six a revolution; per revolution (the stretches of history_damage, each
+    # cycle's damage spread over the time between its reversals) every revolution does three cycles' damage and the
+    # revolutions' damages sum to the history's
+    reversals = mean + amplitude * np.append(np.tile([1.0, -1.0], 3 * revolutions), 1.0)  # the next one's first
+    per_revolution = fatigue.history_damage(reversals, strength, segments=np.arange(revolutions) * 6)
+    assert per_revolution == pytest.approx(3.0 * one_cycle, rel=1e-12)
+    assert per_revolution.sum() == pytest.approx(fatigue.history_damage(reversals, strength), rel=1e-12)
+    # and where a revolution's cycles close does not move its damage: the same history from mid-revolution
+    shifted = fatigue.history_damage(reversals, strength, segments=np.arange(revolutions) * 6 + 3)
+    assert shifted[1:-1] == pytest.approx(3.0 * one_cycle, rel=1e-12)
+
+
+def test_damage_exponent_is_the_second_slope():
+    # DNV-RP-C203 Table 2-1: m2 = 5 for every curve in air
+    assert [fatigue.damage_exponent(c) for c in TABLE_2_1] == [5.0] * 4

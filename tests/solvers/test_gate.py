@@ -40,6 +40,14 @@ def _result(**values):
     pytest.param({}, 0.12, "not_converged", "error estimate 0.12 is above the tolerance 0.01",
                  id="error-above-tolerance"),
     pytest.param({}, 0.005, "ok", "", id="error-within-tolerance"),
+    # issue 36: figures that are means over the revolutions of a motion that does not repeat are held to the
+    # statistical tolerance (5 %), the others to the study's (1 %)
+    pytest.param({"statistical_figures": 1.0}, 0.04, "ok", "", id="statistical-within-its-tolerance"),
+    pytest.param({"statistical_figures": 1.0}, 0.06, "not_converged",
+                 "error estimate 0.06 is above the tolerance 0.05 (solver.statistical_tolerance)",
+                 id="statistical-above-its-tolerance"),
+    pytest.param({"statistical_figures": 0.0}, 0.04, "not_converged", "above the tolerance 0.01 (solver.tolerance)",
+                 id="periodic-held-to-the-study-tolerance"),
 ])
 def test_each_check_moves_an_ok_result_only_when_it_fails(default, values, error, status, words):
     result = _result(**values)

@@ -42,3 +42,14 @@ def test_loading_the_config_loads_no_solver():
     code = ("import sys, study.config; print(sorted(m for m in sys.modules if m.startswith('study.solvers.')))")
     loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert loaded.strip() == "['study.solvers.options', 'study.solvers.result']"
+
+
+def test_the_statistical_tolerance_is_five_percent_unless_set_and_refused_outside_zero_to_one():
+    # issue 36: the tolerance of figures that are means over revolutions (docs/reference_model.md §3.1)
+    assert options.statistical_tolerance({}) == options.DEFAULT_STATISTICAL_TOLERANCE == 0.05
+    assert options.statistical_tolerance({"statistical_tolerance": None}) == 0.05
+    assert options.statistical_tolerance({"statistical_tolerance": 0.1}) == 0.1
+    assert config.FIELDS_BY_NAME["statistical_tolerance"].default == 0.05
+    for bad in (0.0, 1.0, -0.05, float("nan"), "five"):
+        with pytest.raises(ValueError, match=r"solver.statistical_tolerance = .*: must be a number > 0 and < 1"):
+            options.statistical_tolerance({"statistical_tolerance": bad})

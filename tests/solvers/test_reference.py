@@ -237,7 +237,8 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
 
     # (the kept modes' stiff contact, without the residual flexibility of docs/reference_model.md §2.1: with it the
     # joints' contact is softer and this point settles within 0.6 % in 46 revolutions)
-    point = {**_default_point(default_study, 100, 5, 0.3, 9, 0.0), "reference_residual": "none"}
+    point = {**_default_point(default_study, 100, 5, 0.3, 9, 0.0), "reference_residual": "none",
+             "statistical_tolerance": 0.01}  # a motion that does not repeat: its figures held to 1 % here
     raw = reference.solve(point)
     short = gate.admit(raw, point)  # as solve_point does
     assert short.extras["whirl"] == "sliding"
@@ -250,8 +251,8 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     off = abs(short.values["peak_contact_force"] / longer.values["peak_contact_force"] - 1.0)
     assert stated["total"] > 0.01 and stated["total"] >= off
     assert short.extras["revolutions_needed"] > ReferenceOptions.default("reference_max_revolutions")
-    # a looser study tolerance admits the same answer, values unchanged
-    loose = gate.admit(raw, {**point, "tolerance": 0.5})
+    # a looser tolerance admits the same answer, values unchanged
+    loose = gate.admit(raw, {**point, "statistical_tolerance": 0.5})
     assert loose.status == "ok" and loose.values["peak_contact_force"] == short.values["peak_contact_force"]
 
 
@@ -313,7 +314,7 @@ def test_the_window_grows_until_the_figures_converge_within_the_budget(default_s
     # slide on the low side and settle slowly; after the fixed run (40 + 6 revolutions) the error is about 4.3 %, and
     # the record grows by 6 revolutions at a time, the first half dropped while it drifts, until the figures are
     # within the tolerance, inside the default budget of 100 revolutions
-    point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "tolerance": 0.04}
+    point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "statistical_tolerance": 0.04}
     fixed = solve_point({**point, "reference_max_revolutions": 46}, "reference")  # no room to grow
     assert fixed.values["revolutions_simulated"] == pytest.approx(46)
     assert fixed.status == "not_converged" and fixed.error_estimate > 0.04
@@ -326,6 +327,33 @@ def test_the_window_grows_until_the_figures_converge_within_the_budget(default_s
     # the grown answer lies within the fixed one's stated error of it
     for name, parts in fixed.extras["convergence"].items():
         assert abs(fixed.values[name] / grown.values[name] - 1.0) <= parts["total"] + grown.error_estimate, name
+
+
+def test_a_bouncing_window_grows_until_its_statistics_meet_the_statistical_tolerance(default_study, monkeypatch):
+    # issue 36: configs/default.toml at 250 rpm, 20 000 lbf, e = 0.3, 9 ppg, no flow: the joints bounce, the figures
+    # are means over revolutions (statistical_figures) held to solver.statistical_tolerance, and the record grows
+    # from the first look (24 revolutions, 20 % on the peak force here) towards where the standard errors are
+    # foreseen to meet it, and stops there (34 and 49 revolutions measured for 15 and 10 %). The modes' part and the
+    # quasi-static correction's are set aside (at a bouncing point 16 modes state 10-60 %, above any statistical
+    # tolerance, and the growth would stop at once): the window part alone decides
+    monkeypatch.setattr(reference, "modal_error", lambda *args, **kwargs: 0.0)
+    monkeypatch.setattr(reference, "uncorrected_means", lambda *args, **kwargs: None)
+    point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15}
+    first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
+    assert first.extras["whirl"] == "bouncing" and first.values["statistical_figures"] == 1.0
+    assert first.status == "not_converged" and first.error_estimate > 0.15
+    grown = [solve_point({**point, "statistical_tolerance": tolerance}, "reference") for tolerance in (0.15, 0.10)]
+    for result, tolerance in zip(grown, (0.15, 0.10)):
+        assert result.status == "ok" and result.error_estimate <= tolerance, result.message
+        assert f"solver.statistical_tolerance {tolerance:g}" in result.message
+        # the damage rate is held to the same tolerance as a stress: (1 + tolerance)^5 - 1 (fatigue.damage_exponent)
+        assert result.extras["convergence"]["damage_rate"]["total"] <= (1 + tolerance) ** 5 - 1
+    revolutions = [r.values["revolutions_simulated"] for r in (first, *grown)]
+    assert revolutions[0] < revolutions[1] < revolutions[2] <= ReferenceOptions.default("reference_max_revolutions")
+    # a tolerance the budget cannot reach: stopped at the first look, the revolutions it would take said
+    short = solve_point({**point, "statistical_tolerance": 0.01}, "reference")
+    assert short.status == "not_converged" and short.values["revolutions_simulated"] == revolutions[0]
+    assert short.extras["revolutions_needed"] > ReferenceOptions.default("reference_max_revolutions")
 
 
 START_UP = [4900.0, 1200.0, 140.0, 9000.0, 30.0, 800.0]  # the first 6 revolutions: never in the test
@@ -353,8 +381,9 @@ def test_the_transient_ends_where_bouncing_is_stationary(case, peaks, impacts, s
 def test_sliding_after_a_violent_start_is_not_taken_for_stationary_bouncing(base):
     # the paper's example in an 8-degree hole at 50 rpm, dropped from the hole's centre (reference_initial = "rest"):
     # strikes in the first revolutions, then the joints lie on the wall and slide: the transient runs its 40
-    # revolutions
-    inputs = {**base, "rotary_speed": 50 * np.pi / 30, "inclination": np.radians(8), "reference_initial": "rest"}
+    # revolutions (and the record no more: the budget leaves no room to grow it)
+    inputs = {**base, "rotary_speed": 50 * np.pi / 30, "inclination": np.radians(8), "reference_initial": "rest",
+              "reference_max_revolutions": 1}
     run = reference.simulate(inputs)
     assert not run["stationary"] and run["revolutions"] == 40
 
