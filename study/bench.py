@@ -23,6 +23,7 @@ from study.config import load
 from study.physics import hertz
 from study.solvers import METHODS, STATUS_CODES, periodic, reference, series, solve_point, timedomain, whirl_kernel
 from study.solvers.auto import clear_memo
+from study.solvers.result import REGIMES
 from study.workflow.execute import configure_local_workers, run_grid, warm_up
 from study.workflow.grid import Grid
 
@@ -255,7 +256,7 @@ def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("defau
         if ds.attrs.get("config_hash") != study.config_hash:
             raise ValueError(f"results = {results}: not a sweep of {config} (its config_hash differs)")
         answered = (ds["method"].values.ravel() == "reference") & (
-            ds["whirl_class"].values.ravel() == reference.WHIRL_CLASSES["bouncing"])
+            ds["regime"].values.ravel() == REGIMES["bouncing"])
     grid = Grid(dict(study.inputs), dict(study.axes))
     found = np.flatnonzero(answered)
     picked = found[np.linspace(0, found.size - 1, min(count, found.size)).round().astype(int)]

@@ -225,10 +225,6 @@ def convert(value, from_unit: str, to_unit: str):
     return ureg.Quantity(value, from_unit).to(to_unit).magnitude
 
 
-def is_finite_number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-
-
 #: Display unit of an output by its SI (UDUNITS) unit: (pint unit, label).
 OUTPUT_UNITS = {
     "Pa": ("psi", "psi"),

@@ -114,7 +114,7 @@ def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_point
     import xarray as xr
 
     from study.bench import bench_reference_schemes
-    from study.solvers import reference
+    from study.solvers.result import REGIMES
 
     config = DEFAULT_CONFIG.with_name("default.toml")
     study = load(config)
@@ -122,9 +122,9 @@ def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_point
     method = np.full(shape, "free-whirl", dtype="<U10")
     whirl = np.full(shape, np.nan)
     where = (0, shape[1] - 1, 0, 0, 0, 0)  # the straight hole (the dogleg axis first), the fastest speed
-    method[where], whirl[where] = "reference", reference.WHIRL_CLASSES["bouncing"]
+    method[where], whirl[where] = "reference", REGIMES["bouncing"]
     dims = list(study.axes)
-    ds = xr.Dataset({"method": (dims, method), "whirl_class": (dims, whirl)}, attrs={"config_hash": study.config_hash})
+    ds = xr.Dataset({"method": (dims, method), "regime": (dims, whirl)}, attrs={"config_hash": study.config_hash})
     ds.to_netcdf(tmp_path / "results.nc")
     rows, lines = bench_reference_schemes(config, tmp_path / "results.nc", count=3, rounds=1,
                                           schemes=("dopri5", "lawson-flight"))

@@ -23,7 +23,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from study.charts.design import DPI, LOAD, RPM, Chart, _format_axis, _full, _names, _series_colours, _title
+from study.charts.design import (DPI, LOAD, RPM, Chart, axis_names, figure_title, format_axis, full_array,
+                                 series_colours)
 from study.charts.labels import format_value, quantity
 from study.charts.plane import Plane
 from study.physics.critical_speeds import (API_RP7G_ACCURACY, avoid_band, critical_rotary_speeds,
@@ -54,7 +55,7 @@ def critical_speeds(ds: xr.Dataset, modes=MODES, order: int = 1) -> xr.DataArray
     length = _input(ds, "joint_length")
     if length is None or any(n not in ds.data_vars for n in NEEDS):
         return None
-    ei, tension, mass = (_full(ds, n).values for n in NEEDS)
+    ei, tension, mass = (full_array(ds, n).values for n in NEEDS)
     omega = critical_rotary_speeds(length.values, ei, tension, mass, modes=modes, order=order)
     return xr.DataArray(omega * RPM_PER_RAD_S, dims=[*ds.sizes, "mode"],
                         coords={**{d: ds[d] for d in ds.sizes}, "mode": list(modes)},
@@ -145,7 +146,7 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
     series = LOAD if LOAD in ds.sizes and ds.sizes[LOAD] > 1 else None
     others = [d for d in ds.sizes if d not in (series, RPM) and ds.sizes[d] > 1]
     fixed = [d for d in ds.sizes if d not in (series, RPM) and ds.sizes[d] == 1]
-    colours = _series_colours(ds, series)
+    colours = series_colours(ds, series)
     fig = Figure(figsize=(10.0, 6.0), dpi=DPI, layout="constrained")
     ax = fig.subplots()
     line_x = np.array([0.0, x_high])
@@ -189,8 +190,8 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
                                         "shaded ±15 %)"))
     ax.set_xlim(0.0, x_high)
     ax.set_ylim(0.0, f_high)
-    _format_axis(ax.xaxis)
-    _format_axis(ax.yaxis)
+    format_axis(ax.xaxis)
+    format_axis(ax.yaxis)
     ax.grid(True, color="0.9", lw=0.6)
     ax.set_axisbelow(True)
     ax.set_xlabel("rotary speed [rpm]")
@@ -214,12 +215,12 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
     context = [f"span = joint length {joint}, with the effective tension and the mud's mass at each point"]
     context += [quantity(ds[d]).describe(ds[d].values[0]) for d in fixed]
     if others:
-        context.append(f"shaded: the spread over {_names(ds, others)}")
+        context.append(f"shaded: the spread over {axis_names(ds, others)}")
     every = every_critical_speed(ds)
     context.append("critical speeds (the bands on every map and the envelope's): " + "; ".join(
         f"{k}× " + ", ".join(f"mode {m} {_range_text(every.sel(order=k, mode=m).values)}" for m in MODES)
         for k in ORDERS))
-    _title(fig, "Rotary speeds to avoid: natural frequencies of the joint against rotary speed (Campbell diagram)",
+    figure_title(fig, "Rotary speeds to avoid: natural frequencies of the joint against rotary speed (Campbell diagram)",
            context, 8.5)
     caption = ("Where a 1× or 2× excitation line crosses a natural frequency of the joint between tool joints the pipe "
                "whirls in resonance: the marked crossings are the critical speeds, the same ones the shaded bands on "

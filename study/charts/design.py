@@ -88,7 +88,7 @@ class _Plan:
     fixed: list[str] = field(default_factory=list)
 
 
-def _full(ds: xr.Dataset, name: str) -> xr.DataArray:
+def full_array(ds: xr.Dataset, name: str) -> xr.DataArray:
     """The variable over every dimension of the dataset (broadcast where it does not vary)."""
     da = ds[name]
     missing = {d: ds.sizes[d] for d in ds.sizes if d not in da.dims}
@@ -110,7 +110,7 @@ def _constant_along(da: xr.DataArray, dim: str) -> bool:
     return bool(np.all(spread <= 1e-9 * scale))
 
 
-def _preferred_dims(ds: xr.Dataset) -> list[str]:
+def preferred_dims(ds: xr.Dataset) -> list[str]:
     """Dimensions in the order they take roles: rotary speed, axial load, numeric, then text."""
     dims = list(ds.sizes)
     return sorted(dims, key=lambda d: (d != RPM, d != LOAD, ds[d].dtype.kind in "USO", dims.index(d)))
@@ -149,7 +149,7 @@ def _select(da: xr.DataArray, plan: _Plan, figure_index: int | None, panel_index
     return da.transpose(*[d for d in (plan.x, plan.series) if d is not None])
 
 
-def _names(ds: xr.Dataset, dims: Sequence[str]) -> str:
+def axis_names(ds: xr.Dataset, dims: Sequence[str]) -> str:
     return _join([quantity(ds[d]).short_name for d in dims])
 
 
@@ -165,9 +165,9 @@ def _context(ds: xr.Dataset, plan: _Plan, figure_index: int | None, reduction: s
         parts.append(quantity(ds[plan.figure]).describe(ds[plan.figure].values[figure_index]))
     parts += [quantity(ds[d]).describe(ds[d].values[0]) for d in plan.fixed]
     if plan.same:
-        parts.append(f"same for every {_names(ds, plan.same)}")
+        parts.append(f"same for every {axis_names(ds, plan.same)}")
     if plan.reduced:
-        parts.append(f"{reduction} {_names(ds, plan.reduced)}")
+        parts.append(f"{reduction} {axis_names(ds, plan.reduced)}")
     return parts
 
 
@@ -175,7 +175,7 @@ def _context(ds: xr.Dataset, plan: _Plan, figure_index: int | None, reduction: s
 # Axes helpers
 
 
-def _positions(ds: xr.Dataset, dim: str, q: Quantity | None = None):
+def axis_positions(ds: xr.Dataset, dim: str, q: Quantity | None = None):
     """Display positions of a dimension's values and tick labels (text values sit at 0, 1, ...)."""
     q = q or quantity(ds[dim])
     values = ds[dim].values
@@ -184,7 +184,7 @@ def _positions(ds: xr.Dataset, dim: str, q: Quantity | None = None):
     return np.asarray(q.convert(values), dtype=float), None
 
 
-def _edges(centres: np.ndarray) -> np.ndarray:
+def cell_edges(centres: np.ndarray) -> np.ndarray:
     """Cell edges around grid points: midway between neighbours, half a step beyond the ends."""
     centres = np.asarray(centres, dtype=float)
     if centres.size == 1:
@@ -206,7 +206,7 @@ def _limits(values, pad: float = 0.05):
     return low - pad * (high - low), high + pad * (high - low)
 
 
-def _format_axis(axis, ticklabels=None, positions=None, grid_values=None):
+def format_axis(axis, ticklabels=None, positions=None, grid_values=None):
     """Tick labels of an axis: text values by name; a short numeric sweep (at most 12 values) at its
     own values, so a non-uniform grid reads off directly; otherwise plain numbers."""
     if ticklabels is not None:
@@ -223,7 +223,7 @@ def _format_axis(axis, ticklabels=None, positions=None, grid_values=None):
     axis.set_major_formatter(TickFormatter())
 
 
-def _series_colours(ds: xr.Dataset, dim: str | None) -> list:
+def series_colours(ds: xr.Dataset, dim: str | None) -> list:
     if dim is None:
         return ["C0"]
     n = ds.sizes[dim]
@@ -240,7 +240,7 @@ def _grid(n_panels: int, max_columns: int = 4) -> tuple[int, int]:
     return columns, rows
 
 
-def _title(fig: Figure, title: str, context: Sequence[str], width_inches: float):
+def figure_title(fig: Figure, title: str, context: Sequence[str], width_inches: float):
     width = max(40, int(width_inches * 13))
     lines = textwrap.wrap(title, width) + (textwrap.wrap("; ".join(context), width) if context else [])
     fig.suptitle("\n".join(lines), fontsize=11)
@@ -263,7 +263,7 @@ def _outer_labels(axes: np.ndarray, visible: np.ndarray):
                 axes[r, c].set_ylabel("")
 
 
-def _mark_missing(ax):
+def mark_missing(ax):
     """Hatch the axes background: cells left empty (NaN) show as hatched, not as a colour."""
     ax.patch.set_facecolor("white")
     ax.patch.set_hatch("////")
@@ -294,19 +294,19 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
     or all names in the same panels (line styles) when ``overlay`` gives their common y label; with
     ``break_jump`` a line is broken where it jumps (see :func:`branch_breaks`); with ``rough`` (a mask over the
     dataset's dimensions) a value from a point there (reduced dimensions: any) is drawn as a hollow marker."""
-    arrays = {n: _full(ds, n) for n in names}
+    arrays = {n: full_array(ds, n) for n in names}
     rough_full = rough.transpose(*ds.sizes).astype(float) if rough is not None else None
     any_rough = False
     plan = _plan(ds, list(arrays.values()), x, series, collapse_series=True)
     xq = x_quantity or quantity(ds[x])
-    xpos, xticks = _positions(ds, x, xq)
+    xpos, xticks = axis_positions(ds, x, xq)
     yq = {n: (y_quantities or {}).get(n) or quantity(ds[n]) for n in names}
     n_panels = ds.sizes[plan.panel] if plan.panel else 1
     columns, rows_per = _grid(n_panels)
     blocks = [list(names)] if overlay else [[n] for n in names]
     rows = rows_per * len(blocks)
     styles = ["-", "--", ":", "-."]
-    colours = _series_colours(ds, plan.series)
+    colours = series_colours(ds, plan.series)
     limits = {n: ylim or _limits(yq[n].convert(arrays[n].values)) for n in names}
     if overlay:
         lows = [v[0] for v in limits.values() if v]
@@ -355,8 +355,8 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
                     ax.set_xlim(xlim)
                 if limits[block[0]] is not None:
                     ax.set_ylim(limits[block[0]])
-                _format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
-                _format_axis(ax.yaxis)
+                format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
+                format_axis(ax.yaxis)
                 ax.grid(True, which="major", color="0.9", lw=0.6)
                 ax.set_axisbelow(True)
                 ax.set_xlabel(xq.label)
@@ -386,7 +386,7 @@ def _line_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x
         context = _context(ds, plan, fi)
         if extra_context is not None:
             context += extra_context(plan, fi)
-        _title(fig, title, context, width)
+        figure_title(fig, title, context, width)
         labels = [h.get_label() for h in handles if h.get_label() == ROUGH_POINT_LABEL]
         charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig,
                             caption + (f" Hollow markers: {ROUGH_POINT_LABEL}." if labels else "")))
@@ -408,12 +408,12 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
                 cmap: str = "YlOrRd", centre: float | None = None, caption: str = "") -> list[Chart]:
     """Colour maps of ``names`` over ``x`` x ``y``: a row of panels per name, a colour bar per row; with
     ``centre`` the colour scale diverges from that value (e.g. 1 for a ratio)."""
-    arrays = {n: _full(ds, n) for n in names}
+    arrays = {n: full_array(ds, n) for n in names}
     plan = _plan(ds, list(arrays.values()), x, y, collapse_series=False)
     xq, yq_axis = quantity(ds[x]), quantity(ds[y])
-    xpos, xticks = _positions(ds, x, xq)
-    ypos, yticks = _positions(ds, y, yq_axis)
-    xedges, yedges = _edges(xpos), _edges(ypos)
+    xpos, xticks = axis_positions(ds, x, xq)
+    ypos, yticks = axis_positions(ds, y, yq_axis)
+    xedges, yedges = cell_edges(xpos), cell_edges(ypos)
     vq = {n: quantity(ds[n]) for n in names}
     ranges = {n: _limits(vq[n].convert(arrays[n].values), pad=0.0) for n in names}
     n_panels = ds.sizes[plan.panel] if plan.panel else 1
@@ -443,7 +443,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
                 masked = np.ma.masked_invalid(values)
                 if masked.mask.any():
                     any_missing = True
-                    _mark_missing(ax)
+                    mark_missing(ax)
                 limits = {"norm": norm} if norm is not None else {"vmin": vmin, "vmax": vmax}
                 mesh = ax.pcolormesh(xedges, yedges, masked, cmap=cmap, shading="flat", **limits)
                 if contours and not masked.mask.any() and np.ptp(masked.compressed()) > 0:  # filled data only
@@ -452,8 +452,8 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
                     ax.clabel(lines, fmt=tick_format, fontsize=7, inline=True)
                 ax.set_xlim(xedges[0], xedges[-1])
                 ax.set_ylim(yedges[0], yedges[-1])
-                _format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
-                _format_axis(ax.yaxis, yticks, ypos, grid_values=ypos)
+                format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
+                format_axis(ax.yaxis, yticks, ypos, grid_values=ypos)
                 ax.set_xlabel(xq.label)
                 ax.set_ylabel(yq_axis.label)
                 panel = quantity(ds[plan.panel]).describe(ds[plan.panel].values[p]) if plan.panel else ""
@@ -464,7 +464,7 @@ def _map_charts(ds: xr.Dataset, chart: str, title: str, names: Sequence[str], x:
         context = _context(ds, plan, fi)
         if any_missing:
             context.append("hatched: no result (the validity map says why)")
-        _title(fig, title, context, width)
+        figure_title(fig, title, context, width)
         charts.append(Chart(_file_name(ds, chart, plan.figure, fi), fig, caption))
     return charts
 
@@ -481,15 +481,15 @@ def _file_name(ds: xr.Dataset, chart: str, dim: str | None, index: int | None) -
 # The charts
 
 
-def _map_or_line_dims(ds: xr.Dataset) -> list[str]:
+def map_or_line_dims(ds: xr.Dataset) -> list[str]:
     """Swept dimensions with more than one value, rotary speed and axial load first."""
-    return [d for d in _preferred_dims(ds) if ds.sizes[d] > 1]
+    return [d for d in preferred_dims(ds) if ds.sizes[d] > 1]
 
 
 def _line_series(ds: xr.Dataset, x: str) -> str | None:
     if LOAD in ds.sizes and LOAD != x:
         return LOAD
-    others = [d for d in _preferred_dims(ds) if d != x and ds.sizes[d] > 1]
+    others = [d for d in preferred_dims(ds) if d != x and ds.sizes[d] > 1]
     return others[0] if others else None
 
 
@@ -515,10 +515,10 @@ def _maps_or_lines(ds: xr.Dataset, chart: str, title: str, names: Sequence[str],
     first swept input, one line per value of the next (see :func:`stress_maps`)."""
     if not ds.sizes or 0 in ds.sizes.values():
         return []
-    dims = _map_or_line_dims(ds)
+    dims = map_or_line_dims(ds)
     if RPM in dims and LOAD in dims:
         return _map_charts(ds, chart, title, names, RPM, LOAD, cmap=cmap, centre=centre, caption=caption)
-    x = dims[0] if dims else _preferred_dims(ds)[0]
+    x = dims[0] if dims else preferred_dims(ds)[0]
     return _line_charts(ds, chart, title, names, x, dims[1] if len(dims) > 1 else None, caption=caption)
 
 
@@ -551,7 +551,7 @@ def orbit_maps(ds: xr.Dataset) -> list[Chart]:
     names = [n for n in ORBIT_RATIOS if n in ds.data_vars]
     if "orbit_distance" not in ds.data_vars or not names:
         return []
-    found = np.isfinite(_full(ds, "orbit_distance"))
+    found = np.isfinite(full_array(ds, "orbit_distance"))
     if not found.any():
         return []
     ds = _where_found(ds, found)  # e = 1 alone, typically
@@ -568,7 +568,7 @@ def reference_maps(ds: xr.Dataset) -> list[Chart]:
     either does not strike the wall), laid out as :func:`stress_maps`, at the values of the swept inputs
     where some point has a ratio."""
     names = [n for n in REFERENCE_RATIOS if n in ds.data_vars]
-    found = np.isfinite(_full(ds, names[0])) if names else None
+    found = np.isfinite(full_array(ds, names[0])) if names else None
     if found is None or not found.any():
         return []
     ds = _where_found(ds, found)  # where both strike the wall
@@ -609,10 +609,10 @@ def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     if "status" in ds.data_vars:  # answers only: ok, or not converged (marked); other statuses' values are not drawn
         from study.solvers.result import STATUS_CODES
 
-        status = _full(ds, "status")
+        status = full_array(ds, "status")
         answered = (status == STATUS_CODES["ok"]) | (status == STATUS_CODES["not_converged"])
         rough = status == STATUS_CODES["not_converged"]
-        ds = ds.assign({n: _full(ds, n).where(answered) for n in names})
+        ds = ds.assign({n: full_array(ds, n).where(answered) for n in names})
     what = "How hard and how long" if "contact_duration" in names else "How hard"
     return _line_charts(ds, "contact_force_duration", title, names, RPM, _line_series(ds, RPM), rough=rough,
                         caption=f"{what} the pipe strikes the wall at each speed, one line per load (the largest over "
@@ -668,8 +668,8 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
         return []
     xq = quantity(ds[RPM], unit="rpm")
     fq = {n: quantity(ds[n], unit="Hz") for n in names}
-    xpos, _ = _positions(ds, RPM, xq)
-    full_first = _full(ds, names[0]).transpose(RPM, ...)  # speed first, for _curves
+    xpos, _ = axis_positions(ds, RPM, xq)
+    full_first = full_array(ds, names[0]).transpose(RPM, ...)  # speed first, for _curves
 
     def critical(values):
         curves = _curves(fq[names[0]].convert(values))

@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
-from study.charts.design import DPI, Chart, _full, _title
+from study.charts.design import DPI, Chart, figure_title, full_array
 from study.charts.labels import format_value, quantity
 from study.charts.plane import answered_points
 
@@ -33,7 +33,7 @@ INTERACTIONS = "all interactions"
 
 
 def _figure_values(ds: xr.Dataset, name: str, log: bool) -> xr.DataArray:
-    values = _full(ds, name).where(answered_points(ds))
+    values = full_array(ds, name).where(answered_points(ds))
     if log:
         with np.errstate(divide="ignore", invalid="ignore"):
             values = np.log10(values.where((values > 0) & np.isfinite(values)))
@@ -104,7 +104,7 @@ def drivers_chart(ds: xr.Dataset) -> list[Chart]:
     ax.set_yticks(np.arange(len(rows)) + 0.5, [r["label"] for r in rows], fontsize=8)
     ax.invert_yaxis()
     fig.colorbar(mesh, ax=ax, label="share of the figure's variance over the grid [%]", shrink=0.9)
-    _title(fig, "Which input drives the design: main effects over the full-factorial grid",
+    figure_title(fig, "Which input drives the design: main effects over the full-factorial grid",
            ["cell: the share of the figure's variance its input's levels explain (first-order index), and below it "
             "how far the mean figure moves across the input's levels",
             "answered points only (ok and not converged); the fatigue life as log₁₀ of hours"], 2.5 + 1.45 * len(columns))

@@ -35,7 +35,7 @@ from matplotlib.lines import Line2D
 
 from study.atomic import atomic_path
 from study.charts.critical import in_band
-from study.charts.design import DPI, Chart, _full, _title
+from study.charts.design import DPI, Chart, figure_title, full_array
 from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
 from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, bounds, caption_from, draw_boundary,  # noqa: F401
@@ -52,7 +52,7 @@ CRITERIA = ("life", "endurance")
 def _limit(ds: xr.Dataset, name: str) -> xr.DataArray:
     """The output over every dimension, NaN where absent (an unknown value never passes a limit)."""
     if name in ds.data_vars:
-        return _full(ds, name)
+        return full_array(ds, name)
     return xr.full_like(ok_points(ds), np.nan, dtype=float)
 
 
@@ -92,7 +92,7 @@ def _rough(ds: xr.Dataset) -> xr.DataArray:
     """True where a point is not converged to its tolerance and states its error estimate."""
     if "status" not in ds.data_vars or "error_estimate" not in ds.data_vars:
         return xr.zeros_like(ok_points(ds), dtype=bool)
-    return (_full(ds, "status") == STATUS_CODES["not_converged"]) & np.isfinite(_full(ds, "error_estimate"))
+    return (full_array(ds, "status") == STATUS_CODES["not_converged"]) & np.isfinite(full_array(ds, "error_estimate"))
 
 
 def _bounded(ds: xr.Dataset, name: str) -> tuple[xr.DataArray, xr.DataArray, xr.DataArray]:
@@ -122,7 +122,7 @@ def _has_limits(ds: xr.Dataset, criterion: str) -> bool:
     return "yield_utilisation" in ds.data_vars and fatigue in ds.data_vars
 
 
-def _criterion_text(target_hours: float, criterion: str) -> str:
+def criterion_text(target_hours: float, criterion: str) -> str:
     if criterion == "life":
         return f"fatigue life ≥ {format_value(target_hours)} h"
     return "below the endurance limit (endurance utilisation ≤ 1)"
@@ -260,7 +260,7 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
                title="cell (first limit broken)", title_fontsize=8)
     within = int(_decided(ds, fails).sum())
     context = [f"safe: every point answered and decided, yield utilisation ≤ 1, "
-               f"{_criterion_text(target_hours, criterion)}"
+               f"{criterion_text(target_hours, criterion)}"
                + (", outside ±15 % of the joint's critical speeds (1× and 2×, the Campbell chart's)" if checked else
                   "; critical speeds NOT checked (the dataset lacks bending_stiffness, effective_tension or "
                   "mass_per_length)")]
@@ -268,7 +268,7 @@ def envelope_chart(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
         context.append(f"decided: ok, or not converged to the study's tolerance with its limits holding or failing "
                        f"with the stresses off by {MARGIN:g}x its error estimate ({within} points)")
     context += p.context("every point must pass")
-    _title(fig, "Safe operating envelope", context, 8.5)
+    figure_title(fig, "Safe operating envelope", context, 8.5)
     caption = caption_from("Where the pipe can run: green cells pass every limit at every value of the other swept "
                            "inputs; other cells show the first limit a decided point breaks, or that the cell is "
                            "undecided.", [h.get_label() for h in handles])

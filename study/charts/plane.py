@@ -23,8 +23,8 @@ from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from study.charts.design import (DPI, LOAD, RPM, Chart, _edges, _format_axis, _full, _mark_missing, _names,
-                                 _positions, _title)
+from study.charts.design import (DPI, LOAD, RPM, Chart, axis_names, axis_positions, cell_edges, figure_title,
+                                 format_axis, full_array, mark_missing)
 from study.charts.labels import TickFormatter, quantity
 from study.solvers.result import STATUS_CODES
 
@@ -59,19 +59,19 @@ class Plane:
 
     @property
     def xpos(self) -> np.ndarray:
-        return _positions(self.ds, self.x)[0]
+        return axis_positions(self.ds, self.x)[0]
 
     @property
     def ypos(self) -> np.ndarray:
-        return _positions(self.ds, self.y)[0]
+        return axis_positions(self.ds, self.y)[0]
 
     @property
     def xedges(self) -> np.ndarray:
-        return _edges(self.xpos)
+        return cell_edges(self.xpos)
 
     @property
     def yedges(self) -> np.ndarray:
-        return _edges(self.ypos)
+        return cell_edges(self.ypos)
 
     def reduce(self, da: xr.DataArray, how: str) -> np.ndarray:
         """``da`` (over the dataset's dimensions) as a (load, speed) array: the fixed dimensions at their
@@ -88,7 +88,7 @@ class Plane:
         """Title lines naming the fixed inputs and how the others were reduced."""
         parts = [quantity(self.ds[d]).describe(self.ds[d].values[0]) for d in self.fixed]
         if self.reduced:
-            parts.append(f"{reduction} over {_names(self.ds, self.reduced)}")
+            parts.append(f"{reduction} over {axis_names(self.ds, self.reduced)}")
         return parts
 
 
@@ -104,7 +104,7 @@ def ok_points(ds: xr.Dataset) -> xr.DataArray:
     """True where a point's status is ``ok`` (every point when the dataset has no status), over every dimension."""
     if "status" not in ds.data_vars:
         return xr.DataArray(np.ones(tuple(ds.sizes.values()), dtype=bool), dims=list(ds.sizes))
-    return _full(ds, "status") == STATUS_CODES["ok"]
+    return full_array(ds, "status") == STATUS_CODES["ok"]
 
 
 #: Statuses whose figures are answers: ``ok``, and ``yields`` (solved and valid, its normal stress past the grade's
@@ -117,7 +117,7 @@ def solved_points(ds: xr.Dataset) -> xr.DataArray:
     point when the dataset has no status)."""
     if "status" not in ds.data_vars:
         return ok_points(ds)
-    return _full(ds, "status").isin([STATUS_CODES[name] for name in ANSWERED])
+    return full_array(ds, "status").isin([STATUS_CODES[name] for name in ANSWERED])
 
 
 def answered_points(ds: xr.Dataset) -> xr.DataArray:
@@ -127,19 +127,19 @@ def answered_points(ds: xr.Dataset) -> xr.DataArray:
     solved = solved_points(ds)
     if "status" not in ds.data_vars:
         return solved
-    return solved | (_full(ds, "status") == STATUS_CODES["not_converged"])
+    return solved | (full_array(ds, "status") == STATUS_CODES["not_converged"])
 
 
 def answered_values(ds: xr.Dataset, name: str) -> xr.DataArray:
     """The output ``name`` over every dimension, NaN where the point has no answer (:func:`answered_points`)."""
-    return _full(ds, name).where(answered_points(ds))
+    return full_array(ds, name).where(answered_points(ds))
 
 
 def point_errors(ds: xr.Dataset) -> xr.DataArray:
     """Each point's relative error estimate (0 where the dataset has none)."""
     if "error_estimate" not in ds.data_vars:
         return xr.zeros_like(ok_points(ds), dtype=float)
-    return _full(ds, "error_estimate").fillna(0.0)
+    return full_array(ds, "error_estimate").fillna(0.0)
 
 
 #: The output whose own relative error a figure's uncertainty is (the reference model states them by figure), where the
@@ -162,7 +162,7 @@ def figure_errors(ds: xr.Dataset, name: str) -> tuple[xr.DataArray, xr.DataArray
     own = FIGURE_ERRORS.get(name)
     if own is None or own not in ds.data_vars:
         return fallback, xr.zeros_like(fallback, dtype=bool)
-    mine = _full(ds, own)
+    mine = full_array(ds, own)
     has = np.isfinite(mine)
     return mine.where(has, fallback), has
 
@@ -207,7 +207,7 @@ def worst_in_cells(ds: xr.Dataset, name: str, how: str, p: "Plane | None" = None
     if how not in ("max", "min"):
         raise ValueError(f"how = {how!r}; allowed: max, min")
     p = p or plane(ds)
-    values = _cells(p, _full(ds, name).where(answered_points(ds)))
+    values = _cells(p, full_array(ds, name).where(answered_points(ds)))
     errors, own = figure_errors(ds, name)
     error = _cells(p, errors)
     rough = _cells(p, ~solved_points(ds))
@@ -279,8 +279,8 @@ def plane_axes(ax, p: Plane):
     """Limits, ticks at the grid values and labels with units of a map of the plane."""
     ax.set_xlim(p.xedges[0], p.xedges[-1])
     ax.set_ylim(p.yedges[0], p.yedges[-1])
-    _format_axis(ax.xaxis, None, p.xpos, grid_values=p.xpos)
-    _format_axis(ax.yaxis, None, p.ypos, grid_values=p.ypos)
+    format_axis(ax.xaxis, None, p.xpos, grid_values=p.xpos)
+    format_axis(ax.yaxis, None, p.ypos, grid_values=p.ypos)
     ax.set_xlabel(quantity(p.ds[p.x]).label)
     ax.set_ylabel(quantity(p.ds[p.y]).label)
 
@@ -342,7 +342,7 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
         masked = np.ma.masked_invalid(np.asarray(panel.values, dtype=float))
         if masked.mask.any():
             missing = True
-            _mark_missing(ax)
+            mark_missing(ax)
         partial = some_failed & ~masked.mask
         if partial.any():  # the worst of the answered points only: a point without an answer there might be worse
             draw_cells(ax, partial, p, **PARTIAL_STYLE)
@@ -387,5 +387,5 @@ def plane_chart(p: Plane, name: str, title: str, panels: Sequence[Panel], contex
         columns_of_legend = max(1, min(len(handles), int(width // 7)))
         fig.legend(handles=list(handles.values()), loc="outside lower center", ncols=columns_of_legend,
                    fontsize=8, frameon=False)
-    _title(fig, title, context, width)
+    figure_title(fig, title, context, width)
     return Chart(name, fig, caption_from(caption, list(handles)))

@@ -15,7 +15,7 @@ from typing import Any, Mapping
 import numpy as np
 from matplotlib.figure import Figure
 
-from study.charts.design import DPI, Chart, _title
+from study.charts.design import DPI, Chart, figure_title
 from study.physics import section
 from study.units import convert
 
@@ -93,7 +93,7 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     shape.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7)
     speed = convert(float(inputs["rotary_speed"]), "rad/s", "rpm")
     load = float(inputs["axial_tension"]) / LBF
-    _title(fig, "One point, seen: the reference model's motion", [
+    figure_title(fig, "One point, seen: the reference model's motion", [
         f"{speed:.0f} rpm, {load:,.0f} lbf; whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Ω); "
         f"window of {revolutions[-1]:.1f} revolutions after {run['revolutions']} of transient"], 15.0)
     caption = ("What the pipe does at this point in the reference model: the orbit of its most-touching point inside "

@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from study.charts.critical import avoid_bands
-from study.charts.design import DPI, Chart, _full, _mark_missing, _title
+from study.charts.design import DPI, Chart, figure_title, full_array, mark_missing
 from study.charts.plane import BAND_LABEL, BAND_STYLE, draw_bands, draw_cells, plane, plane_axes
 from study.solvers.result import REGIMES, STATUS_CODES
 
@@ -38,14 +38,14 @@ def regimes(ds: xr.Dataset) -> tuple[xr.DataArray, bool]:
     """The regime code of every point (NaN: undetermined), over every dimension, and whether any point's regime
     was read from its status rather than a ``regime`` output."""
     if "regime" in ds.data_vars:
-        given = _full(ds, "regime").astype(float)
+        given = full_array(ds, "regime").astype(float)
     else:
-        given = xr.full_like(_full(ds, "status"), np.nan, dtype=float) if "status" in ds.data_vars else None
+        given = xr.full_like(full_array(ds, "status"), np.nan, dtype=float) if "status" in ds.data_vars else None
     if given is None:
         raise ValueError("the dataset has neither a regime nor a status variable")
     derived = xr.full_like(given, np.nan)
     if "status" in ds.data_vars:
-        status = _full(ds, "status")
+        status = full_array(ds, "status")
         for flag, regime in FROM_STATUS.items():
             derived = xr.where(status == STATUS_CODES[flag], float(REGIMES[regime]), derived)
     use_status = given.isnull() & derived.notnull()
@@ -88,7 +88,7 @@ def regime_map(ds: xr.Dataset) -> list[Chart]:
         context.append("regime read from the status where the method gives none (no_impact: no contact; ok, "
                        "disagrees: periodic impacts; unstable, period_doubling: unstable; not_periodic, chattering: "
                        "bouncing)")
-    _title(fig, "Regime of the motion", context, 8.5)
+    figure_title(fig, "Regime of the motion", context, 8.5)
     caption = ("How the pipe moves at each rotary speed and load - free of the wall, whirling, bouncing or striking "
                "periodically - taking the most severe regime over the other swept inputs; shaded bands are speeds to "
                "avoid.")
@@ -100,7 +100,7 @@ def _figure(p, index: np.ndarray, present: list[str]) -> Figure:
     ax = fig.subplots()
     masked = np.ma.masked_invalid(index)
     if masked.mask.any():
-        _mark_missing(ax)
+        mark_missing(ax)
     if present:
         ax.pcolormesh(p.xedges, p.yedges, masked, cmap=ListedColormap([COLOURS[n] for n in present]),
                       vmin=-0.5, vmax=len(present) - 0.5, shading="flat", edgecolors="white", linewidth=0.3)

@@ -102,13 +102,13 @@ def representative_points(ds) -> list[tuple[str, dict]]:
     points): [(regime name, {dimension: index})]."""
     import numpy as np
 
-    from study.charts.design import _full
+    from study.charts.design import full_array
     from study.charts.plane import answered_points
     from study.solvers.result import REGIMES
 
     if "regime" not in ds.data_vars or not ds.sizes:
         return []
-    regime = _full(ds, "regime").where(answered_points(ds)).values
+    regime = full_array(ds, "regime").where(answered_points(ds)).values
     dims = list(ds.sizes)
     out = []
     for name, code in REGIMES.items():

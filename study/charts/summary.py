@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from study.charts.envelope import VERDICTS, _criterion_text, envelope_table, safe_ranges
+from study.charts.envelope import VERDICTS, criterion_text, envelope_table, safe_ranges
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS
 from study.solvers.result import STATUS
 
@@ -55,7 +55,7 @@ def sweep_summary(ds: xr.Dataset, seconds: float | None = None, report: Path | N
     rows = envelope_table(ds, target_hours, criterion)
     if rows:
         counts = Counter(r["verdict"] for r in rows)
-        lines.append(f"  envelope ({_criterion_text(target_hours, criterion)}, below yield, outside ±15 % of the "
+        lines.append(f"  envelope ({criterion_text(target_hours, criterion)}, below yield, outside ±15 % of the "
                      f"joint's critical speeds at 1× and 2×): {len(rows)} rotary speed x axial load cells: "
                      + ", ".join(f"{counts.get(v, 0)} {v}" for v in VERDICTS)
                      + f" (decided: {len(rows) - counts.get('undecided', 0)} of {len(rows)}, "

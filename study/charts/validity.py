@@ -15,8 +15,8 @@ from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from study.charts.design import (DPI, Chart, _edges, _format_axis, _full, _map_or_line_dims, _names, _positions,
-                                 _preferred_dims, _title)
+from study.charts.design import (DPI, Chart, axis_names, axis_positions, cell_edges, figure_title, format_axis,
+                                 full_array, map_or_line_dims, preferred_dims)
 from study.charts.labels import quantity
 from study.solvers.result import STATUS
 
@@ -57,8 +57,8 @@ def flags(status: xr.DataArray) -> dict[int, str]:
 
 
 def _layout(ds: xr.Dataset) -> tuple[str, str | None, list[str], list[str]]:
-    dims = _map_or_line_dims(ds)
-    x = dims[0] if dims else _preferred_dims(ds)[0]
+    dims = map_or_line_dims(ds)
+    x = dims[0] if dims else preferred_dims(ds)[0]
     y = dims[1] if len(dims) > 1 else None
     fixed = [d for d in ds.sizes if ds.sizes[d] == 1 and d not in (x, y)]
     reduced = [d for d in ds.sizes if d not in (x, y) and d not in fixed]
@@ -70,7 +70,7 @@ def validity_fractions(ds: xr.Dataset) -> xr.DataArray:
     inputs: dims ``status`` (names, ok first when present), x and (when a second input is swept) y. Sums to 1
     over ``status`` in every cell."""
     x, y, fixed, reduced = _layout(ds)
-    status = _full(ds, "status").isel({d: 0 for d in fixed})
+    status = full_array(ds, "status").isel({d: 0 for d in fixed})
     names = flags(ds["status"])
     present = sorted(int(v) for v in np.unique(status.values))
     layers = [(status == code).mean(dim=reduced) if reduced else (status == code).astype(float) for code in present]
@@ -86,12 +86,12 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
     x, y, fixed, reduced = _layout(ds)
     fractions = validity_fractions(ds)
     xq = quantity(ds[x])
-    xpos, xticks = _positions(ds, x, xq)
-    xedges = _edges(xpos)
+    xpos, xticks = axis_positions(ds, x, xq)
+    xedges = cell_edges(xpos)
     if y is not None:
         yq = quantity(ds[y])
-        ypos, yticks = _positions(ds, y, yq)
-        yedges = _edges(ypos)
+        ypos, yticks = axis_positions(ds, y, yq)
+        yedges = cell_edges(ypos)
         size = (9.0, 5.4)
     else:
         yedges = np.array([0.0, 1.0])
@@ -105,10 +105,10 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
     ax.add_collection(PolyCollection(polygons, facecolors=facecolours, edgecolors="none"))
     ax.set_xlim(xedges[0], xedges[-1])
     ax.set_ylim(yedges[0], yedges[-1])
-    _format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
+    format_axis(ax.xaxis, xticks, xpos, grid_values=xpos)
     ax.set_xlabel(xq.label)
     if y is not None:
-        _format_axis(ax.yaxis, yticks, ypos, grid_values=ypos)
+        format_axis(ax.yaxis, yticks, ypos, grid_values=ypos)
         ax.set_ylabel(yq.label)
     else:
         ax.set_yticks([])
@@ -116,7 +116,7 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
         ax.axvline(edge, color="white", lw=0.8)
     for edge in yedges:
         ax.axhline(edge, color="white", lw=0.8)
-    counts = (_full(ds, "status").isel({d: 0 for d in fixed}) if fixed else _full(ds, "status")).values.ravel()
+    counts = (full_array(ds, "status").isel({d: 0 for d in fixed}) if fixed else full_array(ds, "status")).values.ravel()
     code_of = {n: c for c, n in flags(ds["status"]).items()}
     handles = [Patch(facecolor=colours[i], edgecolor="0.5", lw=0.5,
                      label=f"{n} ({100.0 * np.mean(counts == code_of.get(n, -1)):.0f} % of the points)")
@@ -126,8 +126,8 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
     context = [quantity(ds[d]).describe(ds[d].values[0]) for d in fixed]
     if reduced:
         n = int(np.prod([ds.sizes[d] for d in reduced]))
-        context.append(f"each cell holds the {n} points over {_names(ds, reduced)}")
-    _title(fig, "Validity of the design points: fraction of each status", context, 8.0)
+        context.append(f"each cell holds the {n} points over {axis_names(ds, reduced)}")
+    figure_title(fig, "Validity of the design points: fraction of each status", context, 8.0)
     caption = ("Which answers can be trusted: each cell is split in proportion to its points' statuses over the "
                "other swept inputs (green: ok); the legend gives each status's share of the whole study.")
     return [Chart("validity_map", fig, caption)]

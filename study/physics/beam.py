@@ -17,6 +17,9 @@ The quasi-static split y = J h(t) G(x) + Σ_n [J g_n/(M L/2)] (q_n − h/ω_n²)
 static deflection under the unit spread load in closed form (:func:`static_deflection`), makes
 moment and shear converge in few modes (docs/model.md §9).
 
+Beside it: the midspan state of many spans at once, the span search's compiled kernels, in
+:mod:`study.physics.midspan`; the paper's double Fourier series of the same response in :mod:`study.physics.fourier`.
+
 Pure functions of numpy arrays, SI units, no I/O.
 """
 
@@ -49,7 +52,8 @@ class ModalResponse(NamedTuple):
     velocity: np.ndarray  #: q̇(t) [-]
 
 
-def _check(name, value, allowed):
+def check_choice(name, value, allowed):
+    """Refuse `value` of the option `name` unless it is one of `allowed` (ValueError naming the three)."""
     if value not in allowed:
         raise ValueError(f"{name} = {value!r}; allowed: {', '.join(allowed)}")
 
@@ -61,14 +65,14 @@ def wavenumbers(span_length, modes):
 
 
 #: Maclaurin coefficients of 3(sin β − β cos β)/β³ in powers of β², highest power first (np.polyval).
-_PARABOLIC_SERIES = np.array([(-1) ** (j + 1) * 6.0 * j / factorial(2 * j + 1) for j in range(9, 0, -1)])
+PARABOLIC_SERIES = np.array([(-1) ** (j + 1) * 6.0 * j / factorial(2 * j + 1) for j in range(9, 0, -1)])
 
 
 def _parabolic_factor(beta):
     """3(sin β − β cos β)/β³ = 3 j₁(β)/β [-], with its Maclaurin series for |β| < 0.5."""
     beta = np.asarray(beta, dtype=float)
     small = np.abs(beta) < 0.5
-    series = np.polyval(_PARABOLIC_SERIES, np.where(small, beta, 0.0) ** 2)
+    series = np.polyval(PARABOLIC_SERIES, np.where(small, beta, 0.0) ** 2)
     bl = np.where(small, 1.0, beta)
     return np.where(small, series, 3.0 * (np.sin(bl) - bl * np.cos(bl)) / bl**3)
 
@@ -86,7 +90,7 @@ def modal_load_factors(modes, span_length, half_length=0.0, shape="point"):
 
     Even modes give 0 (symmetric load). The last axis runs over ``modes``.
     """
-    _check("shape", shape, LOAD_SHAPES)
+    check_choice("shape", shape, LOAD_SHAPES)
     n = np.asarray(modes, dtype=float)
     parity = np.where(n % 2 == 1, np.where(n % 4 == 1, 1.0, -1.0), 0.0)  # sin(nπ/2), exact
     if shape == "point":
@@ -102,7 +106,7 @@ def load_shape(x, span_length, half_length, shape="uniform"):
 
     x [m], span_length L [m], half_length b [m]. The Dirac ``"point"`` shape has no density.
     """
-    _check("shape", shape, ("uniform", "parabolic"))
+    check_choice("shape", shape, ("uniform", "parabolic"))
     xi = (np.asarray(x, dtype=float) - 0.5 * np.asarray(span_length)) / np.asarray(half_length)
     inside = np.abs(xi) <= 1.0
     if shape == "uniform":
@@ -146,7 +150,7 @@ def pulse_train(t, pulse_duration, period, pattern="one_wall"):
 
     t [s] (any real), pulse_duration T_L [s], period τ [s]; pattern one of :data:`IMPACT_PATTERNS`.
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     tm, sign, _ = _wrap(t, period, pattern)
     return sign * unit_pulse(tm, pulse_duration)
 
@@ -159,7 +163,7 @@ def resonance_distance(omega_n, period, pattern="one_wall"):
     (alternating). Returns |ν − ν_res| for the nearest resonant ν_res: in [0, 1/2] for one_wall,
     [0, 1] for alternating. The response amplitude grows like 1/(ω · distance).
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     nu = np.asarray(omega_n, dtype=float) * np.asarray(period, dtype=float) / (2.0 * np.pi)
     if pattern == "one_wall":
         return np.abs(nu - np.round(nu))
@@ -208,7 +212,7 @@ def modal_periodic_response(t, omega_n, pulse_duration, period, pattern="one_wal
     (alternating) on 0 < t < P. NaN where :func:`resonance_distance` ≤ resonance_tol·max(1, ν), where
     the pulse does not fit in P (T_L > P), or where ω is NaN (buckled mode).
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     tm, sign, p = _wrap(t, period, pattern)
     om = np.asarray(omega_n, dtype=float)
     tl = np.asarray(pulse_duration, dtype=float)
@@ -240,7 +244,7 @@ def _loaded_spectrum_kernel(omega, spans, modes, durations, halves, code):
 @numba.njit(cache=True, nogil=True)
 def loaded_spectrum_one(omega, span, mode, duration, half, code):
     """(real, imaginary part) of :func:`loaded_pulse_spectrum` at one ω [rad/s], compiled; ``code``:
-    the load shape's (``_SHAPE_CODES``)."""
+    the load shape's (``SHAPE_CODES``)."""
     g = abs(_shape_factor(mode * math.pi / span * half, code))
     phi = 0.5 * omega * duration
     c = math.cos(phi)
@@ -256,10 +260,10 @@ def loaded_pulse_spectrum(omega, span_length, modes, pulse_duration, half_length
     omega ω [rad/s], span_length L [m], modes n (odd), pulse_duration T_L [s], half_length b [m]
     broadcast together; shape one of :data:`LOAD_SHAPES`.
     """
-    _check("shape", shape, LOAD_SHAPES)
+    check_choice("shape", shape, LOAD_SHAPES)
     args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (omega, span_length, modes, pulse_duration,
                                                                         half_length)))
-    real, imag = _loaded_spectrum_kernel(*(np.array(v).ravel() for v in args), _SHAPE_CODES[shape])
+    real, imag = _loaded_spectrum_kernel(*(np.array(v).ravel() for v in args), SHAPE_CODES[shape])
     return real.reshape(args[0].shape), imag.reshape(args[0].shape)
 
 
@@ -277,7 +281,7 @@ def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wal
     Arguments and units as :func:`modal_periodic_response`; NaN where it is NaN. The span search
     sums it over modes with :func:`midspan_state_at_pulse_start`.
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     tl = np.asarray(pulse_duration, dtype=float)
     bad, oms, c_minus_one = _echo(np.asarray(omega_n, dtype=float), tl, np.asarray(period, dtype=float),
                                   pattern, resonance_tol)
@@ -287,7 +291,7 @@ def modal_state_at_pulse_start(omega_n, pulse_duration, period, pattern="one_wal
 
 
 #: Load shapes as the integer codes of :func:`_midspan_state_kernel`.
-_SHAPE_CODES = {"point": 0, "uniform": 1, "parabolic": 2}
+SHAPE_CODES = {"point": 0, "uniform": 1, "parabolic": 2}
 
 
 @numba.njit(cache=True, nogil=True)
@@ -304,8 +308,8 @@ def _shape_factor(beta, code, sin_beta=math.nan, cos_beta=math.nan):
     b2 = beta * beta
     if abs(beta) < 0.5:  # Maclaurin series (as _parabolic_factor): 1 − β²/10 + β⁴/280 − β⁶/15120 + …
         acc = 0.0
-        for j in range(_PARABOLIC_SERIES.size):  # Horner in β² (highest power first, as np.polyval)
-            acc = acc * b2 + _PARABOLIC_SERIES[j]
+        for j in range(PARABOLIC_SERIES.size):  # Horner in β² (highest power first, as np.polyval)
+            acc = acc * b2 + PARABOLIC_SERIES[j]
         return acc
     if math.isnan(sin_beta):
         sin_beta, cos_beta = math.sin(beta), math.cos(beta)
@@ -351,259 +355,6 @@ def _echo_amplitude(u, cos_phi):
     if abs(d) > 1e-3:
         return cos_phi / ((1.0 - u) * (1.0 + u))
     return 0.5 * math.pi * (1.0 if d == 0.0 else math.sin(math.pi * d) / (math.pi * d)) / (1.0 + u)
-
-
-@numba.njit(cache=True, nogil=True)
-def _midspan_state_kernel(spans, durations, halves, modes, ei, tension, mass, period, one_wall, code, tol,
-                          consecutive):
-    """The loop of :func:`midspan_state_at_pulse_start` over :func:`midspan_state_one`."""
-    out = np.empty((3, spans.size))
-    per_span = modes.shape[0] > 1
-    for i in range(spans.size):
-        out[0, i], out[1, i], out[2, i] = midspan_state_one(spans[i], durations[i], halves[i], modes[i if per_span else 0],
-                                                            ei, tension, mass, period, one_wall, code, tol, consecutive)
-    return out
-
-
-@numba.njit(cache=True, nogil=True)
-def midspan_state_one(span, tl, half, modes, ei, tension, mass, period, one_wall, code, tol, consecutive):
-    """(y₁, v₁, y₁'') of :func:`midspan_state_at_pulse_start` at one span, compiled (for the compiled
-    root finders of the span search): span L [m], tl T_L [s], half b [m], modes the odd mode numbers
-    (1-D), ei, tension, mass, period as there; one_wall: the pattern; code: the load shape's
-    (``_SHAPE_CODES``); tol: resonance_tol. ``consecutive``: the modes are 1, 3, 5, …, so sin and cos
-    of β_n = n β_1 (the load factors) follow by rotation through 2β_1 instead of two transcendentals
-    per mode. Each mode's terms are :func:`_mode_term`'s, as in :func:`midspan_states` (many spans at once)."""
-    if not tl <= (period if one_wall else 0.5 * period):  # the pulse outlasts the (half) period
-        return math.nan, math.nan, math.nan
-    inv_mass = 1.0 / mass
-    k1 = math.pi / span  # k_n = n k_1
-    weight_1 = 2.0 / (mass * span)  # w_n = weight_1 g_n
-    u_1 = tl / math.pi  # u = ω T_L/π
-    y = 0.0
-    v = 0.0
-    curv = 0.0
-    s_n = c_n = s_2 = c_2 = 0.0
-    if consecutive and code != 0:
-        s_n, c_n = sincos(k1 * half)  # sin, cos of n β_1 for the current odd n
-        s_2, c_2 = sincos(2.0 * k1 * half)
-    for j in range(modes.size):
-        n = modes[j]
-        if not consecutive:
-            s_n, c_n = sincos(n * k1 * half)
-        q, qd, k2, shape, bad = _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code,
-                                           s_n, c_n)
-        if bad:
-            return math.nan, math.nan, math.nan
-        if consecutive:
-            s_n, c_n = s_n * c_2 + c_n * s_2, c_n * c_2 - s_n * s_2
-        weight = weight_1 * shape
-        y += weight * q
-        v += weight * qd
-        curv -= weight * k2 * q
-    return y, v, curv
-
-
-# --- the midspan state of many spans at once, in SIMD instructions ----------------------------------
-#: π/2 in four parts of at most 27 significant bits (Cody & Waite's reduction): k times each of the first
-#: three is exact for |k| < 2^26, so x − k π/2 keeps its accuracy up to |x| ≈ 10^8.
-_PIO2_PARTS = (1.570796325802803, 9.920935739593517e-10, 5.721188709663575e-18, 1.6446256936324258e-26)
-#: Minimax coefficients of sin and cos on [−π/4, π/4] (fdlibm's __kernel_sin and __kernel_cos, Sun
-#: Microsystems 1993; error below 2^−58 on the interval).
-_SIN_POLY = (-1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04,
-             2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10)
-_COS_POLY = (4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05,
-             -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11)
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def sincos(x):
-    """(sin x, cos x) without a jump or a library call, so that a loop over arrays of x compiles to SIMD
-    instructions (the scalar library calls were most of the span search's time, docs/profile_fast.md):
-    x − kπ/2 reduced by :data:`_PIO2_PARTS`, the polynomials of :data:`_SIN_POLY` and :data:`_COS_POLY`
-    on [−π/4, π/4], the quadrant chosen by selects. Within 2 ulp of ``math.sin``/``math.cos`` (absolute,
-    for |sin|, |cos| ≤ 1) for |x| < 10^7 (tests/physics/test_beam.py); NaN for a NaN x."""
-    k = math.floor(x * 0.6366197723675814 + 0.5)
-    p1, p2, p3, p4 = _PIO2_PARTS
-    r = (((x - k * p1) - k * p2) - k * p3) - k * p4
-    z = r * r
-    s1, s2, s3, s4, s5, s6 = _SIN_POLY
-    c1, c2, c3, c4, c5, c6 = _COS_POLY
-    s = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * s6)))))
-    c = 1.0 - 0.5 * z + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * c6)))))
-    quadrant = k - 4.0 * math.floor(0.25 * k)  # 0, 1, 2, 3
-    odd = (quadrant == 1.0) | (quadrant == 3.0)
-    sine = c if odd else s
-    cosine = s if odd else c
-    sine = -sine if quadrant >= 2.0 else sine
-    cosine = -cosine if (quadrant == 1.0) | (quadrant == 2.0) else cosine
-    return sine, cosine
-
-
-@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
-def _mode_factors(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
-    """The factors of one odd mode n's periodic response, without jumps or library calls: (ω_n [rad/s],
-    ν = ωτ/2π [-], κ [-], sin φ, cos φ (φ = ωT_L/2), A [-], |g_n| [-], k_n² [1/m²], resonant or buckled?) for
-    k_1 = π/L ``k1`` [1/m], ``half`` b [m], ``tl`` T_L [s], ``u_1`` = T_L/π, sin and cos of β = k_n b. As
-    :func:`modal_state_at_pulse_start`: κ = cot of the reduced angle (:func:`_echo_kappa`) as cos/sin,
-    A = cos φ/(1 − u²) (:func:`_echo_amplitude`, its sinc by the series where |1 − u| ≤ 2e-3), and the
-    load factor of :func:`_shape_factor`."""
-    k = n * k1
-    k2 = k * k
-    om2 = (ei * k2 + tension) * k2 * inv_mass
-    om = math.sqrt(abs(om2))
-    nu = om * period * (0.5 / math.pi)  # as _echo_kappa: κ near a resonance amplifies ν's rounding
-    d = nu - math.floor(nu + 0.5) if one_wall else nu - (2.0 * math.floor(0.5 * (nu - 1.0) + 0.5) + 1.0)
-    s_k, c_k = sincos((math.pi if one_wall else 0.5 * math.pi) * d)
-    bad = (not om2 > 0.0) | (not abs(d) > tol * max(1.0, nu))
-    kappa = c_k / s_k
-    sin_phi, cos_phi = sincos(0.5 * om * tl)
-    u = om * u_1
-    half_gap = 0.5 * (1.0 - u)
-    x = math.pi * half_gap  # near u = 1: (π/2) sinc(x)/(1 + u), sinc by its series (|x| ≤ π/1000)
-    near = 0.5 * math.pi * (1.0 - x * x * (1.0 / 6.0 - x * x / 120.0)) / (1.0 + u)
-    amp = cos_phi / ((1.0 - u) * (1.0 + u)) if abs(half_gap) > 1e-3 else near
-    beta = k * half
-    b2 = beta * beta
-    series = _PARABOLIC_SERIES
-    acc = (((((((series[0] * b2 + series[1]) * b2 + series[2]) * b2 + series[3]) * b2 + series[4]) * b2
-              + series[5]) * b2 + series[6]) * b2 + series[7]) * b2 + series[8]  # unrolled: no inner loop
-    parabolic = acc if abs(beta) < 0.5 else 3.0 * (sin_beta - beta * cos_beta) / (b2 * beta)
-    uniform = 1.0 if beta == 0.0 else sin_beta / beta
-    return om, nu, kappa, sin_phi, cos_phi, amp, 1.0 if code == 0 else uniform if code == 1 else parabolic, k2, bad
-
-
-@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
-def _mode_term(n, k1, half, tl, u_1, ei, tension, inv_mass, period, one_wall, tol, code, sin_beta, cos_beta):
-    """One odd mode n's part of the midspan state (:func:`midspan_state_one`, without jumps or library calls):
-    (q(0) [s], q̇(0) [-], k_n² [1/m²], |g_n| [-], resonant or buckled?) from :func:`_mode_factors` (same
-    arguments), q(0) = A (κ cos φ + sin φ)/(2ω), q̇(0) = A (κ sin φ − cos φ)/2."""
-    om, _, kappa, sin_phi, cos_phi, amp, shape, k2, bad = _mode_factors(n, k1, half, tl, u_1, ei, tension, inv_mass,
-                                                                       period, one_wall, tol, code, sin_beta, cos_beta)
-    q = amp * (kappa * cos_phi + sin_phi) / (2.0 * om)
-    qd = 0.5 * amp * (kappa * sin_phi - cos_phi)
-    return q, qd, k2, shape, bad
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _span_factors(spans, durations, halves, mass):
-    """Per span, for the loops over modes of :func:`midspan_states` and :func:`excursion_verdicts`: k_1 = π/L
-    [1/m], the midspan weight 2/(M L) [1/kg], u_1 = T_L/π [s], and sin, cos of β_1 = k_1 b and of 2β_1 (the
-    odd modes' load factors by rotation)."""
-    size = spans.size
-    k1, weight_1, u_1 = np.empty(size), np.empty(size), np.empty(size)
-    s_n, c_n, s_2, c_2 = np.empty(size), np.empty(size), np.empty(size), np.empty(size)
-    for i in range(size):
-        k1[i] = math.pi / spans[i]
-        weight_1[i] = 2.0 / (mass * spans[i])
-        u_1[i] = durations[i] / math.pi
-        s_n[i], c_n[i] = sincos(k1[i] * halves[i])
-        s_2[i], c_2[i] = sincos(2.0 * k1[i] * halves[i])
-    return k1, weight_1, u_1, s_n, c_n, s_2, c_2
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")  # no division check: a jump in the loop stops SIMD
-def midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol):
-    """:func:`midspan_state_one` at every span of ``spans`` [m] (with its T_L ``durations`` [s] and
-    contact half-length ``halves`` [m]) over the odd modes 1, 3, …, 2 ``n_odd`` − 1, as three arrays
-    y₁, v₁, y₁''; other arguments as there.
-
-    The same terms (:func:`_mode_term`) summed in the same order, so the same values to the last bit; the
-    loop over spans is innermost and has no jumps (a resonant or buckled mode, or a pulse longer than the
-    (half) period, makes its span NaN by arithmetic) and no library calls (:func:`sincos`), so it runs in
-    SIMD instructions, about 8 times faster than the scalar loop."""
-    size = spans.size
-    y, v, curv = np.zeros(size), np.zeros(size), np.zeros(size)  # three arrays, not rows of one: no alias
-    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
-    longest = period if one_wall else 0.5 * period
-    for i in range(size):
-        if not durations[i] <= longest:
-            y[i] = v[i] = curv[i] = math.nan
-    inv_mass = 1.0 / mass
-    for j in range(n_odd):
-        n = 2.0 * j + 1.0
-        for i in range(size):
-            q, qd, k2, shape, bad = _mode_term(n, k1[i], halves[i], durations[i], u_1[i], ei, tension, inv_mass,
-                                               period, one_wall, tol, code, s_n[i], c_n[i])
-            q, qd = (math.nan, math.nan) if bad else (q, qd)
-            s_n[i], c_n[i] = s_n[i] * c_2[i] + c_n[i] * s_2[i], c_n[i] * c_2[i] - s_n[i] * s_2[i]
-            weight = weight_1[i] * shape
-            y[i] += weight * q
-            v[i] += weight * qd
-            curv[i] -= weight * k2 * q
-    return y, v, curv
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
-                      period, one_wall, tol, code, velocity):
-    """The modal sum of :func:`midspan_sums` into ``out``, the loop over spans innermost (as :func:`midspan_states`)."""
-    for j in range(n_odd):
-        n = 2.0 * j + 1.0
-        for i in range(out.size):
-            q, qd, _, shape, bad = _mode_term(n, k1[i], halves[i], durations[i], u_1[i], ei, tension, inv_mass,
-                                              period, one_wall, tol, code, s_n[i], c_n[i])
-            term = math.nan if bad else qd if velocity else q
-            s_n[i], c_n[i] = s_n[i] * c_2[i] + c_n[i] * s_2[i], c_n[i] * c_2[i] - s_n[i] * s_2[i]
-            out[i] += weight_1[i] * shape * term
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def midspan_sums(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol, velocity):
-    """y₁ (``velocity`` False) or v₁ (True) of :func:`midspan_states` alone, the same terms in the same order (so
-    the same values to the last bit), without the arithmetic of the other two: about an eighth less time (the
-    span search's samples need the closure residual only)."""
-    size = spans.size
-    out = np.zeros(size)
-    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
-    longest = period if one_wall else 0.5 * period
-    for i in range(size):
-        if not durations[i] <= longest:
-            out[i] = math.nan
-    inv_mass = 1.0 / mass
-    if velocity:  # two call sites with a constant each: the compiler drops the other quantity's arithmetic
-        _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
-                          period, one_wall, tol, code, True)
-    else:
-        _accumulate_modes(out, k1, weight_1, u_1, s_n, c_n, s_2, c_2, halves, durations, n_odd, ei, tension, inv_mass,
-                          period, one_wall, tol, code, False)
-    return out
-
-
-def midspan_state_at_pulse_start(span_length, pulse_duration, half_length, modes, bending_stiffness, tension,
-                                 mass, period, pattern="one_wall", shape="point", resonance_tol=1e-15):
-    """Midspan displacement y₁ [m/(N s)], velocity v₁ [m/(N s²)] and curvature y₁'' [1/(m N s)] at the
-    start of a pulse, per unit impulse along +y, summed over ``modes`` (compiled loop).
-
-    y₁ = Σ_n w_n q_n(0), v₁ = Σ_n w_n q̇_n(0), y₁'' = −Σ_n w_n k_n² q_n(0) with w_n = 2 g_n sin(nπ/2)/(M L)
-    (the midspan value of the modal coordinate per unit impulse, :func:`modal_load_factors`) and
-    (q_n(0), q̇_n(0)) of :func:`modal_state_at_pulse_start` — the same closed form, one loop instead of
-    a spans × modes array: the span search evaluates it for 10⁵ spans.
-
-    span_length L [m], pulse_duration T_L [s], half_length b [m] broadcast together (shape S);
-    modes: odd mode numbers, shape (k,) for every span or S + (k,) per span; bending_stiffness EI
-    [N m²], tension T [N], mass M [kg/m], period τ [s]; pattern, shape and resonance_tol as
-    :func:`modal_periodic_response` and :func:`modal_load_factors`. NaN wherever a kept mode is
-    resonant or buckled, or the pulse is longer than the (half) period. Returns three arrays of shape S.
-    """
-    _check("pattern", pattern, IMPACT_PATTERNS)
-    _check("shape", shape, LOAD_SHAPES)
-    span, tl, half = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (span_length, pulse_duration, half_length)))
-    modes = np.asarray(modes, dtype=float)
-    consecutive = modes.ndim <= 1 and np.array_equal(modes.ravel(), np.arange(1.0, 2.0 * modes.size, 2.0))
-    if consecutive:  # the SIMD loop over spans
-        return tuple(v.reshape(span.shape) for v in midspan_states(
-            np.ascontiguousarray(span.ravel()), np.ascontiguousarray(tl.ravel()), np.ascontiguousarray(half.ravel()),
-            modes.size, float(bending_stiffness), float(tension), float(mass), float(period), pattern == "one_wall",
-            _SHAPE_CODES[shape], float(resonance_tol)))
-    if modes.ndim <= 1:
-        table = modes.reshape(1, -1)
-    else:
-        table = np.broadcast_to(modes, span.shape + modes.shape[-1:]).reshape(-1, modes.shape[-1])
-    out = _midspan_state_kernel(np.ascontiguousarray(span.ravel()), np.ascontiguousarray(tl.ravel()),
-                                np.ascontiguousarray(half.ravel()), np.ascontiguousarray(table), float(bending_stiffness),
-                                float(tension), float(mass), float(period), pattern == "one_wall",
-                                _SHAPE_CODES[shape], float(resonance_tol), consecutive)
-    return tuple(out[i].reshape(span.shape) for i in range(3))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -764,7 +515,7 @@ def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_
     t; put the times most likely to exceed first. ``where``: also return, per row, the index along t
     of the returned excursion (the first of equal ones).
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     t, omega, weights = (np.ascontiguousarray(np.asarray(v, dtype=float)) for v in (t, omega_n, weights))
     durations = np.ascontiguousarray(np.broadcast_to(np.asarray(pulse_duration, dtype=float), omega.shape[:1]))
     limit = np.full(omega.shape[0], np.inf) if limit is None else np.asarray(limit, dtype=float)
@@ -772,106 +523,6 @@ def largest_excursion(t, omega_n, pulse_duration, weights, period, pattern="one_
                                                float(resonance_tol),
                                                np.ascontiguousarray(np.broadcast_to(limit, omega.shape[:1])))
     return (largest, index) if where else largest
-
-
-#: Relative rounding allowance of :func:`excursion_verdicts` per unit of each term's size (a few hundred times
-#: the double precision's 1.1e-16: the library's and :func:`sincos`'s last bits, the phase rotation of
-#: :func:`largest_excursion` over its runs of 32 steps, and the sum of a few dozen terms).
-_VERDICT_ROUNDING = 1e-13
-#: Times of :func:`excursion_verdicts` summed at once: a whole number of SIMD blocks (a loop of fewer ran without
-#: SIMD instructions).
-_VERDICT_BLOCK = 8
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _verdicts_kernel(t, spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol, limit,
-                     first):
-    rows, count = t.shape
-    out = np.full(rows, -1, dtype=np.int8)
-    p = period if one_wall else 0.5 * period
-    tm = np.empty((rows, count))
-    t_max, margin = np.zeros(rows), np.zeros(rows)
-    usable = np.ones(rows, dtype=np.bool_)
-    for r in range(rows):
-        for i in range(count):
-            tm[r, i] = t[r, i] - math.floor(t[r, i] / p) * p
-            usable[r] = usable[r] and tm[r, i] > durations[r]  # after the pulse
-            t_max[r] = max(t_max[r], tm[r, i])
-        usable[r] = usable[r] and durations[r] <= p and durations[r] > 0.0 and spans[r] > 0.0
-    # the modes' factors of every row, the loop over rows innermost (SIMD, as midspan_states)
-    om, phi, kappa, fw = np.empty((n_odd, rows)), np.empty((n_odd, rows)), np.empty((n_odd, rows)), np.empty((n_odd, rows))
-    k1, weight_1, u_1, s_n, c_n, s_2, c_2 = _span_factors(spans, durations, halves, mass)
-    inv_mass = 1.0 / mass
-    small = 1e-2 * _VERDICT_ROUNDING
-    for j in range(n_odd):
-        n = 2.0 * j + 1.0
-        for r in range(rows):
-            w, nu, kap, _, _, amp, shape, _, bad = _mode_factors(n, k1[r], halves[r], durations[r], u_1[r], ei, tension,
-                                                                 inv_mass, period, one_wall, tol, code, s_n[r], c_n[r])
-            s_n[r], c_n[r] = s_n[r] * c_2[r] + c_n[r] * s_2[r], c_n[r] * c_2[r] - s_n[r] * s_2[r]
-            f = weight_1[r] * shape * 0.5 * amp / w
-            om[j, r], phi[j, r], kappa[j, r], fw[j, r] = w, 0.5 * w * durations[r], kap, f
-            term = abs(f) * ((1.0 + abs(kap)) * (small * w * t_max[r] + _VERDICT_ROUNDING)
-                             + small * math.pi * (1.0 + kap * kap) * (nu + 1.0))
-            margin[r] += math.nan if bad else term
-    y, times = np.empty(count + _VERDICT_BLOCK), np.empty(count + _VERDICT_BLOCK)
-    for r in range(rows):
-        if not (usable[r] and math.isfinite(margin[r])):
-            continue  # undecided: largest_excursion says
-        out[r] = 0
-        start = 0
-        for stop in (min(first, count), count):  # the first times, then (if none is past the limit) the rest
-            if stop <= start:
-                continue
-            # whole blocks (_VERDICT_BLOCK), the last time repeated: the largest |y| is unchanged
-            size = -(-(stop - start) // _VERDICT_BLOCK) * _VERDICT_BLOCK
-            for i in range(size):
-                times[i] = tm[r, min(start + i, stop - 1)]
-            sums = y[:size]
-            sums[:] = 0.0
-            for j in range(n_odd):
-                w, ph, kap, f = om[j, r], phi[j, r], kappa[j, r], fw[j, r]
-                for i in range(sums.size):
-                    s, c = sincos(w * times[i] - ph)
-                    sums[i] += f * (s + kap * c)
-            for i in range(size):
-                largest = abs(sums[i])
-                if largest - margin[r] > limit[r]:
-                    out[r] = 1
-                elif not largest + margin[r] <= limit[r] and out[r] == 0:
-                    out[r] = -1
-            if out[r] == 1:
-                break
-            start = stop
-    return out
-
-
-def excursion_verdicts(t, spans, durations, halves, n_odd, bending_stiffness, tension, mass, period,
-                       pattern="one_wall", shape="point", resonance_tol=1e-15, limit=None, first=8):
-    """Whether the midspan's deflection per unit impulse exceeds ``limit`` at any of the times ``t`` after the
-    pulse, per row: 1 it does, 0 it does not, −1 undecided — the verdict of :func:`largest_excursion`
-    (``largest_excursion(...) > limit``, its weights 2|g_n|/(M L) of the odd modes 1, 3, …, 2 ``n_odd`` − 1 at
-    x = L/2) without its library calls, decided only where the two cannot disagree.
-
-    t [s] of shape (R, T); spans L [m], durations T_L [s], halves b [m] and limit [m/(N s)] of shape (R,); the
-    rest as :func:`midspan_states`. The modal sum of each time is evaluated with :func:`sincos`, the modes'
-    factors as :func:`_mode_term`, so each term differs from :func:`largest_excursion`'s by rounding only;
-    a row is decided where its largest |y| is farther from ``limit`` than a bound on that rounding, summed over
-    the modes: |f_n| [(1 + |κ_n|)(ε ω_n t + ε₀) + ε π (1 + κ_n²)(ν_n + 1)], f_n = w_n A_n/(2ω_n), ε₀ =
-    :data:`_VERDICT_ROUNDING` and ε = ε₀/100 [-] per radian of phase ω_n t and per unit of ν_n = ω_n τ/2π (κ's
-    sensitivity to it near a resonance). Undecided: a row within that bound of its limit, with a resonant or
-    buckled mode, a pulse longer than the (half) period or a time inside the pulse — ask
-    :func:`largest_excursion`. The first ``first`` times are summed first, and a row past its limit there
-    stops; put the times most likely to exceed first."""
-    _check("pattern", pattern, IMPACT_PATTERNS)
-    _check("shape", shape, LOAD_SHAPES)
-    t = np.ascontiguousarray(np.asarray(t, dtype=float))
-    rows = t.shape[0]
-    spans, durations, halves, limit = (np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (rows,)))
-                                       for v in (spans, durations, halves, np.inf if limit is None else limit))
-    return _verdicts_kernel(t, spans, durations, halves, int(n_odd), float(bending_stiffness), float(tension),
-                            float(mass), float(period), pattern == "one_wall", _SHAPE_CODES[shape],
-                            float(resonance_tol), limit, int(first))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -900,7 +551,7 @@ def periodic_displacement(t, omega_n, pulse_duration, period, pattern="one_wall"
     q = A (sin ψ + κ cos ψ)/(2ω); during it q = q_p + A (κ cos ψ − sin ψ)/(2ω) with q_p the pulse from
     rest. The per-mode factors are computed once, not per time. NaN where that function is NaN.
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
     return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 0.0, resonance_tol)[:, :-1]
 
@@ -909,7 +560,7 @@ def dynamic_remainder(t, omega_n, pulse_duration, period, pattern="one_wall", re
     """q(t) − h(t)/ω² of :func:`modal_periodic_response` and :func:`pulse_train` on the grid t × ω [s]: each
     mode's part left after the quasi-static split (docs/model.md §5), by the compiled loop of
     :func:`periodic_displacement`. Arguments and shape as there; NaN where it is NaN."""
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     omega = np.ascontiguousarray(np.asarray(omega_n, dtype=float).ravel())
     return _modal_columns(t, omega, pulse_duration, period, pattern, np.ones_like(omega), 1.0, resonance_tol)[:, :-1]
 
@@ -1030,7 +681,7 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
     B = −[(½ − G_half)/EI + P'''(L/2)]/F_0(L/2), A = −B F_2(L/2) − P'(L/2). Compiled, one point at a
     time (:func:`_static_kernel`); the arguments broadcast.
     """
-    _check("shape", shape, LOAD_SHAPES)
+    check_choice("shape", shape, LOAD_SHAPES)
     b = 0.0 if shape == "point" else half_length
     beam = [np.asarray(v, dtype=float) for v in (span_length, bending_stiffness, tension, b)]
     x = np.asarray(x, dtype=float)
@@ -1039,7 +690,7 @@ def _static_derivatives(x, span_length, bending_stiffness, tension, half_length,
     else:
         args = np.broadcast_arrays(x, *beam)
         shape_out, flat = args[0].shape, [np.array(v).ravel() for v in args]  # writeable copies
-    out = _static_kernel(*flat, _SHAPE_CODES[shape])
+    out = _static_kernel(*flat, SHAPE_CODES[shape])
     return [row.reshape(shape_out) for row in out]
 
 
@@ -1107,7 +758,6 @@ def point_load_moment(x, load_at, span_length: float, bending_stiffness: float, 
     return np.exp(A + B - C) * -np.expm1(-2 * A) * -np.expm1(-2 * B) / (-2.0 * np.expm1(-2 * C) * mu)
 
 
-
 FIELD_KINDS = {
     "deflection": "y [m]",
     "moment": "bending moment −EI y'' [N m] (sagging positive)",
@@ -1124,9 +774,9 @@ def periodic_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, 
     Each field is Σ_n a_n(t) D^order[sin k_n x] assembled as a matrix product (times × modes) @
     (modes × x), plus J h(t) times the closed-form static field with ``quasi_static``.
     """
-    _check("pattern", pattern, IMPACT_PATTERNS)
+    check_choice("pattern", pattern, IMPACT_PATTERNS)
     for kind in kinds:
-        _check("kind", kind, FIELD_KINDS)
+        check_choice("kind", kind, FIELD_KINDS)
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
     L, ei, tn, m = (float(v) for v in (span_length, bending_stiffness, tension, mass))
     n = np.arange(1, int(n_modes) + 1, 2, dtype=float)  # even modes carry no symmetric load
@@ -1209,225 +859,3 @@ shear_force.__doc__ = ("Shear force [N] (docs/model.md §5, paper eq. 38): by de
                        "the left limit." + _FIELD_DOC)
 
 
-# --- the paper's double Fourier series (docs/model.md §4 "series", paper eq. 25, 36) ------------------
-#: Largest number of array elements one vectorised block of a series evaluation may hold; larger
-#: evaluations are chunked (over time, or over the flattened broadcast shape).
-_SERIES_CHUNK = 4_000_000
-
-
-def harmonic_numbers(harmonics, pattern):
-    """Harmonic numbers m kept, |m| ≤ M: 0, 1, …, M (one_wall) or 1, 3, …, ≤ M (alternating; the
-    train is anti-periodic over τ/2, so even harmonics vanish and there is no mean)."""
-    mmax = int(harmonics)
-    if mmax < 0:
-        raise ValueError(f"harmonics = {harmonics!r} must be ≥ 0")
-    return np.arange(1, mmax + 1, 2, dtype=float) if pattern == "alternating" else np.arange(0, mmax + 1, dtype=float)
-
-
-def _train_coefficients(m, pulse_duration, period, pattern):
-    """One-sided Fourier coefficients w_m c_m [1/s] of the unit-impulse pulse train (complex).
-
-    h(t) = Σ_{m ≥ 0} Re[w_m c_m e^{imΩt}], Ω = 2π/τ, with c_m = H(mΩ)/τ (H = :func:`pulse_spectrum`,
-    the pulse starting at t = 0), w_0 = 1 and w_m = 2 for m ≥ 1 (the ±m pair of the real series);
-    alternating: the train's coefficients are c_m (1 − (−1)^m), i.e. 2 c_m for odd m.
-    """
-    tau = np.asarray(period, dtype=float)
-    c = pulse_spectrum(m * (2.0 * np.pi / tau), pulse_duration) / tau
-    w = np.where(m == 0, 1.0, 2.0)
-    if pattern == "alternating":
-        w = w * (1.0 - (-1.0) ** m)
-    return w * c
-
-
-def _invalid_modes(omega_n, pulse_duration, period, pattern, resonance_tol):
-    """Mask where :func:`modal_periodic_response` returns NaN: exact resonance (as there), pulse longer
-    than the (half) period, or NaN ω (buckled mode)."""
-    om = np.asarray(omega_n, dtype=float)
-    tau = np.asarray(period, dtype=float)
-    p = 0.5 * tau if pattern == "alternating" else tau
-    with np.errstate(invalid="ignore"):
-        nu = om * tau / (2.0 * np.pi)
-        return ((resonance_distance(om, tau, pattern) <= resonance_tol * np.maximum(1.0, nu))
-                | (np.asarray(pulse_duration, dtype=float) > p) | ~np.isfinite(om))
-
-
-def modal_fourier_response(t, omega_n, pulse_duration, period, pattern="one_wall", harmonics=50,
-                           resonance_tol=1e-15):
-    """Steady periodic response of q̈ + ω² q = h(t) as the truncated Fourier series in time (paper eq. 25, 36).
-
-    The same response and normalisation as :func:`modal_periodic_response` (h the unit-impulse pulse
-    train of :func:`pulse_train`), computed the paper's way, harmonic by harmonic (docs/model.md §4, §9
-    "series"): with Ω = 2π/τ and c_m = H(mΩ)/τ the train's coefficients (:func:`pulse_spectrum`;
-    c_m (1 − (−1)^m) for the alternating train),
-
-        h(t) = Σ_{|m| ≤ M} c_m e^{imΩt},   q = Σ_{|m| ≤ M} c_m e^{imΩt}/(ω² − (mΩ)²),
-        q̇ = Σ_{|m| ≤ M} i mΩ c_m e^{imΩt}/(ω² − (mΩ)²),
-
-    summed as the real one-sided series (the m = 0 term of one_wall is the mean response
-    h̄/ω² = 1/(τω²); the alternating train has odd m only and no mean).
-
-    t [s] (any real; broadcast against omega_n, pulse_duration and period, e.g. t[:, None] with
-    omega_n[None, :]), omega_n ω [rad/s], pulse_duration T_L [s], period τ [s], pattern one of
-    :data:`IMPACT_PATTERNS`, harmonics M: the highest harmonic number kept (alternating with M = 50
-    keeps m = 1, 3, …, 49). Returns ModalResponse(q [s], q̇ [-]) of the broadcast shape.
-
-    The half-sine has kinks (a jump of h') at the pulse start and end, so c_m ~ m⁻² and the error
-    falls like M⁻³ (q) and M⁻² (q̇) at those instants, faster elsewhere (see the tests for the
-    measured rates). NaN where :func:`modal_periodic_response` is NaN (exact resonance, T_L longer
-    than the (half) period, NaN ω), whether or not the resonant harmonic is kept. Evaluated in
-    chunks of at most ``_SERIES_CHUNK`` elements × harmonics.
-    """
-    _check("pattern", pattern, IMPACT_PATTERNS)
-    t, om, tl, tau = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (t, omega_n, pulse_duration, period)))
-    shape = t.shape
-    t, om, tl, tau = (v.ravel() for v in (t, om, tl, tau))
-    m = harmonic_numbers(harmonics, pattern)
-    bad = _invalid_modes(om, tl, tau, pattern, resonance_tol)
-    oms = np.where(bad, 1.0, om)
-    tm = t - np.floor(t / tau) * tau  # one period [0, τ): keeps the phases mΩt small
-    q = np.zeros(t.size)
-    v = np.zeros(t.size)
-    step = max(1, _SERIES_CHUNK // max(1, m.size))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for i in range(0, t.size, step):
-            s = slice(i, i + step)
-            big = 2.0 * np.pi / tau[s, None]
-            wm = m * big
-            coef = _train_coefficients(m, tl[s, None], tau[s, None], pattern) / (oms[s, None] ** 2 - wm**2)
-            terms = coef * np.exp(1j * wm * tm[s, None])
-            q[s] = terms.real.sum(axis=1)
-            v[s] = (1j * wm * terms).real.sum(axis=1)
-    return ModalResponse(np.where(bad, np.nan, q).reshape(shape), np.where(bad, np.nan, v).reshape(shape))
-
-
-#: Quantities :func:`series_field` evaluates: kind → description [unit]. The integer ``order`` 0, 2, 3, 4
-#: is accepted as an alias of deflection, moment, shear, bending_load (``_SERIES_ORDERS``).
-SERIES_KINDS = {
-    "deflection": "y [m]",
-    "velocity": "ẏ [m/s]",
-    "acceleration": "ÿ [m/s²]",
-    "d2": "y'' [1/m] (curvature of the small-slope beam)",
-    "d4": "y'''' [1/m³]",
-    "moment": "bending moment −EI y'' [N m] (sagging positive, as :func:`bending_moment`)",
-    "shear": "section shear −EI y''' [N] (as :func:`shear_force` without tension)",
-    "bending_load": "EI y'''' [N/m] (the bending term of the equation of motion, docs/model.md §2)",
-}
-_SERIES_ORDERS = {0: "deflection", 2: "moment", 3: "shear", 4: "bending_load"}
-
-
-def series_fields(x, t, kinds, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                  pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
-                  resonance_tol=1e-15):
-    """The paper's double Fourier series of the periodic field (paper eq. 25, 36; docs/model.md §4, §9 "series").
-
-    kinds: names of :data:`SERIES_KINDS` (or the integer orders 0, 2, 3, 4); returns {kind: field}, the
-    time factors e^{imΩt} computed once for all kinds. Each kind: "deflection" y [m], "velocity" ẏ
-    [m/s], "acceleration" ÿ [m/s²], "d2" y'' [1/m], "d4" y'''' [1/m³], "moment" −EI y'' [N m], "shear" −EI y''' [N],
-    "bending_load" EI y'''' [N/m]; or the integer ``order`` 0, 2, 3, 4 for deflection, moment,
-    shear, bending_load. x [m] (0 ≤ x ≤ L), t [s] (any real); the result has shape t.shape + x.shape.
-    Scalars and load as :func:`deflection`; n_modes: highest mode number N (odd n ≤ N); harmonics:
-    highest harmonic number M (|m| ≤ M; odd m only for the alternating pattern).
-
-    Double series, NO quasi-static correction (the paper's solution):
-
-        y(x, t) = Σ_{n odd ≤ N} Σ_{|m| ≤ M} [J g_n/(M L/2)] c_m e^{imΩt}/(ω_n² − (mΩ)²) sin(k_n x),
-
-    c_m the coefficients of the unit-impulse train (:func:`modal_fourier_response`), g_n the modal
-    load factors (:func:`modal_load_factors`), ω_n² = (EI k_n⁴ + T k_n²)/M. Derivatives act term by
-    term: ∂/∂t → imΩ, ∂²/∂x² → −k_n², …; shear = EI Σ k_n³ cos(k_n x)(…). Each (n, m) term satisfies
-    EI y'''' − T y'' + M ÿ = J c_m e^{imΩt} g_n sin(k_n x)/(L/2) exactly, i.e. the truncated series
-    solves the equation of motion under the truncated load. Summed as Re[E (W S)] with E = e^{imΩt}
-    (times × harmonics), W the (harmonics × modes) coefficients and S the (modes × x) shapes, so no
-    times × modes × harmonics array is formed; chunked over time. Slow: moment converges like 1/N at
-    midspan under a point load and shear does not converge there (the paper's "doubtful accuracy").
-    NaN at resonance or buckling of any kept mode (as :func:`deflection`).
-    """
-    kinds = [_SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind for kind in kinds]
-    for kind in kinds:
-        _check("kind", kind, SERIES_KINDS)
-    _check("pattern", pattern, IMPACT_PATTERNS)
-    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
-    L, ei, tn, mm, tl, tau = (float(v) for v in (span_length, bending_stiffness, tension, mass, pulse_duration, period))
-    n = np.arange(1, int(n_modes) + 1, 2, dtype=float)
-    k = n * np.pi / L
-    with np.errstate(invalid="ignore"):
-        omega = np.sqrt(np.where(ei * k**4 + tn * k**2 > 0, (ei * k**4 + tn * k**2) / mm, np.nan))
-    bad = _invalid_modes(omega, tl, tau, pattern, resonance_tol)
-    amp = float(impulse) * modal_load_factors(n, L, half_length, shape) / (0.5 * mm * L)
-    amp = np.where(bad, np.nan, amp)
-    oms = np.where(bad, 1.0, omega)
-    kx = np.outer(k, x.ravel())
-    kc = k[:, None]
-    m = harmonic_numbers(harmonics, pattern)
-    wm = m * (2.0 * np.pi / tau)
-    c0 = _train_coefficients(m, tl, tau, pattern)
-    hstep = max(1, _SERIES_CHUNK // max(1, n.size))
-    ws = {}  # per kind: W S (harmonics × x), W in chunks of harmonics
-    for kind in kinds:
-        # spatial shapes (modes × x)
-        if kind in ("deflection", "velocity", "acceleration"):
-            s = np.sin(kx)
-        elif kind == "d2":
-            s = -kc**2 * np.sin(kx)
-        elif kind == "d4":
-            s = kc**4 * np.sin(kx)
-        elif kind == "moment":
-            s = ei * kc**2 * np.sin(kx)
-        elif kind == "shear":
-            s = ei * kc**3 * np.cos(kx)
-        else:  # bending_load
-            s = ei * kc**4 * np.sin(kx)
-        # harmonic coefficients (harmonics × modes)
-        c = c0 * 1j * wm if kind == "velocity" else c0 * -(wm**2) if kind == "acceleration" else c0
-        ws[kind] = np.empty((m.size, x.size), dtype=complex)
-        for i in range(0, m.size, hstep):
-            h = slice(i, i + hstep)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                w = c[h, None] * amp[None, :] / (oms[None, :] ** 2 - wm[h, None] ** 2)
-            ws[kind][h] = w.real @ s + 1j * (w.imag @ s)
-    tf = t.ravel()
-    tm = tf - np.floor(tf / tau) * tau
-    steps = _steps_per_period(tm, tau)
-    if steps:  # t on a grid jτ/K: the sum over m is a discrete Fourier transform of length K
-        j = np.rint(tm * (steps / tau)).astype(np.int64) % steps
-        rows = m.astype(np.int64) % steps
-        out = {}
-        for kind in kinds:
-            folded = np.zeros((steps, x.size), dtype=complex)
-            np.add.at(folded, rows, ws[kind])
-            out[kind] = (np.fft.ifft(folded, axis=0) * steps)[j].real
-        return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
-    out = {kind: np.empty((tf.size, x.size)) for kind in kinds}
-    step = max(1, _SERIES_CHUNK // max(1, m.size))
-    for i in range(0, tf.size, step):
-        e = np.exp(1j * np.outer(tm[i:i + step], wm))  # e^{imΩt}, once for every kind
-        for kind in kinds:
-            out[kind][i:i + step] = (e @ ws[kind]).real
-    return {kind: out[kind].reshape(t.shape + x.shape) for kind in kinds}
-
-
-#: Most points per period of a time grid that :func:`series_fields` sums by FFT.
-_MAX_FFT_STEPS = 1 << 16
-
-
-def _steps_per_period(tm, period) -> int:
-    """K when every time of ``tm`` [s] (in [0, τ)) lies within 1e-9 of a step on the grid jτ/K, K the period
-    ``period`` τ [s] over the step between the first two times (a uniform grid such as the term ratios'); 0
-    otherwise (or for fewer than 8 times, or K above :data:`_MAX_FFT_STEPS`)."""
-    if tm.size < 8 or not tm[1] > tm[0]:
-        return 0
-    steps = int(round(period / (tm[1] - tm[0])))
-    if not 0 < steps <= _MAX_FFT_STEPS:
-        return 0
-    phase = tm * (steps / period)
-    return steps if np.all(np.abs(phase - np.rint(phase)) <= 1e-9) else 0
-
-
-def series_field(x, t, kind, span_length, bending_stiffness, tension, mass, impulse, pulse_duration, period,
-                 pattern="one_wall", half_length=0.0, shape="point", n_modes=101, harmonics=200,
-                 resonance_tol=1e-15):
-    """One field of :func:`series_fields` (``kind`` a name of :data:`SERIES_KINDS` or the integer order
-    0, 2, 3, 4); arguments and units as there."""
-    kind = _SERIES_ORDERS.get(kind, kind) if not isinstance(kind, str) else kind  # the key of the result
-    return series_fields(x, t, [kind], span_length, bending_stiffness, tension, mass, impulse, pulse_duration,
-                         period, pattern, half_length, shape, n_modes, harmonics, resonance_tol)[kind]

@@ -52,7 +52,7 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     the method calls ``ok`` is physical, and gets the design limits of its stresses
     (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An
     unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
-    that one bad point never sinks a sweep.
+    that one bad point never sinks a sweep. The result's ``wall_time`` is stamped here, once, for every method.
     """
     from study.solvers import gate, utilisation
 
@@ -62,9 +62,10 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
         raise ValueError(f"method = {name!r}; allowed: {', '.join(methods)}")
     start = time.perf_counter()
     try:
-        return gate.admit(utilisation.add_limits(methods[name][0](inputs), inputs), inputs)
+        result = gate.admit(utilisation.add_limits(methods[name][0](inputs), inputs), inputs)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
-        return PointResult(method=name, status="failed",
-                           message=f"{type(exc).__name__}: {exc} (at {last.filename.rsplit('/', 1)[-1]}:{last.lineno})",
-                           wall_time=time.perf_counter() - start)
+        result = PointResult(method=name, status="failed",
+                             message=f"{type(exc).__name__}: {exc} (at {last.filename.rsplit('/', 1)[-1]}:{last.lineno})")
+    result.wall_time = time.perf_counter() - start  # the one stamp: the method, its limits and the gate
+    return result

@@ -38,7 +38,6 @@ from __future__ import annotations
 import copy
 import sys
 import threading
-import time
 from collections import OrderedDict
 from typing import Any, Callable, Mapping
 
@@ -120,11 +119,10 @@ def clear_memo() -> None:
 
 def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
     """``method(inputs)``, or a copy of its answer at inputs that differ only in what the method does not depend on
-    (:data:`MEMO_SIZE`); the copy's ``wall_time`` is what the copy took."""
+    (:data:`MEMO_SIZE`)."""
     ignored = getattr(sys.modules[method.__module__], "INDEPENDENT_OF", ())
     if not ignored:
         return method(inputs)
-    start = time.perf_counter()
     key = (method.__module__, method.__qualname__,
            tuple(sorted((name, repr(value)) for name, value in inputs.items() if name not in ignored)))
     with _memo_lock:
@@ -139,13 +137,11 @@ def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
                 _memo.popitem(last=False)
         return result
     result = copy.deepcopy(kept)
-    result.wall_time = time.perf_counter() - start
     return result
 
 
 def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
-    start = time.perf_counter()
     tried: list[PointResult] = []
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
@@ -167,7 +163,6 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     result.message = f"{ladder}: {why}; {result.message}"
     result.extras["methods_tried"] = {r.method: {"status": r.status, "error_estimate": r.error_estimate}
                                       for r in tried}
-    result.wall_time = time.perf_counter() - start
     return result
 
 

@@ -20,7 +20,7 @@ The paper's example, relative to the drag term A3 ẏ² = 1 (the copy's OCR, our
 mud-flow term "of the same order of magnitude" as the drag.
 
 Pure functions of numpy arrays, SI units, no I/O. The fields (y'''', y'', ÿ, ẏ) come from any periodic
-method, e.g. :func:`study.physics.beam.series_field` with kinds "d4", "d2", "acceleration", "velocity".
+method, e.g. :func:`study.physics.fourier.series_field` with kinds "d4", "d2", "acceleration", "velocity".
 """
 
 from __future__ import annotations

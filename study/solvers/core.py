@@ -9,7 +9,6 @@ it is.
 
 from __future__ import annotations
 
-import time
 from typing import Any, Mapping
 
 import numpy as np
@@ -66,7 +65,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     κ = c (π/L)² at midspan. Never raises for a physical condition: buckling, an invalid Hertz
     contact and missing inputs are statuses.
     """
-    start = time.perf_counter()
     result = PointResult(method="core")
     props = section_properties(inputs)
     result.values.update(props)
@@ -99,5 +97,4 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
             curvature = clearance * (np.pi / span) ** 2
             result.values.update(impact(inputs, props, span, velocity, curvature))
     result.message = "; ".join(messages) if messages else "physics core evaluated at the given span"
-    result.wall_time = time.perf_counter() - start
     return result

@@ -36,13 +36,12 @@ docs/model.md §7, feed only what the mud's damping takes). A point without a pe
 
 from __future__ import annotations
 
-import time
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import beam, hertz, oscillator
-from study.solvers import event_driven, fast, orbit, periodic, timedomain, trajectory
+from study.solvers import event_driven, fast, impact_model, orbit, periodic, timedomain, trajectory
 from study.solvers.options import CrosscheckOptions
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene, make_scene
@@ -58,7 +57,7 @@ COMPARED = {
 }
 
 
-def periodic_state(scene: Scene, impact: periodic.Impact, options: periodic.Options, modes: int,
+def periodic_state(scene: Scene, impact: impact_model.Impact, options: periodic.Options, modes: int,
                    t: float) -> tuple[np.ndarray, np.ndarray]:
     """Modal coordinates q_n [m] and velocities q̇_n [m/s] of modes n = 1 … ``modes`` at time t [s] of the
     periodic solution (t = 0: a pulse starts at the wall y = +c); even modes are at rest (symmetric load).
@@ -66,8 +65,8 @@ def periodic_state(scene: Scene, impact: periodic.Impact, options: periodic.Opti
     q_n = (−J) g_n/(M L/2) · q̂_n(t), q̂ the unit-impulse response of :func:`beam.modal_periodic_response`
     (the load pushes the pipe off the wall, along −y)."""
     L = impact.span_length
-    odd = periodic.odd_modes(modes)
-    omega = periodic.natural_frequencies(scene, L, odd)
+    odd = impact_model.odd_modes(modes)
+    omega = impact_model.natural_frequencies(scene, L, odd)
     g = beam.modal_load_factors(odd, L, impact.contact_half_length, options.load_shape)
     amp = -impact.impulse * g / (0.5 * scene.props["mass_per_length"] * L)
     r = beam.modal_periodic_response(np.array([[t]]), omega, impact.contact_duration, scene.period, scene.pattern)
@@ -77,7 +76,7 @@ def periodic_state(scene: Scene, impact: periodic.Impact, options: periodic.Opti
     return q, v
 
 
-def replay(inputs: Mapping[str, Any], scene: Scene, impact: periodic.Impact,
+def replay(inputs: Mapping[str, Any], scene: Scene, impact: impact_model.Impact,
            options: periodic.Options) -> dict[str, Any]:
     """The periodic solution's state run through one revolution of the real contact (module docstring,
     step 2–3). Returns the time-domain model, its inputs and event system, the samples (or None with
@@ -129,7 +128,7 @@ def ratios(periodic_values: Mapping[str, float], td: Mapping[str, Any]) -> dict[
 
 
 def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: Scene,
-            impact: periodic.Impact, tolerance: float) -> list[str]:
+            impact: impact_model.Impact, tolerance: float) -> list[str]:
     """The reasons the time domain disagrees with the periodic solution (empty: it agrees)."""
     reasons = []
     if td["contacts"] != scene.impacts_per_revolution:
@@ -177,7 +176,7 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
     return reasons
 
 
-def check(inputs: Mapping[str, Any], scene: Scene, impact: periodic.Impact, options: periodic.Options,
+def check(inputs: Mapping[str, Any], scene: Scene, impact: impact_model.Impact, options: periodic.Options,
           periodic_values: Mapping[str, float], tolerance: float = DEFAULT_TOLERANCE) -> tuple[dict | None, list[str]]:
     """Replay and compare one periodic solution (``impact`` at a root of condition 2, with its
     ``periodic_values``: impulse, peak_contact_force, max_normal_stress, max_deflection). Returns the
@@ -230,7 +229,7 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: Scene,
     return out
 
 
-def lee_peak_kinematics(scene: Scene, impact: periodic.Impact, options: periodic.Options,
+def lee_peak_kinematics(scene: Scene, impact: impact_model.Impact, options: periodic.Options,
                         stiffness: float, peak_force: float) -> tuple[float, float]:
     """(y − c, (F̂/K)^{2/3}) [m] at the peak of Lee's pulse, t = T_L/2: how far the periodic solution's
     midspan (the same ``options.modes`` modes as the replay, :func:`periodic_state`) is into the wall
@@ -252,17 +251,15 @@ def one_mass_peak_force(mass: float, velocity: float, stiffness: float, hysteres
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The ``crosscheck`` method (module docstring)."""
-    start = time.perf_counter()
     result = fast.solve(inputs)
     result.method = METHOD
     if result.status != "ok":
         result.message = f"no periodic solution to check: {result.message}"
-        result.wall_time = time.perf_counter() - start
         return result
     options = periodic.options_from(inputs)
     scene = make_scene(inputs)
     v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
-    impact = periodic.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
+    impact = impact_model.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
                                 half_length=v["contact_half_length"])
     tolerance = float(CrosscheckOptions.from_inputs(inputs).check_tolerance)
     td, reasons = check(inputs, scene, impact, options, v, tolerance)
@@ -281,5 +278,4 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     else:
         result.message = (f"{result.message}; the real contact agrees with the periodic solution within "
                           f"{tolerance:g} over one revolution")
-    result.wall_time = time.perf_counter() - start
     return result

@@ -17,7 +17,7 @@ dynamic remainder.
 
 Span search (docs/model.md §7.1): with damping the response has no poles, so every root of the damped
 condition 2 is continued from a root of the undamped one — the undamped search's roots that pass its
-midspan screen (:func:`study.solvers.periodic.find_roots`), refined by secant steps on the damped residual
+midspan screen (:func:`study.solvers.span_search.find_roots`), refined by secant steps on the damped residual
 in ascending order until one satisfies condition 1. The first is reported (a root the damping creates away
 from every undamped root is not searched). The damping c starts from the paper's assumed motion
 y = c sin(πx/L) sin Ωt and is iterated with the solution's own velocity field at the chosen span, the span
@@ -28,14 +28,13 @@ from __future__ import annotations
 
 import functools
 import math
-import time
 from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import beam, damping, hertz
-from study.solvers import periodic
+from study.physics import beam, damping, fourier, hertz, midspan
+from study.solvers import impact_model, periodic, span_search
 from study.solvers.options import DampedOptions, Options, study_tolerance
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene, make_scene
@@ -82,15 +81,15 @@ def spectrum(scene: Scene, span: float, duration: float, half: float, c: float, 
     """The :class:`Spectrum` of a span L [m] with Lee's pulse of T_L [s] over b [m] and damping c [N s/m²]."""
     p = scene.props
     ei, tn, mass = p["bending_stiffness"], p["effective_tension"], p["mass_per_length"]
-    n = periodic.odd_modes(options.modes)
+    n = impact_model.odd_modes(options.modes)
     k = n * np.pi / span
     om_n = np.sqrt((ei * k**2 + tn) * k**2 / mass)
     g = beam.modal_load_factors(n, span, half, options.load_shape).reshape(-1)
     load = g / (0.5 * mass * span)
     e = damping.end_moment_modal_factors(n, span, mass)
-    m = beam.harmonic_numbers(harmonics, scene.pattern)
+    m = fourier.harmonic_numbers(harmonics, scene.pattern)
     om = m * scene.rotary_speed
-    coef = beam._train_coefficients(m, duration, scene.period, scene.pattern)
+    coef = fourier.train_coefficients(m, duration, scene.period, scene.pattern)
     rate = c / mass
     h = damping.modal_transfer(om_n[None, :], om[:, None], rate)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -108,7 +107,7 @@ def spectrum(scene: Scene, span: float, duration: float, half: float, c: float, 
 
 def midspan_correction(spec: Spectrum) -> tuple[float, float, float]:
     """(Δy₁ [m/(N s)], Δv₁, Δ(−y₁'')) at midspan at the start of the pulse, per unit impulse along +y: what
-    damping and end moments add to :func:`study.physics.beam.midspan_state_at_pulse_start`."""
+    damping and end moments add to :func:`study.physics.midspan.midspan_state_at_pulse_start`."""
     s_mid, ms_mid, _ = spec.static
     ei = spec.props["bending_stiffness"]
     moment = 1j * spec.moments * spec.coef
@@ -166,7 +165,7 @@ def _moment_slope(x, span, lam):
     return -k * np.sin(k * xi) / math.cos(half)
 
 
-def fields(scene: Scene, impact: periodic.Impact, spec: Spectrum, options: Options, x, t, kinds) -> dict:
+def fields(scene: Scene, impact: impact_model.Impact, spec: Spectrum, options: Options, x, t, kinds) -> dict:
     """The damped fields at this span and impact (the real load −J): undamped closed form + correction."""
     p = scene.props
     base = [k for k in kinds if k != "velocity"]
@@ -190,9 +189,9 @@ def velocity_field(spec: Spectrum, impulse: float, x, t) -> np.ndarray:
 # --- the impact at one span ---------------------------------------------------------------------
 @dataclass
 class DampedImpact:
-    """The impact of one span with damping (as :class:`periodic.Impact`) and the spectrum it was solved with."""
+    """The impact of one span with damping (as :class:`impact_model.Impact`) and the spectrum it was solved with."""
 
-    impact: periodic.Impact
+    impact: impact_model.Impact
     spec: Spectrum | None
 
 
@@ -204,28 +203,28 @@ def _table():
 
 def impact_at(scene: Scene, span: float, c: float, options: Options, harmonics: int, duration: float | None = None,
               half: float = 0.0, max_iterations: int = 60) -> DampedImpact:
-    """The T_L–κ–b fixed point of one span with damping c (as :func:`periodic.impact_at`, docs/model.md §3.6):
+    """The T_L–κ–b fixed point of one span with damping c (as :func:`impact_model.impact_at`, docs/model.md §3.6):
     the closure residual F(L) and the impact. Problems are named in ``impact.problems``."""
     p = scene.props
     m_e = float(scene.equivalent_mass(span))
     cl, table = scene.clearance, _table()
     radius, hole, compliance = scene.outer_radius, scene.hole_radius, scene.compliance_sum
     velocity = scene.rotary_speed * cl
-    out = periodic.Impact(span_length=span, residual=math.nan, equivalent_mass=m_e)
+    out = impact_model.Impact(span_length=span, residual=math.nan, equivalent_mass=m_e)
     if duration is None or not 0 < duration < scene.impact_interval:
         stiffness = hertz.contact_one(1.0, radius, hole, cl * (math.pi / span) ** 2, compliance, table)[2]
         duration = hertz.lee_duration_one(m_e, velocity, stiffness)
     half = min(max(half, 0.0), 0.45 * span)
-    modes = periodic.odd_modes(options.modes)
+    modes = impact_model.odd_modes(options.modes)
     spec = None
     # secant steps on map(T_L) − T_L, a relaxed fixed-point step (halved when it overshoots) where a secant
-    # step is not usable — as periodic.impact_at
+    # step is not usable — as impact_model.impact_at
     relaxation, last_step, previous, previous_step = 1.0, 0.0, math.nan, math.nan
     for iteration in range(1, max_iterations + 1):
         if not duration < scene.impact_interval:
             out.problems.append(f"pulse longer than the time between impacts (T_L = {duration:.3g} s)")
             return DampedImpact(out, spec)
-        y1, v1, k1 = (float(v) for v in beam.midspan_state_at_pulse_start(
+        y1, v1, k1 = (float(v) for v in midspan.midspan_state_at_pulse_start(
             span, duration, half, modes, p["bending_stiffness"], p["effective_tension"], p["mass_per_length"],
             scene.period, scene.pattern, options.load_shape))
         spec = spectrum(scene, span, duration, half, c, options, harmonics)
@@ -359,22 +358,22 @@ def assumed_damping(scene: Scene) -> float:
         scene.props["drag_coefficient_per_length"], scene.rotary_speed, scene.clearance))
 
 
-def seeds(scene: Scene, options: Options) -> tuple[list, periodic.SpanSearch]:
+def seeds(scene: Scene, options: Options) -> tuple[list, span_search.SpanSearch]:
     """The undamped roots to continue from: those passing the undamped midspan screen, refined exactly
     (T_L, b at their fixed point; those whose refinement failed are dropped, as the undamped search drops
     them), ascending, each with its bracket: [(Impact, bracket)], and the search."""
-    search = periodic.find_roots(scene, options)
-    screened = periodic.midspan_screen(scene, options, search)
+    search = span_search.find_roots(scene, options)
+    screened = span_search.midspan_screen(scene, options, search)
     roots, brackets = search.roots[screened], search.brackets[screened]
     if roots.size == 0:
         return [], search
     durations, halves = search.residual.pulse(roots)
-    refined = periodic.refine_roots(scene, options, roots, brackets, durations=durations, halves=halves)
+    refined = impact_model.refine_roots(scene, options, roots, brackets, durations=durations, halves=halves)
     return sorted(((imp, tuple(b)) for imp, b in zip(refined, brackets) if not imp.problems),
                   key=lambda item: item[0].span_length), search
 
 
-def continue_root(scene: Scene, seed: periodic.Impact, bracket, c: float, options: Options,
+def continue_root(scene: Scene, seed: impact_model.Impact, bracket, c: float, options: Options,
                   harmonics: int) -> DampedImpact:
     """The damped root continued from an undamped one: secant steps on the damped residual from its span, T_L
     and b."""
@@ -434,7 +433,6 @@ def end_moment_history(scene: Scene, found: DampedImpact, points: int = 64) -> t
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The damped periodic solution of one design point (module docstring)."""
-    start = time.perf_counter()
     result = PointResult(method=METHOD)
     options = periodic.options_from(inputs)
     settings = DampedOptions.from_inputs(inputs)
@@ -443,7 +441,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
 
     def done(status: str, message: str) -> PointResult:
         result.status, result.message = status, message
-        result.wall_time = time.perf_counter() - start
         return result
 
     max_span = min(options.max_span, scene.props["buckling_length"] * (1 - 1e-9))
@@ -451,7 +448,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         return done("buckled", f"effective tension {scene.props['effective_tension']:.4g} N buckles every span "
                                f"longer than {scene.props['buckling_length']:.4g} m, below the shortest searched")
     options = Options(**{**options.__dict__, "max_span": max_span})
-    too_many = periodic.span_search_too_large(scene, options, inputs.get("max_poles"))
+    too_many = impact_model.span_search_too_large(scene, options, inputs.get("max_poles"))
     if too_many is not None:
         return done("failed", too_many)
     c0 = assumed_damping(scene)
@@ -473,7 +470,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                 break
             c = history[-1]  # the next roots are continued with the damping this motion settled at
             problem = "breaks condition 1 at its settled damping"
-        key = periodic._reason(problem)
+        key = periodic.rejection_kind(problem)
         reasons[key] = reasons.get(key, 0) + 1
     summary = (f"{search.roots.size} roots of the undamped condition 2, {len(starts)} pass its midspan screen and "
                f"are continued with the drag (c0 = {c0:.4g} N s/m²)")
@@ -497,14 +494,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         hertz_duration=impact.hertz_duration, hertz_peak_force=impact.hertz_peak_force,
         contact_duration=impact.contact_duration, peak_contact_force=impact.peak_contact_force,
         contact_half_length=impact.contact_half_length, contact_half_width=impact.contact_half_width,
-        first_natural_frequency=float(periodic.natural_frequencies(scene, impact.span_length, [1.0])[0] / (2 * np.pi)))
+        first_natural_frequency=float(impact_model.natural_frequencies(scene, impact.span_length, [1.0])[0] / (2 * np.pi)))
     values = stresses(scene, chosen, inputs, options)
     result.values.update(values)
     balance = energy(scene, chosen)
     t, moment = end_moment_history(scene, chosen)
     taken = balance["drag_dissipation"]
     residual = abs(balance["end_moment_work"] - taken) / taken if taken > 0 else abs(balance["end_moment_work"])
-    omega1 = periodic.natural_frequencies(scene, impact.span_length, [1.0])[0]
+    omega1 = impact_model.natural_frequencies(scene, impact.span_length, [1.0])[0]
     result.values.update(
         equivalent_damping=chosen.spec.damping,
         damping_ratio=float(chosen.spec.damping / (2.0 * scene.props["mass_per_length"] * omega1)),

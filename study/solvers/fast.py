@@ -12,12 +12,12 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 
-from study.solvers import periodic, series
+from study.solvers import impact_model, periodic, series
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene
 
 
-def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def stresses(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
              options: periodic.Options) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period (docs/model.md §5, paper eq. 37–38) from
     the closed-form fields with the quasi-static correction, located (:func:`series.stresses` with no
@@ -25,7 +25,7 @@ def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
     return series.stresses(scene, impact, inputs, options)
 
 
-def finish(scene: Scene, chosen: periodic.Impact, inputs: Mapping[str, Any],
+def finish(scene: Scene, chosen: impact_model.Impact, inputs: Mapping[str, Any],
            options: periodic.Options, result: PointResult) -> None:
     """The fast method's part of the pipeline: stresses, the truncation bound as error estimate, and the
     paper's term-ratio check."""

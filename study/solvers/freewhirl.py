@@ -20,7 +20,6 @@ iteration's last change.
 
 from __future__ import annotations
 
-import time
 from typing import Any, Mapping
 
 import numpy as np
@@ -101,7 +100,6 @@ def clearances(inputs: Mapping[str, Any], x: np.ndarray, option: ReferenceOption
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The free steady whirl and sag of the section, or ``out_of_scope`` where it would touch the wall."""
-    start = time.perf_counter()
     result = PointResult(method=METHOD)
     tolerance = study_tolerance(inputs)
     props = section_properties(inputs)
@@ -113,7 +111,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "buckled"
         result.message = (f"effective tension {props['effective_tension']:.4g} N buckles the {L:.4g} m section "
                           "(contact.section_length)")
-        result.wall_time = time.perf_counter() - start
         return result
     state = steady_state(inputs)
     if state["side_load"] != 0.0:
@@ -121,7 +118,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = (f"a side load of {state['side_load']:.4g} N/m (the buoyed weight in the inclined hole, the "
                           "tension in a curved one) lays the string on its tool joints (on the low side in a straight "
                           "hole): not clear of the wall, a higher model answers")
-        result.wall_time = time.perf_counter() - start
         return result
     x, sag, spin = state["x"], state["sag"], state["whirl"]
     reach = np.abs(sag[0]) + np.abs(spin[0])  # largest distance from the hole's axis over a revolution [m]
@@ -139,7 +135,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         why = ("the free motion reaches the wall: " + "; ".join(touches)) if touches else \
             f"the drag iteration did not settle (last change {state['change']:.2g}; near a resonance)"
         result.message = f"{why}: the closed form holds only clear of the wall, a higher model answers"
-        result.wall_time = time.perf_counter() - start
         return result
     ei = props["bending_stiffness"]
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
@@ -167,5 +162,4 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                       + (f" about a sag of {np.max(np.abs(sag[0])) * 1e3:.3g} mm" if state["side_load"] else "")
                       + f", at most {np.max(reach / body):.3g} of the body's clearance; drag settled in "
                       f"{state['iterations']} iterations")
-    result.wall_time = time.perf_counter() - start
     return result

@@ -63,7 +63,6 @@ from study.solvers.scene import make_scene, section_properties
 from study.solvers.timedomain import calibrated_hysteresis, settled_period
 
 METHOD = "reference"
-DAMPING_CHOICES = ReferenceOptions.choices("reference_damping")
 CONTACT_LAWS = ReferenceOptions.choices("contact_law")
 SCHEMES = ReferenceOptions.choices("reference_integrator")
 #: the kernel's code of each scheme (whirl_kernel.advance)
@@ -74,11 +73,11 @@ SLIP_VELOCITY = ReferenceOptions.default("slip_velocity")
 #: Largest step times the highest natural frequency (Dormand–Prince 5(4) is stable on the imaginary axis
 #: up to about 3.3; Hairer & Wanner, Solving ODEs II, §IV.2).
 STABLE_STEP = 2.5
-#: Whirl verdicts -> integer code (output ``whirl_class``).
-WHIRL_CLASSES = {"no_contact": 0, "forward": 1, "backward": 2, "bouncing": 3, "sliding": 4}
 #: The regime of the study's charts (study.solvers.result.REGIMES) each whirl verdict is.
 WHIRL_REGIMES = {"no_contact": "no_contact", "forward": "forward_whirl", "backward": "backward_whirl",
                  "bouncing": "bouncing", "sliding": "sliding"}
+#: Whirl verdicts -> integer code (output ``whirl_class``): its regime's code, one code table (result.Regime).
+WHIRL_CLASSES = {verdict: REGIMES[regime] for verdict, regime in WHIRL_REGIMES.items()}
 #: |whirl rate/Ω| below which a pipe in contact at least SLIDING_CONTACT of the time lies on the wall, sliding.
 SLIDING_RATE, SLIDING_CONTACT = 0.05, 0.99
 
@@ -569,9 +568,6 @@ class Integrator:
         # the rows written, copied: the buffers (room for a contact all the way) are freed
         return Window(times=rec_t[:n_rec].copy(), states=rec_z[:n_rec].copy(), forces=rec_f[:n_rec].copy(), peak=peak,
                       onsets=onsets, contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
-
-
-INITIAL_CHOICES = ReferenceOptions.choices("reference_initial")
 
 
 def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:

@@ -7,41 +7,76 @@ on a numerical failure of the design point: a sweep records the flag and goes on
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import Enum, StrEnum
 from typing import Any, Mapping
 
-#: Status flags: name -> integer code (the dataset's ``flag_values``) and what it means.
-STATUS = {
-    "ok": (0, "solved; every validity check passed"),
-    "buckled": (1, "effective tension at or below the Euler load of the span: the span buckles"),
-    "hertz_invalid": (2, "contact too large or too elongated for Hertz theory (see message)"),
-    "no_span": (3, "no span satisfies the constraints within the search range"),
-    "resonance": (4, "a harmonic of the rotation meets a natural frequency of the span"),
-    "terms_not_small": (5, "a term dropped from the equation of motion is not small"),
-    "not_converged": (6, "the method did not reach its tolerance"),
-    "failed": (7, "the method failed; see message"),
-    "incomplete": (8, "inputs needed for some outputs are missing (see message)"),
-    "no_impact": (9, "the pipe does not reach the wall in steady state"),
-    "unstable": (10, "the periodic impacting motion exists but is unstable"),
-    "period_doubling": (11, "the periodic impacting motion has lost stability by period doubling"),
-    "chattering": (12, "impacts accumulate (chatter) instead of a periodic motion"),
-    "sticking": (13, "the pipe comes to rest against the wall"),
-    "not_periodic": (14, "no periodic motion found"),
-    "disagrees": (15, "the time domain with real contact disagrees with the periodic solution (see message)"),
-    "unphysical": (16, "a computed value breaks a physical bound: deflection past the wall, inconsistent "
-                       "stresses (see message)"),
-    "out_of_scope": (17, "the model's assumptions do not hold at this point (see message): a higher model answers"),
-    "yields": (18, "solved and valid as an elastic answer, but the largest normal stress is past the grade's yield "
-                   "strength (yield_utilisation > 1): the pipe yields and the elastic figures (kept) overstate what "
-                   "it carries"),
-}
+
+class Status(StrEnum):
+    """What happened at a design point: one member per status, its value the name a user reads (a ``str``, so that
+    ``result.status == "ok"`` holds), with its integer ``code`` (the dataset's ``flag_values``) and its ``meaning``.
+    This is the one code table of the statuses; :data:`STATUS` and :data:`STATUS_CODES` are views of it."""
+
+    def __new__(cls, value: str, code: int, meaning: str):
+        member = str.__new__(cls, value)
+        member._value_ = value
+        member.code = code
+        member.meaning = meaning
+        return member
+
+    OK = "ok", 0, "solved; every validity check passed"
+    BUCKLED = "buckled", 1, "effective tension at or below the Euler load of the span: the span buckles"
+    HERTZ_INVALID = "hertz_invalid", 2, "contact too large or too elongated for Hertz theory (see message)"
+    NO_SPAN = "no_span", 3, "no span satisfies the constraints within the search range"
+    RESONANCE = "resonance", 4, "a harmonic of the rotation meets a natural frequency of the span"
+    TERMS_NOT_SMALL = "terms_not_small", 5, "a term dropped from the equation of motion is not small"
+    NOT_CONVERGED = "not_converged", 6, "the method did not reach its tolerance"
+    FAILED = "failed", 7, "the method failed; see message"
+    INCOMPLETE = "incomplete", 8, "inputs needed for some outputs are missing (see message)"
+    NO_IMPACT = "no_impact", 9, "the pipe does not reach the wall in steady state"
+    UNSTABLE = "unstable", 10, "the periodic impacting motion exists but is unstable"
+    PERIOD_DOUBLING = "period_doubling", 11, "the periodic impacting motion has lost stability by period doubling"
+    CHATTERING = "chattering", 12, "impacts accumulate (chatter) instead of a periodic motion"
+    STICKING = "sticking", 13, "the pipe comes to rest against the wall"
+    NOT_PERIODIC = "not_periodic", 14, "no periodic motion found"
+    DISAGREES = "disagrees", 15, ("the time domain with real contact disagrees with the periodic solution (see "
+                                  "message)")
+    UNPHYSICAL = "unphysical", 16, ("a computed value breaks a physical bound: deflection past the wall, "
+                                    "inconsistent stresses (see message)")
+    OUT_OF_SCOPE = "out_of_scope", 17, ("the model's assumptions do not hold at this point (see message): a higher "
+                                        "model answers")
+    YIELDS = "yields", 18, ("solved and valid as an elastic answer, but the largest normal stress is past the "
+                            "grade's yield strength (yield_utilisation > 1): the pipe yields and the elastic figures "
+                            "(kept) overstate what it carries")
+
+
+#: Status flags: name -> integer code (the dataset's ``flag_values``) and what it means (a view of :class:`Status`).
+STATUS = {status.value: (status.code, status.meaning) for status in Status}
 STATUS_CODES = {name: code for name, (code, _) in STATUS.items()}
 
-#: Regimes of the pipe's motion (the output ``regime``, with these codes as its ``flag_values``): no contact
-#: with the wall; forward / backward whirl (rolling or sliding round the wall with or against the rotation);
-#: bouncing (impacts that do not settle into a periodic motion, chattering included); periodic impacts (the
-#: source paper's state); unstable (the periodic impacting motion exists but is unstable).
-REGIMES = {"no_contact": 0, "forward_whirl": 1, "backward_whirl": 2, "bouncing": 3, "periodic_impacts": 4,
-           "unstable": 5, "sliding": 6}
+
+class Regime(Enum):
+    """Regimes of the pipe's motion (the output ``regime``, with these codes as its ``flag_values``): no contact
+    with the wall; forward / backward whirl (rolling or sliding round the wall with or against the rotation);
+    bouncing (impacts that do not settle into a periodic motion, chattering included); periodic impacts (the
+    source paper's state); unstable (the periodic impacting motion exists but is unstable); sliding (lying on the
+    wall at the tool joints, sliding round as the pipe turns). The one code table of the regimes: the dataset
+    carries this code alone."""
+
+    NO_CONTACT = 0
+    FORWARD_WHIRL = 1
+    BACKWARD_WHIRL = 2
+    BOUNCING = 3
+    PERIODIC_IMPACTS = 4
+    UNSTABLE = 5
+    SLIDING = 6
+
+
+#: Regime name -> code (a view of :class:`Regime`; the dataset's ``flag_meanings`` and ``flag_values``).
+REGIMES = {regime.name.lower(): regime.value for regime in Regime}
+
+#: Outputs that repeat another output's idea and code under another name: name -> the output the dataset stores
+#: in its place (a method may still return both; the dataset writes the idea once).
+ALIASES = {"whirl_class": "regime"}
 
 
 @dataclass
@@ -49,16 +84,20 @@ class PointResult:
     """Outputs of one design point, SI values keyed by the names of :data:`OUTPUTS`."""
 
     method: str
-    status: str = "ok"
+    status: Status = Status.OK
     message: str = ""
     values: dict[str, Any] = field(default_factory=dict)
     extras: dict[str, Any] = field(default_factory=dict)  # non-scalar outputs (JSON only)
     error_estimate: float | None = None
     wall_time: float = 0.0
 
+    def __setattr__(self, name: str, value: Any) -> None:
+        # a status given by its name (``result.status = "ok"``) becomes its member; an unknown one is refused here
+        object.__setattr__(self, name, Status(value) if name == "status" else value)
+
     @property
     def status_code(self) -> int:
-        return STATUS_CODES[self.status]
+        return self.status.code
 
     def as_dict(self) -> dict[str, Any]:
         out = dict(self.values)
@@ -166,8 +205,8 @@ OUTPUTS = {
     "contact_fraction": ("1", "fraction of the window's time with any wall contact (method reference)"),
     "whirl_frequency_ratio": ("1", "whirl rate of the most-touching point over the rotary speed, negative backwards "
                               "(method reference)"),
-    "whirl_class": ("1", "whirl verdict (method reference): 0 no contact, 1 forward, 2 backward, 3 bouncing, "
-                    "4 sliding on the wall"),
+    "whirl_class": ("1", "whirl verdict (method reference) as its regime's code (study.solvers.result.Regime); "
+                    "the dataset stores it once, as regime"),
     "contact_spacing": ("m", "largest distance between neighbouring touching points along the periodic string "
                         "(method reference)"),
     "alternating_bending_stress_x": ("m", "position along the section of the largest alternating bending stress"),

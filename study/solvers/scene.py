@@ -8,7 +8,6 @@ that is given its span rather than searching for one takes it with :func:`given_
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -109,13 +108,12 @@ def make_scene(inputs: Mapping[str, Any]) -> Scene:
                  impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES))
 
 
-def given_span(inputs: Mapping[str, Any], result: PointResult, start: float, method: str,
-               buckled: str) -> float | None:
+def given_span(inputs: Mapping[str, Any], result: PointResult, method: str, buckled: str) -> float | None:
     """The span of a method that is given one (``solver.span_length``) rather than searching for it.
 
     Returns the span [m], or None after recording on ``result`` the status ``incomplete`` (no span
-    given) or ``buckled`` (``buckled``: the message, formatted with ``tension`` [N] and ``span`` [m]),
-    with its wall time since ``start``. ``method``: how the messages name the method.
+    given) or ``buckled`` (``buckled``: the message, formatted with ``tension`` [N] and ``span`` [m]).
+    ``method``: how the messages name the method.
     """
     span = inputs.get("span_length")
     if span is None:
@@ -128,5 +126,4 @@ def given_span(inputs: Mapping[str, Any], result: PointResult, start: float, met
         result.status = "buckled"
         result.values["span_length"] = float(span)
         result.message = buckled.format(tension=props["effective_tension"], span=float(span))
-    result.wall_time = time.perf_counter() - start
     return None

@@ -48,14 +48,13 @@ Floquet multipliers of the period-τ orbit are the squares of R's eigenvalues (b
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import hertz, oscillator
-from study.solvers.periodic import natural_frequencies
+from study.solvers.impact_model import natural_frequencies
 from study.solvers.options import SdofOptions
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene, given_span, make_scene
@@ -296,10 +295,9 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     of the SDOF mass at v, :func:`hertz.hertz_impact`), free_amplitude, max_floquet_multiplier.
     Extras: floquet_multipliers, half_period_multipliers, stability, drive_source, orbit_phase, orbits_found.
     """
-    start = time.perf_counter()
     result = PointResult(method="sdof")
-    if given_span(inputs, result, start, "the sdof screen", "effective tension {tension:.4g} N is at or below "
-                  "the Euler load of the {span:.4g} m span: no first mode to reduce to") is None:
+    if given_span(inputs, result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
+                  "load of the {span:.4g} m span: no first mode to reduce to") is None:
         return result
     par = equivalent_parameters(inputs)
     p = impact_params(par)
@@ -316,12 +314,10 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if not np.isfinite(X):
         result.status = "resonance"
         result.message = "undamped drive at the first natural frequency: the free amplitude is unbounded"
-        result.wall_time = time.perf_counter() - start
         return result
     if par.pattern == "alternating" and par.side_force != 0:
         result.status = "incomplete"
         result.message = "a side force breaks the symmetry: no alternating orbit (use impact_pattern one_wall)"
-        result.wall_time = time.perf_counter() - start
         return result
     n_scan = int(SdofOptions.from_inputs(inputs).sdof_scan)
     orbits = symmetric_orbits(p, n_scan) if par.pattern == "alternating" else one_wall_orbit(p, n_scan)
@@ -357,7 +353,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     result.extras["stability"] = verdict
     result.status = VERDICT_STATUS[verdict]
     result.message = "; ".join(messages)
-    result.wall_time = time.perf_counter() - start
     return result
 
 

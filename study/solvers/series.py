@@ -3,7 +3,7 @@
 The design point is solved exactly as by the ``fast`` method — the pole-bracketed span search, the
 midspan screen, the exact refinement and the constraint check of :mod:`study.solvers.periodic`
 (:func:`design_point`) — but the fields at the chosen span (deflection, bending moment, shear) come
-from the paper's double series :func:`study.physics.beam.series_field`, n_modes (odd n ≤ N) ×
+from the paper's double series :func:`study.physics.fourier.series_field`, n_modes (odd n ≤ N) ×
 harmonics (m ≤ M) terms, with NO quasi-static correction. It is the reproduction of the paper and
 the slow baseline against which the fast method is measured (:func:`convergence_table`).
 
@@ -37,8 +37,8 @@ from typing import Any
 
 import numpy as np
 
-from study.physics import beam
-from study.solvers import checks, periodic
+from study.physics import beam, fourier
+from study.solvers import checks, impact_model, periodic
 from study.solvers.options import SeriesOptions, study_tolerance
 from study.solvers.result import PointResult
 from study.solvers.scene import Scene
@@ -69,7 +69,7 @@ def truncation_from(inputs: Mapping[str, Any]) -> Truncation:
 
 
 # --- fields and stresses -----------------------------------------------------------------------
-def _beam_args(scene: Scene, impact: periodic.Impact, options: periodic.Options) -> dict[str, Any]:
+def _beam_args(scene: Scene, impact: impact_model.Impact, options: periodic.Options) -> dict[str, Any]:
     """Keyword arguments of the beam field functions for this span and impact (the real load pushes
     the pipe off the wall: impulse −J, as in ``fast.stresses``)."""
     p = scene.props
@@ -79,20 +79,20 @@ def _beam_args(scene: Scene, impact: periodic.Impact, options: periodic.Options)
             "half_length": impact.contact_half_length, "shape": options.load_shape, "n_modes": options.modes}
 
 
-def stress_grid(scene: Scene, impact: periodic.Impact, options: periodic.Options):
+def stress_grid(scene: Scene, impact: impact_model.Impact, options: periodic.Options):
     """(x, t): the solver's grids over the half span and the (half) period (as ``fast.stresses``)."""
     return (periodic.space_grid(impact.span_length, impact.contact_half_length, options),
             periodic.time_grid(scene, impact.contact_duration, options))
 
 
-def fields(scene: Scene, impact: periodic.Impact, options: periodic.Options, harmonics: int | None = None,
+def fields(scene: Scene, impact: impact_model.Impact, options: periodic.Options, harmonics: int | None = None,
            kinds: Iterable[str] = STRESS_KINDS, x=None, t=None) -> dict[str, np.ndarray]:
     """Fields of the periodic solution at this span and impact, shape t.shape + x.shape.
 
     harmonics None: the fast method's fields (closed form in time, quasi-static correction;
     ``beam.deflection``/``bending_moment``/``shear_force``, kinds deflection, moment, shear only).
-    harmonics M: the paper's double series ``beam.series_field`` with options.modes × M terms, any
-    kind of :data:`study.physics.beam.SERIES_KINDS`. x, t default to :func:`stress_grid`.
+    harmonics M: the paper's double series ``fourier.series_field`` with options.modes × M terms, any
+    kind of :data:`study.physics.fourier.SERIES_KINDS`. x, t default to :func:`stress_grid`.
     """
     if x is None or t is None:
         gx, gt = stress_grid(scene, impact, options)
@@ -104,10 +104,10 @@ def fields(scene: Scene, impact: periodic.Impact, options: periodic.Options, har
         if unknown:
             raise ValueError(f"the fast fields are {', '.join(beam.FIELD_KINDS)}; not {', '.join(unknown)}")
         return beam.periodic_fields(x, t, list(kinds), **args)
-    return beam.series_fields(x, t, list(kinds), harmonics=int(harmonics), **args)
+    return fourier.series_fields(x, t, list(kinds), harmonics=int(harmonics), **args)
 
 
-def stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def stresses(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
     """Stress maxima (docs/model.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
     or from the double series with options.modes × harmonics terms, sampled on :func:`stress_grid` and
@@ -133,7 +133,7 @@ class SeriesStresses:
     history: list[tuple[int, float]] = field(default_factory=list)  #: (M, max normal stress)
 
 
-def converged_stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def converged_stresses(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
                        options: periodic.Options, truncation: Truncation) -> SeriesStresses:
     """Series stresses with the time truncation of ``truncation``.
 
@@ -159,7 +159,7 @@ def converged_stresses(scene: Scene, impact: periodic.Impact, inputs: Mapping[st
 
 
 # --- the paper's §VI term ratios -----------------------------------------------------------------
-def term_grid(scene: Scene, impact: periodic.Impact, points_per_pulse: int = 8, max_times: int = 2048,
+def term_grid(scene: Scene, impact: impact_model.Impact, points_per_pulse: int = 8, max_times: int = 2048,
               space_points: int = 49):
     """(x, t) for the term ratios: UNIFORM grids over the half span [0, L/2] and the (half) period,
     so that the averages (B) are the paper's time and location averages (the solver's grid is dense
@@ -170,7 +170,7 @@ def term_grid(scene: Scene, impact: periodic.Impact, points_per_pulse: int = 8, 
             np.linspace(0.0, span_t, nt, endpoint=False))
 
 
-def term_ratio_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def term_ratio_table(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
                      options: periodic.Options, harmonics: int = DEFAULT_HARMONICS) -> dict[str, Any]:
     """The paper's §VI table for this span and impact (docs/model.md §6) and its verdict.
 
@@ -199,7 +199,7 @@ def term_ratio_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str,
 
 
 # --- work-precision data -------------------------------------------------------------------------
-def convergence_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def convergence_table(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
                       resolutions: Iterable[tuple[str, Any]], reference: tuple[int, int] = (961, 25_600),
                       options: periodic.Options | None = None) -> list[dict[str, Any]]:
     """Work-precision rows of each method and resolution at a fixed span and impact (docs/model.md §9).
@@ -239,7 +239,7 @@ def convergence_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str
             raise ValueError(f"method = {method!r}; allowed: fast, series")
         values, y, wall = evaluate(n, m)
         n_odd = (n + 1) // 2
-        m_kept = None if m is None else beam.harmonic_numbers(m, scene.pattern).size
+        m_kept = None if m is None else fourier.harmonic_numbers(m, scene.pattern).size
         rows.append({
             "method": method, "modes": n, "harmonics": m, "terms": n_odd if m is None else n_odd * m_kept,
             "wall_time": wall,
@@ -251,7 +251,7 @@ def convergence_table(scene: Scene, impact: periodic.Impact, inputs: Mapping[str
     return rows
 
 
-def add_term_ratios(scene: Scene, impact: periodic.Impact, inputs: Mapping[str, Any],
+def add_term_ratios(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
                     options: periodic.Options, result: PointResult, harmonics: int = DEFAULT_HARMONICS) -> None:
     """Store :func:`term_ratio_table` in ``result.extras["term_ratios"]``; an otherwise "ok" point whose
     dropped drag is not small becomes "terms_not_small" (either periodic method may call this)."""

@@ -632,9 +632,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     periodic run max_floquet_multiplier of its orbit (:func:`settled_orbit`).
     """
     option = TimeDomainOptions.from_inputs(inputs)
-    start = time.perf_counter()
     result = PointResult(method=METHOD)
-    if given_span(inputs, result, start, "the time-domain method",
+    if given_span(inputs, result, "the time-domain method",
                   "effective tension {tension:.4g} N buckles the {span:.4g} m span") is None:
         return result
     run = simulate(inputs)
@@ -652,7 +651,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if run["verdict"] == "chattering":
         result.status = "chattering"
         result.message = f"impacts accumulate instead of settling: {run['failure']}"
-        result.wall_time = time.perf_counter() - start
         return result
     if run["verdict"] == "failed":
         result.status = "failed"
@@ -660,7 +658,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         reason = STEP_FAILURE if above else "explicit integration blew up" if run["time_step"] else "integration failed"
         result.message = (f"{reason} (step {run['time_step']:.4g} s, limit {run['step_limit']:.4g} s): "
                           f"{run['failure']}" if run["time_step"] else f"{reason}: {run['failure']}")
-        result.wall_time = time.perf_counter() - start
         return result
     tau = model.period
     n = run["period"] or 1
@@ -712,7 +709,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         messages.append(f"stresses over the {'period' if run['verdict'] == 'periodic' else 'next revolution'} "
                         f"after the run")
     result.message = "; ".join(messages)
-    result.wall_time = time.perf_counter() - start
     return result
 
 

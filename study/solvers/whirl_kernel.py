@@ -69,8 +69,6 @@ N_STATS = 7
 #: Schemes of :func:`advance`: Dormand–Prince on the whole right-hand side; its Lawson form at every step; the
 #: Lawson form between contacts and Dormand–Prince while one is open.
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
-#: Indices of fpar (the scalar parameters).
-F_DRAG, F_OMEGA, F_MU, F_VREG, F_INV_M, F_LAW, F_HYST = range(7)
 #: The floating-point licence of :func:`advance`: numba's fastmath flags to fuse multiply-adds and reorder sums (so
 #: that the drag's and the stages' sums run in vector instructions). Deterministic only because nothing compiled apart
 #: is linked into advance: every kernel it calls is inlined at numba's level (``inline="always"``), it allocates

@@ -12,6 +12,10 @@ this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/perform
   they are compiling, for how long it should take, and how long it took;
 - a sweep compiles in its own process before it starts its workers, which would otherwise each compile the
   same kernels at once.
+
+numba has no public API that tells whether its cache holds a kernel without compiling or loading it, so
+:func:`kernels`, :func:`cached` and :func:`_record_path` read the dispatcher's cache object (``_cache``: enabled,
+its index, its folder) of the pinned numba (pyproject.toml); an unreadable index counts as a missing one.
 """
 
 from __future__ import annotations
@@ -25,8 +29,9 @@ from typing import Any, Callable, Iterable, Mapping
 from study.atomic import atomic_path
 
 #: Modules holding numba kernels compiled with ``cache=True``.
-KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.roots",
-                  "study.solvers.event_driven", "study.solvers.periodic", "study.solvers.stress_kernel",
+KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.midspan",
+                  "study.physics.roots", "study.solvers.event_driven", "study.solvers.impact_model",
+                  "study.solvers.periodic", "study.solvers.span_search", "study.solvers.stress_kernel",
                   "study.solvers.whirl_kernel")
 #: The kernels the last compile-ahead left in the cache, kept beside them: the ones a run is checked for (a kernel
 #: no method reaches at the warm-up points — a physics function's array form kept for its users and tests, a path

@@ -18,7 +18,7 @@ from study import __version__
 from study.atomic import atomic_path
 from study.config import FIELDS_BY_NAME, Study
 from study.solvers import OUTPUTS, STATUS
-from study.solvers.result import REGIMES
+from study.solvers.result import ALIASES, REGIMES
 from study.workflow.grid import Grid, code_hash
 
 CONVENTIONS = "CF-1.10"
@@ -52,6 +52,8 @@ def _data_variables(grid: Grid, columns, order: np.ndarray) -> Iterator[tuple[st
         return np.asarray(columns[name])[order].reshape(shape)
 
     for name, (unit, long_name) in {**OUTPUTS, **EXTRA_OUTPUTS}.items():
+        if name in ALIASES:  # the same idea as another output: stored once, as that one
+            continue
         values = grid_array(name)
         if name in OUTPUTS and np.all(np.isnan(values)):
             continue

@@ -183,31 +183,37 @@ def _local_cluster(workers: int, attempts: int = 3):
     SIGINT is ignored in this process while the cluster starts, so the worker processes it spawns
     inherit the ignored signal (a spawned Python keeps an ignored SIGINT ignored); a Ctrl-C in those
     1-3 s is lost (press it again). A worker restarted later ignores it once :func:`dask_setup` has
-    run. A worker killed while the cluster starts fails the start: it is tried again.
+    run. A worker killed while the cluster starts fails the start: it is tried again; whatever a failed start
+    had begun is closed (each cluster is recorded before it starts, by a subclass: dask names no public registry
+    of clusters whose constructor raised).
     """
     import signal
     import threading
 
     from dask.distributed import LocalCluster
-    from distributed.deploy.spec import SpecCluster
+
+    class Recorded(LocalCluster):
+        def __init__(self, record: list, **kwargs):
+            record.append(self)
+            super().__init__(**kwargs)
 
     configure_local_workers()
 
-    before = set(SpecCluster._instances)
+    started: list = []
     for attempt in range(attempts):
         main = threading.current_thread() is threading.main_thread()  # only it may set handlers
         handler = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
         try:
-            return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL,
-                                preload=[__name__])
+            return Recorded(started, n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL, preload=[__name__])
         except BaseException as exc:
             retry = isinstance(exc, RuntimeError) and attempt < attempts - 1
             if not retry:
                 _quiet_shutdown()
-            for started in set(SpecCluster._instances) - before:
+            for cluster in started:
                 with contextlib.suppress(Exception):
-                    started.close(timeout=5)
+                    cluster.close(timeout=5)
+            started.clear()
             if isinstance(exc, RuntimeError) and not retry:
                 raise SweepError(f"could not start {workers} local workers ({exc}); nothing was computed in "
                                  "this run: run the same command again") from None

@@ -16,8 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from study.config import Study
-from study.solvers import OUTPUTS, periodic
+from study.solvers import OUTPUTS, impact_model
 from study.solvers.options import Options
+from study.solvers.scene import make_scene
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
 from study.workflow.compiled import ensure_compiled
@@ -77,7 +78,7 @@ def check_span_search(study: Study) -> None:
     axes = {name: (np.min(v), np.max(v)) for name, v in study.axes.items() if np.asarray(v).dtype.kind == "f"}
     for corner in itertools.product(*axes.values()):
         point = {**study.inputs, **dict(zip(axes, corner))}
-        problem = periodic.span_search_too_large(periodic.make_scene(point), Options.from_inputs(point),
+        problem = impact_model.span_search_too_large(make_scene(point), Options.from_inputs(point),
                                                  point.get("max_poles"))
         if problem is not None:
             raise SweepError(f"{problem}; nothing was computed")

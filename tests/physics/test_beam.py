@@ -13,6 +13,8 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 from study.physics import beam as bm
+from study.physics import fourier as fs
+from study.physics import midspan as ms
 
 SHAPES = ["point", "uniform", "parabolic"]
 PATTERNS = ["one_wall", "alternating"]
@@ -319,7 +321,7 @@ def test_fourier_response_converges_to_closed_form(pattern, omega, tl, tau):
     q, v = bm.modal_periodic_response(t, omega, tl, tau, pattern)
     eq, ev = [], []
     for m in FOURIER_MS:
-        qf, vf = bm.modal_fourier_response(t, omega, tl, tau, pattern, harmonics=m)
+        qf, vf = fs.modal_fourier_response(t, omega, tl, tau, pattern, harmonics=m)
         eq.append(np.abs(qf - q) / np.abs(q).max())
         ev.append(np.abs(vf - v) / np.abs(v).max())
     eq, ev = np.array(eq), np.array(ev)
@@ -338,12 +340,12 @@ def test_fourier_response_harmonic_count_and_mean():
     # M counts the highest harmonic, so alternating M = 50 and M = 49 are the same sum
     omega, tl, tau = 130.0, 5e-3, 0.21
     t = np.linspace(0, tau, 7)
-    q0, v0 = bm.modal_fourier_response(t, omega, tl, tau, "one_wall", harmonics=0)
+    q0, v0 = fs.modal_fourier_response(t, omega, tl, tau, "one_wall", harmonics=0)
     np.testing.assert_allclose(q0, 1 / (tau * omega**2), rtol=1e-15)
     assert np.all(v0 == 0)
-    assert np.all(bm.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=0).displacement == 0)
-    a50 = bm.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=50)
-    a49 = bm.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=49)
+    assert np.all(fs.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=0).displacement == 0)
+    a50 = fs.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=50)
+    a49 = fs.modal_fourier_response(t, omega, tl, tau, "alternating", harmonics=49)
     np.testing.assert_array_equal(a50.displacement, a49.displacement)
     # and it is the brute-force reference series of the closed-form tests
     qf, vf = fourier_reference(t, omega, tl, tau, "alternating", 49)
@@ -359,15 +361,15 @@ def test_fourier_response_broadcast_chunks_and_nan(monkeypatch):
     om = np.array([1.0, 2.5, 3.0, np.nan, 1.25]) * big
     t = np.linspace(-0.05, 0.3, 9)
     with np.errstate(all="raise"):
-        full = bm.modal_fourier_response(t[:, None], om[None, :], tl, tau, "one_wall", harmonics=300)
+        full = fs.modal_fourier_response(t[:, None], om[None, :], tl, tau, "one_wall", harmonics=300)
     assert full.displacement.shape == (9, 5)
     closed = bm.modal_periodic_response(t[:, None], om[None, :], tl, tau, "one_wall")
     np.testing.assert_array_equal(np.isnan(full.displacement), np.isnan(closed.displacement))
     assert np.isnan(full.displacement[:, [0, 2, 3]]).all() and np.isfinite(full.velocity[:, [1, 4]]).all()
-    monkeypatch.setattr(bm, "_SERIES_CHUNK", 1000)  # 3 points per chunk
-    chunked = bm.modal_fourier_response(t[:, None], om[None, :], tl, tau, "one_wall", harmonics=300)
+    monkeypatch.setattr(fs, "_SERIES_CHUNK", 1000)  # 3 points per chunk
+    chunked = fs.modal_fourier_response(t[:, None], om[None, :], tl, tau, "one_wall", harmonics=300)
     np.testing.assert_allclose(chunked.displacement, full.displacement, rtol=1e-14)
-    alt = bm.modal_fourier_response(0.0, 7.0, 0.15, tau, "alternating")
+    alt = fs.modal_fourier_response(0.0, 7.0, 0.15, tau, "alternating")
     assert np.isnan(alt.displacement)
 
 
@@ -397,7 +399,7 @@ def test_series_field_converges_to_quasi_static_fields(pattern, shape):
     for n, m in SERIES_NM:
         for key, ref in refs.items():
             xx = x[1:] if key == "shear" else x
-            val = bm.series_field(xx, t, key, n_modes=n, harmonics=m, **args)
+            val = fs.series_field(xx, t, key, n_modes=n, harmonics=m, **args)
             errs[key].append(np.abs(val - ref).max() / np.abs(ref).max())
     for key, e in errs.items():
         assert e[1] < 1.02 * e[0] and e[2] < 0.3 * e[1], (key, e)
@@ -417,7 +419,7 @@ def test_series_field_satisfies_truncated_equation_of_motion(pattern):
     t = np.linspace(0, tau, 13)[:, None] + np.array([0.0, 1e-3])  # shape (13, 2)
     x = np.linspace(0.5, span / 2, 4)
     nm = dict(n_modes=41, harmonics=120)
-    f = {k: bm.series_field(x, t, k, **nm, **args) for k in bm.SERIES_KINDS}
+    f = {k: fs.series_field(x, t, k, **nm, **args) for k in fs.SERIES_KINDS}
     assert f["deflection"].shape == (13, 2, 4)
     lhs = f["bending_load"] - tn * f["d2"] + mass * f["acceleration"]
     n = np.arange(1, 42, 2)
@@ -431,9 +433,9 @@ def test_series_field_satisfies_truncated_equation_of_motion(pattern):
     for kind, exact in (("d2", -f["moment"] / ei), ("d4", f["bending_load"] / ei)):
         np.testing.assert_allclose(f[kind], exact, rtol=0, atol=1e-12 * np.abs(exact).max())
     for order, kind in [(0, "deflection"), (2, "moment"), (3, "shear"), (4, "bending_load")]:
-        np.testing.assert_array_equal(bm.series_field(x, t, order, **nm, **args), f[kind])
+        np.testing.assert_array_equal(fs.series_field(x, t, order, **nm, **args), f[kind])
     with pytest.raises(ValueError):
-        bm.series_field(x, t, "slope", **nm, **args)
+        fs.series_field(x, t, "slope", **nm, **args)
 
 
 @pytest.mark.parametrize("pattern", PATTERNS)
@@ -452,12 +454,12 @@ def test_series_velocity_converges_to_closed_form_modal_sum(pattern, monkeypatch
     amp = 100.0 * bm.modal_load_factors(n, span, 0.02, "point") / (0.5 * 40.0 * span)
     qd = bm.modal_periodic_response(t[:, None], omega, tl, tau, pattern).velocity
     ref = (qd * amp) @ np.sin(np.outer(k, x))
-    errs = [np.abs(bm.series_field(x, t, "velocity", n_modes=21, harmonics=m, **args) - ref).max()
+    errs = [np.abs(fs.series_field(x, t, "velocity", n_modes=21, harmonics=m, **args) - ref).max()
             / np.abs(ref).max() for m in (200, 800, 3200)]
     assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-6
-    full = bm.series_field(x, t, "velocity", n_modes=21, harmonics=800, **args)
-    monkeypatch.setattr(bm, "_SERIES_CHUNK", 1000)
-    np.testing.assert_allclose(bm.series_field(x, t, "velocity", n_modes=21, harmonics=800, **args), full,
+    full = fs.series_field(x, t, "velocity", n_modes=21, harmonics=800, **args)
+    monkeypatch.setattr(fs, "_SERIES_CHUNK", 1000)
+    np.testing.assert_allclose(fs.series_field(x, t, "velocity", n_modes=21, harmonics=800, **args), full,
                                rtol=1e-12, atol=1e-12 * np.abs(full).max())
 
 
@@ -482,7 +484,7 @@ def test_midspan_state_sum_equals_the_modal_sum(pattern, shape):
     span, tl, half = rng.uniform(3, 300, 4000), rng.uniform(1e-4, 3e-3, 4000), rng.uniform(0, 0.3, 4000)
     modes = np.arange(1, 42, 2.0)
     ei, tension, mass, tau = 1.1e6, 4e4, 43.0, 0.2
-    y, v, curv = bm.midspan_state_at_pulse_start(span, tl, half, modes, ei, tension, mass, tau, pattern, shape)
+    y, v, curv = ms.midspan_state_at_pulse_start(span, tl, half, modes, ei, tension, mass, tau, pattern, shape)
     k = modes * np.pi / span[:, None]
     omega = np.sqrt((ei * k**4 + tension * k**2) / mass)
     state = bm.modal_periodic_response(0.0, omega, tl[:, None], tau, pattern)
@@ -492,7 +494,7 @@ def test_midspan_state_sum_equals_the_modal_sum(pattern, shape):
         # near a resonance both lose the same few digits: compare against the largest value
         np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(want).max())
     # per-span modes: one mode each, as the resonance widths use it
-    one = bm.midspan_state_at_pulse_start(span[:5], tl[:5], half[:5], modes[3:8, None], ei, tension, mass, tau,
+    one = ms.midspan_state_at_pulse_start(span[:5], tl[:5], half[:5], modes[3:8, None], ei, tension, mass, tau,
                                           pattern, shape)[0]
     np.testing.assert_allclose(one, (w * state.displacement)[np.arange(5), np.arange(3, 8)], rtol=1e-9)
 
@@ -502,14 +504,14 @@ def test_midspan_state_is_nan_at_resonance_buckling_and_overlong_pulse():
     ei, mass, tau = 1.0e6, 40.0, 0.2
     span_res = np.pi * (ei / mass) ** 0.25 / np.sqrt(2 * np.pi / tau * 3)  # mode 1 at the 3rd harmonic, T = 0
     args = ([1.0, 3.0, 5.0], ei, 0.0, mass, tau, "one_wall", "point")
-    assert np.isnan(bm.midspan_state_at_pulse_start(span_res, 1e-3, 0.0, *args)[0])
-    assert np.isfinite(bm.midspan_state_at_pulse_start(span_res * 1.001, 1e-3, 0.0, *args)[0])
-    buckled = bm.midspan_state_at_pulse_start(30.0, 1e-3, 0.0, [1.0, 3.0], ei, -2 * ei * (np.pi / 30) ** 2,
+    assert np.isnan(ms.midspan_state_at_pulse_start(span_res, 1e-3, 0.0, *args)[0])
+    assert np.isfinite(ms.midspan_state_at_pulse_start(span_res * 1.001, 1e-3, 0.0, *args)[0])
+    buckled = ms.midspan_state_at_pulse_start(30.0, 1e-3, 0.0, [1.0, 3.0], ei, -2 * ei * (np.pi / 30) ** 2,
                                               mass, tau, "one_wall", "point")
     assert np.isnan(buckled[0])
-    assert np.isnan(bm.midspan_state_at_pulse_start(30.0, 0.25, 0.0, *args)[1])  # T_L = 0.25 s > tau
-    assert np.isfinite(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, *args)[1])
-    assert np.isnan(bm.midspan_state_at_pulse_start(30.0, 0.15, 0.0, [1.0], ei, 0.0, mass, tau, "alternating",
+    assert np.isnan(ms.midspan_state_at_pulse_start(30.0, 0.25, 0.0, *args)[1])  # T_L = 0.25 s > tau
+    assert np.isfinite(ms.midspan_state_at_pulse_start(30.0, 0.15, 0.0, *args)[1])
+    assert np.isnan(ms.midspan_state_at_pulse_start(30.0, 0.15, 0.0, [1.0], ei, 0.0, mass, tau, "alternating",
                                                     "point")[1])  # T_L = 0.15 s > tau/2
 
 
@@ -580,14 +582,14 @@ def test_excursion_verdicts_are_the_largest_excursion_s_wherever_they_decide(pat
     full = bm.largest_excursion(t, omega, tl, weight, tau, pattern)
     limit = full * np.concatenate([rng.uniform(0.3, 1.7, R - 40), 1 + rng.choice([-1, 1], 40) * 1e-15 * rng.uniform(
         0.1, 1.0, 40)])
-    verdict = bm.excursion_verdicts(t, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape, limit=limit)
+    verdict = ms.excursion_verdicts(t, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape, limit=limit)
     decided = verdict >= 0
     np.testing.assert_array_equal(verdict[decided] == 1, (full > limit)[decided])
     assert decided[:R - 40].mean() > 0.99  # far from the limit it decides
     assert not decided[R - 40:].any()  # within rounding of it, it does not
     inside = t.copy()
     inside[0, 3] = 0.5 * tl[0]  # a time inside the pulse: undecided
-    assert bm.excursion_verdicts(inside, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape,
+    assert ms.excursion_verdicts(inside, spans, tl, half, n_odd, ei, tension, mass, tau, pattern, shape,
                                  limit=limit)[0] == -1
 
 
@@ -661,7 +663,7 @@ def test_sincos_is_the_library_s_sine_and_cosine_to_two_ulp():
     def both(x):
         out = np.empty((2, x.size))
         for i in range(x.size):
-            out[0, i], out[1, i] = bm.sincos(x[i])
+            out[0, i], out[1, i] = ms.sincos(x[i])
         return out
 
     rng = np.random.default_rng(7)
@@ -681,13 +683,13 @@ def test_midspan_states_of_many_spans_are_the_scalar_loop_s_to_the_last_bit(patt
     durations = np.where(spans < 100, 1.5e-3, 4e-3)
     durations[::500] = 0.3  # longer than the half period: NaN
     modes = np.arange(1.0, 42.0, 2.0)
-    args = (1.6e6, 4e4, 30.0, 0.2, pattern == "one_wall", bm._SHAPE_CODES[shape], 1e-15)
-    simd = np.array(bm.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
-    scalar = bm._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
+    args = (1.6e6, 4e4, 30.0, 0.2, pattern == "one_wall", bm.SHAPE_CODES[shape], 1e-15)
+    simd = np.array(ms.midspan_states(spans, durations, 0.002 * spans, modes.size, *args))
+    scalar = ms._midspan_state_kernel(spans, durations, 0.002 * spans, modes[None, :], *args, True)
     assert np.isnan(scalar).sum() >= 18 and np.array_equal(simd, scalar, equal_nan=True)
     # and y1 or v1 alone (midspan_sums) is the same sum
     for velocity, row in ((False, 0), (True, 1)):
-        alone = bm.midspan_sums(spans, durations, 0.002 * spans, modes.size, *args, velocity)
+        alone = ms.midspan_sums(spans, durations, 0.002 * spans, modes.size, *args, velocity)
         assert np.array_equal(alone, scalar[row], equal_nan=True)
 
 
@@ -700,9 +702,9 @@ def test_series_on_a_uniform_grid_by_fft_is_the_direct_sum(pattern):
     args = dict(span_length=10.0, bending_stiffness=1.6e6, tension=4e4, mass=30.0, impulse=50.0, pulse_duration=2e-3,
                 period=tau, pattern=pattern, half_length=0.01, shape="parabolic", n_modes=21, harmonics=400)
     kinds = ["deflection", "acceleration", "d4", "shear"]
-    assert bm._steps_per_period(t, tau) == (300 if pattern == "one_wall" else 600)
-    by_fft = bm.series_fields(x, t, kinds, **args)
-    direct = bm.series_fields(x, np.append(t, 0.123456789 * tau), kinds, **args)
+    assert fs._steps_per_period(t, tau) == (300 if pattern == "one_wall" else 600)
+    by_fft = fs.series_fields(x, t, kinds, **args)
+    direct = fs.series_fields(x, np.append(t, 0.123456789 * tau), kinds, **args)
     for kind in kinds:
         np.testing.assert_allclose(by_fft[kind], direct[kind][:-1], rtol=0, atol=1e-12 * np.abs(direct[kind]).max())
 

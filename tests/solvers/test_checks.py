@@ -10,7 +10,7 @@ mean_j |sin(Ωt_j)| = mean_j |cos(Ωt_j)| = (2/n_t) cot(π/n_t) → 2/π, mean_j
 import numpy as np
 import pytest
 
-from study.physics import beam as bm
+from study.physics import fourier as fs
 from study.solvers import checks
 
 L, TAU, Y = 40.0, 0.2, 0.02  # span [m], period [s], amplitude [m]
@@ -169,14 +169,14 @@ def test_verdict_fails_on_a_local_peak():
 
 
 def test_ratio_table_from_the_series_solution():
-    # source: convergence to reference — the pipeline on the paper's double series (beam.series_field)
+    # source: convergence to reference — the pipeline on the paper's double series (fourier.series_field)
     # runs end to end: every ratio finite and positive, the contact masked
     span, tl, tau = 10.0, 5e-3, 0.2
     args = dict(span_length=span, bending_stiffness=1e6, tension=5e4, mass=40.0, impulse=100.0,
                 pulse_duration=tl, period=tau, pattern="alternating", half_length=0.02, shape="parabolic")
     x = np.linspace(0, span, 41)
     t = np.linspace(0, tau, 80, endpoint=False)
-    fields = {k: bm.series_field(x, t, k, n_modes=41, harmonics=400, **args) for k in checks.FIELDS}
+    fields = {k: fs.series_field(x, t, k, n_modes=41, harmonics=400, **args) for k in checks.FIELDS}
     props = dict(PROPS, bending_stiffness=1e6, axial_tension=5e4, mass_per_length=40.0)
     mags = checks.term_magnitudes(fields, props)
     wrapped = np.mod(t, tau / 2)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from study.solvers import crosscheck, periodic, solve_point
+from study.solvers import crosscheck, impact_model, periodic, solve_point
 
 
 @pytest.fixture(scope="module")
@@ -63,7 +63,7 @@ def test_at_e_1_the_contact_law_is_lees_yet_the_span_peaks_higher(paper_one_wall
     assert td["energy_change"] == pytest.approx(0.0, abs=1e-6)  # elastic contact, no damping: conservative
     # the periodic solution's midspan, with the replay's own modes, against an independent modal sum
     scene, options = periodic.make_scene(inputs), periodic.options_from(inputs)
-    impact = periodic.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
+    impact = impact_model.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
                                 half_length=r.values["contact_half_length"])
     gap, need = crosscheck.lee_peak_kinematics(scene, impact, options, 1.0, 8.0)
     assert need == pytest.approx(4.0)  # (F/K)^(2/3) = 8^(2/3)
@@ -118,7 +118,7 @@ def elastic_orbit(paper_one_wall):
     inputs = {**paper_one_wall, "restitution": 1.0}
     r = solve_point(inputs, "crosscheck")
     scene, options = periodic.make_scene(inputs), periodic.options_from(inputs)
-    impact = periodic.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
+    impact = impact_model.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
                                 half_length=r.values["contact_half_length"])
     run = crosscheck.replay(inputs, scene, impact, options)
     return r, run, crosscheck.real_orbit(inputs, run, scene, r.values)

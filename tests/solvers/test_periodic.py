@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from study.solvers import periodic
+from study.solvers import impact_model, periodic, span_search
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30
@@ -21,10 +21,10 @@ def test_poles_are_where_a_natural_frequency_meets_a_harmonic(paper_inputs, patt
     # docs/model.md §4: the undamped periodic response has a pole where omega_n tau/2pi is a harmonic of the
     # train - any integer (one_wall) or an odd integer (alternating).
     scene = scene_of(paper_inputs, pattern, "prescribed")
-    modes = periodic.odd_modes(9)
-    poles = periodic.resonant_spans(scene, modes, 10.0, 300.0)
+    modes = impact_model.odd_modes(9)
+    poles = impact_model.resonant_spans(scene, modes, 10.0, 300.0)
     assert poles.size > 10 and np.all(np.diff(poles) > 0)
-    nu = periodic.natural_frequencies(scene, poles, modes) * scene.period / (2 * np.pi)  # (poles, modes)
+    nu = impact_model.natural_frequencies(scene, poles, modes) * scene.period / (2 * np.pi)  # (poles, modes)
     nearest = np.round(nu)
     hit = np.abs(nu - nearest) < 1e-9 * nu
     if pattern == "alternating":
@@ -40,24 +40,24 @@ def test_galloping_search_is_numpy_s_searchsorted():
         values = np.sort(rng.integers(0, 20, rng.integers(0, 40)).astype(float))
         x = float(rng.integers(-2, 23)) + rng.choice([0.0, 0.5])
         hint = int(rng.integers(-3, values.size + 4))
-        assert periodic._search_right(values, x, hint) == np.searchsorted(values, x, side="right")
+        assert span_search._search_right(values, x, hint) == np.searchsorted(values, x, side="right")
 
 
 def test_roots_lie_between_poles_and_zero_the_screening_residual(paper_inputs):
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=11, min_span=20.0, max_span=120.0)
-    search = periodic.find_roots(scene, options)
+    search = span_search.find_roots(scene, options)
     assert search.roots.size > 0
-    poles = periodic.resonant_spans(scene, periodic.odd_modes(11), 20.0, 120.0)
+    poles = impact_model.resonant_spans(scene, impact_model.odd_modes(11), 20.0, 120.0)
     for root, (a, b) in zip(search.roots, search.brackets):
         assert a <= root <= b
         assert not np.any((poles > a) & (poles < b))  # a bracket never straddles a pole
     # located to ROOT_RTOL (relative) where no pole lies within POLE_FREE_WINDOW of that, else to 1e-10:
     # F changes sign within that distance of each root
-    all_poles = periodic.resonances(scene, periodic.odd_modes(11), 20.0, 120.0)[0]
-    reach = (1 + periodic.POLE_FREE_WINDOW) * periodic.ROOT_RTOL * search.roots
+    all_poles = impact_model.resonances(scene, impact_model.odd_modes(11), 20.0, 120.0)[0]
+    reach = (1 + span_search.POLE_FREE_WINDOW) * span_search.ROOT_RTOL * search.roots
     near = np.searchsorted(all_poles, search.roots - reach) < np.searchsorted(all_poles, search.roots + reach)
-    width = 1.01 * np.where(near, 1e-10, periodic.ROOT_RTOL) * search.roots
+    width = 1.01 * np.where(near, 1e-10, span_search.ROOT_RTOL) * search.roots
     below, above = search.residual(search.roots - width), search.residual(search.roots + width)
     assert np.all(np.sign(below) * np.sign(above) <= 0)
     assert np.count_nonzero(~near) > 0.9 * near.size
@@ -67,12 +67,12 @@ def test_refined_root_satisfies_condition_2_exactly(paper_inputs):
     # Condition 2 (docs/model.md §4): y(L/2, 0) = c with the exact T_L and contact curvature of the solution.
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=15, min_span=9.0)
-    search = periodic.find_roots(scene, options)
-    refined = [periodic.refine_root(scene, options, float(r), b) for r, b in zip(search.roots, search.brackets)]
+    search = span_search.find_roots(scene, options)
+    refined = [impact_model.refine_root(scene, options, float(r), b) for r, b in zip(search.roots, search.brackets)]
     good = [i for i in refined if not i.problems]
     assert len(good) >= 5
     for impact in good:
-        y1, _, curv1 = periodic.unit_state(scene, impact.span_length, impact.contact_duration,
+        y1, _, curv1 = impact_model.unit_state(scene, impact.span_length, impact.contact_duration,
                                            impact.contact_half_length, options)
         assert -impact.impulse * y1 == pytest.approx(scene.clearance, rel=1e-7)
         # The contact curvature is the solution's own: kappa = -y''(L/2, 0).
@@ -81,7 +81,7 @@ def test_refined_root_satisfies_condition_2_exactly(paper_inputs):
 
 def test_prescribed_closure_uses_omega_c(paper_inputs):
     scene = scene_of(paper_inputs, "alternating", "prescribed")
-    impact = periodic.impact_at(scene, 100.0, periodic.Options(modes=11))
+    impact = impact_model.impact_at(scene, 100.0, periodic.Options(modes=11))
     assert impact.impact_velocity == pytest.approx(scene.rotary_speed * scene.clearance)
     assert impact.impulse == pytest.approx(impact.equivalent_mass * (1 + scene.restitution) * impact.impact_velocity)
 
@@ -91,10 +91,10 @@ def test_resonance_width_is_the_residue_of_the_resonant_term(paper_inputs):
     # term x (L - L_p) is the same R on both sides, 1e-9 L_p and 1e-10 L_p from the pole, and width = |R|/L_p.
     scene = scene_of(paper_inputs, "alternating", "prescribed", rpm=100.0)
     options = periodic.Options(modes=15, min_span=9.0, max_span=120.0)
-    poles, modes = periodic.resonances(scene, periodic.odd_modes(15), 9.0, 120.0)
-    residual = periodic.screen_residual(scene, options)
+    poles, modes = impact_model.resonances(scene, impact_model.odd_modes(15), 9.0, 120.0)
+    residual = span_search.screen_residual(scene, options)
     pick = np.linspace(0, poles.size - 1, 12).astype(int)
-    widths = periodic.resonance_widths(residual, poles[pick], modes[pick])
+    widths = span_search.resonance_widths(residual, poles[pick], modes[pick])
     for eps in (1e-9, 1e-10, -1e-9, -1e-10):
         near = poles[pick] * (1 + eps)
         residue = residual(near, modes=modes[pick, None]) * (near - poles[pick])
@@ -110,8 +110,8 @@ def test_residues_skipped_below_a_floor_are_certainly_below_it(paper_inputs, pat
     # below |R|); with the search's floor (1e-6 L) the ones left out are exactly narrow, and they are most.
     scene = scene_of(paper_inputs, pattern, closure, rpm=100.0)
     options = periodic.Options(modes=41, max_span=150.0)
-    poles, modes = periodic.resonances(scene, periodic.odd_modes(41), options.min_span, options.max_span)
-    residual = periodic.screen_residual(scene, options)
+    poles, modes = impact_model.resonances(scene, impact_model.odd_modes(41), options.min_span, options.max_span)
+    residual = span_search.screen_residual(scene, options)
     exact = residual.residue(poles, modes)
     assert np.all(np.isfinite(exact))
     assert not np.any(np.isnan(residual.residue(poles, modes, np.abs(exact) * (1 - 1e-12))))
@@ -127,14 +127,14 @@ def test_narrow_resonances_only_hide_the_roots_pinned_to_them(paper_inputs):
     # than 1e-6 L (the root such a resonance pins; any damping of that order removes it, docs/model.md §7).
     scene = scene_of(paper_inputs, "alternating", "prescribed", rpm=100.0)
     options = periodic.Options(modes=15, min_span=9.0, max_span=120.0)
-    full = periodic.find_roots(scene, periodic.Options(**{**options.__dict__, "resonance_width": 0.0}))
-    cut = periodic.find_roots(scene, options)
+    full = span_search.find_roots(scene, periodic.Options(**{**options.__dict__, "resonance_width": 0.0}))
+    cut = span_search.find_roots(scene, options)
     assert full.narrow_count == 0 and cut.narrow_count > 10 and cut.pole_count == full.pole_count
-    poles, modes = periodic.resonances(scene, periodic.odd_modes(15), 9.0, 120.0)
-    widths = periodic.resonance_widths(cut.residual, poles, modes)
+    poles, modes = impact_model.resonances(scene, impact_model.odd_modes(15), 9.0, 120.0)
+    widths = span_search.resonance_widths(cut.residual, poles, modes)
 
     def missing(a, b):
-        return [r for r in a if np.min(np.abs(b - r)) > 2.0 * periodic.ROOT_RTOL * r]  # each located to ROOT_RTOL
+        return [r for r in a if np.min(np.abs(b - r)) > 2.0 * span_search.ROOT_RTOL * r]  # each located to ROOT_RTOL
 
     assert missing(cut.roots, full.roots) == []
     skipped = missing(full.roots, cut.roots)
@@ -151,10 +151,10 @@ def test_many_spans_at_once_solve_each_as_alone(paper_inputs, pattern, closure):
     # fails), and a mixture of converging and rejected ones (not convex, not approaching).
     scene = scene_of(paper_inputs, pattern, closure)
     options = periodic.Options(modes=11)
-    pole = periodic.resonant_spans(scene, periodic.odd_modes(11), 30.0, 200.0)[0]
+    pole = impact_model.resonant_spans(scene, impact_model.odd_modes(11), 30.0, 200.0)[0]
     spans = np.concatenate([np.geomspace(5.0, 200.0, 23), [pole]])
-    batch = periodic.impacts_at(scene, spans, options)
-    alone = [periodic.impact_at(scene, float(L), options) for L in spans]
+    batch = impact_model.impacts_at(scene, spans, options)
+    alone = [impact_model.impact_at(scene, float(L), options) for L in spans]
     assert {tuple(i.problems) for i in batch} != {()}  # some spans fail ...
     assert any(not i.problems for i in batch)  # ... and some converge
     assert any("resonance" in p for p in batch[-1].problems)
@@ -170,10 +170,10 @@ def test_roots_refined_together_are_refined_as_alone(paper_inputs):
     # source: the definition - refine_roots moves every root by its own secant steps inside its own bracket.
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=15, min_span=9.0)
-    search = periodic.find_roots(scene, options)
+    search = span_search.find_roots(scene, options)
     roots, brackets = search.roots, search.brackets
-    together = periodic.refine_roots(scene, options, roots, brackets)
-    alone = [periodic.refine_root(scene, options, float(r), b) for r, b in zip(roots, brackets)]
+    together = impact_model.refine_roots(scene, options, roots, brackets)
+    alone = [impact_model.refine_root(scene, options, float(r), b) for r, b in zip(roots, brackets)]
     assert sum(not i.problems for i in together) >= 5
     assert any(i.problems for i in together)
     for t, a in zip(together, alone):
@@ -203,15 +203,15 @@ def test_condition_1_for_many_impacts_is_the_check_on_the_whole_grid(paper_input
     # 3-120 m) is checked both ways; some pass.
     scene = scene_of(paper_inputs, pattern, closure, rpm)
     options = periodic.Options(modes=21, max_span=120.0)
-    search = periodic.find_roots(scene, options)
+    search = span_search.find_roots(scene, options)
     durations, halves = search.residual.pulse(search.roots)
-    impacts = [i for i in periodic.refine_roots(scene, options, search.roots, search.brackets, durations=durations,
+    refined = [i for i in impact_model.refine_roots(scene, options, search.roots, search.brackets, durations=durations,
                                                 halves=halves) if not i.problems]
-    assert len(impacts) > 20
-    problems = periodic.constraint_violations(scene, impacts, options)
+    assert len(refined) > 20
+    problems = periodic.constraint_violations(scene, refined, options)
     p = scene.props
     verdicts = set()
-    for impact, problem in zip(impacts, problems):
+    for impact, problem in zip(refined, problems):
         x = periodic.space_grid(impact.span_length, impact.contact_half_length, options)
         t = periodic.time_grid(scene, impact.contact_duration, options)
         y = periodic.beam.deflection(x, t, impact.span_length, p["bending_stiffness"], p["effective_tension"],
@@ -268,9 +268,9 @@ def test_every_root_of_the_continuous_residual_is_kept(paper_inputs, low, high):
     # narrower than 1e-6 L, which it does not search by design (see the test above).
     scene = scene_of(paper_inputs, "one_wall", "self_consistent")
     options = periodic.Options(modes=21)
-    search = periodic.find_roots(scene, options)
-    poles, modes = periodic.resonances(scene, periodic.odd_modes(21), options.min_span, options.max_span)
-    narrow = poles[periodic.resonance_widths(search.residual, poles, modes) < options.resonance_width]
+    search = span_search.find_roots(scene, options)
+    poles, modes = impact_model.resonances(scene, impact_model.odd_modes(21), options.min_span, options.max_span)
+    narrow = poles[span_search.resonance_widths(search.residual, poles, modes) < options.resonance_width]
     x = np.linspace(low, high, 30001)
     f = search.residual(x)
     change = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
@@ -278,7 +278,7 @@ def test_every_root_of_the_continuous_residual_is_kept(paper_inputs, low, high):
     pinned = np.searchsorted(narrow, x[change] * (1 - 1e-5)) < np.searchsorted(narrow, x[change + 1] * (1 + 1e-5))
     cells = change[free & ~pinned]
     assert cells.size >= 1
-    slack = 1.01 * periodic.ROOT_RTOL  # a root is located to ROOT_RTOL (relative) at worst
+    slack = 1.01 * span_search.ROOT_RTOL  # a root is located to ROOT_RTOL (relative) at worst
     for k in cells:
         assert np.any((search.roots >= x[k] * (1 - slack)) & (search.roots <= x[k + 1] * (1 + slack))), (x[k], x[k + 1])
 
@@ -292,8 +292,8 @@ def test_roots_pinned_closer_to_a_wide_pole_than_any_sample_are_kept(paper_input
     # pole between its scan points is a root the search kept, and some lie within 1e-3 |R| of their pole.
     scene = scene_of(paper_inputs, "one_wall", "self_consistent")
     options = periodic.Options(modes=21, max_span=40.0)
-    search = periodic.find_roots(scene, options)
-    poles, modes = periodic.resonances(scene, periodic.odd_modes(21), options.min_span, options.max_span)
+    search = span_search.find_roots(scene, options)
+    poles, modes = impact_model.resonances(scene, impact_model.odd_modes(21), options.min_span, options.max_span)
     residues = search.residual.residue(poles, modes)
     wide = np.abs(residues) >= options.resonance_width * poles
     fractions = np.geomspace(1e-7, 3e-3, 200)
@@ -307,7 +307,7 @@ def test_roots_pinned_closer_to_a_wide_pole_than_any_sample_are_kept(paper_input
                 a, b = sorted((x[k], x[k + 1]))
                 if np.searchsorted(poles, a, side="right") != np.searchsorted(poles, b, side="left"):
                     continue  # a narrow pole between the scan points: a sign change, not a root
-                slack = 1.01 * periodic.ROOT_RTOL  # a root is located to ROOT_RTOL (relative) at worst
+                slack = 1.01 * span_search.ROOT_RTOL  # a root is located to ROOT_RTOL (relative) at worst
                 assert np.any((search.roots >= a * (1 - slack)) & (search.roots <= b * (1 + slack))), (pole, a, b)
                 closest.append(fractions[k + 1])
     assert len(closest) > 5 and min(closest) < 1e-3
@@ -319,17 +319,17 @@ def test_refinement_and_iteration_say_why_they_stopped(paper_inputs):
     # they reached (a span that fails inside the iteration carries none).
     scene = scene_of(paper_inputs, "alternating", "prescribed")
     options = periodic.Options(modes=15, min_span=9.0)
-    search = periodic.find_roots(scene, options)
-    good = [k for k, i in enumerate(periodic.refine_roots(scene, options, search.roots, search.brackets))
+    search = span_search.find_roots(scene, options)
+    good = [k for k, i in enumerate(impact_model.refine_roots(scene, options, search.roots, search.brackets))
             if not i.problems]
     root = float(search.roots[good[0]])
-    tight = periodic.refine_root(scene, options, root, (root * (1 - 1e-13), root * (1 + 1e-13)))
+    tight = impact_model.refine_root(scene, options, root, (root * (1 - 1e-13), root * (1 + 1e-13)))
     assert tight.problems == ["the exact root left the interval between the searched poles around the screening root"]
     assert np.isfinite(tight.contact_duration)
-    cut = periodic.refine_root(scene, options, root, search.brackets[good[0]], steps=0)
+    cut = impact_model.refine_root(scene, options, root, search.brackets[good[0]], steps=0)
     assert len(cut.problems) == 1 and cut.problems[0].startswith("condition 2 residual ")
     assert abs(cut.residual) > 1e-8 and cut.problems[0].endswith(" after refinement")
-    short = periodic.impact_at(scene, root, options, max_iterations=2)
+    short = impact_model.impact_at(scene, root, options, max_iterations=2)
     assert short.problems == ["T_L–curvature iteration not converged in 2 steps"] and short.iterations == 2
     assert np.isfinite(short.contact_duration)
 
@@ -340,9 +340,9 @@ def test_search_keeps_the_midspan_state_at_each_root(paper_inputs):
     # (the compiled and the numpy paths may order a sum differently: 1e-16 absolute seen on one machine).
     scene = scene_of(paper_inputs, "one_wall", "self_consistent")
     options = periodic.Options(modes=21, max_span=60.0)
-    search = periodic.find_roots(scene, options)
+    search = span_search.find_roots(scene, options)
     duration, half = search.residual.pulse(search.roots)
-    expected = np.array(periodic.unit_state(scene, search.roots, duration, half, options))
+    expected = np.array(impact_model.unit_state(scene, search.roots, duration, half, options))
     known = ~np.isnan(search.states[0])
     assert search.states.shape == (3, search.roots.size) and np.mean(known) > 0.9
     np.testing.assert_allclose(search.states[:, known], expected[:, known], rtol=1e-12, atol=0)
@@ -353,13 +353,13 @@ def test_roots_between_runs_of_intervals_are_the_search_over_all_of_them(paper_i
     # of intervals is find_roots over all of them, root for root
     scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=150.0)
     options = periodic.Options(modes=11, min_span=5.0, max_span=40.0)
-    intervals = periodic.search_intervals(scene, options)
-    whole = periodic.find_roots(scene, options)
+    intervals = span_search.search_intervals(scene, options)
+    whole = span_search.find_roots(scene, options)
     assert whole.roots.size > 20 and intervals.lo.size > 20
     assert np.all(intervals.hi > intervals.lo) and np.all(intervals.lo[1:] == intervals.hi[:-1])
     half = intervals.lo.size // 2
-    parts = [periodic.roots_between(intervals, 0, half, options),
-             periodic.roots_between(intervals, half, intervals.lo.size, options)]
+    parts = [span_search.roots_between(intervals, 0, half, options),
+             span_search.roots_between(intervals, half, intervals.lo.size, options)]
     np.testing.assert_array_equal(np.concatenate([p.roots for p in parts]), whole.roots)
     np.testing.assert_array_equal(np.concatenate([p.brackets for p in parts]), whole.brackets)
     assert np.all(parts[0].brackets[:, 1] <= intervals.hi[half - 1]) and np.all(parts[1].roots > intervals.hi[half - 1])
@@ -391,7 +391,7 @@ def test_sign_changes_and_real_roots_are_the_numpy_formulas():
     residue_lo, residue_hi = rng.normal(size=40), rng.normal(size=40)
     residue_lo[0], residue_hi[-1] = np.nan, np.nan  # the search range's ends
     fractions = np.array([0.1, 0.4, 0.8])
-    spans, inside = periodic._sample_spans(lo, hi, residue_lo, residue_hi, fractions)
+    spans, inside = span_search._sample_spans(lo, hi, residue_lo, residue_hi, fractions)
     assert spans.shape == (40, 5) and inside.size == 40 * 3 + 2
     np.testing.assert_array_equal(spans[:, 1:-1], lo[:, None] + (hi - lo)[:, None] * fractions)
     assert spans[0, 0] == lo[0] * (1 + 1e-12) and spans[-1, -1] == hi[-1] * (1 - 1e-12)
@@ -404,7 +404,7 @@ def test_sign_changes_and_real_roots_are_the_numpy_formulas():
         g = values * (spans - lo[:, None]) * (hi[:, None] - spans)
     g[1:, 0], g[:-1, -1] = (residue_lo * (hi - lo))[1:], (-residue_hi * (hi - lo))[:-1]
     i, j = np.nonzero(np.sign(g[:, :-1]) * np.sign(g[:, 1:]) < 0)
-    out = periodic._sign_changes(spans, f, lo, hi, residue_lo, residue_hi)
+    out = span_search._sign_changes(spans, f, lo, hi, residue_lo, residue_hi)
     assert i.size > 20
     np.testing.assert_array_equal(out, [spans[i, j], spans[i, j + 1], g[i, j], g[i, j + 1], lo[i], hi[i],
                                         np.minimum(np.abs(values[i, j]), np.abs(values[i, j + 1]))])
@@ -417,7 +417,7 @@ def test_sign_changes_and_real_roots_are_the_numpy_formulas():
     with np.errstate(divide="ignore"):
         real = ~unsure | (np.abs(root_values / ((roots - out[4]) * (out[5] - roots))) < 1e-3 * out[6])
     assert unsure.any() and (~unsure).any()
-    np.testing.assert_array_equal(periodic._real_roots(roots, root_values, out[0], out[1], out[4], out[5], out[6],
+    np.testing.assert_array_equal(span_search._real_roots(roots, root_values, out[0], out[1], out[4], out[5], out[6],
                                                        poles), real)
 
 
@@ -426,10 +426,10 @@ def test_shrink_tail_in_one_compiled_loop_shrinks_as_the_rounds_one_by_one(paper
     # (the C library's instead of numpy's) may differ in the last bits
     scene = scene_of(paper_inputs, "one_wall", "self_consistent", rpm=150.0)
     options = periodic.Options(modes=11, min_span=5.0, max_span=40.0)
-    monkeypatch.setattr(periodic, "SHRINK_TAIL", 0)
-    rounds = periodic.find_roots(scene, options)
-    monkeypatch.setattr(periodic, "SHRINK_TAIL", 10**9)
-    tail = periodic.find_roots(scene, options)
+    monkeypatch.setattr(span_search, "SHRINK_TAIL", 0)
+    rounds = span_search.find_roots(scene, options)
+    monkeypatch.setattr(span_search, "SHRINK_TAIL", 10**9)
+    tail = span_search.find_roots(scene, options)
     assert rounds.roots.size > 20
     np.testing.assert_array_equal(tail.brackets, rounds.brackets)
     np.testing.assert_allclose(tail.roots, rounds.roots, rtol=1e-12)
