@@ -56,6 +56,9 @@ EXTRA_OUTPUTS = {
     "reference_modes": ("1", "modes per lateral direction of the section"),
     "steps": ("1", "integrator steps"),
     "quasi_static_correction": (None, "the quasi-static correction for the modes left out was applied"),
+    "modal_error": (None, "modal part of each figure's error: the size of the correction for the modes left out, "
+                          "measured on the run"),
+    "modes_tried": (None, "the mode counts the reference model ran, with their modal parts and figures"),
     "revolutions_needed": ("1", "revolutions in all that would bring the figures within the tolerance"),
     "modal_quarter_fraction": ("1", "share of the largest bending moment carried by the upper quarter of the modes "
                                "(a truncation indicator)"),

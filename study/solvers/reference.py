@@ -33,7 +33,10 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   assumed mode c_p (π/L)² (as :mod:`study.solvers.timedomain`), χ = h(e)/v0 set at each onset with the
   calibrated h(e) of :func:`study.solvers.timedomain.calibrated_hysteresis` (exact restitution for one
   mass); Coulomb friction μ (``friction``, config ``contact.friction``, default 0.3) on the sliding
-  velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`).
+  velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`). The modes left out
+  are given back statically (``reference_residual = "series"``, docs/reference_model.md §2.1): their flexibility
+  at each contact point (:func:`residual_flexibility`) in series with its Hertz spring, and their static field
+  under every contact force at every instant in the stresses (:func:`static_correction`).
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
@@ -44,7 +47,9 @@ Run: from the string's rest on the wall where a side load lays it there, else it
 boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_period`), the pipe bounces with
 stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
-(default 6; the period's multiple when periodic) is recorded and the outputs are taken over it.
+(default 6; the period's multiple when periodic) is recorded and the outputs are taken over it. Where the modes
+left out take a figure's error over half the study's tolerance (:func:`modal_check`, measured on the run) the point
+is run again with more modes, up to ``reference_max_modes`` (default 64; :func:`solve`).
 """
 
 from __future__ import annotations
