@@ -122,6 +122,9 @@ class WhirlModel:
     #: (P,) the joints' weight at the contact points that are joints, along the model's +y [N] (None: none), for the
     #: quasi-static correction (:func:`periodic_fields`), which completes it as it completes the contact forces
     point_side: np.ndarray | None = None
+    #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
+    #: correction of their inertia forces (:func:`joint_inertia_forces`)
+    joint_points: np.ndarray | None = None
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -390,10 +393,10 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         # the joints' weight at the joints less its mean (in w_side): a load at the supports, along the low side (its
         # part across the model's +y, where a walking dogleg turns the frame, is left out: docs/reference_model.md §9)
         load = load + joint_side * cb * (mode_shapes(joint_x, L, N).sum(axis=0) - joint_x.size / L * factors)
-        at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)
-        point_side = np.where(at_joint, joint_side * cb, 0.0) if np.any(at_joint) else None
-    else:
-        point_side = None
+    at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)  # contacts at joints
+    point_side = None
+    if joint_side and inputs.get("side_load") is None and np.any(at_joint):
+        point_side = np.where(at_joint, joint_side * cb, 0.0)
     side = lift(load) / mass
     damping_model = option.reference_damping
     damping = np.zeros(N)
@@ -418,7 +421,8 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
-                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side)
+                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
+                      joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
 
 
 @dataclass
@@ -699,6 +703,8 @@ def modal_error(model: WhirlModel, window: Window, tail: float, quarter: float, 
     if not correction:
         return left
     touching = window.contact_time > 0
+    if not np.any(touching):  # clear of the wall: the joints' inertia forces corrected, their frequency Ω's
+        return float(left * min(1.0, (model.rotary_speed / model.first_left_out()) ** 2))
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
     ratio = 2.0 * np.pi / (model.first_left_out() * float(np.min(durations)))
     return float(left * min(1.0, ratio**2))
@@ -933,10 +939,12 @@ def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
 def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
     """Whether the modes left out respond statically to the contacts: the first of them, ω_{N+1}, has a
     period no longer than the shortest mean contact (contact time over onsets per touching point; the whole
-    window for a contact that never opens). False without contact."""
+    window for a contact that never opens). Without contact: where the tool joints' mass is lumped (their inertia
+    forces, point loads of the motion's own frequencies, are completed statically: :func:`joint_inertia_forces`),
+    else False (nothing to correct)."""
     touching = (window.contact_time > 0)
     if not np.any(touching):
-        return False
+        return model.joint_points is not None and not np.any(window.onsets > 0)
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
     return bool(model.first_left_out() * np.min(durations) >= 2.0 * np.pi)
 
@@ -1084,6 +1092,41 @@ def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -
     return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
+def modal_accelerations(model: WhirlModel, window: Window) -> np.ndarray:
+    """(T, 2N) q̈ of the recorded rows (y then z modes) from the modal equations (module docstring of
+    :mod:`study.solvers.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear damping,
+    the turning eccentric load, the side load, the quadratic drag and the contacts."""
+    N = model.n_modes
+    z = window.states
+    qy, qz, vy, vz = z[:, :N], z[:, N:2 * N], z[:, 2 * N:3 * N], z[:, 3 * N:4 * N]
+    turn = model.rotary_speed * window.times[:, None]
+    w2 = model.omega**2
+    ay = -w2 * qy - model.damping * vy + model.eccentric * np.cos(turn) + model.side
+    az = -w2 * qz - model.damping * vz + model.eccentric * np.sin(turn)
+    if model.drag > 0.0:
+        S, wts = model.drag_shapes, model.drag_weights
+        uy, uz = vy @ S.T, vz @ S.T
+        c = model.drag * np.hypot(uy, uz) * wts
+        ay -= (c * uy) @ S / model.mass
+        az -= (c * uz) @ S / model.mass
+    ay += window.forces[:, :, 0] @ model.phi / model.mass
+    az += window.forces[:, :, 1] @ model.phi / model.mass
+    return np.hstack([ay, az])
+
+
+def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
+    """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
+    that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
+    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3)."""
+    N = model.n_modes
+    acc = modal_accelerations(model, window)
+    out = np.zeros(window.forces.shape[:2] + (2,))
+    at = model.joint_points
+    for j in range(2):
+        out[:, at, j] = -model.joint_mass * (acc[:, j * N:(j + 1) * N] @ model.phi[at].T)
+    return out
+
+
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
              fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
@@ -1107,8 +1150,11 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     fields = []
+    inertia = joint_inertia_forces(model, window) if correction and model.joint_points is not None else None
     for j in range(2):
         forces = window.forces[:, :, j] if correction else None  # without it, the modes alone
+        if inertia is not None:
+            forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
