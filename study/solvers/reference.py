@@ -1092,25 +1092,29 @@ def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -
     return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
-def modal_accelerations(model: WhirlModel, window: Window) -> np.ndarray:
+def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | None = None) -> np.ndarray:
     """(T, 2N) q̈ of the recorded rows (y then z modes) from the modal equations (module docstring of
     :mod:`study.solvers.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear damping,
-    the turning eccentric load, the side load, the quadratic drag and the contacts."""
+    the turning eccentric load, the side load, the quadratic drag and the contacts. With ``shapes`` (N, K) the
+    accelerations Σ_n q̈_n shapes_nk at K points instead, (T, 2K) (y then z)."""
     N = model.n_modes
     z = window.states
     qy, qz, vy, vz = z[:, :N], z[:, N:2 * N], z[:, 2 * N:3 * N], z[:, 3 * N:4 * N]
     turn = model.rotary_speed * window.times[:, None]
     w2 = model.omega**2
-    ay = -w2 * qy - model.damping * vy + model.eccentric * np.cos(turn) + model.side
-    az = -w2 * qz - model.damping * vz + model.eccentric * np.sin(turn)
+    out = shapes if shapes is not None else np.eye(N)
+    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (model.eccentric @ out)
+    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (model.eccentric @ out)
     if model.drag > 0.0:
         S, wts = model.drag_shapes, model.drag_weights
         uy, uz = vy @ S.T, vz @ S.T
         c = model.drag * np.hypot(uy, uz) * wts
-        ay -= (c * uy) @ S / model.mass
-        az -= (c * uz) @ S / model.mass
-    ay += window.forces[:, :, 0] @ model.phi / model.mass
-    az += window.forces[:, :, 1] @ model.phi / model.mass
+        projected = S @ out / model.mass
+        ay -= (c * uy) @ projected
+        az -= (c * uz) @ projected
+    at = model.phi @ out / model.mass
+    ay += window.forces[:, :, 0] @ at
+    az += window.forces[:, :, 1] @ at
     return np.hstack([ay, az])
 
 
@@ -1118,12 +1122,12 @@ def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
     that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
     the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3)."""
-    N = model.n_modes
-    acc = modal_accelerations(model, window)
-    out = np.zeros(window.forces.shape[:2] + (2,))
     at = model.joint_points
+    J = int(np.count_nonzero(at))
+    acc = modal_accelerations(model, window, model.phi[at].T)  # at the joints
+    out = np.zeros(window.forces.shape[:2] + (2,))
     for j in range(2):
-        out[:, at, j] = -model.joint_mass * (acc[:, j * N:(j + 1) * N] @ model.phi[at].T)
+        out[:, at, j] = -model.joint_mass * acc[:, j * J:(j + 1) * J]
     return out
 
 
@@ -1166,8 +1170,13 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
     cos_fibre, sin_fibre = np.cos(psi), np.sin(psi)
-    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once
-    excess_rows = row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
+    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once; where
+    # no body contact pushes (no approach to allow) it is the largest deflection less the body's clearance
+    body = model.kinds == 0
+    pressed = np.any(window.forces[:, body, 2] > 0.0, axis=1) if np.any(body) else np.zeros(window.times.size, bool)
+    excess_rows = (row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
+                   if np.any(pressed) else None)
+    body_clearance = float(np.max(model.clearance[body])) if np.any(body) else float("nan")
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
@@ -1183,7 +1192,11 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        excess = (float(np.max(excess_rows[rows])) if stop > first else float("nan")) + wall_excess_bound(model, x, largest)
+        if excess_rows is not None and np.any(pressed[rows]):
+            excess = float(np.max(excess_rows[rows]))
+        else:
+            excess = float(deflection) - body_clearance
+        excess += wall_excess_bound(model, x, largest)
         outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
