@@ -129,6 +129,9 @@ class WhirlModel:
     #: (P,) residual flexibility of the modes left out at each contact point [m/N], in series with its Hertz spring
     #: (:func:`residual_flexibility`; empty: the kept modes alone)
     residual: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
+    #: correction of their inertia forces (:func:`joint_inertia_forces`)
+    joint_points: np.ndarray | None = None
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -464,10 +467,10 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         # the joints' weight at the joints less its mean (in w_side): a load at the supports, along the low side (its
         # part across the model's +y, where a walking dogleg turns the frame, is left out: docs/reference_model.md §9)
         load = load + joint_side * cb * (mode_shapes(joint_x, L, N).sum(axis=0) - joint_x.size / L * factors)
-        at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)
-        point_side = np.where(at_joint, joint_side * cb, 0.0) if np.any(at_joint) else None
-    else:
-        point_side = None
+    at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)  # contacts at joints
+    point_side = None
+    if joint_side and inputs.get("side_load") is None and np.any(at_joint):
+        point_side = np.where(at_joint, joint_side * cb, 0.0)
     side = lift(load) / mass
     damping_model = option.reference_damping
     damping = np.zeros(N)
@@ -492,7 +495,8 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
-                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side)
+                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
+                      joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
     if option.reference_residual == "series" and np.all(np.isfinite(omega)):
         # the modes left out respond to a contact force statically: their flexibility at the point in series with its
         # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1
@@ -823,8 +827,10 @@ def quasi_static_ratio(model: WhirlModel, window: Window) -> float:
     for a remainder of relative size (2π/(ω T))² (its static response's second derivative over ω²); a held contact's
     is nil, an impact's (shorter than that mode's period) the whole. 0 without contact."""
     touching = window.contact_time > 0
-    if not np.any(touching):
-        return 0.0
+    if not np.any(touching):  # clear of the wall: the joints' inertia forces corrected, their frequency Ω's
+        if model.joint_points is None or np.any(window.onsets > 0):
+            return 0.0
+        return float(min(1.0, (model.rotary_speed / model.first_left_out()) ** 2))
     durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
     ratio = 2.0 * np.pi / (model.first_left_out() * float(np.min(durations)))
     return float(min(1.0, ratio**2))
@@ -1118,8 +1124,10 @@ def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
     """Whether the quasi-static correction of the modes left out (:func:`static_correction`) enters the window's
     stresses: wherever a contact force acts in it. It is applied to every contact force at every instant, in step
     with the residual flexibility the contact's spring has in series (:func:`residual_flexibility`), and is not
-    switched on or off by the contacts' durations (docs/reference_model.md §2.1, §3). False without contact."""
-    return bool(np.any(window.contact_time > 0) or np.any(window.onsets > 0))
+    switched on or off by the contacts' durations (docs/reference_model.md §2.1, §3). Without contact: where the tool
+    joints' mass is lumped (their inertia forces, point loads of the motion's own frequencies, are completed
+    statically: :func:`joint_inertia_forces`), else False (nothing to correct)."""
+    return bool(np.any(window.contact_time > 0) or np.any(window.onsets > 0) or model.joint_points is not None)
 
 
 
@@ -1258,6 +1266,45 @@ def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -
     return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
+def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | None = None) -> np.ndarray:
+    """(T, 2N) q̈ of the recorded rows (y then z modes) from the modal equations (module docstring of
+    :mod:`study.solvers.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear damping,
+    the turning eccentric load, the side load, the quadratic drag and the contacts. With ``shapes`` (N, K) the
+    accelerations Σ_n q̈_n shapes_nk at K points instead, (T, 2K) (y then z)."""
+    N = model.n_modes
+    z = window.states
+    qy, qz, vy, vz = z[:, :N], z[:, N:2 * N], z[:, 2 * N:3 * N], z[:, 3 * N:4 * N]
+    turn = model.rotary_speed * window.times[:, None]
+    w2 = model.omega**2
+    out = shapes if shapes is not None else np.eye(N)
+    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (model.eccentric @ out)
+    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (model.eccentric @ out)
+    if model.drag > 0.0:
+        S, wts = model.drag_shapes, model.drag_weights
+        uy, uz = vy @ S.T, vz @ S.T
+        c = model.drag * np.hypot(uy, uz) * wts
+        projected = S @ out / model.mass
+        ay -= (c * uy) @ projected
+        az -= (c * uz) @ projected
+    at = model.phi @ out / model.mass
+    ay += window.forces[:, :, 0] @ at
+    az += window.forces[:, :, 1] @ at
+    return np.hstack([ay, az])
+
+
+def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
+    """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
+    that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
+    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3)."""
+    at = model.joint_points
+    J = int(np.count_nonzero(at))
+    acc = modal_accelerations(model, window, model.phi[at].T)  # at the joints
+    out = np.zeros(window.forces.shape[:2] + (2,))
+    for j in range(2):
+        out[:, at, j] = -model.joint_mass * acc[:, j * J:(j + 1) * J]
+    return out
+
+
 def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
              fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
@@ -1280,8 +1327,11 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     fields = []
+    inertia = joint_inertia_forces(model, window) if correction and model.joint_points is not None else None
     for j in range(2):
         forces = window.forces[:, :, j] if correction else None  # without it, the modes alone
+        if inertia is not None:
+            forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
@@ -1293,8 +1343,13 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     cos_turn, sin_turn = np.cos(turn), np.sin(turn)
     psi = np.linspace(0.0, np.pi, fibres, endpoint=False)  # ψ and ψ + π have the same half range
     cos_fibre, sin_fibre = np.cos(psi), np.sin(psi)
-    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once
-    excess_rows = row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
+    # how far the body passes its wall beyond its contacts' approach, row by row, for all the segments at once; where
+    # no body contact pushes (no approach to allow) it is the largest deflection less the body's clearance
+    body = model.kinds == 0
+    pressed = np.any(window.forces[:, body, 2] > 0.0, axis=1) if np.any(body) else np.zeros(window.times.size, bool)
+    excess_rows = (row_wall_excess(model, x, fields[0]["deflection"], fields[1]["deflection"], window.forces[:, :, 2])
+                   if np.any(pressed) else None)
+    body_clearance = float(np.max(model.clearance[body])) if np.any(body) else float("nan")
     outs = []
     for first, stop in (segments or [(0, window.times.size)]):
         rows = slice(first, stop)
@@ -1310,7 +1365,11 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])
         below = np.hypot(qy[second] @ shapes[second], qz[second] @ shapes[second])
-        excess = (float(np.max(excess_rows[rows])) if stop > first else float("nan")) + wall_excess_bound(model, x, largest)
+        if excess_rows is not None and np.any(pressed[rows]):
+            excess = float(np.max(excess_rows[rows]))
+        else:
+            excess = float(deflection) - body_clearance
+        excess += wall_excess_bound(model, x, largest)
         outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
                          max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),

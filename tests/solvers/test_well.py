@@ -328,3 +328,25 @@ def test_set_rolling_the_joints_roll_backwards_without_slip_with_the_body_clear(
     assert np.all(window.contact_time[joint] >= (1 - 1e-9) * 4 * model.period)
     assert reference.whirl_measure(model, window)["whirl_frequency_ratio"] == pytest.approx(rate, rel=0.01)
     assert reference.stresses(inputs, model, window)["max_wall_excess"] < -0.2 * float(np.max(model.clearance))
+
+
+def test_the_modal_accelerations_are_the_recorded_velocities_rate():
+    # the joints' inertia forces −m_j ü(x_j) of the quasi-static correction take q̈ from the modal equations with the
+    # recorded contact forces (reference.modal_accelerations): on a recorded revolution of the string lying on its
+    # joints (8°, 150 rpm) they are the central differences of the recorded velocities (second order in the rows'
+    # spacing: 2e-4 of the largest measured), and their projection on the joints is the full one's
+    inputs = {**_default(150, 10), "inclination": np.radians(8.0)}
+    model = reference.build_model(inputs)
+    N = model.n_modes
+    run = reference.Integrator(model, 1e-9, reference.initial_state(model))
+    run.run(3 * model.period)
+    window = run.run(4 * model.period, record=True)
+    assert window.contact_time.max() > 0.99 * model.period and window.onsets.sum() == 0
+    t, rows = np.unique(window.times, return_index=True)
+    acc = reference.modal_accelerations(model, window)
+    rate = np.gradient(window.states[rows, 2 * N:4 * N], t, axis=0)
+    assert np.max(np.abs(rate[2:-2] - acc[rows][2:-2])) < 1e-3 * np.max(np.abs(acc))
+    at = model.joint_points
+    joints = reference.modal_accelerations(model, window, model.phi[at].T)
+    J = int(np.count_nonzero(at))
+    np.testing.assert_allclose(joints[:, :J], acc[:, :N] @ model.phi[at].T, atol=1e-12 * np.max(np.abs(joints)))
