@@ -318,13 +318,16 @@ def residual_flexibility(model: "WhirlModel") -> np.ndarray:
     (m = M L/2): the periodic beam-column's whole, :func:`periodic_point_deflection` at s = 0, less the kept modes'
     terms (the rigid translation has none). It vanishes as N grows (like N⁻³: terms like j⁻⁴); in series with a
     contact's Hertz spring (:func:`study.solvers.whirl_kernel.series_hertz`) it makes a held contact's static answer
-    the continuous beam's (docs/reference_model.md §2.1)."""
+    the continuous beam's (docs/reference_model.md §2.1). With the tool joints' mass the kept modes span the same
+    basis functions, so their static part is the basis' own, a matter of stiffness alone (as in
+    :func:`static_correction`): m ω_n² = (L/2)(EI k_n⁴ + T k_n²) on the basis."""
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     whole = float(periodic_point_deflection(0.0, model.span, ei, tn))
+    k = model.wavenumber
     gain = np.zeros(model.n_modes)
-    flexible = model.wavenumber > 0
-    gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
-    return np.maximum(whole - (model.phi**2) @ gain, 0.0)
+    flexible = k > 0
+    gain[flexible] = 1.0 / (0.5 * model.span * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
+    return np.maximum(whole - mode_shapes(model.points, model.span, model.modes) ** 2 @ gain, 0.0)
 
 
 def series_contact(d, stiffness, flexibility) -> tuple[np.ndarray, np.ndarray]:
@@ -1181,7 +1184,7 @@ def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
     moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
     # the deflection likewise: the whole static field in closed form (:func:`periodic_point_deflection`) less the kept
     # modes' terms (the harmonics above the kept ones, and the sine of a harmonic whose cosine alone is kept)
-    deflection = periodic_point_deflection(x[None, :] - at[:, None], L, ei, tn) - (model.phi * gain) @ shapes.T
+    deflection = periodic_point_deflection(x[None, :] - at[:, None], L, ei, tn) - (kept_at * gain) @ shapes.T
     out = np.hstack([deflection, moment])
     out.flags.writeable = False
     model.cache[key] = out
