@@ -454,6 +454,11 @@ DAMAGE_FIBRES = 8
 #: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
 #: this many of their combined standard errors (a two-sided z-test at about 95 %).
 DRIFT_SIGNIFICANCE = 2.0
+#: A run not converged goes on to its budget unless it foresees more than this many times the budget: a forecast from
+#: the scatter of a short record is itself uncertain by about a factor 2 (the standard error of 12 revolutions rests
+#: on three batches), and one that gave up at the first look's forecast left 246 of the default grid's 301 bouncing
+#: points short of 5 % (docs/reference_model.md §3.1).
+FORECAST_SLACK = 2.0
 #: The largest per-revolution settling ratio :func:`settle_ratio` states: a drift over h revolutions that shrinks
 #: by 1 % a revolution is taken to have 1/(1 − 0.99^h) times itself still to come.
 MAX_SETTLE_RATIO = 0.99
@@ -600,14 +605,15 @@ def settle_ratio(states, scale) -> float:
 
 def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]],
              ratio: float = float("nan")) -> dict[str, dict[str, Any]]:
-    """Per design figure (:data:`FIGURES`), from its per-cycle values over the window and the preceding
-    stretch of equal length (empty when the motion is periodic): ``value`` (the mean over the window's cycles),
-    ``largest`` (over them), ``error`` (relative standard error of the mean by batch means), ``drift`` (relative
-    difference of the window's and the preceding stretch's means), ``significant`` (that difference is more
-    than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the window's part of
-    the figure's error: the larger of the standard error and the drift, and where the motion settles (the state's
-    changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to come if they shrink
-    alike, drift/(1 − ρ^h) for a window of h revolutions."""
+    """Per design figure (:data:`FIGURES`, and :data:`DAMAGE` where the cycles carry it: per fibre, the fibre of the
+    largest mean over the window taken, ``fibre``), from its per-cycle values over the window and the preceding
+    stretch of equal length (empty when the motion is periodic, or taken as stationary): ``value`` (the mean over
+    the window's cycles), ``largest`` (over them), ``error`` (relative standard error of the mean by batch means),
+    ``drift`` (relative difference of the window's and the preceding stretch's means), ``significant`` (that
+    difference is more than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the
+    window's part of the figure's error: the larger of the standard error and the drift, and where the motion
+    settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to
+    come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
     out = {}
     h = len(window)
     settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
@@ -745,11 +751,13 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
 
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
     periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
-    record (one cycle a revolution) grows by ``reference_window`` revolutions while the error of a design figure
-    (:func:`convergence`) is above the study's tolerance, more revolutions could bring it there (its window part
-    is what is over) and ``reference_max_revolutions`` allow; the window is the record's second half, the
-    preceding stretch its first, and where they differ significantly (:data:`DRIFT_SIGNIFICANCE`: still
-    settling) the first half is dropped.
+    record (one cycle a revolution) grows while the error of a design figure (:func:`convergence`) is above its
+    tolerance (:func:`figure_tolerance` of ``solver.statistical_tolerance``), more revolutions could bring it there
+    (its window part is what is over; not foreseen beyond :data:`FORECAST_SLACK` times the budget) and
+    ``reference_max_revolutions`` allow, by the revolutions foreseen, at least ``reference_window`` and at most the
+    record's length at a time. Where the record's halves agree (no drift beyond :data:`DRIFT_SIGNIFICANCE`) and the
+    state does not settle the window is the whole record; else the window is its second half, the preceding stretch
+    its first, and where they differ significantly (still settling) the first half is dropped.
 
     Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or None),
     revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
@@ -757,7 +765,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
     the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
     (the transient ended as the bouncing was found stationary), uncorrected (:func:`uncorrected_means` of the
-    window).
+    window), stats (:func:`settling` of the window as the last look took it; None when periodic).
     """
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
@@ -866,12 +874,13 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     length = len(window_cycles) * (1 if stationary_record else 2)
                     more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
             needed = used + more
-            if more == 0.0 or used + max(more, n_window) > budget:
+            if more == 0.0 or used >= budget or used + more > FORECAST_SLACK * budget:
                 budget_spent = more > 0.0
                 break
             # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
-            # the record's length again (a forecast from a short record's scatter is itself rough): few looks
-            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window))))
+            # the record's length again (a forecast from a short record's scatter is itself rough): few looks; the
+            # budget is spent where the forecast is within FORECAST_SLACK of it
+            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window), budget - used)))
             if any(s["significant"] for s in stats.values()):
                 first = len(record) - half  # still settling: drop the first half
             for i in range(first):
