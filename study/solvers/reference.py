@@ -61,6 +61,7 @@ from study.solvers.options import ReferenceOptions, statistical_tolerance, study
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
 from study.solvers.timedomain import calibrated_hysteresis, settled_period
+from study.solvers.utilisation import limit_options
 
 METHOD = "reference"
 DAMPING_CHOICES = ReferenceOptions.choices("reference_damping")
@@ -448,8 +449,11 @@ FIGURES = {"peak_contact_force": ("window_largest_contact_force", "peak force"),
 #: history, counted by rainflow (:func:`fibre_damage`), named as the output it is reported as (per second; its
 #: relative error the same), whose inverse is the fatigue life.
 DAMAGE = "damage_rate"
-#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on: the worst of them is
-#: the figure (its damage 5 % below the worst fibre's at most where the bending is a rotating one, cos(π/8)^5).
+#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on, the worst of them the
+#: figure. Where the bending stands in the hole's frame and the pipe turns through it every fibre sees the same
+#: history; where it turns with the pipe (a whirl) the fibre nearest the worst may lie π/8 off it, its amplitude
+#: cos(π/8) = 0.92 of the worst's, its damage 0.92^5 = 0.67 (and in a chaotic bouncing the fibres are alike on
+#: average).
 DAMAGE_FIBRES = 8
 #: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
 #: this many of their combined standard errors (a two-sided z-test at about 95 %).
@@ -536,11 +540,13 @@ def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
     each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
     counted by rainflow (ASTM E1049, :func:`study.physics.limits.history_damage` with the point's strengths, stress
-    concentration, S-N curve and mean-stress correction), each cycle in the stretch where it closes, so that several
-    cycles a revolution (impacts ringing the pipe) count each and the stretches' damages sum to the window's."""
+    concentration, S-N curve and mean-stress correction), each cycle's damage spread over the stretches the time
+    between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
+    periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
     stress = fibre_stress(inputs, model, window, station, correction)
-    options = {name: inputs[name] for name in limits.LIMIT_INPUTS if inputs.get(name) is not None}
-    return np.column_stack([limits.history_damage(stress[:, k], starts, **options) for k in range(stress.shape[1])])
+    options = limit_options(inputs)
+    return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
+                            for k in range(stress.shape[1])])
 
 
 def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
@@ -775,7 +781,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
-    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: its figures are means
+    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     tol = float(option.reference_tolerance)
     N = model.n_modes
