@@ -60,13 +60,14 @@ def design_limits(max_normal_stress, alternating_bending_stress, axial_stress, r
     )
 
 
-def history_damage(stress, segments=None, *, pipe_grade="E-75", yield_strength=None, tensile_strength=None,
+def history_damage(stress, segments=None, at=None, *, pipe_grade="E-75", yield_strength=None, tensile_strength=None,
                    stress_concentration=1.0, sn_curve="B1", mean_stress_correction="goodman",
                    cycles_per_revolution=None):
-    """Miner's damage [-] of a fibre's stress history [Pa] by rainflow counting (:func:`study.physics.fatigue.history_damage`)
-    with the strengths, stress concentration, S-N curve and mean-stress correction a config names (the keywords of
-    :func:`design_limits`); with ``segments`` (each stretch's first index) the damage of each stretch.
+    """Miner's damage [-] of a fibre's stress history [Pa] by rainflow counting
+    (:func:`study.physics.fatigue.history_damage`) with the strengths, stress concentration, S-N curve and
+    mean-stress correction a config names (the keywords of :func:`design_limits`); with ``segments`` (each stretch's
+    first index) the damage of each stretch, ``at`` the time [s] of each point of the history (default its index).
     ``cycles_per_revolution`` is accepted and not used: the counting finds the cycles."""
     sigma_y, sigma_u = materials.grade_strengths(pipe_grade, yield_strength, tensile_strength)
     return fatigue.history_damage(stress, sigma_u, sigma_y, stress_concentration=stress_concentration,
-                                  correction=mean_stress_correction, curve=sn_curve, segments=segments)
+                                  correction=mean_stress_correction, curve=sn_curve, segments=segments, at=at)

@@ -121,7 +121,7 @@ def consistent_stresses(values: Mapping[str, Any], inputs: Mapping[str, Any]) ->
     return None
 
 
-def figure_tolerance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> tuple[float, str]:
+def held_to(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> tuple[float, str]:
     """The tolerance a result's error estimate is held to and the config field that sets it: the study's
     ``solver.tolerance``, or ``solver.statistical_tolerance`` where the result's figures are means over the revolutions
     of a motion that does not repeat (``values['statistical_figures']`` = 1: the reference model's bouncing pipe,
@@ -134,9 +134,9 @@ def figure_tolerance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> tu
 
 def within_tolerance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Problem | None:
     """The method's error estimate (``values['error_estimate']``) meets the tolerance it is held to
-    (:func:`figure_tolerance`)."""
+    (:func:`held_to`)."""
     estimate = values.get("error_estimate")
-    tolerance, field = figure_tolerance(values, inputs)
+    tolerance, field = held_to(values, inputs)
     if estimate is not None and np.isfinite(estimate) and estimate > tolerance:
         return ("not_converged", f"error estimate {estimate:.3g} is above the tolerance {tolerance:.3g} ({field})")
     return None

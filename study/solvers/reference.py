@@ -66,6 +66,7 @@ from study.solvers.options import ReferenceOptions, statistical_tolerance, study
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
 from study.solvers.timedomain import calibrated_hysteresis, settled_period
+from study.solvers.utilisation import limit_options
 
 METHOD = "reference"
 CONTACT_LAWS = ReferenceOptions.choices("contact_law")
@@ -627,12 +628,20 @@ FIGURES = {"peak_contact_force": ("window_largest_contact_force", "peak force"),
 #: history, counted by rainflow (:func:`fibre_damage`), named as the output it is reported as (per second; its
 #: relative error the same), whose inverse is the fatigue life.
 DAMAGE = "damage_rate"
-#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on: the worst of them is
-#: the figure (its damage 5 % below the worst fibre's at most where the bending is a rotating one, cos(π/8)^5).
+#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on, the worst of them the
+#: figure. Where the bending stands in the hole's frame and the pipe turns through it every fibre sees the same
+#: history; where it turns with the pipe (a whirl) the fibre nearest the worst may lie π/8 off it, its amplitude
+#: cos(π/8) = 0.92 of the worst's, its damage 0.92^5 = 0.67 (and in a chaotic bouncing the fibres are alike on
+#: average).
 DAMAGE_FIBRES = 8
 #: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
 #: this many of their combined standard errors (a two-sided z-test at about 95 %).
 DRIFT_SIGNIFICANCE = 2.0
+#: A run not converged goes on to its budget unless it foresees more than this many times the budget: a forecast from
+#: the scatter of a short record is itself uncertain by about a factor 2 (the standard error of 12 revolutions rests
+#: on three batches), and one that gave up at the first look's forecast left 246 of the default grid's 301 bouncing
+#: points short of 5 % (docs/reference_model.md §3.1).
+FORECAST_SLACK = 2.0
 #: The largest per-revolution settling ratio :func:`settle_ratio` states: a drift over h revolutions that shrinks
 #: by 1 % a revolution is taken to have 1/(1 − 0.99^h) times itself still to come.
 MAX_SETTLE_RATIO = 0.99
@@ -710,11 +719,13 @@ def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
     each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
     counted by rainflow (ASTM E1049, :func:`study.physics.limits.history_damage` with the point's strengths, stress
-    concentration, S-N curve and mean-stress correction), each cycle in the stretch where it closes, so that several
-    cycles a revolution (impacts ringing the pipe) count each and the stretches' damages sum to the window's."""
+    concentration, S-N curve and mean-stress correction), each cycle's damage spread over the stretches the time
+    between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
+    periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
     stress = fibre_stress(inputs, model, window, station, correction)
-    options = {name: inputs[name] for name in limits.LIMIT_INPUTS if inputs.get(name) is not None}
-    return np.column_stack([limits.history_damage(stress[:, k], starts, **options) for k in range(stress.shape[1])])
+    options = limit_options(inputs)
+    return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
+                            for k in range(stress.shape[1])])
 
 
 def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
@@ -780,14 +791,15 @@ def settle_ratio(states, scale) -> float:
 
 def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]],
              ratio: float = float("nan")) -> dict[str, dict[str, Any]]:
-    """Per design figure (:data:`FIGURES`), from its per-cycle values over the window and the preceding
-    stretch of equal length (empty when the motion is periodic): ``value`` (the mean over the window's cycles),
-    ``largest`` (over them), ``error`` (relative standard error of the mean by batch means), ``drift`` (relative
-    difference of the window's and the preceding stretch's means), ``significant`` (that difference is more
-    than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the window's part of
-    the figure's error: the larger of the standard error and the drift, and where the motion settles (the state's
-    changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to come if they shrink
-    alike, drift/(1 − ρ^h) for a window of h revolutions."""
+    """Per design figure (:data:`FIGURES`, and :data:`DAMAGE` where the cycles carry it: per fibre, the fibre of the
+    largest mean over the window taken, ``fibre``), from its per-cycle values over the window and the preceding
+    stretch of equal length (empty when the motion is periodic, or taken as stationary): ``value`` (the mean over
+    the window's cycles), ``largest`` (over them), ``error`` (relative standard error of the mean by batch means),
+    ``drift`` (relative difference of the window's and the preceding stretch's means), ``significant`` (that
+    difference is more than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the
+    window's part of the figure's error: the larger of the standard error and the drift, and where the motion
+    settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to
+    come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
     out = {}
     h = len(window)
     settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
@@ -952,11 +964,13 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
 
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
     periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
-    record (one cycle a revolution) grows by ``reference_window`` revolutions while the error of a design figure
-    (:func:`convergence`) is above the study's tolerance, more revolutions could bring it there (its window part
-    is what is over) and ``reference_max_revolutions`` allow; the window is the record's second half, the
-    preceding stretch its first, and where they differ significantly (:data:`DRIFT_SIGNIFICANCE`: still
-    settling) the first half is dropped.
+    record (one cycle a revolution) grows while the error of a design figure (:func:`convergence`) is above its
+    tolerance (:func:`figure_tolerance` of ``solver.statistical_tolerance``), more revolutions could bring it there
+    (its window part is what is over; not foreseen beyond :data:`FORECAST_SLACK` times the budget) and
+    ``reference_max_revolutions`` allow, by the revolutions foreseen, at least ``reference_window`` and at most the
+    record's length at a time. Where the record's halves agree (no drift beyond :data:`DRIFT_SIGNIFICANCE`) and the
+    state does not settle the window is the whole record; else the window is its second half, the preceding stretch
+    its first, and where they differ significantly (still settling) the first half is dropped.
 
     Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or None),
     revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
@@ -964,7 +978,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
     the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
     (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
-    window).
+    window), stats (:func:`settling` of the window as the last look took it; None when periodic).
     """
     option = ReferenceOptions.from_inputs(inputs)
     model = model or build_model(inputs)
@@ -974,7 +988,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
-    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: its figures are means
+    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     tol = float(option.reference_tolerance)
     N = model.n_modes
@@ -1073,12 +1087,13 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     length = len(window_cycles) * (1 if stationary_record else 2)
                     more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
             needed = used + more
-            if more == 0.0 or used + max(more, n_window) > budget:
+            if more == 0.0 or used >= budget or used + more > FORECAST_SLACK * budget:
                 budget_spent = more > 0.0
                 break
             # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
-            # the record's length again (a forecast from a short record's scatter is itself rough): few looks
-            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window))))
+            # the record's length again (a forecast from a short record's scatter is itself rough): few looks; the
+            # budget is spent where the forecast is within FORECAST_SLACK of it
+            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window), budget - used)))
             if any(s["significant"] for s in stats.values()):
                 first = len(record) - half  # still settling: drop the first half
             for i in range(first):
