@@ -1085,7 +1085,12 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     more = max(more, np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0)
                 else:  # the standard error falls as the root of the window's length (half the record's if settling)
                     length = len(window_cycles) * (1 if stationary_record else 2)
-                    more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
+                    if e["window"] > stats[name]["error"]:
+                        # the halves' drift, not a standard error: no root law foresees it (it vanishes once the halves
+                        # agree and the window is the whole record), so one record's length more and look again
+                        more = max(more, float(length))
+                    else:
+                        more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
             needed = used + more
             if more == 0.0 or used >= budget or used + more > FORECAST_SLACK * budget:
                 budget_spent = more > 0.0

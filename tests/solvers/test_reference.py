@@ -278,7 +278,7 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
     # per-revolution maxima stays within its stated error
     # (without the tool joints' mass: the figures below were measured so; the statistics are the subject here)
     point = {**_default_point(default_study, 250, 5, 0.7, 9, 0.0), "reference_max_revolutions": 1,
-             "tool_joint_length": 0.0}
+             "tool_joint_length": 0.0, "reference_residual": "none"}  # and the kept modes' stiff contact likewise
     # both windows after the same 12-revolution transient (where the short run finds the bouncing stationary)
     short = reference.simulate({**point, "reference_window": 6, "reference_revolutions": 12})
     long = reference.simulate({**point, "reference_window": 72, "reference_revolutions": 12})  # its window: 42
@@ -334,27 +334,28 @@ def test_the_window_grows_until_the_figures_converge_within_the_budget(default_s
 def test_a_bouncing_window_grows_until_its_statistics_meet_the_statistical_tolerance(default_study, monkeypatch):
     # issue 36: configs/default.toml at 250 rpm, 20 000 lbf, e = 0.3, 9 ppg, no flow: the joints bounce, the figures
     # are means over revolutions (statistical_figures) held to solver.statistical_tolerance, and the record grows
-    # from the first look (24 revolutions, 20 % on the peak force here) towards where the standard errors are
-    # foreseen to meet it, and stops there (34 and 49 revolutions measured for 15 and 10 %). The modes' part and the
+    # from the first look (24 revolutions, its halves drifting apart: 35 % here) by a record's length, where the halves
+    # agree and the window is the whole record, then towards where the standard errors are foreseen to meet the
+    # tolerance, and stops there (36 revolutions measured for 15 % and for 5 %, the default). The modes' part and the
     # quasi-static correction's are set aside (at a bouncing point 16 modes state 10-60 %, above any statistical
     # tolerance, and the growth would stop at once): the window part alone decides
-    monkeypatch.setattr(reference, "modal_error", lambda *args, **kwargs: 0.0)
-    monkeypatch.setattr(reference, "uncorrected_means", lambda *args, **kwargs: None)
+    monkeypatch.setattr(reference, "modal_check", lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
     assert first.extras["whirl"] == "bouncing" and first.values["statistical_figures"] == 1.0
     assert first.status == "not_converged" and first.error_estimate > 0.15
-    grown = [solve_point({**point, "statistical_tolerance": tolerance}, "reference") for tolerance in (0.15, 0.10)]
-    for result, tolerance in zip(grown, (0.15, 0.10)):
+    grown = [solve_point({**point, "statistical_tolerance": tolerance}, "reference") for tolerance in (0.15, 0.05)]
+    for result, tolerance in zip(grown, (0.15, 0.05)):
         assert result.status == "ok" and result.error_estimate <= tolerance, result.message
         assert f"solver.statistical_tolerance {tolerance:g}" in result.message
         # the damage rate is held to the same tolerance as a stress: (1 + tolerance)^5 - 1 (fatigue.damage_exponent)
         assert result.extras["convergence"]["damage_rate"]["total"] <= (1 + tolerance) ** 5 - 1
     revolutions = [r.values["revolutions_simulated"] for r in (first, *grown)]
-    assert revolutions[0] < revolutions[1] < revolutions[2] <= ReferenceOptions.default("reference_max_revolutions")
-    # a tolerance the budget cannot reach: stopped at the first look, the revolutions it would take said
+    assert revolutions[0] < revolutions[1] <= revolutions[2] <= ReferenceOptions.default("reference_max_revolutions")
+    # a tolerance the budget cannot reach: stopped short of the budget, the revolutions it would take said
     short = solve_point({**point, "statistical_tolerance": 0.01}, "reference")
-    assert short.status == "not_converged" and short.values["revolutions_simulated"] == revolutions[0]
+    assert short.status == "not_converged" and short.values["revolutions_simulated"] < ReferenceOptions.default(
+        "reference_max_revolutions")
     assert short.extras["revolutions_needed"] > ReferenceOptions.default("reference_max_revolutions")
 
 

@@ -303,7 +303,10 @@ def test_set_rolling_the_joints_roll_backwards_without_slip_with_the_body_clear(
     # −2.497 against −2.5 measured), and, rolling on, no point of the body at its wall (docs/reference_model.md §7; a
     # drop from the hole's centre reaches it too, after about 200 revolutions, or bounces chaotically with the body
     # past its wall between three stations, which needs denser body stations)
-    inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_body_stations": 3}
+    # (the kept modes' stiff contact: with the residual flexibility in series, docs/reference_model.md §2.1, the
+    # bouncing before the rolling lasted 38 revolutions on one compilation and more than 60 on another)
+    inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_body_stations": 3,
+              "reference_residual": "none"}
     model = reference.build_model(inputs)
     N = model.n_modes
     joint = model.kinds == 1
