@@ -932,9 +932,17 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
+    # the damage rate goes as the alternating stress to the power m: its window part is counted, as the alternating
+    # stress's is, relative to the damage of the bending it alternates within (a synchronous whirl's remnant of
+    # tens of Pa has a damage rate whose relative scatter is large and means nothing)
+    alternating_share = (values["alternating_bending_stress"] / scale["alternating_bending_stress"]
+                         if scale["alternating_bending_stress"] > 0 else 1.0)
     out = {}
     for name, s in stats.items():
-        share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
+        if name == DAMAGE:
+            share = min(1.0, alternating_share) ** exponent
+        else:
+            share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
         window_part = float(option.reference_tolerance) if periodic else s["window"] * share
         own = (1.0 + integrator) ** exponent - 1.0 if name == DAMAGE else integrator
         parts = dict(window=window_part, integrator=own, modes=modes[name])
