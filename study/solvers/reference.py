@@ -932,18 +932,17 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
-    # the damage rate goes as the alternating stress to the power m: its window part is counted, as the alternating
-    # stress's is, relative to the damage of the bending it alternates within (a synchronous whirl's remnant of
-    # tens of Pa has a damage rate whose relative scatter is large and means nothing)
-    alternating_share = (values["alternating_bending_stress"] / scale["alternating_bending_stress"]
-                         if scale["alternating_bending_stress"] > 0 else 1.0)
+    # the damage rate goes as the alternating stress to the power m: its window part, as the stress error that makes
+    # it, is counted relative to the bending the stress alternates within, as the alternating stress's is (a
+    # synchronous whirl's remnant of tens of Pa has a damage rate whose relative scatter is large and means nothing)
+    alternating_share = min(1.0, values["alternating_bending_stress"] / scale["alternating_bending_stress"]
+                            if scale["alternating_bending_stress"] > 0 else 1.0)
     out = {}
     for name, s in stats.items():
-        if name == DAMAGE:
-            share = min(1.0, alternating_share) ** exponent
-        else:
-            share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
+        share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
         window_part = float(option.reference_tolerance) if periodic else s["window"] * share
+        if name == DAMAGE and not periodic:
+            window_part = (1.0 + stress_equivalent(DAMAGE, s["window"], exponent) * alternating_share) ** exponent - 1.0
         own = (1.0 + integrator) ** exponent - 1.0 if name == DAMAGE else integrator
         parts = dict(window=window_part, integrator=own, modes=modes[name])
         total = float(sum(parts.values()))
@@ -1093,9 +1092,10 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     more = max(more, np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0)
                 else:  # the standard error falls as the root of the window's length (half the record's if settling)
                     length = len(window_cycles) * (1 if stationary_record else 2)
-                    if e["window"] > stats[name]["error"]:
-                        # the halves' drift, not a standard error: no root law foresees it (it vanishes once the halves
-                        # agree and the window is the whole record), so one record's length more and look again
+                    if bouncing and e["window"] > stats[name]["error"]:
+                        # a stationary bouncing's halves' drift, not a standard error (its intermittency): no root law
+                        # foresees it (it vanishes once the halves agree and the window is the whole record), so one
+                        # record's length more and look again (a slide that settles slowly keeps the forecast)
                         more = max(more, float(length))
                     else:
                         more = max(more, length * ((e["window"] / room) ** 2 - 1.0))

@@ -312,20 +312,20 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
 
 
 def test_the_window_grows_until_the_figures_converge_within_the_budget(default_study):
-    # configs/default.toml at 150 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow, a study tolerance of 4 %: the joints
-    # slide on the low side and settle slowly; after the fixed run (40 + 6 revolutions) the error is about 4.3 %, and
-    # the record grows by 6 revolutions at a time, the first half dropped while it drifts, until the figures are
-    # within the tolerance, inside the default budget of 100 revolutions
-    point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "statistical_tolerance": 0.04}
+    # configs/default.toml at 150 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow, a statistical tolerance of 3 %: the joints
+    # slide on the low side and settle slowly; after the fixed run (40 + 6 revolutions) the error is about 3.5 %, and
+    # the record grows, the first half dropped while it drifts, until the figures are within the tolerance, inside
+    # the default budget
+    point = {**_default_point(default_study, 150, 5, 0.7, 9, 0.0), "statistical_tolerance": 0.03}
     fixed = solve_point({**point, "reference_max_revolutions": 46}, "reference")  # no room to grow
     assert fixed.values["revolutions_simulated"] == pytest.approx(46)
-    assert fixed.status == "not_converged" and fixed.error_estimate > 0.04
+    assert fixed.status == "not_converged" and fixed.error_estimate > 0.03
     # it foresaw the revolutions the settling needs from how fast the state's changes shrink
     needed = fixed.extras["revolutions_needed"]
     assert 46 < needed <= ReferenceOptions.default("reference_max_revolutions")
     grown = solve_point(point, "reference")
     assert grown.status == "ok", grown.message
-    assert grown.error_estimate <= 0.04 and 46 < grown.values["revolutions_simulated"] <= needed + 6
+    assert grown.error_estimate <= 0.03 and 46 < grown.values["revolutions_simulated"] <= needed + 6
     # the grown answer lies within the fixed one's stated error of it
     for name, parts in fixed.extras["convergence"].items():
         assert abs(fixed.values[name] / grown.values[name] - 1.0) <= parts["total"] + grown.error_estimate, name
