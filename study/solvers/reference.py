@@ -324,11 +324,18 @@ def residual_flexibility(model: "WhirlModel") -> np.ndarray:
     :func:`static_correction`): m ω_n² = (L/2)(EI k_n⁴ + T k_n²) on the basis."""
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     whole = float(periodic_point_deflection(0.0, model.span, ei, tn))
+    return np.maximum(whole - mode_shapes(model.points, model.span, model.modes) ** 2 @ basis_static_gain(model), 0.0)
+
+
+def basis_static_gain(model: "WhirlModel") -> np.ndarray:
+    """(N,) each basis function's static gain 1/(m ω_n²) = 1/((L/2)(EI k_n⁴ + T k_n²)) [m/N per unit shape], 0 for the
+    rigid translation: a matter of stiffness alone, so the same with or without the tool joints' mass."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     k = model.wavenumber
     gain = np.zeros(model.n_modes)
     flexible = k > 0
     gain[flexible] = 1.0 / (0.5 * model.span * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
-    return np.maximum(whole - mode_shapes(model.points, model.span, model.modes) ** 2 @ gain, 0.0)
+    return gain
 
 
 def series_contact(d, stiffness, flexibility) -> tuple[np.ndarray, np.ndarray]:
@@ -1207,7 +1214,7 @@ def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
         # with the joints' mass the kept modes span the same basis functions: their static part is the basis' own, a
         # matter of stiffness alone (the static field the correction completes balances the load's mean uniformly)
         shapes, kept_at = mode_shapes(x, L, model.modes), mode_shapes(at, L, model.modes)
-        gain[flexible] = 1.0 / (0.5 * L * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
+        gain = basis_static_gain(model)
     kept_moment = (kept_at * gain * ei * k**2) @ shapes.T
     moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
     # the deflection likewise: the whole static field in closed form (:func:`periodic_point_deflection`) less the kept
