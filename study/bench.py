@@ -19,9 +19,12 @@ from pathlib import Path
 import numpy as np
 
 from study import __version__
+from study.benchmarks import reference as reference_bench
+from study.benchmarks import series as series_bench
+from study.benchmarks import time_domain as time_domain_bench
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, STATUS_CODES, periodic, reference, series, solve_point, timedomain, whirl_kernel
+from study.solvers import METHODS, STATUS_CODES, periodic, reference, solve_point, whirl_kernel
 from study.solvers.auto import clear_memo
 from study.solvers.result import REGIMES
 from study.workflow.execute import configure_local_workers, run_grid, warm_up
@@ -135,7 +138,7 @@ def bench_hertz_coefficients(count: int = 2000) -> list[tuple[str, float]]:
 def work_precision(point) -> list[tuple[list[dict], str, str]]:
     """Fast and series stresses against a converged double series at fixed spans (docs/model.md §9).
 
-    Two cases, each (rows of :func:`study.solvers.series.convergence_table`, a description, the chart's
+    Two cases, each (rows of :func:`study.benchmarks.series.convergence_table`, a description, the chart's
     file name):
 
     - the paper's example at its smallest valid span: one wall per revolution, the solution's own impact
@@ -153,7 +156,7 @@ def work_precision(point) -> list[tuple[list[dict], str, str]]:
     impact = periodic.find_span(scene, options).candidates[0]
     resolutions = [("fast", n) for n in (11, 21, 41, 61, 81)] + \
         [("series", (n, m)) for n, m in ((21, 800), (41, 1600), (61, 1600), (61, 3200), (81, 3200))]
-    cases.append((series.convergence_table(scene, impact, inputs, resolutions),
+    cases.append((series_bench.convergence_table(scene, impact, inputs, resolutions),
                   f"the paper's example at its smallest valid span, {impact.span_length / 0.3048:.2f} ft, "
                   f"T_L = {impact.contact_duration * 1e3:.3g} ms, 300 rpm, one wall, self-consistent closure; "
                   "reference: double series with 961 modes x 25 600 harmonics", "work_precision_paper.png"))
@@ -163,7 +166,7 @@ def work_precision(point) -> list[tuple[list[dict], str, str]]:
     impact = periodic.first_consistent_root(scene, options, longer_than=30.0)
     resolutions = [("fast", n) for n in (15, 31, 61, 121, 181, 241)] + \
         [("series", (n, m)) for n, m in ((31, 400), (61, 1600), (121, 3200), (181, 6400), (241, 6400))]
-    cases.append((series.convergence_table(scene, impact, inputs, resolutions),
+    cases.append((series_bench.convergence_table(scene, impact, inputs, resolutions),
                   f"span {impact.span_length:.2f} m, T_L = {impact.contact_duration * 1e3:.3g} ms, 100 rpm, "
                   "alternating walls, prescribed closure; reference: double series with 961 modes x 25 600 harmonics",
                   "work_precision.png"))
@@ -183,7 +186,7 @@ REFERENCE_TARGET = 50.0
 def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_rtols=COMPILED_RTOLS,
                     penalty_rtols=(1e-4, 1e-5, 1e-6, 1e-7), case=None) -> tuple[list[dict], list[str]]:
     """The reference model's compiled integrator against scipy's solve_ivp (RK45) on the same equations (the
-    linear penalty contact, :func:`study.solvers.reference.penalty_rhs`), from the centred pipe at rest over
+    linear penalty contact, :func:`study.benchmarks.reference.penalty_rhs`), from the centred pipe at rest over
     ``revolutions``. Error: largest difference of the final state (q in units of c, q' in units of Omega c)
     from DOP853 at rtol 1e-11 on the same equations. Each RK45 run is paired with the cheapest compiled run at
     least as accurate. Returns rows (name, setting, wall_time (median of ``repeat``), error, steps, work: the
@@ -191,15 +194,17 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_r
     inputs = {**point, **(REFERENCE_CASE if case is None else case), "contact_law": "penalty"}
     model = reference.build_model(inputs)
     scale, n = model.state_scale(), 4 * model.n_modes
-    exact = reference.penalty_reference(inputs, revolutions, rtol=1e-11, method="DOP853")["final_state"][:n]
-    reference.compiled_run(inputs, 0.1)  # compiled kernels loaded before timing
+    exact = reference_bench.whirl_penalty_reference(inputs, revolutions, rtol=1e-11,
+                                                    method="DOP853")["final_state"][:n]
+    reference_bench.compiled_run(inputs, 0.1)  # compiled kernels loaded before timing
 
     def error(state):
         return float(np.max(np.abs(state[:n] - exact) / scale))
 
-    runners = [("compiled", rtol, lambda r: reference.compiled_run(inputs, revolutions, r), "steps")
+    runners = [("compiled", rtol, lambda r: reference_bench.compiled_run(inputs, revolutions, r), "steps")
                for rtol in compiled_rtols]
-    runners += [("penalty_rk45", rtol, lambda r: reference.penalty_reference(inputs, revolutions, rtol=r), "nfev")
+    runners += [("penalty_rk45", rtol,
+                 lambda r: reference_bench.whirl_penalty_reference(inputs, revolutions, rtol=r), "nfev")
                 for rtol in penalty_rtols]
     rows = []
     for name, rtol, run, count in runners:
@@ -224,7 +229,7 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_r
                      f"| {counts} |")
     lines.append("")
     ratios = []
-    for ref, best, ratio in timedomain.equal_accuracy_speedups(rows, method="compiled"):
+    for ref, best, ratio in time_domain_bench.equal_accuracy_speedups(rows, method="compiled"):
         ratios.append(ratio)
         lines.append(f"- RK45 at {ref['setting']} (error {ref['error']:.2g}, {ref['wall_time'] * 1e3:.3g} ms): "
                      + (f"compiled at {best['setting']} (error {best['error']:.2g}, {best['wall_time'] * 1e3:.3g} ms) "
@@ -580,7 +585,8 @@ def run_bench(out: str | None = None) -> str:
     lines += _table("Exact Hertz coefficients m, n: time per angle", bench_hertz_coefficients(), "µs", 1e6)
     lines += ["### Work and precision of the periodic methods at a fixed span", "",
               "Time per evaluation of the fields and their maxima at the span and impact found, against the "
-              "relative error of the max normal and shear stresses (`series.convergence_table`).", ""]
+              "relative error of the max normal and shear stresses "
+              "(`study.benchmarks.series.convergence_table`).", ""]
     for rows, case, chart_name in work_precision(point):
         lines += [f"Case: {case}.", "",
                   "| method | modes | harmonics | time per evaluation [ms] | error, max normal stress | "
@@ -606,10 +612,10 @@ def run_bench(out: str | None = None) -> str:
             lines += ["", f"Chart: `{chart.name}` beside this file."]
         lines.append("")
     case = {**point, "span_length": 10.0, "time_modes": 1}
-    rows = timedomain.benchmark(case, revolutions=10)
+    rows = time_domain_bench.benchmark(case, revolutions=10)
     lines += ["### Time domain against a penalty spring in scipy's RK45, at equal accuracy", "",
               "Case: the paper's example at a 10 m span, first mode only, 10 revolutions, no early stop "
-              "(`study.solvers.timedomain.benchmark`). Error: largest difference of the final modal state "
+              "(`study.benchmarks.time_domain.benchmark`). Error: largest difference of the final modal state "
               "(q in units of c, q' in units of Omega c) from a converged run of the same model (LSODA at "
               "rtol 1e-12 for the Hertz contact; DOP853 at rtol 1e-12 for the linear penalty contact, a "
               "different model, so only errors, not states, are compared across the two).", "",
@@ -619,7 +625,7 @@ def run_bench(out: str | None = None) -> str:
         lines.append(f"| {row['name']} | {row['setting']} | {row['wall_time'] * 1e3:.3g} | {row['error']:.2g} | "
                      f"{row['impacts']} | {row['impact_velocity']:.4g} |")
     lines.append("")
-    for ref, best, ratio in timedomain.equal_accuracy_speedups(rows):
+    for ref, best, ratio in time_domain_bench.equal_accuracy_speedups(rows):
         lines.append(f"- penalty RK45 at {ref['setting']} (error {ref['error']:.2g}, {ref['wall_time'] * 1e3:.3g} ms): "
                      + (f"event-driven with {best['setting']} (error {best['error']:.2g}, "
                         f"{best['wall_time'] * 1e3:.3g} ms) is {ratio:.3g}x faster" if best else
@@ -637,7 +643,7 @@ def run_bench(out: str | None = None) -> str:
                              time_label="time per design point [ms]").savefig(chart, dpi=150)
         lines += [f"Chart: `{chart.name}` beside this file.", ""]
     lines += bench_hierarchy()
-    stability = timedomain.step_stability(case)
+    stability = time_domain_bench.step_stability(case)
     lines += ["### Stability of the integrators against the contact stiffness", "",
               "Same case, 3 revolutions; the step as a multiple of the explicit limit 2/omega_max (contact "
               "linearised at the expected penetration): the Verlet step of `explicit`, the RK4 contact step of "

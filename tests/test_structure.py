@@ -7,7 +7,9 @@ Each check reads the sources only (no solver runs): fast.
 from __future__ import annotations
 
 import ast
+import io
 import re
+import tokenize
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -23,6 +25,20 @@ MAX_LINES = 1000
 
 #: Private names a module may still take from another, each with its reason (issue 35 lists them for later).
 PRIVATE_CROSSINGS: set[tuple[str, str]] = set()
+
+#: The one home of Hertz's contact law (its force with the Hunt–Crossley damping, energy, linearised stiffness).
+CONTACT_LAW_HOME = "study/physics/contact.py"
+#: Modules that still write the law out, each with its reason: the ones left to switch over to the home.
+CONTACT_LAW_LEFT = {
+    # the reference model's kernel: series_hertz's branch without flexibility, K d sqrt(d) (its contact evaluation
+    # is being changed at the same time; to call contact.hertz_force_one)
+    "study/solvers/whirl_kernel.py",
+    # the reference model: WhirlModel.energy's series contact energy 0.4 K d_H^2.5 and modal_check's K d^1.5 (the
+    # same work; to call contact.hertz_energy and contact.hertz_force)
+    "study/solvers/reference.py",
+}
+#: The law's exponent forms in code (comments and strings left out): ``** 1.5`` / ``** 2.5``, and ``d * sqrt(d)``.
+CONTACT_LAW_FORM = re.compile(r"\*\* [12]\.5(?!\d)|\b(\w+) \* (?:\w+ \. )?sqrt \( \1 \)")
 
 
 def _module(path: Path, root: Path) -> str:
@@ -107,3 +123,43 @@ def test_no_module_is_over_a_thousand_lines_but_the_listed():
     long = {str(path.relative_to(ROOT)): n for path in SOURCES
             if (n := len(path.read_text().splitlines())) > MAX_LINES}
     assert set(long) <= LONG_MODULES, long
+
+
+def contact_law_forms(path: Path) -> list[str]:
+    """The exponent forms of Hertz's law (:data:`CONTACT_LAW_FORM`) in the code of ``path``, each with its context."""
+    tokens = tokenize.generate_tokens(io.StringIO(path.read_text()).readline)
+    code = " ".join(t.string for t in tokens if t.type in (tokenize.NAME, tokenize.OP, tokenize.NUMBER))
+    return [code[max(0, m.start() - 30):m.end()] for m in CONTACT_LAW_FORM.finditer(code)]
+
+
+def test_the_law_finder_finds_the_forms_and_not_the_rest(tmp_path):
+    # hand-made: the three forms in code; the same in a comment and a string, and other powers, are not the law
+    source = tmp_path / "m.py"
+    source.write_text('f = K * d**1.5\ne = 0.4 * K * d ** 2.5\ng = K * x * np.sqrt(x)\n'
+                      '# K d**1.5\ns = "d ** 2.5"\nk = a**-1.5 + b**1.25 + c**15 + K * y * np.sqrt(z)\n')
+    assert len(contact_law_forms(source)) == 3
+
+
+def test_hertz_s_law_is_written_in_its_home_only():
+    found = {str(path.relative_to(ROOT)): forms for path in SOURCES if (forms := contact_law_forms(path))}
+    assert CONTACT_LAW_HOME in found
+    stray = {where: forms for where, forms in found.items() if where != CONTACT_LAW_HOME
+             and where not in CONTACT_LAW_LEFT}
+    assert not stray, f"Hertz's law written out of {CONTACT_LAW_HOME} (call its functions):\n{stray}"
+
+
+def test_no_solver_module_benchmarks_or_times_itself():
+    # the benchmarks live in study/benchmarks/; the wall time is stamped once, by solve_point (study/solvers/__init__)
+    found = []
+    for path in sorted((ROOT / "study" / "solvers").rglob("*.py")):
+        where = str(path.relative_to(ROOT))
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and re.search(
+                    r"bench|penalty_reference|speedup|work_precision|convergence_table", node.name):
+                found.append(f"{where}:{node.lineno}: defines {node.name}")
+            if path.name != "__init__.py" and isinstance(node, ast.Attribute) and (
+                    node.attr in ("perf_counter", "process_time", "monotonic")
+                    or node.attr == "wall_time" and isinstance(node.ctx, ast.Store)):
+                found.append(f"{where}:{node.lineno}: {node.attr}")
+    assert not found, "\n".join(found)
+

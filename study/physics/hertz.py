@@ -24,6 +24,7 @@ from numba import types
 from numba.extending import get_cython_function_address
 from scipy.special import beta, binom
 
+from study.physics.contact import hertz_force, hertz_force_one
 from study.physics.interpolation import interp_one
 
 
@@ -356,7 +357,7 @@ def hertz_impact(equivalent_mass, velocity, stiffness):
     """
     m_e, v0 = np.asarray(equivalent_mass, dtype=float), np.asarray(velocity, dtype=float)
     alpha = (1.25 * m_e * v0**2 / stiffness) ** 0.4
-    f_max = stiffness * alpha**1.5
+    f_max = hertz_force(alpha, stiffness)
     return HertzImpact(alpha, f_max, HERTZ_DURATION_CONSTANT * alpha / v0, 1.6 * f_max * alpha / v0)
 
 
@@ -381,7 +382,7 @@ def lee_duration_one(equivalent_mass, velocity, stiffness):
     """:func:`lee_duration` of one impact, compiled, in the same arithmetic: T_L = π m_e v0/F_max with
     F_max = K α_max^(3/2), α_max = (5 m_e v0²/(4K))^(2/5) [s]."""
     alpha = (1.25 * equivalent_mass * velocity**2 / stiffness) ** 0.4
-    return math.pi * equivalent_mass * velocity / (stiffness * alpha**1.5)
+    return math.pi * equivalent_mass * velocity / hertz_force_one(alpha, stiffness)
 
 
 def lee_peak_force(impulse, duration):

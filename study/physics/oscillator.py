@@ -9,9 +9,8 @@ Sources: Harrison & Nettleton, *Principles of Engineering Mechanics*, 2nd ed., c
 "Vibration" (the book's equation numbers; the relations used are listed in docs/model.md §8.3 and
 ``docs/textbook_examples.md``), and ch. 8 for the impact law (``study.physics.restitution``).
 Impact-oscillator map and its stability: Shaw & Holmes, J. Sound Vib. 90 (1983) 129–155;
-Budd & Dux, Phil. Trans. R. Soc. A 347 (1994) 365–389 (chattering); Hertz-spring wall with
-Hunt–Crossley damping: Hunt & Crossley, J. Appl. Mech. 42 (1975) 440–445; Lankarani & Nikravesh,
-J. Mech. Des. 112 (1990) 369–376.
+Budd & Dux, Phil. Trans. R. Soc. A 347 (1994) 365–389 (chattering). The compliant wall (Hertz's
+spring with Hunt–Crossley damping, one impact on it) is the contact law's: :mod:`study.physics.contact`.
 
 Notation: ω_n = √(k/m) [rad/s]; ζ = c/(2√(km)) [-]; ω_d = ω_n √(1 − ζ²) [rad/s]; r = Ω/ω_n [-].
 """
@@ -48,9 +47,6 @@ __all__ = [
     "impact_map_jacobian",
     "periodic_orbits",
     "periodic_orbit",
-    "HertzWallImpact",
-    "hunt_crossley_damping",
-    "hertz_wall_impact",
 ]
 
 
@@ -786,108 +782,3 @@ def periodic_orbit(params: ImpactParams, n: int = 1, **kw) -> PeriodicOrbit:
     nan = float("nan")
     return PeriodicOrbit(nan, nan, nan, np.full(2, nan), np.full((2, 2), nan), "not_converged",
                          f"no admissible 1-impact-per-{n}-period orbit found")
-
-
-# --- Hertz-spring wall with Hunt–Crossley damping ---------------------------------------------
-
-
-class HertzWallImpact(NamedTuple):
-    rebound_velocity: float  #: separation speed [m/s]
-    restitution: float  #: achieved e = rebound / impact speed [-]
-    duration: float  #: contact duration [s]
-    max_penetration: float  #: largest δ [m]
-    status: str  #: 'ok' or 'not_converged'
-    message: str
-    max_force: float = float("nan")  #: largest contact force K δ^(3/2)(1 + χ δ̇) [N]
-
-
-def hunt_crossley_damping(impact_velocity, restitution, model: str = "lankarani_nikravesh"):
-    """Hysteresis factor χ [s/m] of the contact force F = K δ^(3/2) (1 + χ δ̇).
-
-    - ``"lankarani_nikravesh"``: χ = 3(1 − e²)/(4 v0) (Lankarani & Nikravesh 1990), from
-      the energy lost per impact for e close to 1;
-    - ``"hunt_crossley"``: χ = 3(1 − e)/(2 v0) (Hunt & Crossley 1975).
-
-    Both are low-velocity relations, accurate for e near 1 (within a few % of e for e ≳ 0.8).
-
-    Parameters
-    ----------
-    impact_velocity : array_like
-        v0 [m/s], > 0.
-    restitution : array_like
-        e [-], 0 ≤ e ≤ 1.
-    """
-    v0 = check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
-                      high_open=True)
-    e = check_restitution(restitution)
-    if model == "lankarani_nikravesh":
-        return 3.0 * (1.0 - e**2) / (4.0 * v0)
-    if model == "hunt_crossley":
-        return 3.0 * (1.0 - e) / (2.0 * v0)
-    raise ValueError(f"model = {model!r}; allowed: 'lankarani_nikravesh', 'hunt_crossley'")
-
-
-def hertz_wall_impact(mass, stiffness, impact_velocity, hysteresis) -> HertzWallImpact:
-    """Single impact on a compliant wall, m δ̈ = −K δ^(3/2)(1 + χ δ̇), δ(0) = 0, δ̇(0) = v0.
-
-    Integrated with solve_ivp (DOP853) to separation (δ = 0 with δ̇ < 0, or the contact force
-    reaching zero: with Hunt–Crossley damping F = 0 when δ̇ = −1/χ), the peak force located where
-    dF/dt falls through zero. With χ = 0 this is the elastic Hertz impact of
-    :func:`study.physics.hertz.hertz_impact`.
-
-    Parameters
-    ----------
-    mass : float
-        m [kg] > 0.
-    stiffness : float
-        K [N m^(−3/2)] > 0.
-    impact_velocity : float
-        v0 [m/s] > 0.
-    hysteresis : float
-        χ [s/m] ≥ 0 (:func:`hunt_crossley_damping`).
-
-    Returns
-    -------
-    HertzWallImpact
-    """
-    from scipy.integrate import solve_ivp
-
-    from study.physics.hertz import hertz_impact
-
-    m = float(check_range(mass, "mass", 0.0, np.inf, low_open=True, high_open=True))
-    K = float(check_range(stiffness, "stiffness", 0.0, np.inf, low_open=True, high_open=True))
-    v0 = float(check_range(impact_velocity, "impact_velocity", 0.0, np.inf, low_open=True,
-                            high_open=True))
-    chi = float(check_range(hysteresis, "hysteresis", 0.0, np.inf, high_open=True))
-    ref = hertz_impact(m, v0, K)
-    T_H, a_max = float(ref.duration), float(ref.max_approach)
-
-    def rhs(t, y):
-        d = max(y[0], 0.0)
-        return [y[1], -K * d**1.5 * (1.0 + chi * y[1]) / m]
-
-    def leave(t, y):
-        return y[0] if y[1] < 0 else a_max
-
-    def turn(t, y):
-        return y[1]
-
-    def force(y):
-        return K * max(y[0], 0.0) ** 1.5 * max(1.0 + chi * y[1], 0.0)
-
-    def peak(t, y):  # dF/dt / K = 1.5 δ^½ δ̇ (1 + χ δ̇) + δ^(3/2) χ δ̈, falling through zero at the peak
-        d = max(y[0], 0.0)
-        return 1.5 * d**0.5 * y[1] * (1.0 + chi * y[1]) + d**1.5 * chi * rhs(t, y)[1]
-
-    leave.terminal, leave.direction = True, -1
-    turn.direction = peak.direction = -1
-    sol = solve_ivp(rhs, (0.0, 10 * T_H), [0.0, v0], events=(leave, turn, peak), rtol=1e-10,
-                    atol=1e-12 * a_max, method="DOP853", max_step=T_H / 50)
-    if sol.t_events[0].size == 0:
-        return HertzWallImpact(float("nan"), float("nan"), float("nan"), float(np.max(sol.y[0])),
-                               "not_converged", "no separation within 10 elastic durations")
-    te = float(sol.t_events[0][0])
-    ve = float(sol.y_events[0][0][1])
-    dmax = float(sol.y_events[1][0][0]) if sol.t_events[1].size else float(np.max(sol.y[0]))
-    f_max = max([force(y) for y in sol.y_events[2]] + [force(y) for y in sol.y.T])
-    return HertzWallImpact(-ve, -ve / v0, te, dmax, "ok", "", f_max)

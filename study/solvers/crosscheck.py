@@ -40,7 +40,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import beam, hertz, oscillator
+from study.physics import beam, contact, hertz
 from study.solvers import event_driven, fast, impact_model, orbit, periodic, timedomain, trajectory
 from study.solvers.options import CrosscheckOptions
 from study.solvers.result import PointResult
@@ -244,9 +244,9 @@ def lee_peak_kinematics(scene: Scene, impact: impact_model.Impact, options: peri
 def one_mass_peak_force(mass: float, velocity: float, stiffness: float, hysteresis: float) -> float:
     """Peak force [N] of a Hertz contact of stiffness K [N m^-3/2] with Hunt–Crossley damping χ
     (``hysteresis`` [s/m]; the replay's, ``ModalModel.hysteresis``) struck by one mass [kg] at
-    ``velocity`` [m/s] (:func:`oscillator.hertz_wall_impact`): for the closure's m_e and V_p, what the
+    ``velocity`` [m/s] (:func:`study.physics.contact.hertz_wall_impact`): for the closure's m_e and V_p, what the
     contact law alone does to Lee's peak, apart from the span's modes."""
-    return float(oscillator.hertz_wall_impact(mass, stiffness, velocity, hysteresis).max_force)
+    return float(contact.hertz_wall_impact(mass, stiffness, velocity, hysteresis).max_force)
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:

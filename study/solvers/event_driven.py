@@ -12,8 +12,8 @@ shortest free period (and at most τ/32), and every crossing of a wall, |y_p| = 
 safeguarded Newton iteration on the exact solution. A grazing contact between two samples is caught by
 finding each maximum of |y_p| (a root of ẏ_p) and testing it against c.
 
-Through contact the full nonlinear model (Hertz force K δ^{3/2}(1 + χ δ̇)₊, as in
-:mod:`study.solvers.timedomain`) is integrated by the classical Runge–Kutta method with a fixed step,
+Through contact the full nonlinear model (Hertz force K δ^{3/2}(1 + χ δ̇)₊,
+:func:`study.physics.contact.hertz_force`) is integrated by the classical Runge–Kutta method with a fixed step,
 ``contact_steps`` steps (default 100) per elastic Hertz contact of the smallest effective mass at the
 expected approach speed (hertz.hertz_impact's T_H), and at most 1/ω_max. A contact ends where δ_p
 returns to 0: the last step is cut to that instant by a secant iteration on its length, so the flight
@@ -31,6 +31,7 @@ import numba
 import numpy as np
 
 from study.physics import hertz
+from study.physics.contact import hertz_force_one
 
 #: Event kinds reported by :func:`advance`.
 ONSET, END = 0, 1
@@ -155,7 +156,7 @@ def _acceleration(t, z, chi, phi, omega2, Cm, g0, inv_m, K, c, Om, out, forces):
         f = 0.0
         if d > 0.0:
             sg = 1.0 if y > 0.0 else -1.0
-            f = -sg * K * d**1.5 * max(1.0 + chi[p] * sg * yd, 0.0)
+            f = -sg * hertz_force_one(d, K, sg * yd, chi[p])
             for n in range(N):
                 out[N + n] += phi[p, n] * f * inv_m
         forces[p] = f

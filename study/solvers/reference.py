@@ -31,7 +31,7 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
 - **wall**: Hertz normal force K_p δ^{3/2}(1 + χ δ̇)₊ with K_p from
   :func:`study.physics.hertz.hertz_stiffness` for the point's radius in the hole at the curvature of the
   assumed mode c_p (π/L)² (as :mod:`study.solvers.timedomain`), χ = h(e)/v0 set at each onset with the
-  calibrated h(e) of :func:`study.solvers.timedomain.calibrated_hysteresis` (exact restitution for one
+  calibrated h(e) of :func:`study.physics.contact.calibrated_hysteresis` (exact restitution for one
   mass); Coulomb friction μ (``friction``, config ``contact.friction``, default 0.3) on the sliding
   velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`). The modes left out
   are given back statically (``reference_residual = "series"``, docs/reference_model.md §2.1): their flexibility
@@ -54,18 +54,18 @@ is run again with more modes, up to ``reference_max_modes`` (default 64; :func:`
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import fatigue, hertz, limits, section, well, whirl
+from study.physics.contact import calibrated_hysteresis, linear_contact_damping, linearised_stiffness
 from study.solvers import stress_kernel, whirl_kernel
 from study.solvers.options import ReferenceOptions, statistical_tolerance, study_tolerance
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import make_scene, section_properties
-from study.solvers.timedomain import calibrated_hysteresis, settled_period
+from study.solvers.timedomain import settled_period
 from study.solvers.utilisation import limit_options
 
 METHOD = "reference"
@@ -496,9 +496,8 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     # the linear penalty: Hertz linearised at the elastic approach of the point's effective mass at Ω c_p
     m_eff = mass / np.maximum(np.sum(phi**2, axis=1), 1e-12)
     alpha = hertz.hertz_impact(m_eff, np.maximum(Om * clearance, 1e-6), K).max_approach
-    kp = 1.5 * K * np.sqrt(alpha)
-    le = np.log(max(e, 1e-12))
-    cp = 2.0 * (-le / np.sqrt(np.pi**2 + le**2)) * np.sqrt(kp * m_eff)
+    kp = linearised_stiffness(alpha, K)
+    cp = linear_contact_damping(kp, m_eff, e)
     model = WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
                       clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
                       damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
@@ -1452,7 +1451,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     residual flexibility's N⁻³ foresees) while the modal part of a design figure's error (:func:`modal_check`) is over
     half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
     figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
-    start = time.perf_counter()
     option = ReferenceOptions.from_inputs(inputs)
     tolerance = study_tolerance(inputs)
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
@@ -1476,13 +1474,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if len(tried) > 1:
         result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
                            + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
-    result.wall_time = time.perf_counter() - start
     return result
 
 
 def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
     """One run of the ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count)."""
-    start = time.perf_counter()
     result = PointResult(method=METHOD)
     model = build_model(inputs)
     vals = result.values
@@ -1493,7 +1489,6 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "buckled"
         result.message = (f"effective tension {model.props['effective_tension']:.4g} N buckles the "
                           f"{model.span:.4g} m section")
-        result.wall_time = time.perf_counter() - start
         return result
     run = simulate(inputs, model)
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
@@ -1501,7 +1496,6 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
-        result.wall_time = time.perf_counter() - start
         return result
     window, cycles = run["window"], run["cycles"]
     tau = model.period
@@ -1579,78 +1573,4 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"
     result.message = "; ".join(messages)
-    result.wall_time = time.perf_counter() - start
     return result
-
-
-# --- the plain reference: scipy's solve_ivp with a penalty contact --------------------------------------
-
-
-def penalty_rhs(model: WhirlModel):
-    """The same equations written in numpy, as a user would for solve_ivp, with the linear penalty
-    contact (law 1 of :mod:`study.solvers.whirl_kernel`): returns f(t, z)."""
-    N = model.n_modes
-    w2 = model.omega**2
-    Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
-    S, wts, D = model.drag_shapes, model.drag_weights, model.drag
-    phi = model.phi
-
-    def f(t, z):
-        qy, qz, vy, vz = z[:N], z[N:2 * N], z[2 * N:3 * N], z[3 * N:4 * N]
-        fy = model.eccentric * np.cos(Om * t) + model.side
-        fz = model.eccentric * np.sin(Om * t)
-        ay = -w2 * qy - model.damping * vy + fy
-        az = -w2 * qz - model.damping * vz + fz
-        uy, uz = S @ vy, S @ vz
-        sp = np.hypot(uy, uz)
-        ay -= S.T @ (D * sp * uy * wts) / m
-        az -= S.T @ (D * sp * uz * wts) / m
-        y, w, yd, wd = phi @ qy, phi @ qz, phi @ vy, phi @ vz
-        r = np.hypot(y, w)
-        d = r - model.clearance
-        on = d > 0
-        Fy, Fz = np.zeros_like(y), np.zeros_like(y)
-        pf = pl = 0.0
-        if np.any(on):
-            ny, nz = y[on] / r[on], w[on] / r[on]
-            dd = yd[on] * ny + wd[on] * nz
-            vt = -yd[on] * nz + wd[on] * ny
-            elastic = model.penalty_stiffness[on] * d[on]
-            fn = np.maximum(elastic + model.penalty_damping[on] * dd, 0.0)
-            vs = vt + Om * model.radius[on]
-            ft = -mu * fn * vs / np.sqrt(vs**2 + vreg**2)
-            Fy[on], Fz[on] = -fn * ny - ft * nz, -fn * nz + ft * ny
-            pf, pl = float(np.sum(ft * vt)), float(np.sum((fn - elastic) * dd))
-        ay += phi.T @ Fy / m
-        az += phi.T @ Fz / m
-        power = [m * float(np.sum(fy * vy + fz * vz)), pf, float(np.sum(D * sp**3 * wts)), pl]
-        return np.concatenate((vy, vz, ay, az, power))
-
-    return f
-
-
-def penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: float = 1e-6, atol: float | None = None,
-                      method: str = "RK45") -> dict[str, Any]:
-    """solve_ivp on the penalty-contact equations from the centred pipe at rest over ``revolutions``:
-    wall_time [s], status, nfev, final_state (4N + 4,)."""
-    from scipy.integrate import solve_ivp
-
-    model = build_model({**inputs, "contact_law": "penalty"})
-    N = model.n_modes
-    scale = np.concatenate((model.state_scale(), np.full(4, 1.0)))
-    start = time.perf_counter()
-    sol = solve_ivp(penalty_rhs(model), (0.0, revolutions * model.period), np.zeros(4 * N + 4), method=method,
-                    rtol=rtol, atol=(rtol if atol is None else atol) * scale)
-    return dict(wall_time=time.perf_counter() - start, status=sol.status, nfev=sol.nfev, final_state=sol.y[:, -1])
-
-
-def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
-    """The compiled integrator (its scheme ``reference_integrator`` of the inputs) over ``revolutions`` from the
-    centred pipe at rest: wall_time [s], outcome, steps, final_state, work (the kernel's counts,
-    :data:`whirl_kernel.N_STATS`)."""
-    model = build_model(inputs)
-    run = Integrator(model, rtol, scheme=ReferenceOptions.from_inputs(inputs).reference_integrator)
-    start = time.perf_counter()
-    run.run(revolutions * model.period)
-    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),
-                work=run.work.copy())

@@ -35,12 +35,12 @@ tangential direction nothing but the quadratic drag damps it (sliding friction h
 
 from __future__ import annotations
 
-import time
 from typing import Any, Mapping
 
 import numpy as np
 from scipy import optimize
 
+from study.physics import contact
 from study.physics import whirl as whirl_physics
 from study.solvers import reference
 from study.solvers.options import study_tolerance
@@ -69,7 +69,7 @@ def contact_forces(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) ->
     depth = np.maximum(r - model.clearance, 0.0)
     safe = np.where(r > 0, r, 1.0)
     ny, nz = u[..., 0] / safe, u[..., 1] / safe
-    fn = model.stiffness * depth**1.5
+    fn = contact.hertz_force(depth, model.stiffness)
     vs = whirl_physics.sliding_velocity(-v[..., 0] * nz + v[..., 1] * ny, model.rotary_speed, model.radius)
     ft = -model.friction * fn * whirl_physics.friction_factor(vs, model.slip_velocity)
     return np.stack((-fn * ny - ft * nz, -fn * nz + ft * ny), axis=-1), fn
@@ -327,7 +327,8 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     depth = depth0 + np.einsum("rpi,pi->rp", du, n0)[:, held]
     top = np.max(depth, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        secant = np.where(top > depth0, (top**1.5 - depth0**1.5) / (top - depth0) / (1.5 * np.sqrt(depth0)), 1.0)
+        secant = np.where(top > depth0, (contact.hertz_force(top, 1.0) - contact.hertz_force(depth0, 1.0))
+                          / (top - depth0) / contact.linearised_stiffness(depth0, 1.0), 1.0)
     # the second-order motion's share of the contact force: the next order is about the angle's swing times it
     first = np.stack((synchronous[:, :N].real @ model.phi.T, synchronous[:, N:].real @ model.phi.T),
                      axis=-1)  # the synchronous motion's displacements at the points, (R, P, 2)
@@ -424,7 +425,6 @@ def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[d
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The pipe lying on the wall, sliding (module docstring), or ``out_of_scope`` where that is not the state."""
-    start = time.perf_counter()
     result = PointResult(method=METHOD)
     state = steady_state(inputs)
     model = state["model"]
@@ -435,7 +435,6 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
 
     def finish(status: str, message: str) -> PointResult:
         result.status, result.message = status, message
-        result.wall_time = time.perf_counter() - start
         return result
 
     if state["why"] == "buckled":

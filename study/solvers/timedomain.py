@@ -18,10 +18,11 @@ Model (our choices, stated):
   ``sdof``; used at every contact point). χ = h(e)/v0 is set at each contact onset from that
   contact's approach speed v0. The dimensionless h = χ v0 alone fixes the restitution of a
   Hunt–Crossley Hertz impact (scale δ by α_max and t by α_max/v0: m and K drop out), so
-  ``contact_damping = "calibrated"`` (default) solves h(e) once with
-  :func:`study.physics.oscillator.hertz_wall_impact` (exact e for any e in (0, 1]);
+  ``contact_damping = "calibrated"`` (default) solves h(e) once
+  (:func:`study.physics.contact.calibrated_hysteresis`: exact e for any e in (0, 1]);
   ``"lankarani_nikravesh"`` / ``"hunt_crossley"`` take the closed forms of
-  :func:`study.physics.oscillator.hunt_crossley_damping` (good only for e ≳ 0.85).
+  :func:`study.physics.contact.hunt_crossley_damping` (good only for e ≳ 0.85). The law, its energy
+  and its linearised stiffness are :mod:`study.physics.contact`'s.
 - **damping** ``time_damping``: ``"linearised"`` (default) the sdof method's equal-dissipation mud
   damping c_eq(x) = 8 D Ω c sin(πx/L)/(3π) per unit length (amplitude of the assumed mode),
   projected on the modes: C_nm = ∫ c_eq sin(nπx/L) sin(mπx/L) dx (C_11 = sdof's damping);
@@ -61,14 +62,13 @@ boundaries to match within ``time_tolerance`` (default 1e-4).
 
 from __future__ import annotations
 
-import functools
 import time
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, oscillator, section, whirl
+from study.physics import contact, hertz, section, whirl
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
 from study.solvers.options import INTEGRATORS, TimeDomainOptions
 from study.solvers.result import PointResult
@@ -77,31 +77,6 @@ from study.solvers.scene import given_span
 METHOD = "time-domain"
 MAX_PERIOD = 8
 STEP_FAILURE = "explicit step above the contact stability limit"
-
-
-@functools.lru_cache(maxsize=64)
-def calibrated_hysteresis(restitution: float) -> float:
-    """h = χ v0 [-] for which the Hunt–Crossley Hertz impact rebounds with ``restitution``.
-
-    Scale-free (m = K = v0 = 1 in :func:`oscillator.hertz_wall_impact`); 0 for e = 1.
-    """
-    from scipy.optimize import brentq
-
-    e = float(restitution)
-    if not 0.0 < e <= 1.0:
-        raise ValueError(f"restitution = {e}: the calibrated contact needs 0 < e <= 1")
-    if e >= 1.0:
-        return 0.0
-
-    def miss(h):
-        return oscillator.hertz_wall_impact(1.0, 1.0, 1.0, h).restitution - e
-
-    hi = 1.0
-    while miss(hi) > 0:
-        hi *= 4.0
-        if hi > 1e6:
-            raise ValueError(f"restitution = {e}: too small for the Hunt–Crossley contact")
-    return float(brentq(miss, 0.0, hi, xtol=1e-9, rtol=1e-9))
 
 
 @dataclass
@@ -140,8 +115,8 @@ class ModalModel:
         if v0 <= 0 or e >= 1.0:
             return 0.0
         if self.contact_damping == "calibrated":
-            return calibrated_hysteresis(e) / v0
-        return float(oscillator.hunt_crossley_damping(v0, e, self.contact_damping))
+            return contact.calibrated_hysteresis(e) / v0
+        return float(contact.hunt_crossley_damping(v0, e, self.contact_damping))
 
     def state_scale(self) -> np.ndarray:
         """(2N,) scale of the modal state: c for q [m], Ω c for q̇ [m/s]."""
@@ -152,7 +127,8 @@ class ModalModel:
         """Mechanical energy Σ ½ m (q̇² + ω² q²) + Σ_p (2/5) K δ_p^{5/2} [J]."""
         q, v = np.asarray(q, float), np.asarray(v, float)
         d = np.maximum(np.abs(self.phi @ q) - self.clearance, 0.0)
-        return float(0.5 * self.mass * np.sum(v**2 + self.omega**2 * q**2) + 0.4 * self.stiffness * np.sum(d**2.5))
+        return float(0.5 * self.mass * np.sum(v**2 + self.omega**2 * q**2)
+                     + np.sum(contact.hertz_energy(d, self.stiffness)))
 
     def contact_forces(self, q, v, chi):
         """Forces on the pipe at the contact points (P,) [N], given χ per point."""
@@ -163,7 +139,7 @@ class ModalModel:
         on = d > 0
         if np.any(on):
             ddot = s[on] * yd[on]
-            out[on] = -s[on] * self.stiffness * d[on] ** 1.5 * np.maximum(1.0 + chi[on] * ddot, 0.0)
+            out[on] = -s[on] * contact.hertz_force(d[on], self.stiffness, ddot, chi[on])
         return out
 
     def acceleration(self, t, q, v, chi):
@@ -234,7 +210,7 @@ def initial_state(model: ModalModel, inputs: Mapping[str, Any]):
 def stability_limit(model: ModalModel, expected_speed: float) -> dict[str, float]:
     """Velocity Verlet's step limit 2/ω_max with the contact linearised at the expected penetration."""
     alpha = float(hertz.hertz_impact(model.mass, max(expected_speed, 1e-12), model.stiffness).max_approach)
-    k_lin = 1.5 * model.stiffness * np.sqrt(alpha)
+    k_lin = contact.linearised_stiffness(alpha, model.stiffness)
     A = np.diag(model.omega**2) + k_lin / model.mass * (model.phi.T @ model.phi)
     w_max = float(np.sqrt(np.max(np.linalg.eigvalsh(A))))
     return dict(step_limit=2.0 / w_max, linear_contact_stiffness=k_lin, expected_penetration=alpha,
@@ -710,149 +686,3 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                         f"after the run")
     result.message = "; ".join(messages)
     return result
-
-
-# --- the benchmark reference -----------------------------------------------------------------------
-
-
-def penalty_reference(inputs: Mapping[str, Any], revolutions: float | None = None, *, rtol: float = 1e-6,
-                      atol: float = 1e-9, method: str = "RK45") -> dict[str, Any]:
-    """What a user would write instead: solve_ivp (RK45) on the same modal model, linear penalty contact.
-
-    Contact force −sign(y)(k_p δ + c_p δ̇)₊ for δ > 0 with k_p the Hertz stiffness linearised at
-    the expected penetration and c_p = 2ζ√(k_p m), ζ = −ln e/√(π² + ln² e) (the restitution of a
-    linear spring–dashpot contact); no events, default tolerances, whole run at once.
-    Returns wall_time [s], status, message, nfev, steps, final_state, impact_speeds (|midspan
-    velocity| at the first step point past each wall crossing: crude, as a user would take it),
-    penalty_stiffness [N/m], penalty_damping [N s/m].
-    """
-    from scipy.integrate import solve_ivp
-
-    model = build_model(inputs)
-    q0, v0 = initial_state(model, inputs)
-    v_scale = max(model.rotary_speed * model.clearance, float(np.max(np.abs(model.phi @ v0))))
-    lim = stability_limit(model, v_scale)
-    kp = lim["linear_contact_stiffness"]
-    e = model.restitution
-    le = np.log(e) if e > 0 else -np.inf
-    zeta = -le / np.sqrt(np.pi**2 + le**2) if e > 0 else 1.0
-    cp = 2 * zeta * np.sqrt(kp * model.mass)
-    N = len(model.modes)
-    zero = np.zeros(len(model.points))
-    c = model.clearance
-
-    def rhs(t, y):
-        q, v = y[:N], y[N:]
-        a, fc = model.acceleration(t, q, v, zero)
-        a -= model.phi.T @ fc / model.mass  # the Hertz contact out, the penalty contact in
-        yy, yd = model.phi @ q, model.phi @ v
-        s = np.sign(yy)
-        d = np.abs(yy) - c
-        f = np.where(d > 0, -s * np.maximum(kp * d + cp * s * yd, 0.0), 0.0)
-        return np.concatenate((v, a + model.phi.T @ f / model.mass))
-
-    revs = float(revolutions if revolutions is not None else TimeDomainOptions.from_inputs(inputs).time_revolutions)
-    start = time.perf_counter()
-    sol = solve_ivp(rhs, (0.0, revs * model.period), np.concatenate((q0, v0)), method=method, rtol=rtol, atol=atol)
-    wall = time.perf_counter() - start
-    ym = model.phi[0] @ sol.y[:N]
-    ydm = model.phi[0] @ sol.y[N:]
-    cross = np.flatnonzero((np.abs(ym[:-1]) < c) & (np.abs(ym[1:]) >= c))
-    speeds = np.abs(ydm[cross])
-    return dict(wall_time=wall, status=sol.status, message=sol.message, nfev=sol.nfev, steps=sol.t.size,
-                final_state=sol.y[:, -1], impact_speeds=speeds, penalty_stiffness=kp, penalty_damping=cp)
-
-
-def _final_error(run_state, reference_state, scale) -> float:
-    """Largest difference of two final modal states, q in units of c and q̇ in units of Ωc [-]."""
-    return float(np.max(np.abs(np.asarray(run_state) - np.asarray(reference_state)) / scale))
-
-
-def _converged_run(inputs: Mapping[str, Any], revolutions: int):
-    """The inputs of a fixed-length run, the state scale (c, Ωc) and LSODA's final state at rtol 1e-12."""
-    base = {**inputs, "time_revolutions": revolutions, "time_check_periodic": False}
-    model = build_model(base)
-    scale = model.state_scale()
-    reference = np.concatenate(simulate({**base, "time_integrator": "implicit", "time_rtol": 1e-12,
-                                         "time_atol": 1e-14})["final_state"])
-    return base, scale, reference
-
-
-def benchmark(inputs: Mapping[str, Any], revolutions: int = 10, repeat: int = 3,
-              contact_steps=(25, 100, 400), penalty_rtols=(1e-4, 1e-6, 1e-8)) -> list[dict[str, Any]]:
-    """Work and precision of the integrators and the penalty reference on one case.
-
-    Every run covers exactly ``revolutions`` revolutions (no early stop) from the same state. The
-    error of a run is :func:`_final_error` of its final state against a converged run of *its own
-    model*: LSODA at rtol 1e-12 for the Hertz model (event, explicit, implicit), DOP853 at rtol 1e-12
-    for the linear penalty model. Times are medians of ``repeat`` runs after a warm-up (compiled
-    kernels loaded). Returns rows: name, setting, wall_time [s], error [-], impacts, impact_velocity
-    [m/s] of the last impact.
-    """
-    base, scale, hertz_ref = _converged_run(inputs, revolutions)
-    penalty_ref = penalty_reference(base, revolutions, rtol=1e-12, atol=1e-15, method="DOP853")["final_state"]
-    simulate({**base, "time_integrator": "event", "time_revolutions": 1})  # compiled kernels loaded
-
-    def timed(func):
-        times, result = [], None
-        for _ in range(repeat):
-            start = time.perf_counter()
-            result = func()
-            times.append(time.perf_counter() - start)
-        return float(np.median(times)), result
-
-    rows = []
-    settings = [("event", f"{n} RK4 steps per contact", {"time_integrator": "event", "contact_steps": n})
-                for n in contact_steps]
-    settings += [("explicit", "step 0.1 of its limit", {"time_integrator": "explicit"}),
-                 ("implicit", "LSODA, rtol 1e-8", {"time_integrator": "implicit"})]
-    for name, setting, extra in settings:
-        wall, run = timed(lambda: simulate({**base, **extra}))
-        imp = run["impacts"]
-        rows.append(dict(name=name, setting=setting, wall_time=wall,
-                         error=_final_error(np.concatenate(run["final_state"]), hertz_ref, scale),
-                         impacts=len(imp), impact_velocity=imp[-1]["approach"] if imp else np.nan))
-    for rtol in penalty_rtols:
-        wall, ref = timed(lambda: penalty_reference(base, revolutions, rtol=rtol, atol=rtol * 1e-3))
-        rows.append(dict(name="penalty_rk45", setting=f"rtol {rtol:g}", wall_time=wall,
-                         error=_final_error(ref["final_state"], penalty_ref, scale),
-                         impacts=int(ref["impact_speeds"].size),
-                         impact_velocity=float(ref["impact_speeds"][-1]) if ref["impact_speeds"].size else np.nan))
-    return rows
-
-
-def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0.05, 0.1, 0.2, 0.5, 0.9, 1.1, 2.0, 4.0),
-                   contact_steps=(1, 2, 3, 5, 10, 25, 100, 400)) -> list[dict[str, Any]]:
-    """Error and outcome of the explicit and event-driven integrators against their step (docs/model.md §9).
-
-    The step is given as a fraction of the explicit step limit 2/ω_max (:func:`stability_limit`, the
-    contact linearised at the expected penetration): the Verlet step for ``"explicit"`` at each of
-    ``fractions``, the RK4 contact step for ``"event"`` at each of ``contact_steps`` steps per contact.
-    Error as in :func:`benchmark`, against LSODA at rtol 1e-12. Returns rows: name, step_ratio,
-    setting, verdict, error (NaN when the run failed), failure.
-    """
-    base, scale, reference = _converged_run(inputs, revolutions)
-    runs = [("explicit", f"step {f:g} of the limit", {"time_integrator": "explicit", "time_step_fraction": f})
-            for f in fractions]
-    runs += [("event", f"{n} RK4 steps per contact", {"time_integrator": "event", "contact_steps": n})
-             for n in contact_steps]
-    rows = []
-    for name, setting, extra in runs:
-        run = simulate({**base, **extra})
-        step = run["time_step"] if name == "explicit" else run.get("contact_step", np.nan)
-        failed = run["verdict"] in ("failed", "chattering")
-        rows.append(dict(name=name, setting=setting, step_ratio=step / run["step_limit"], verdict=run["verdict"],
-                         error=np.nan if failed else _final_error(np.concatenate(run["final_state"]), reference, scale),
-                         failure=run["failure"]))
-    return rows
-
-
-def equal_accuracy_speedups(rows: list[dict[str, Any]], reference: str = "penalty_rk45",
-                            method: str = "event") -> list[tuple[dict, dict | None, float]]:
-    """For each ``reference`` row, the fastest ``method`` row at least as accurate, and the time ratio."""
-    out = []
-    for ref in (r for r in rows if r["name"] == reference):
-        better = [r for r in rows if r["name"] == method and r["error"] <= ref["error"]]
-        best = min(better, key=lambda r: r["wall_time"]) if better else None
-        out.append((ref, best, ref["wall_time"] / best["wall_time"] if best else float("nan")))
-    return out

@@ -80,11 +80,12 @@ def test_one_mass_peak_over_lees_half_sine_depends_on_e_alone(restitution, ratio
     # the calibrated Hunt-Crossley contact: 0.9992 (e = 0.9) and 1.2396 (e = 0.5) from an independent
     # LSODA integration (rtol 1e-11) of m d'' = -K d^1.5 (1 + h d'/v0), m = K = v0 = 1
     from study.physics import hertz
-    from study.solvers import crosscheck, timedomain
+    from study.physics import contact
+    from study.solvers import crosscheck
 
     for m_e, velocity, stiffness in ((1.0, 1.0, 1.0), (350.0, 0.8, 3e9)):
         lee = hertz.lee_peak_force(m_e * (1 + restitution) * velocity, hertz.lee_duration(m_e, velocity, stiffness))
-        chi = timedomain.calibrated_hysteresis(restitution) / velocity  # the replay's default contact damping
+        chi = contact.calibrated_hysteresis(restitution) / velocity  # the replay's default contact damping
         peak = crosscheck.one_mass_peak_force(m_e, velocity, stiffness, chi)
         assert peak / lee == pytest.approx(ratio, rel=1e-3)
 

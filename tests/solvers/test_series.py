@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from study.benchmarks import series as series_bench
 from study.solvers import checks, fast, periodic, series
 from study.solvers.result import PointResult
 
@@ -40,7 +41,7 @@ RESOLUTIONS = ([("fast", n) for n in (15, 41, 99, 261, 481)]
 @pytest.fixture(scope="module")
 def table(fixed_span):
     inputs, scene, impact = fixed_span
-    rows = series.convergence_table(scene, impact, inputs, RESOLUTIONS, reference=REFERENCE)
+    rows = series_bench.convergence_table(scene, impact, inputs, RESOLUTIONS, reference=REFERENCE)
     return {(r["method"], r["modes"], r["harmonics"]): r for r in rows}
 
 

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from study import config
-from study.physics import hertz, oscillator
+from study.benchmarks import time_domain as time_domain_bench
+from study.physics import contact, hertz
 from study.solvers import sdof
 from study.solvers.periodic import make_scene
 from study.solvers import timedomain as td
@@ -68,13 +69,13 @@ def test_hunt_crossley_contact_reproduces_restitution(point, model, e, tol):
     rec = run["impacts"][0]
     achieved = rec["rebound"] / rec["approach"]
     assert achieved == pytest.approx(e, rel=tol)
-    # the same impact as oscillator.hertz_wall_impact of the modal mass (up to the spring force k c)
-    alone = oscillator.hertz_wall_impact(m.mass, m.stiffness, 1.0, rec["hysteresis"])
+    # the same impact as contact.hertz_wall_impact of the modal mass (up to the spring force k c)
+    alone = contact.hertz_wall_impact(m.mass, m.stiffness, 1.0, rec["hysteresis"])
     assert achieved == pytest.approx(alone.restitution, rel=2e-3)
     assert rec["duration"] == pytest.approx(alone.duration, rel=2e-3)
     # the calibration is scale-free: chi v0 fixes e whatever m and K
-    h = td.calibrated_hysteresis(e)
-    assert oscillator.hertz_wall_impact(50.0, 3e9, 2.5, h / 2.5).restitution == pytest.approx(e, rel=1e-6)
+    h = contact.calibrated_hysteresis(e)
+    assert contact.hertz_wall_impact(50.0, 3e9, 2.5, h / 2.5).restitution == pytest.approx(e, rel=1e-6)
 
 
 def _driven(point, **kw):
@@ -167,18 +168,18 @@ def test_auto_integrator_is_event_driven_unless_drag(point, damping, expected):
 
 
 def test_benchmark_compares_errors_against_each_models_converged_run(point):
-    rows = td.benchmark(_driven(point), revolutions=1, repeat=1, contact_steps=(25, 400), penalty_rtols=(1e-4,))
+    rows = time_domain_bench.benchmark(_driven(point), revolutions=1, repeat=1, contact_steps=(25, 400), penalty_rtols=(1e-4,))
     names = [r["name"] for r in rows]
     assert names == ["event", "event", "explicit", "implicit", "penalty_rk45"]
     assert all(r["wall_time"] > 0 and r["error"] >= 0 for r in rows)
     assert rows[1]["error"] < rows[0]["error"]  # more RK4 steps per contact, smaller error
     assert rows[0]["impacts"] == rows[2]["impacts"] == rows[3]["impacts"] >= 1
-    (ref, best, ratio), = td.equal_accuracy_speedups(rows)
+    (ref, best, ratio), = time_domain_bench.equal_accuracy_speedups(rows)
     assert best is None or (best["error"] <= ref["error"] and ratio == ref["wall_time"] / best["wall_time"])
 
 
 def test_explicit_fails_near_its_limit_while_event_driven_converges(point):
-    rows = td.step_stability(_driven(point), revolutions=2, fractions=(0.1, 2.0), contact_steps=(10, 40, 160))
+    rows = time_domain_bench.step_stability(_driven(point), revolutions=2, fractions=(0.1, 2.0), contact_steps=(10, 40, 160))
     explicit = [r for r in rows if r["name"] == "explicit"]
     event = [r for r in rows if r["name"] == "event"]
     assert explicit[0]["verdict"] != "failed" and explicit[1]["verdict"] == "failed"

@@ -116,7 +116,7 @@ def _one_mode_hertz(base, **extra):
 def test_hunt_crossley_damping_is_set_from_the_approach_speed(paper_inputs):
     # χ = h(e)/v1 (Hunt & Crossley 1975, doi:10.1115/1.3423596, with the calibrated h(e)) at the closed-form
     # approach speed v1 = √(v0² − ω²c²) of the free flight (as in _closed_form_cycle)
-    from study.solvers.timedomain import calibrated_hysteresis
+    from study.physics.contact import calibrated_hysteresis
 
     model = _one_mode_hertz(paper_inputs)
     om, c = model.omega[0], model.clearance[0]
@@ -133,7 +133,7 @@ def test_hunt_crossley_damping_is_set_from_the_approach_speed(paper_inputs):
 def test_a_contact_settling_at_a_vanishing_speed_gets_the_damping_of_the_floor(paper_inputs):
     # laid 1e-10 c off the wall under a side load that sags it to twice the clearance: it reaches the wall at
     # √(2 a 1e-10 c) (about 1e-6 m/s, a = s - ω²c), far below ONSET_SPEED_FLOOR, and takes that floor's χ
-    from study.solvers.timedomain import calibrated_hysteresis
+    from study.physics.contact import calibrated_hysteresis
 
     import dataclasses
 

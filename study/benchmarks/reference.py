@@ -1,0 +1,83 @@
+"""Benchmarks of the reference method (``study bench``; docs/performance.md): its compiled integrator against the
+same equations written in numpy for scipy's solve_ivp, as a user would, with the linear penalty contact.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.solvers import reference
+from study.solvers.options import ReferenceOptions
+
+
+def penalty_rhs(model: reference.WhirlModel):
+    """The same equations written in numpy, as a user would for solve_ivp, with the linear penalty
+    contact (law 1 of :mod:`study.solvers.whirl_kernel`): returns f(t, z)."""
+    N = model.n_modes
+    w2 = model.omega**2
+    Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
+    S, wts, D = model.drag_shapes, model.drag_weights, model.drag
+    phi = model.phi
+
+    def f(t, z):
+        qy, qz, vy, vz = z[:N], z[N:2 * N], z[2 * N:3 * N], z[3 * N:4 * N]
+        fy = model.eccentric * np.cos(Om * t) + model.side
+        fz = model.eccentric * np.sin(Om * t)
+        ay = -w2 * qy - model.damping * vy + fy
+        az = -w2 * qz - model.damping * vz + fz
+        uy, uz = S @ vy, S @ vz
+        sp = np.hypot(uy, uz)
+        ay -= S.T @ (D * sp * uy * wts) / m
+        az -= S.T @ (D * sp * uz * wts) / m
+        y, w, yd, wd = phi @ qy, phi @ qz, phi @ vy, phi @ vz
+        r = np.hypot(y, w)
+        d = r - model.clearance
+        on = d > 0
+        Fy, Fz = np.zeros_like(y), np.zeros_like(y)
+        pf = pl = 0.0
+        if np.any(on):
+            ny, nz = y[on] / r[on], w[on] / r[on]
+            dd = yd[on] * ny + wd[on] * nz
+            vt = -yd[on] * nz + wd[on] * ny
+            elastic = model.penalty_stiffness[on] * d[on]
+            fn = np.maximum(elastic + model.penalty_damping[on] * dd, 0.0)
+            vs = vt + Om * model.radius[on]
+            ft = -mu * fn * vs / np.sqrt(vs**2 + vreg**2)
+            Fy[on], Fz[on] = -fn * ny - ft * nz, -fn * nz + ft * ny
+            pf, pl = float(np.sum(ft * vt)), float(np.sum((fn - elastic) * dd))
+        ay += phi.T @ Fy / m
+        az += phi.T @ Fz / m
+        power = [m * float(np.sum(fy * vy + fz * vz)), pf, float(np.sum(D * sp**3 * wts)), pl]
+        return np.concatenate((vy, vz, ay, az, power))
+
+    return f
+
+
+def whirl_penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rtol: float = 1e-6,
+                            atol: float | None = None, method: str = "RK45") -> dict[str, Any]:
+    """solve_ivp on the penalty-contact equations from the centred pipe at rest over ``revolutions``:
+    wall_time [s], status, nfev, final_state (4N + 4,)."""
+    from scipy.integrate import solve_ivp
+
+    model = reference.build_model({**inputs, "contact_law": "penalty"})
+    N = model.n_modes
+    scale = np.concatenate((model.state_scale(), np.full(4, 1.0)))
+    start = time.perf_counter()
+    sol = solve_ivp(penalty_rhs(model), (0.0, revolutions * model.period), np.zeros(4 * N + 4), method=method,
+                    rtol=rtol, atol=(rtol if atol is None else atol) * scale)
+    return dict(wall_time=time.perf_counter() - start, status=sol.status, nfev=sol.nfev, final_state=sol.y[:, -1])
+
+
+def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
+    """The compiled integrator (its scheme ``reference_integrator`` of the inputs) over ``revolutions`` from the
+    centred pipe at rest: wall_time [s], outcome, steps, final_state, work (the kernel's counts,
+    :data:`study.solvers.whirl_kernel.N_STATS`)."""
+    model = reference.build_model(inputs)
+    run = reference.Integrator(model, rtol, scheme=ReferenceOptions.from_inputs(inputs).reference_integrator)
+    start = time.perf_counter()
+    run.run(revolutions * model.period)
+    return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),
+                work=run.work.copy())
