@@ -11,7 +11,7 @@ def work_precision_chart(rows, case: str, title: str = "Work and precision of th
                          time_label: str = "time per evaluation [ms]") -> Figure:
     """Relative error of the max normal and shear stresses against time per evaluation, per method.
 
-    rows: the dicts of :func:`study.solvers.series.convergence_table` (method, modes, harmonics,
+    rows: the dicts of :func:`study.benchmarks.series.convergence_table` (method, modes, harmonics,
     wall_time [s], error, shear_error) or of :func:`study.bench.bench_reference_precision` (with rtol instead of
     harmonics); case: a one-line description for the title.
     """
@@ -42,8 +42,8 @@ TIME_DOMAIN_STYLE = {"event": ("o", "C0"), "explicit": ("s", "C1"), "implicit": 
 def time_domain_chart(work_rows, stability_rows, case: str) -> Figure:
     """The time-domain integrators: cost against error, and error against step (failures marked ×).
 
-    work_rows: :func:`study.solvers.timedomain.benchmark` rows (name, setting, wall_time [s], error);
-    stability_rows: :func:`study.solvers.timedomain.step_stability` rows (name, step_ratio, error, NaN
+    work_rows: :func:`study.benchmarks.time_domain.benchmark` rows (name, setting, wall_time [s], error);
+    stability_rows: :func:`study.benchmarks.time_domain.step_stability` rows (name, step_ratio, error, NaN
     when failed); case: a one-line description for the title.
     """
     figure = Figure(figsize=(9.0, 4.2), dpi=150, layout="constrained")

@@ -62,7 +62,6 @@ boundaries to match within ``time_tolerance`` (default 1e-4).
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
