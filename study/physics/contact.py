@@ -46,7 +46,11 @@ def hertz_force(approach, stiffness, rate=0.0, hysteresis=0.0):
     defaults the elastic force K δ^{3/2}. The bracket is held at zero: the wall never pulls the pipe. Arrays
     broadcast; :func:`hertz_force_one` is the compiled twin.
     """
-    return stiffness * approach**1.5 * np.maximum(1.0 + hysteresis * rate, 0.0)
+    bracket = 1.0 + hysteresis * rate
+    # its positive part, bit for bit max(bracket, 0) (b + |b| = 2b exactly), written with abs alone so that numpy's
+    # arrays and numba's scalars both take it and numba lowers it in place, no compiled helper linked into the
+    # kernel that inlines it (docs/reference_model.md §6)
+    return stiffness * approach**1.5 * (0.5 * (bracket + abs(bracket)))
 
 
 #: :func:`hertz_force` compiled for the kernels' scalars (inlined where they call it).

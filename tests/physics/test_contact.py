@@ -41,6 +41,18 @@ def test_the_compiled_twin_is_the_same_law():
     assert caller(1e-4, 2e9, 0.5, 0.4) == pytest.approx(2000.0 * 2.2, rel=1e-15)
 
 
+def test_the_compiled_twin_links_nothing_compiled_apart():
+    # docs/reference_model.md §6 (tests/solvers/test_whirl_kernel.py's rule for the licensed integrator): a function
+    # inlined into a kernel may call no numpy function that numba compiles apart, nor take an integer power
+    import ast
+    import inspect
+
+    tree = ast.parse(inspect.getsource(contact.hertz_force))
+    assert [ast.unparse(n.func) for n in ast.walk(tree) if isinstance(n, ast.Call)] == ["abs"]
+    assert [ast.unparse(n.right) for n in ast.walk(tree) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow)
+            ] == ["1.5"]
+
+
 def test_the_energy_and_the_linearised_stiffness_are_the_law_s_integral_and_derivative():
     # source: E(d) = int_0^d K s^1.5 ds = (2/5) K d^2.5 and k(d) = dF/dd = 1.5 K d^0.5, checked by central
     # differences (step 1e-6 d: truncation ~1e-12 relative, rounding ~1e-10)
