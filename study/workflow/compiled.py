@@ -29,8 +29,8 @@ from typing import Any, Callable, Iterable, Mapping
 from study.atomic import atomic_path
 
 #: Modules holding numba kernels compiled with ``cache=True``.
-KERNEL_MODULES = ("study.physics.beam", "study.physics.hertz", "study.physics.interpolation", "study.physics.midspan",
-                  "study.physics.roots", "study.solvers.event_driven", "study.solvers.impact_model",
+KERNEL_MODULES = ("study.physics.beam", "study.physics.contact", "study.physics.hertz", "study.physics.interpolation",
+                  "study.physics.midspan", "study.physics.roots", "study.solvers.event_driven", "study.solvers.impact_model",
                   "study.solvers.periodic", "study.solvers.span_search", "study.solvers.stress_kernel",
                   "study.solvers.whirl_kernel")
 #: The kernels the last compile-ahead left in the cache, kept beside them: the ones a run is checked for (a kernel
