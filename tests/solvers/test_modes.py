@@ -180,3 +180,44 @@ def test_the_mode_count_doubles_at_impacts_and_says_so():
     clear = reference.solve({**point, "rotary_speed": 10.0, "inclination": 0.0, "reference_window": 2,
                              "reference_revolutions": 4})
     assert [t["modes"] for t in clear.extras["modes_tried"]] == [16]
+
+
+# --- the residual oscillator (reference_residual = "dynamic", docs/reference_model.md §2.1) ---------------------------
+
+
+def test_the_second_moment_of_all_the_flexible_modes_is_its_tensionless_closed_form(paper_inputs):
+    # without tension Σ_j (ψ_c² + ψ_s²)/(m ω_j⁴) = m (2/(L EI))² Σ_j k_j⁻⁸ = m (2/(L EI))² (L/2π)⁸ ζ(8), ζ(8) = π⁸/9450
+    # (Abramowitz & Stegun 23.2.16); one mode kept (the rigid translation), every flexible one left out
+    m = reference.build_model({**paper_inputs, "reference_modes": 1})
+    m.props = {**m.props, "effective_tension": 0.0}
+    ei = m.props["bending_stiffness"]
+    closed = m.mass * (2 / (m.span * ei)) ** 2 * (m.span / (2 * np.pi)) ** 8 * np.pi**8 / 9450
+    np.testing.assert_allclose(reference.residual_second_moment(m), closed, rtol=1e-12)
+
+
+@pytest.mark.parametrize("n", [16, 64])
+def test_the_residual_oscillator_has_the_left_out_modes_receptance_at_low_frequency(paper_inputs, n):
+    # the modes left out respond at a contact point p to a force at ω as Σ_{n≥N} ψ_n(x_p)²/(m (ω_n² − ω²)) (their modal
+    # sum, here 400 000 basis functions summed directly) = f + g ω² + O(ω⁴) (Rubin, AIAA J. 13, 995-1006, 1975: residual
+    # flexibility and residual mass); the oscillator's 1/(k − μ ω²), k = 1/f, μ = g/f², matches it to O(ω⁴), where the
+    # static series flexibility f alone errs by g ω²/f
+    m = reference.build_model({**paper_inputs, "inclination": np.radians(8), "reference_modes": n,
+                               "reference_residual": "dynamic", "tool_joint_length": 0.0})
+    assert m.dynamic and np.all(m.residual_mass > 0)
+    p = m.props
+    big = 400_001
+    k = reference.mode_wavenumbers(m.span, big)[n:]
+    shapes = reference.mode_shapes(m.points, m.span, np.arange(n, big)) ** 2
+    omega2 = (p["bending_stiffness"] * k**4 + p["effective_tension"] * k**2) / p["mass_per_length"]
+    np.testing.assert_allclose(reference.residual_second_moment(m), shapes @ (1.0 / (m.mass * omega2**2)), rtol=1e-9)
+    for share in (0.1, 0.3):
+        w2 = (share * m.first_left_out()) ** 2
+        modal = shapes @ (1.0 / (m.mass * (omega2 - w2)))
+        oscillator = 1.0 / (1.0 / m.residual - m.residual_mass * w2)
+        static = m.residual
+        off, static_off = np.abs(oscillator / modal - 1), np.abs(static / modal - 1)
+        # the oscillator's error is of the fourth order: (0.3)⁴ of the static one's second-order share, about
+        assert np.all(off < 0.02 * share**2) and np.all(off < 0.1 * static_off), (share, off, static_off)
+    # its frequency √(k/μ) lies just above the first mode left out (the step the integrator takes in contact)
+    ratio = np.sqrt(m.residual_omega2) / m.first_left_out()
+    assert np.all((ratio > 1.0) & (ratio < 2.0)), ratio
