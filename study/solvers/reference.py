@@ -632,20 +632,31 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
                       joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
                       joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
-    if option.reference_residual == "series" and np.all(np.isfinite(omega)):
-        # the modes left out respond to a contact force statically: their flexibility at the point in series with its
-        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1
-        model.residual = residual_flexibility(model)
-        model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
-    elif option.reference_residual == "dynamic" and np.all(np.isfinite(omega)):
-        # the modes left out as one oscillator per contact point, matched to their flexibility and its second moment
-        # (their receptance f + g ω² + … at low frequency); docs/reference_model.md §2.1
+    if option.reference_residual == "dynamic" and np.all(np.isfinite(omega)) and symmetric_points(x, L):
+        # the modes left out as one residual vector per contact point in the kernel's modes, matched to their
+        # flexibility and its second moment (their receptance f + g ω² + … at low frequency), the joints' mass on them;
+        # docs/reference_model.md §2.1
         model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
         model.residual = residual_flexibility(model)
         model.residual_mass = residual_second_moment(model) / model.residual**2
         model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
                                    float(option.damping_ratio) if damping_model == "viscous" else 0.0)
+    elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
+        # the modes left out respond to a contact force statically: their flexibility at the point in series with its
+        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
+        # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
+        model.residual = residual_flexibility(model)
+        model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
     return model
+
+
+def symmetric_points(x, span: float) -> bool:
+    """Whether the contact points x [m] lie symmetrically about the periodic section's middle (x → L − x maps them
+    onto themselves), as :func:`residual_ritz` needs."""
+    x = np.asarray(x, float)
+    L = float(span)
+    gap = np.abs(np.mod(np.mod(L - x, L)[:, None] - x[None, :] + 0.5 * L, L) - 0.5 * L)
+    return bool(np.all(np.min(gap, axis=1) <= 1e-9 * L))
 
 
 def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0) -> dict:
@@ -659,7 +670,8 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     of the kept modes and the vectors, m_j φ(x_j) v_p(x_j)), G_pq = Σ_{n≥N} ψ_n(x_p) ψ_n(x_q)/(m ω_n⁴)
     (:func:`residual_second_moments`). The kept modes and the vectors are each of one parity about the section's middle
     where the contact points are (pairs x, L − x: their sum and difference), so the modes are solved per parity and
-    keep one, as the kernel's drag sums need. Raises ValueError where the contact points are not so.
+    keep one, as the kernel's drag sums need. Raises ValueError where the contact points are not so
+    (:func:`symmetric_points`; :func:`build_model` keeps the series law there).
 
     Returns omega2 (K,) with K = N + P, vectors (K, K) (column k: mode k on (q, σ), σ the vectors' parity
     combinations, s = C σ; scaled to the modal mass m), combinations C (P, P), inverse (K, K) (vectorsᵀ M/m: (q, σ) to
@@ -674,7 +686,7 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     mirror = np.mod(L - x, L)
     gap = np.abs(np.mod(mirror[:, None] - x[None, :] + 0.5 * L, L) - 0.5 * L)
     partner = np.argmin(gap, axis=1)
-    if np.any(gap[np.arange(P), partner] > 1e-9 * L):
+    if not symmetric_points(x, L):
         raise ValueError("reference_residual = 'dynamic': the contact points must lie symmetrically about the "
                          f"section's middle (x and L - x), at {np.round(x / L, 6).tolist()} of L")
     symmetric, antisymmetric = [], []
@@ -1727,7 +1739,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         parts = result.extras.get("convergence") or {}
         modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
         tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
-                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES}))
+                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES},
+                          window={name: float(e["window"]) for name, e in parts.items()}))
         # the gate's tolerance of the point: the statistical one where its figures are means over a motion that does
         # not repeat (with the residual vectors; the static law keeps the study's)
         tolerance = (statistical_tolerance(inputs) if dynamic and result.values.get("statistical_figures")
@@ -1800,7 +1813,9 @@ def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = N
         return result
     run = simulate(inputs, model)
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
-                         reference_modes=model.n_modes)
+                         reference_modes=model.n_modes,
+                         reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
+                         else "none")
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
