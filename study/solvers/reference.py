@@ -36,7 +36,9 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`). The modes left out
   are given back statically (``reference_residual = "series"``, docs/reference_model.md §2.1): their flexibility
   at each contact point (:func:`residual_flexibility`) in series with its Hertz spring, and their static field
-  under every contact force at every instant in the stresses (:func:`static_correction`).
+  under every contact force at every instant in the stresses (:func:`static_correction`); or dynamically
+  (``"dynamic"``): one residual vector per contact point, that static field, in the integrated modes
+  (:func:`residual_ritz`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`).
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
