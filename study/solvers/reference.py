@@ -954,7 +954,8 @@ def merge(windows: list[Window]) -> Window:
                   contact_time=np.sum([w.contact_time for w in windows], axis=0),
                   any_contact_time=float(sum(w.any_contact_time for w in windows)), start=windows[0].start,
                   end=windows[-1].end, residual=residual,
-                  ends=(windows[0].ends[0], windows[-1].ends[1]) if residual is not None else None)
+                  ends=(windows[0].ends[0], windows[-1].ends[1])
+                  if residual is not None and windows[0].ends is not None and windows[-1].ends is not None else None)
 
 
 def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
