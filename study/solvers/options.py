@@ -254,5 +254,6 @@ class ReferenceOptions(MethodOptions):
     reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]
-    #: the modes left out at a contact: their static flexibility in series with its spring ("series"), or nothing
-    reference_residual: str = option("series", ("series", "none"))
+    #: the modes left out at a contact: their static flexibility in series with its spring ("series"), a residual
+    #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), or nothing
+    reference_residual: str = option("series", ("series", "none", "dynamic"))

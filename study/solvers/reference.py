@@ -36,7 +36,9 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   velocity u̇·t̂ + Ω r_p, regularised over ``slip_velocity`` (default :data:`SLIP_VELOCITY`). The modes left out
   are given back statically (``reference_residual = "series"``, docs/reference_model.md §2.1): their flexibility
   at each contact point (:func:`residual_flexibility`) in series with its Hertz spring, and their static field
-  under every contact force at every instant in the stresses (:func:`static_correction`).
+  under every contact force at every instant in the stresses (:func:`static_correction`); or dynamically
+  (``"dynamic"``): one residual vector per contact point, that static field, in the integrated modes
+  (:func:`residual_ritz`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`).
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
@@ -130,6 +132,13 @@ class WhirlModel:
     #: (P,) residual flexibility of the modes left out at each contact point [m/N], in series with its Hertz spring
     #: (:func:`residual_flexibility`; empty: the kept modes alone)
     residual: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: (P,) the residual oscillator's mass μ_p = g_p/f_p² at each contact point [kg] (``reference_residual =
+    #: "dynamic"``: :func:`residual_second_moment`; empty: the residual flexibility, if any, static in series)
+    residual_mass: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: the modes left out as residual vectors, one per contact point, in the kernel's modes (``reference_residual =
+    #: "dynamic"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
+    ritz: dict | None = None
+    joint_x: np.ndarray = field(default_factory=lambda: np.zeros(0))  #: the tool joints' positions x_j [m]
     #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
     #: correction of their inertia forces (:func:`joint_inertia_forces`)
     joint_points: np.ndarray | None = None
@@ -179,17 +188,103 @@ class WhirlModel:
         return out if self.basis is None else out @ self.basis
 
     def system(self) -> tuple:
-        """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple)."""
+        """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple). With
+        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + P modes of the kept modes and one
+        residual vector per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
+        points and loads; the linear damping the modes' ratio at their frequencies (none with the drag)."""
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
                          float(self.law), self.hysteresis])
-        return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
-                self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
-                fpar, self.flexibility)
+        if not self.dynamic:
+            return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
+                    self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
+                    self.penalty_damping, fpar, self.flexibility)
+        r = self.ritz
+        return (r["omega2"], r["damping"], r["eccentric"], r["side"], r["drag_shapes"], self.drag_weights,
+                r["phi"], self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
+                fpar, np.zeros(self.points.size))
+
+    @property
+    def dynamic(self) -> bool:
+        """Whether the modes left out are residual vectors in the kernel's modes (``reference_residual =
+        "dynamic"``)."""
+        return self.ritz is not None
+
+    @property
+    def kernel_modes(self) -> int:
+        """The kernel's modes per direction: N, and P more with the residual vectors."""
+        return self.n_modes + (self.points.size if self.dynamic else 0)
+
+    @property
+    def kernel_phi(self) -> np.ndarray:
+        """(P, kernel modes) the kernel's modes' shapes at the contact points."""
+        return self.ritz["phi"] if self.dynamic else self.phi
+
+    @property
+    def residual_omega2(self) -> np.ndarray:
+        """(P,) k_p/μ_p = 1/(f_p μ_p) [rad²/s²]: each residual vector's own frequency (its Rayleigh quotient without
+        the joints' mass; with :attr:`residual_mass`)."""
+        return 1.0 / (self.residual * self.residual_mass)
+
+    def extend(self, z) -> np.ndarray:
+        """The kernel's state from the modal one (4N + 4,): with the residual vectors their coordinates set to their
+        static response to each contact's normal force at the kept modes' approach, s_p = −F_n n̂ (the series law's
+        split, :func:`series_contact`), zero rates, mapped onto the kernel's modes; else z itself (a copy)."""
+        z = np.array(z, float)
+        if not self.dynamic or z.size == 4 * self.kernel_modes + 4:
+            return z
+        N, P, K = self.n_modes, self.points.size, self.kernel_modes
+        y, w = self.phi @ z[:N], self.phi @ z[N:2 * N]
+        r = np.hypot(y, w)
+        force = series_contact(r - self.clearance, self.stiffness, self.residual)[1]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = np.where(r > 0, -force / np.maximum(r, 1e-300), 0.0)
+        forces = [scale * y, scale * w, np.zeros(P), np.zeros(P)]
+        inverse, T = self.ritz["inverse"], self.ritz["combinations"]
+        out = np.zeros(4 * K + 4)
+        for j in range(4):
+            out[j * K:(j + 1) * K] = inverse @ np.concatenate((z[j * N:(j + 1) * N], T.T @ forces[j]))
+        out[-4:] = z[4 * N:]
+        return out
+
+    def reduce(self, z) -> np.ndarray:
+        """The modal state(s) (..., 4N + 4) from the kernel's: with the residual vectors the kept modes' coordinates
+        of the kernel's modes (:meth:`residual_coordinates` gives the residual vectors')."""
+        z = np.asarray(z, float)
+        if not self.dynamic:
+            return z
+        N, K = self.n_modes, self.kernel_modes
+        kept = self.ritz["vectors"][:N]
+        return np.concatenate([z[..., j * K:(j + 1) * K] @ kept.T for j in range(4)] + [z[..., -4:]], axis=-1)
+
+    def residual_coordinates(self, z) -> np.ndarray:
+        """(..., 4, P) the residual vectors' coordinates s_y, s_z, ṡ_y, ṡ_z [N, N/s] from the kernel's state(s): the
+        forces at the contact points whose static field of the modes left out (:func:`static_correction`) their
+        motion is."""
+        z = np.asarray(z, float)
+        N, K = self.n_modes, self.kernel_modes
+        to_forces = self.ritz["combinations"] @ self.ritz["vectors"][N:]  # (P, K)
+        return np.stack([z[..., j * K:(j + 1) * K] @ to_forces.T for j in range(4)], axis=-2)
+
+    def kernel_energy(self, z) -> float:
+        """The kernel state's Σ ½ m (η̇² + ω² η²) over its modes in both directions plus the contacts' Hertz energy
+        [J] (the residual vectors' kinetic and strain energy in the modes' sum)."""
+        if not self.dynamic:
+            return self.energy(z)
+        K = self.kernel_modes
+        z = np.asarray(z, float)
+        w2 = np.tile(self.ritz["omega2"], 2)
+        phi = self.ritz["phi"]
+        d = np.maximum(np.hypot(phi @ z[:K], phi @ z[K:2 * K]) - self.clearance, 0.0)
+        contact = 0.4 * self.stiffness * d**2.5 if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
+        return float(0.5 * self.mass * np.sum(z[2 * K:4 * K] ** 2 + w2 * z[:2 * K] ** 2) + np.sum(contact))
 
     @property
     def flexibility(self) -> np.ndarray:
-        """(P,) the residual flexibility in series with each contact's Hertz spring [m/N] (zeros where none)."""
-        return self.residual if self.residual.size == self.points.size else np.zeros(self.points.size)
+        """(P,) the residual flexibility in series with each contact's Hertz spring [m/N] (zeros where none, and with
+        the residual oscillators, which carry it dynamically)."""
+        if self.dynamic or self.residual.size != self.points.size:
+            return np.zeros(self.points.size)
+        return self.residual
 
     def energy(self, z) -> float:
         """Σ ½ m (q̇² + ω² q²) over both directions plus the contacts' elastic energy [J]."""
@@ -325,6 +420,37 @@ def residual_flexibility(model: "WhirlModel") -> np.ndarray:
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     whole = float(periodic_point_deflection(0.0, model.span, ei, tn))
     return np.maximum(whole - mode_shapes(model.points, model.span, model.modes) ** 2 @ basis_static_gain(model), 0.0)
+
+
+#: Harmonics above the kept ones that :func:`residual_second_moment` sums (its terms fall like j⁻⁸: the tail past them
+#: is below 1e-9 of the sum up to 128 modes, and counted by its integral beyond).
+SECOND_MOMENT_HARMONICS = 4096
+
+
+def residual_second_moments(model: "WhirlModel") -> np.ndarray:
+    """(P, P) the modes left out's second moments between the contact points [m/N s²], G_pq = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x_q)
+    /(m ω_n⁴): the mass of the residual vectors (:func:`residual_ritz`); its diagonal is :func:`residual_second_moment`
+    (the tail beyond the harmonics summed counted there only: off it the terms alternate in sign and fall like j⁻⁸)."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    L, N = model.span, model.n_modes
+    n = np.arange(N, N + 2 * SECOND_MOMENT_HARMONICS)
+    k = mode_wavenumbers(L, n)
+    gain = 1.0 / (0.5 * L * (ei * k**4 + tn * k**2))
+    shapes = mode_shapes(model.points, L, n)
+    out = (shapes * (model.mass * gain**2)) @ shapes.T
+    J = (N + 2 * SECOND_MOMENT_HARMONICS - 1) // 2
+    out[np.diag_indices_from(out)] += model.mass * (2.0 / (L * ei)) ** 2 * (L / (2 * np.pi)) ** 8 / (7.0 * (J + 0.5) ** 7)
+    return out
+
+
+def residual_second_moment(model: "WhirlModel") -> np.ndarray:
+    """(P,) the second moment of the modes left out at each contact point [m/N s²], g_p = Σ_{n ≥ N} ψ_n(x_p)²/(m ω_n⁴)
+    (m = M L/2): the ω² term of their receptance Σ ψ_n²/(m (ω_n² − ω²)) = f_p + g_p ω² + O(ω⁴) at the point, the
+    diagonal of :func:`residual_second_moments`. On the basis functions left out (as :func:`residual_flexibility`, a
+    matter of stiffness and the one modal mass), summed over :data:`SECOND_MOMENT_HARMONICS` harmonics and the tail
+    beyond by its integral (terms (2/L)² m/(EI k⁴)² per harmonic where tension no longer counts; tested against the
+    tensionless closed form (2/(L EI))² m (L/2π)⁸ ζ(8) and the series summed further)."""
+    return np.diag(residual_second_moments(model)).copy()
 
 
 def basis_static_gain(model: "WhirlModel") -> np.ndarray:
@@ -507,12 +633,128 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
                       joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
                       joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
-    if option.reference_residual == "series" and np.all(np.isfinite(omega)):
+    if option.reference_residual == "dynamic" and np.all(np.isfinite(omega)) and symmetric_points(x, L):
+        # the modes left out as one residual vector per contact point in the kernel's modes, matched to their
+        # flexibility and its second moment (their receptance f + g ω² + … at low frequency), the joints' mass on them;
+        # docs/reference_model.md §2.1
+        model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
+        model.residual = residual_flexibility(model)
+        model.residual_mass = residual_second_moment(model) / model.residual**2
+        model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
+                                   float(option.damping_ratio) if damping_model == "viscous" else 0.0)
+    elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
         # the modes left out respond to a contact force statically: their flexibility at the point in series with its
-        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1
+        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
+        # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
         model.residual = residual_flexibility(model)
         model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
     return model
+
+
+def symmetric_points(x, span: float) -> bool:
+    """Whether the contact points x [m] lie symmetrically about the periodic section's middle (x → L − x maps them
+    onto themselves), as :func:`residual_ritz` needs."""
+    x = np.asarray(x, float)
+    L = float(span)
+    gap = np.abs(np.mod(np.mod(L - x, L)[:, None] - x[None, :] + 0.5 * L, L) - 0.5 * L)
+    return bool(np.all(np.min(gap, axis=1) <= 1e-9 * L))
+
+
+def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0) -> dict:
+    """The kept modes augmented by one residual vector per contact point (modal truncation augmentation: Dickens,
+    Nakagawa & Wittbrodt, Comput. Struct. 62, 985–998, 1997; the residual flexibility and mass of Rubin, AIAA J. 13,
+    995–1006, 1975), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual vector p is the static
+    field of the modes left out under a unit force at contact point x_p, v_p(x) (:func:`static_correction`'s
+    deflection: the periodic beam-column's less the kept modes'); with the coordinates (q, s), s_p [N] the force whose
+    field v_p is, u(x) = Σ q_n φ_n(x) + Σ s_p v_p(x), the stiffness is diag(m ω_n²) ⊕ F, F_pq = v_p(x_q) (Maxwell–Betti:
+    v_p is the left-out modes' flexibility), the mass m I ⊕ G + the tool joints' m_j at x_j on u(x_j) (their coupling
+    of the kept modes and the vectors, m_j φ(x_j) v_p(x_j)), G_pq = Σ_{n≥N} ψ_n(x_p) ψ_n(x_q)/(m ω_n⁴)
+    (:func:`residual_second_moments`). The kept modes and the vectors are each of one parity about the section's middle
+    where the contact points are (pairs x, L − x: their sum and difference), so the modes are solved per parity and
+    keep one, as the kernel's drag sums need. Raises ValueError where the contact points are not so
+    (:func:`symmetric_points`; :func:`build_model` keeps the series law there).
+
+    Returns omega2 (K,) with K = N + P, vectors (K, K) (column k: mode k on (q, σ), σ the vectors' parity
+    combinations, s = C σ; scaled to the modal mass m), combinations C (P, P), inverse (K, K) (vectorsᵀ M/m: (q, σ) to
+    the modes), and the kernel's phi (P, K), drag_shapes (G, K) at ``drag_points`` [m], eccentric and side (K,) per
+    modal mass, damping (K,) 2ζω, weights (K,) of the error scale (1/n² of the half-waves of each mode's
+    frequency)."""
+    from scipy.linalg import eigh
+
+    N, P, L, m = model.n_modes, model.points.size, model.span, model.mass
+    x = model.points
+    # the contact points' mirror images about the middle: pairs and points of their own
+    mirror = np.mod(L - x, L)
+    gap = np.abs(np.mod(mirror[:, None] - x[None, :] + 0.5 * L, L) - 0.5 * L)
+    partner = np.argmin(gap, axis=1)
+    if not symmetric_points(x, L):
+        raise ValueError("reference_residual = 'dynamic': the contact points must lie symmetrically about the "
+                         f"section's middle (x and L - x), at {np.round(x / L, 6).tolist()} of L")
+    symmetric, antisymmetric = [], []
+    for p in range(P):
+        q = int(partner[p])
+        e = np.zeros(P)
+        if q == p:
+            e[p] = 1.0
+            symmetric.append(e)
+        elif p < q:
+            e[p], e[q] = np.sqrt(0.5), np.sqrt(0.5)
+            symmetric.append(e.copy())
+            e[q] = -np.sqrt(0.5)
+            antisymmetric.append(e)
+    combinations = np.column_stack(symmetric + antisymmetric)
+    flexibility = static_correction(model, x)[:, :P]
+    flexibility = 0.5 * (flexibility + flexibility.T)
+    mass_rr = residual_second_moments(model)
+    coupling = np.zeros((N, P))
+    if model.joint_mass > 0.0 and model.joint_x.size:
+        at_joints = static_correction(model, model.joint_x)[:, :model.joint_x.size]  # (P, J): v_p(x_j)
+        coupling = model.joint_mass * model.shapes(model.joint_x).T @ at_joints.T
+        mass_rr = mass_rr + model.joint_mass * at_joints @ at_joints.T
+    K = N + P
+    stiffness = np.zeros((K, K))
+    stiffness[:N, :N] = np.diag(m * np.nan_to_num(model.omega) ** 2)
+    stiffness[N:, N:] = combinations.T @ flexibility @ combinations
+    mass = np.zeros((K, K))
+    mass[:N, :N] = m * np.eye(N)
+    mass[:N, N:] = coupling @ combinations
+    mass[N:, :N] = mass[:N, N:].T
+    mass[N:, N:] = combinations.T @ mass_rr @ combinations
+    kept_symmetric = (model.modes == 0) | (model.modes % 2 == 1)
+    n_sym = len(symmetric)
+    rows_of = [np.concatenate((np.flatnonzero(kept_symmetric), N + np.arange(n_sym))),
+               np.concatenate((np.flatnonzero(~kept_symmetric), N + np.arange(n_sym, P)))]
+    omega2, vectors = np.zeros(K), np.zeros((K, K))
+    column = 0
+    for rows in rows_of:
+        if rows.size == 0:
+            continue
+        values, vecs = eigh(stiffness[np.ix_(rows, rows)], mass[np.ix_(rows, rows)])
+        vecs = vecs * np.sqrt(m)  # eigh's have yᵀ M y = 1
+        rigid = rows == 0  # the rigid translation (kept mode 0): no stiffness, exactly a mode of its own
+        if np.any(rigid) and model.omega[0] == 0.0:
+            first = int(np.argmin(np.abs(values)))
+            values[first] = 0.0
+            vecs[:, first] = 0.0
+            vecs[rigid, first] = 1.0
+        span = slice(column, column + rows.size)
+        omega2[span] = np.maximum(values, 0.0)
+        vectors[np.ix_(rows, np.arange(column, column + rows.size))] = vecs
+        column += rows.size
+    kept, residual = vectors[:N], vectors[N:]
+    phi = np.hstack((model.phi, flexibility @ combinations)) @ vectors
+    at_drag = static_correction(model, np.asarray(drag_points, float))[:, :np.size(drag_points)]  # (P, G)
+    drag_shapes = np.hstack((model.drag_shapes, at_drag.T @ combinations)) @ vectors
+    side = kept.T @ model.side
+    if model.point_side is not None:  # the joints' weight at the joints: on the vectors, Σ_q W_q v_p(x_q)
+        side = side + residual.T @ (combinations.T @ (flexibility @ model.point_side)) / m
+    omega = np.sqrt(omega2)
+    ei, tn, M = (model.props[k] for k in ("bending_stiffness", "effective_tension", "mass_per_length"))
+    wavenumber = np.sqrt(np.maximum((-tn + np.sqrt(tn**2 + 4 * ei * M * omega2)) / (2 * ei), 0.0))
+    return dict(omega2=omega2, vectors=vectors, combinations=combinations, inverse=vectors.T @ mass / m, phi=phi,
+                drag_shapes=drag_shapes, eccentric=kept.T @ model.eccentric, side=side,
+                damping=2.0 * float(damping_ratio) * omega,
+                weights=1.0 / np.maximum(wavenumber * L / np.pi, 1.0) ** 2)
 
 
 @dataclass
@@ -528,6 +770,20 @@ class Window:
     any_contact_time: float  #: [s]
     start: float
     end: float
+    #: (R, 4, P) the residual vectors' s_y, s_z, ṡ_y, ṡ_z [N, N/s] per row (None without them)
+    residual: np.ndarray | None = None
+    #: the kernel's first and last states (with the residual vectors; None without them), for the energy balance
+    ends: tuple | None = None
+
+    def correction_forces(self, model: "WhirlModel", direction: int) -> np.ndarray:
+        """(R, P) the forces [N] whose static field of the modes left out completes the kept modes' (the quasi-static
+        correction, :func:`static_correction`) in one direction: the contact forces on the pipe, or with the residual
+        vectors their coordinates s_p (:func:`residual_ritz`: the field their motion is), less the joints' weight that
+        :func:`periodic_fields` adds (it is in s_p already)."""
+        if self.residual is not None and model.dynamic:
+            forces = self.residual[:, direction, :]
+            return forces - model.point_side if direction == 0 and model.point_side is not None else forces
+        return self.forces[:, :, direction]
 
 
 class Integrator:
@@ -541,24 +797,30 @@ class Integrator:
         self.model = model
         self.scheme = SCHEME_CODES[scheme]
         self.sy = whirl_kernel.kernel_system(model.system())
-        N, P = model.n_modes, model.points.size
-        self.z = np.zeros(4 * N + 4) if state is None else np.array(state, float)
+        N, P = model.kernel_modes, model.points.size
+        # the kernel's state: with the residual vectors P more modes (WhirlModel.extend)
+        self.z = model.extend(np.zeros(4 * model.n_modes + 4) if state is None else state)
         self.t = 0.0
         self.active = np.zeros(P, bool)
         self.chi = np.zeros(P)
         # a start on the wall (the string's rest, :func:`initial_state`): its contacts open, with the Hunt–Crossley
         # damping of the slowest onset (whirl_kernel.ONSET_SPEED_FLOOR), not counted as onsets
-        y, w = model.phi @ self.z[:N], model.phi @ self.z[N:2 * N]
+        y, w = model.kernel_phi @ self.z[:N], model.kernel_phi @ self.z[N:2 * N]
         self.active[:] = np.hypot(y, w) > model.clearance
         self.chi[self.active] = model.hysteresis / whirl_kernel.ONSET_SPEED_FLOOR
         self.rtol = float(rtol)
         # error scale weighted by 1/n^2: the bending moment weighs mode n by k_n^2, so its error is kept even
         self.scale = model.state_scale() * np.tile(model.weights, 4)
+        if model.dynamic:  # the kernel's modes weighed by the half-waves of their frequencies
+            c = float(np.max(model.clearance))
+            self.scale = np.concatenate((np.full(2 * N, c), np.full(2 * N, model.rotary_speed * c))) * np.tile(
+                model.ritz["weights"], 4)
         self.h = model.period / 1000.0
         # and, for Dormand-Prince on the whole right-hand side, within its stability interval on the imaginary axis
         # (about 3.3/omega): the error estimate alone lets an undamped high mode ring at the edge of it. The Lawson
         # form takes the modes' free motion exactly, at any step
-        self.h_stable = STABLE_STEP / max(float(np.max(model.omega)), 1e-300)  # (the rigid translation alone: none)
+        fastest = float(np.sqrt(np.max(model.ritz["omega2"]))) if model.dynamic else float(np.max(model.omega))
+        self.h_stable = STABLE_STEP / max(fastest, 1e-300)  # (the rigid translation alone: none)
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
         self.steps = 0
@@ -585,8 +847,15 @@ class Integrator:
         self.steps += steps
         self.work += stats
         # the rows written, copied: the buffers (room for a contact all the way) are freed
-        return Window(times=rec_t[:n_rec].copy(), states=rec_z[:n_rec].copy(), forces=rec_f[:n_rec].copy(), peak=peak,
-                      onsets=onsets, contact_time=ctime, any_contact_time=float(stats[0]), start=start, end=t)
+        rows = rec_z[:n_rec]
+        return Window(times=rec_t[:n_rec].copy(), states=self.model.reduce(rows).copy(), forces=rec_f[:n_rec].copy(),
+                      peak=peak, onsets=onsets, contact_time=ctime, any_contact_time=float(stats[0]), start=start,
+                      end=t, residual=self.model.residual_coordinates(rows) if self.model.dynamic else None,
+                      ends=(rows[0].copy(), rows[-1].copy()) if self.model.dynamic and n_rec else None)
+
+    def modal_state(self) -> np.ndarray:
+        """The modal state (4N,) now, without the power integrals and the residual oscillators."""
+        return self.model.reduce(self.z)[:4 * self.model.n_modes].copy()
 
 
 def initial_state(model: WhirlModel, kind: str = "forced") -> np.ndarray:
@@ -676,12 +945,16 @@ def stationary(peaks, impacts, states, scale, n: int) -> bool:
 
 def merge(windows: list[Window]) -> Window:
     """One window from consecutive ones (their recordings joined, their counts added)."""
+    residual = (np.concatenate([w.residual for w in windows])
+                if all(w.residual is not None for w in windows) else None)
     return Window(times=np.concatenate([w.times for w in windows]), states=np.concatenate([w.states for w in windows]),
                   forces=np.concatenate([w.forces for w in windows]), peak=np.max([w.peak for w in windows], axis=0),
                   onsets=np.sum([w.onsets for w in windows], axis=0),
                   contact_time=np.sum([w.contact_time for w in windows], axis=0),
                   any_contact_time=float(sum(w.any_contact_time for w in windows)), start=windows[0].start,
-                  end=windows[-1].end)
+                  end=windows[-1].end, residual=residual,
+                  ends=(windows[0].ends[0], windows[-1].ends[1])
+                  if residual is not None and windows[0].ends is not None and windows[-1].ends is not None else None)
 
 
 def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
@@ -711,8 +984,8 @@ def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     :func:`stresses`)."""
     N = model.n_modes
     x = np.array([float(station)])
-    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.forces[:, :, j] if correction
-                               else None, x, j)["moment"][:, 0] for j in range(2)]
+    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.correction_forces(model, j)
+                               if correction else None, x, j)["moment"][:, 0] for j in range(2)]
     r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     angle = model.rotary_speed * window.times[:, None] + 2.0 * np.pi * np.arange(fibres)[None, :] / fibres
@@ -1006,7 +1279,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     tol = float(option.reference_tolerance)
     N = model.n_modes
     scale = model.state_scale()
-    states = [run.z[:4 * N].copy()]
+    states = [run.modal_state()]
     period = None
     ratio = float("nan")
 
@@ -1029,7 +1302,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             kept = (kept + [cycle])[-2 * n_window:]
         peaks.append(float(np.max(cycle.peak)) if cycle.peak.size else 0.0)
         impacts.append(float(np.sum(cycle.onsets)))
-        states.append(run.z[:4 * N].copy())
+        states.append(run.modal_state())
         if np.max(np.abs(states[-1]) / scale) == 0.0:  # nothing moves
             period = 1 if k >= 2 else None
         else:
@@ -1062,7 +1335,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 added.append(run.run(run.t + tau, record=True))
                 if run.outcome != whirl_kernel.OK:
                     return failed("in the output window")
-                states.append(run.z[:4 * N].copy())
+                states.append(run.modal_state())
             if added:
                 record += zip(added, cycle_values(inputs, model, added))
                 live = record[first:]  # the cycles still recorded: one decision on the correction for them all
@@ -1364,9 +1637,12 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     fields = []
-    inertia = joint_inertia_forces(model, window) if correction and model.joint_points is not None else None
+    # the joints' inertia forces corrected statically (with the residual vectors their coupling with the joints' mass
+    # is in the motion already)
+    inertia = (joint_inertia_forces(model, window) if correction and model.joint_points is not None
+               and not model.dynamic else None)
     for j in range(2):
-        forces = window.forces[:, :, j] if correction else None  # without it, the modes alone
+        forces = window.correction_forces(model, j) if correction else None  # without it, the modes alone
         if inertia is not None:
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
@@ -1437,7 +1713,10 @@ def energy_balance(model: WhirlModel, window: Window) -> dict[str, float]:
     N = model.n_modes
     a, b = window.states[0], window.states[-1]
     dW = b[4 * N:] - a[4 * N:]
-    dE = model.energy(b) - model.energy(a)
+    if window.ends is not None:  # with the residual vectors: the kernel's energy, theirs in its modes
+        dE = model.kernel_energy(window.ends[1]) - model.kernel_energy(window.ends[0])
+    else:
+        dE = model.energy(b) - model.energy(a)
     residual = dW[0] + dW[1] - dW[2] - dW[3] - dE
     size = max(abs(dW[0]), abs(dW[1]), abs(dW[2]), abs(dW[3]), abs(dE), 1e-300)
     return dict(energy_change=dE, load_work=dW[0], friction_work=dW[1], drag_loss=dW[2], contact_loss=dW[3],
@@ -1452,24 +1731,32 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
     figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
     option = ReferenceOptions.from_inputs(inputs)
-    tolerance = study_tolerance(inputs)
+    dynamic = option.reference_residual == "dynamic"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
+    previous = None
     while True:
-        result = solve_with_modes({**inputs, "reference_modes": count})
+        result = solve_with_modes({**inputs, "reference_modes": count}, previous if dynamic else None)
         parts = result.extras.get("convergence") or {}
         modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
         tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
-                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES}))
+                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES},
+                          window={name: float(e["window"]) for name, e in parts.items()}))
+        # the gate's tolerance of the point: the statistical one where its figures are means over a motion that does
+        # not repeat (with the residual vectors; the static law keeps the study's)
+        tolerance = (statistical_tolerance(inputs) if dynamic and result.values.get("statistical_figures")
+                     else study_tolerance(inputs))
         if result.status != "ok" or modal <= 0.5 * tolerance or 2 * count > top:
             break
         # the next count: doubled, or more where the modal part is far over (the residual flexibility falls like N⁻³,
         # so a part m asks about (m / (tolerance/2))^(1/3) times the modes): a choice of the count only, the part
-        # stated is the one measured with it
-        factor = 2 ** max(1, int(np.ceil(np.log2(max(modal / (0.5 * tolerance), 1.0)) / 3.0)))
+        # stated is the one measured with it. With the residual vectors doubled: their modal part is measured
+        # between a count and its half (:func:`doubling_modal_error`)
+        factor = 2 if dynamic else 2 ** max(1, int(np.ceil(np.log2(max(modal / (0.5 * tolerance), 1.0)) / 3.0)))
         while count * factor > top:
             factor //= 2
         count *= factor
+        previous = result
     result.extras["modes_tried"] = tried
     if len(tried) > 1:
         result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
@@ -1477,8 +1764,27 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     return result
 
 
-def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
-    """One run of the ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count)."""
+def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> dict[str, float]:
+    """The modal part of each figure's error (relative) at N modes with the residual vectors, from the run at N/2
+    (``previous``): the figures' change between the two, relative to the figure at N (the alternating stress's to the
+    larger of it and the max bending stress, as :func:`convergence` counts it). It is the error left at N if that
+    falls at least as fast as 1/N, and its statistical part (the two windows' scatter) is not taken out: at the
+    bouncing points measured the figures did not change monotonically from 8 to 128 modes (docs/reference_model.md
+    §2.1), and less would not have covered them."""
+    out = dict.fromkeys(MODAL_FIGURES, 0.0)
+    for name in MODAL_FIGURES:
+        now, then = float(values.get(name, np.nan)), float(previous.values.get(name, np.nan))
+        if not (np.isfinite(now) and np.isfinite(then)) or now <= 0:
+            continue
+        size = max(now, float(values.get("max_bending_stress", now))) if name == "alternating_bending_stress" else now
+        out[name] = float(abs(now - then) / size)
+    return out
+
+
+def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+    """One run of the ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count);
+    with the residual vectors and the run at half the modes (``previous``) the modal part of the errors is measured
+    between the two (:func:`doubling_modal_error`) where the motion does not repeat."""
     result = PointResult(method=METHOD)
     model = build_model(inputs)
     vals = result.values
@@ -1492,7 +1798,9 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
         return result
     run = simulate(inputs, model)
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
-                         reference_modes=model.n_modes)
+                         reference_modes=model.n_modes,
+                         reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
+                         else "none")
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
@@ -1524,6 +1832,9 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
     modal = run["modal"]
+    if (model.dynamic and previous is not None and not periodic and previous.status == "ok"
+            and previous.extras.get("reference_modes") == model.n_modes // 2):
+        modal = doubling_modal_error(previous, summary)
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
     correction = summary.pop("correction")
     quarter = summary.pop("modal_quarter_fraction")
