@@ -190,3 +190,14 @@ def test_the_committed_record_holds_the_stored_coverage_table():
     # validate includes it)
     section = "\n".join(coverage.coverage_section())
     assert section in (ROOT / "docs" / "validation.md").read_text()
+
+
+@pytest.mark.parametrize("argv", [["coverage", "--sample", "0"], ["coverage", "--modes-factor", "1"],
+                                  ["coverage", "--workers", "-1"]])
+def test_the_command_refuses_bad_counts_with_exit_status_2(argv, capsys):
+    from study.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    assert argv[1] in capsys.readouterr().err  # the option named
