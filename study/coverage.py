@@ -317,8 +317,10 @@ def run_coverage(config: str | Path = DEFAULT_CONFIG, sample: int = SAMPLE, mode
                 save_cached(cache, kind, index, keys[kind, index], record)
                 (defaults if kind == "default" else references)[index] = record
                 report(kind, index, record, False)
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+    except BaseException:  # Ctrl-C or a failure: the finished runs are in the cache; a rerun resumes from them
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
     taken, _ = selected(order, defaults, sample)
     seconds = time.perf_counter() - started
     points = []
