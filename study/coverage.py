@@ -468,6 +468,10 @@ def coverage_section(path: str | Path | None = None) -> list[str]:
         lines.append(f"| {label} | {s['covered']} of {s['compared']} | {_pct(s['share'])} | "
                      f"{'met' if s['meets'] else 'not met'} ({_pct(target)}) | {_pct(s['stated'])} | {_pct(s['true'])} "
                      f"| {_ratio(s['worst'])} |")
+    met = [FIGURES[name] for name in FIGURES if summary[name]["meets"]]
+    missed = [FIGURES[name] for name in FIGURES if not summary[name]["meets"]]
+    lines += ["", f"The stated error covers the true difference at {_pct(target)} of the points or more for "
+              f"{', '.join(met) or 'no figure'}; not for {', '.join(missed) or 'none'}."]
     lines += ["", "Per point: each figure's true difference / stated error (parts of the stated error: window + "
               "integrator + modes; `*` not covered), and the cost of each run (wall time on the machine the command "
               "ran on, its cores shared).", "",
