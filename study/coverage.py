@@ -496,8 +496,9 @@ def coverage_section(path: str | Path | None = None) -> list[str]:
     cost_r = [p["reference"]["wall_time"] for p in points]
     if points:
         lines += ["", f"Cost: the default answers {np.median(cost_d):.1f} s median ({sum(cost_d):.0f} s in all), the "
-                  f"reference answers {np.median(cost_r):.1f} s median ({sum(cost_r):.0f} s in all); the command took "
-                  f"{results['seconds']:.0f} s on its workers."]
+                  f"reference answers {np.median(cost_r):.1f} s median ({sum(cost_r):.0f} s in all); the command's last "
+                  f"invocation took {results['seconds']:.0f} s on its workers (runs it found in its cache cost it "
+                  "nothing)."]
     return lines + [""]
 
 
