@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
 RUNS   ?= 10
 
-.PHONY: help setup test test-generic sweep charts bench bench-large validate faults clean chromium
+.PHONY: help setup test test-generic sweep charts bench bench-large validate coverage faults clean chromium
 
 help:
 	@echo "make setup     install into .venv and compile the solver kernels ahead (every target does it first)"
@@ -17,6 +17,8 @@ help:
 	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
 	@echo "make bench-large  the measured sweep of 10^5 points, about 9 minutes (docs/large_sweep.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
+	@echo "make coverage  the stated errors against 4x-modes, 4x-window runs on 20 impacting points (docs/validation.md;"
+	@echo "               hours at 256 modes; MODES=2 WINDOW=2 about 35 minutes on 2 cores; resumable)"
 	@echo "make faults    kill sweeps and their workers at random moments RUNS=$(RUNS) times (docs/reliability.md)"
 	@echo "make clean     remove outputs and the virtual environment"
 
@@ -55,6 +57,13 @@ bench-large: $(STAMP)
 
 validate: $(STAMP)
 	$(BIN)/study validate --out docs/validation.md
+
+# Resumable (finished runs kept in outputs/coverage/); SAMPLE, MODES and WINDOW make a smaller, labelled run.
+SAMPLE ?= 20
+MODES  ?= 4
+WINDOW ?= 4
+coverage: $(STAMP)
+	$(BIN)/study coverage --sample $(SAMPLE) --modes-factor $(MODES) --window-factor $(WINDOW)
 
 faults: $(STAMP)
 	$(BIN)/python -m study.workflow.faults --runs $(RUNS)

@@ -1,4 +1,4 @@
-"""The ``study`` command: point, sweep, charts, compile, bench, validate.
+"""The ``study`` command: point, sweep, charts, compile, bench, validate, coverage.
 
 Bad input ends with one clear message listing every problem and exit status 2, never a traceback.
 """
@@ -152,6 +152,24 @@ def cmd_validate(args) -> int:
     return 0
 
 
+def cmd_coverage(args) -> int:
+    from study import coverage
+
+    study = load(args.config)
+    ensure_compiled(study.point(**{name: values[0] for name, values in study.axes.items()}), say=tell)
+    results = coverage.run_coverage(args.config, sample=args.sample, modes_factor=args.modes_factor,
+                                    window_factor=args.window_factor, workers=args.workers, cache=args.cache,
+                                    say=print)
+    written = coverage.write_results(results, args.out)
+    print(f"written {written}")
+    if args.validation:
+        print(f"written {coverage.update_validation(args.validation, written)} (its coverage section)")
+    for name, share in coverage.shares(results["points"], results["target"]).items():
+        print(f"  {coverage.FIGURES[name]}: {share['covered']} of {share['compared']} covered "
+              f"({'meets' if share['meets'] else 'misses'} the {results['target']:.0%} target)")
+    return 0
+
+
 def whole_number(low: int, high: int, meaning: str = ""):
     """An argparse type: a whole number in [low, high]; anything else is refused naming the value and the range
     (argparse adds the option's name and exits with status 2)."""
@@ -218,6 +236,24 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("validate", help="compare with the printed numbers of the sources")
     p.add_argument("--out", default=None, help="write the report to this markdown file")
     p.set_defaults(func=cmd_validate)
+
+    p = sub.add_parser("coverage", help="check the stated errors on a held-back sample of impacting points against "
+                                        "runs with more modes and a longer window (docs/validation.md)")
+    p.add_argument("config", nargs="?", default=DEFAULT_CONFIG)
+    p.add_argument("--sample", type=whole_number(1, 1000), default=20, metavar="N",
+                   help="impacting points in the sample (default 20)")
+    p.add_argument("--modes-factor", type=whole_number(2, 16), default=4, metavar="K",
+                   help="the reference runs' modes, times the default answer's (default 4)")
+    p.add_argument("--window-factor", type=whole_number(1, 16), default=4, metavar="K",
+                   help="the reference runs' window, transient and revolution budget, times the defaults (default 4)")
+    p.add_argument("--workers", type=whole_number(0, MAX_WORKERS, " (0: in this process)"), default=2,
+                   help="worker processes (default 2)")
+    p.add_argument("--cache", default=None, metavar="FOLDER",
+                   help="finished runs, reused by a rerun (default outputs/coverage/<study name>)")
+    p.add_argument("--out", default="docs/coverage.json", help="the results (default docs/coverage.json)")
+    p.add_argument("--validation", default="docs/validation.md", metavar="FILE",
+                   help="rewrite the coverage section of this file (default docs/validation.md; '' for none)")
+    p.set_defaults(func=cmd_coverage)
     return parser
 
 

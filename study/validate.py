@@ -655,8 +655,16 @@ def record_lines() -> list[str]:
     lines += (hertz_table_section() + impact_constants_section() + textbook_section() + paper_example_section()
               + cross_check_section() + periodic_solution_section() + damped_section() + replay_section()
               + survey_section()
-              + hierarchy_section())
+              + hierarchy_section() + coverage_section())
     return lines
+
+
+def coverage_section() -> list[str]:
+    """The held-back coverage of the stated errors, from the results ``study coverage`` stored (docs/coverage.json;
+    :func:`study.coverage.coverage_section`): read, not computed, so that ``study validate`` stays fast."""
+    from study.coverage import coverage_section as stored
+
+    return stored()
 
 
 def run_validate(lines: list[str] | None = None) -> str:
