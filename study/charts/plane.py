@@ -149,7 +149,7 @@ FIGURE_ERRORS = {"yield_utilisation": "max_normal_stress_error", "max_normal_str
                  "equivalent_alternating_stress": "alternating_bending_stress_error",
                  "alternating_bending_stress": "alternating_bending_stress_error",
                  "peak_contact_force": "peak_contact_force_error", "fatigue_life": "fatigue_life_error",
-                 "damage_rate": "fatigue_life_error"}
+                 "damage_rate": "fatigue_life_error", "max_deflection": "max_deflection_error"}
 #: Figures that go as the stress to the power −:data:`LIFE_SLOPE` where only a stress error is known.
 LIFE_FIGURES = ("fatigue_life",)
 

@@ -222,6 +222,8 @@ OUTPUTS = {
                                      "reference; a sample value, as window_largest_contact_force)"),
     "window_largest_alternating_stress": ("Pa", "largest per-cycle alternating bending stress seen in the output "
                                           "window (method reference; a sample value)"),
+    "window_largest_deflection": ("m", "largest lateral deflection seen in the output window (method reference; a "
+                                  "sample value, as window_largest_contact_force)"),
     "statistical_figures": ("1", "1 where the figures are means over the revolutions of a motion that does not "
                             "repeat, held to solver.statistical_tolerance; 0 where held to solver.tolerance (method "
                             "reference)"),
@@ -229,6 +231,7 @@ OUTPUTS = {
     "max_normal_stress_error": ("1", "relative error of max_normal_stress, by its parts (method reference)"),
     "alternating_bending_stress_error": ("1", "relative error of alternating_bending_stress, relative to the larger of "
                                          "it and the max bending stress (method reference)"),
+    "max_deflection_error": ("1", "relative error of max_deflection, by its parts (method reference)"),
     "fatigue_life_error": ("1", "relative error e of the damage rate counted by rainflow: the fatigue life lies within "
                            "life/(1 + e) and life/(1 - e) (method reference)"),
     "reference_peak_force_ratio": ("1", "peak contact force, periodic solution over the reference model (method "
