@@ -87,6 +87,17 @@ class Field:
         return kind + unit + (" " + " and ".join(parts) if parts else "") + note
 
 
+def _eccentricity_turn(raw) -> float:
+    """The turn between successive pipe joints' eccentricities [rad]: 'aligned' (0) or an angle ("120 deg"; a number
+    is in rad)."""
+    if isinstance(raw, str) and raw.strip() == "aligned":
+        return 0.0
+    try:
+        return parse_quantity(raw, "rad")
+    except UnitProblem as exc:
+        raise UnitProblem(f"{exc}; a turn is 'aligned' or an angle such as '120 deg'") from None
+
+
 def _dogleg_direction(raw) -> float:
     """A dogleg's direction [rad]: a name of ``DOGLEG_DIRECTIONS`` or an angle ("90 deg"; a number is in rad)."""
     if isinstance(raw, str) and raw.strip() in DOGLEG_DIRECTIONS:
@@ -126,6 +137,11 @@ FIELDS: tuple[Field, ...] = (
           "-12.5 % wall-thickness tolerance allows; see docs/reference_model.md)", "m",
           default=ReferenceOptions.default("eccentricity"),
           display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.eccentricity_turn", "eccentricity_turn", "turn of each pipe joint's mass eccentricity from the "
+          "previous joint's along the string (method reference; default 'aligned', 0: all alike; '120 deg': successive "
+          "joints a third of a turn apart, which drives the string's lateral wave of that wavenumber; the periodic "
+          "section must hold whole turns of the pattern; see docs/reference_model.md)", "rad", default=ReferenceOptions.default("eccentricity_turn"), display_unit="deg",
+          lower=0.0, upper=2 * math.pi, parser=_eccentricity_turn, rule_note="0 to 360 deg"),
     Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
           default=ReferenceOptions.default("tool_joint_diameter"), display_unit="in", **_POSITIVE),
     Field("pipe.tool_joint_inner_diameter", "tool_joint_inner_diameter", "tool-joint bore (method reference: the "

@@ -26,7 +26,8 @@ import numpy as np
 
 from study.physics import section, well, whirl
 from study.solvers.options import ReferenceOptions, study_tolerance
-from study.solvers.reference import contact_layout, joint_modes, mode_shapes, mode_wavenumbers, side_loads
+from study.solvers.reference import (contact_layout, eccentric_factors, joint_modes, mode_shapes, mode_wavenumbers,
+                                     side_loads)
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -61,8 +62,9 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
                                max(joint_mass, 0.0))
     lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
     mass = 0.5 * M * L
-    factors = np.zeros(modes)
-    factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: a uniform load drives the rigid translation of the basis alone
+    # ∫ e^{iφ(x)} ψ_n dx: aligned, a uniform load drives the rigid translation of the basis alone; the joints'
+    # eccentricities turned, the Bloch wave of the turn (reference.eccentric_factors, as the reference model's)
+    factors = eccentric_factors(L, float(option.joint_length), modes, float(option.eccentricity_turn))
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors) / mass
     w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)

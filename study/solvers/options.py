@@ -216,6 +216,10 @@ class CrosscheckOptions(MethodOptions):
     check_tolerance: float = 0.02  #: relative difference accepted between the real contact and the periodic solution
 
 
+#: The default turn of each pipe joint's mass eccentricity from the previous joint's along the string [rad]: none, the
+#: joints aligned, which drives the string's stiffest lateral wave alone; a turn drives the wave of its wavenumber,
+#: whose resonance the rotary speed sweeps through (docs/reference_model.md §1, §7).
+TURN = 0.0
 #: Schemes of the reference model's compiled integrator (option ``reference_integrator``).
 INTEGRATOR_SCHEMES = ("lawson", "lawson-flight", "dopri5")
 
@@ -225,6 +229,9 @@ class ReferenceOptions(MethodOptions):
     """Options of the ``reference`` method (docs/reference_model.md)."""
 
     eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
+    #: the turn of each pipe joint's eccentricity from the previous joint's along the string [rad] (0: aligned, the
+    #: worst case; docs/reference_model.md §1)
+    eccentricity_turn: float = TURN
     tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
     #: the tool joint's bore and length (box and pin), whose mass beyond the plain pipe's is lumped at the joints [m]
     tool_joint_inner_diameter: float = 3.25 * 0.0254

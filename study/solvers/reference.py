@@ -103,7 +103,9 @@ class WhirlModel:
     radius: np.ndarray  #: r_p [m]
     stiffness: np.ndarray  #: Hertz K_p [N m^-3/2]
     phi: np.ndarray  #: (P, N) ψ_n(x_p)
-    eccentric: np.ndarray  #: (N,) generalised eccentric force per modal mass [m/s²]
+    #: (N,) generalised eccentric force per modal mass [m/s²]; complex where the joints' eccentricities turn, its
+    #: phase the lead on cos Ωt (:func:`eccentric_factors`, :func:`eccentric_parts`)
+    eccentric: np.ndarray
     side: np.ndarray  #: (N,) generalised side load per modal mass [m/s²]
     damping: np.ndarray  #: (N,) linear modal damping per mass 2ζω_n [1/s]
     drag: float  #: D [kg/m²]
@@ -379,6 +381,52 @@ def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> 
     return x[order], kinds[order]
 
 
+def eccentricity_phases(span: float, joint_length: float, turn: float) -> np.ndarray:
+    """The phases φ_j [rad] of the mass eccentricity of the section's pipe joints j = 0 … n − 1 (the body from the tool
+    joint at j s to the next), each turned by ``turn`` [rad] from the previous one: φ_j = j·turn. The section repeats,
+    so it must hold whole turns of the pattern, n·turn a multiple of 2π (within 1e-9): raises ValueError naming both
+    fields otherwise (docs/reference_model.md §1)."""
+    n = contact_layout(span, joint_length, 0)[0].size
+    turns = n * float(turn) / (2.0 * np.pi)
+    if abs(turns - round(turns)) > 1e-9 * max(turns, 1.0):
+        raise ValueError(f"pipe.eccentricity_turn = {np.degrees(turn):.6g} deg: the periodic section of "
+                         f"contact.section_length = {span:.6g} m holds {n} joints, which turn the eccentricity by "
+                         f"{np.degrees(n * turn):.6g} deg; allowed: a turn whose multiple by {n} is a whole number of "
+                         "turns (360 deg/n times an integer, 0 for aligned), or a section holding whole turns of it")
+    return np.arange(n) * float(turn)
+
+
+def eccentric_factors(span: float, joint_length: float, modes, turn: float = 0.0) -> np.ndarray:
+    """(N,) ∫₀ᴸ e^{iφ(x)} ψ_n(x) dx [m] over the periodic basis (:func:`mode_shapes`), φ(x) the phase of the mass
+    eccentricity of the pipe joint at x (:func:`eccentricity_phases`): the turning load m_p ε Ω² e^{i(Ωt + φ(x))}
+    per unit length (y + i z) drives basis function n by m_p ε Ω² times it. Aligned (``turn`` 0) it is real, L/√2 on
+    the rigid translation and nil on the others (a uniform load drives ψ_0 alone); turned, complex, its phase the
+    drive's lead on cos Ωt: the joints' loads sum to nil on ψ_0 where the phases close a whole turn, and drive the
+    Bloch wave of the turn (wavenumber turn/s) and its images."""
+    n = _indices(modes)
+    out = np.zeros(n.size)
+    if float(turn) == 0.0:
+        out[n == 0] = span / np.sqrt(2.0)
+        return out
+    phases = eccentricity_phases(span, joint_length, turn)
+    s = span / phases.size
+    a = np.arange(phases.size) * s
+    k = mode_wavenumbers(span, n)
+    kk = np.where(k > 0, k, 1.0)
+    # ∫ over each pipe joint [a, a + s] of ψ_n: s/√2 (ψ_0), (sin k b − sin k a)/k (cos), (cos k a − cos k b)/k (sin)
+    lo, hi = np.outer(a, k), np.outer(a + s, k)
+    pieces = np.where(n % 2 == 1, (np.sin(hi) - np.sin(lo)) / kk, (np.cos(lo) - np.cos(hi)) / kk)
+    pieces[:, n == 0] = s / np.sqrt(2.0)
+    return np.exp(1j * phases) @ pieces
+
+
+def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
+    """(a, b) (N,) the real and imaginary parts of the model's generalised eccentric force per modal mass [m/s²]:
+    the turning load drives mode n by (a cos Ωt − b sin Ωt, a sin Ωt + b cos Ωt) in (y, z)."""
+    e = np.asarray(model.eccentric)
+    return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
+
+
 def side_loads(inputs: Mapping[str, Any], props: Mapping[str, float]) -> tuple[float, float, np.ndarray]:
     """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
     hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
@@ -463,7 +511,9 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     eps = float(option.eccentricity)
     factors = np.zeros(N)
     factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
-    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors) / mass  # the body's, not the joints'
+    # the body's, not the joints'; in phases that turn from pipe joint to pipe joint (eccentric_factors)
+    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om)
+                     * eccentric_factors(L, joint, N, float(option.eccentricity_turn))) / mass
     w_y, w_z, curvature = side_loads(inputs, props)
     if joint_side and inputs.get("side_load") is None:
         w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
@@ -1315,8 +1365,9 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
     turn = model.rotary_speed * window.times[:, None]
     w2 = model.omega**2
     out = shapes if shapes is not None else np.eye(N)
-    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (model.eccentric @ out)
-    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (model.eccentric @ out)
+    ea, eb = eccentric_parts(model)
+    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (ea @ out) - np.sin(turn) * (eb @ out)
+    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (ea @ out) + np.cos(turn) * (eb @ out)
     if model.drag > 0.0:
         S, wts = model.drag_shapes, model.drag_weights
         uy, uz = vy @ S.T, vz @ S.T
@@ -1594,11 +1645,12 @@ def penalty_rhs(model: WhirlModel):
     Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
     S, wts, D = model.drag_shapes, model.drag_weights, model.drag
     phi = model.phi
+    ea, eb = eccentric_parts(model)
 
     def f(t, z):
         qy, qz, vy, vz = z[:N], z[N:2 * N], z[2 * N:3 * N], z[3 * N:4 * N]
-        fy = model.eccentric * np.cos(Om * t) + model.side
-        fz = model.eccentric * np.sin(Om * t)
+        fy = ea * np.cos(Om * t) - eb * np.sin(Om * t) + model.side
+        fz = ea * np.sin(Om * t) + eb * np.cos(Om * t)
         ay = -w2 * qy - model.damping * vy + fy
         az = -w2 * qz - model.damping * vz + fz
         uy, uz = S @ vy, S @ vz
