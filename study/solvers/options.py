@@ -240,6 +240,9 @@ class ReferenceOptions(MethodOptions):
     section_length: float = 93 * 0.3048  #: the periodic section of the string, three joints [m]
     #: contact stations on the pipe body between neighbouring tool joints, evenly spaced (reference model)
     reference_body_stations: int = 1
+    #: the most body stations: the count goes k -> 2k + 1 (the stations kept, one more between each pair) while the body
+    #: passes its wall between them beyond the study's tolerance of its clearance (reference.solve_with_modes)
+    reference_max_body_stations: int = 31
     friction: float = 0.3  #: Coulomb coefficient of pipe on wall
     reference_modes: int = 16  #: modes per lateral direction (the first count tried)
     #: the most modes per direction: the count doubles from reference_modes while the modal part of an error is over
