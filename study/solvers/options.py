@@ -230,7 +230,7 @@ class ReferenceOptions(MethodOptions):
 
     eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
     #: the turn of each pipe joint's eccentricity from the previous joint's along the string [rad] (0: aligned, the
-    #: worst case; docs/reference_model.md §1)
+    #: default; docs/reference_model.md §1, §7)
     eccentricity_turn: float = TURN
     tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
     #: the tool joint's bore and length (box and pin), whose mass beyond the plain pipe's is lumped at the joints [m]

@@ -1538,8 +1538,9 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
     (:func:`solve_with_stations`), run again with the body's contact stations raised k -> 2k + 1 (the stations kept, one
     more between each pair) while the body passes its wall between them (``max_wall_excess``, a bound along the whole
     body, docs/reference_model.md §2) by more than the study's tolerance of its clearance — the gate's test — up to
-    ``reference_max_body_stations``; the count of the answer in ``extras["reference_body_stations"]``, the counts tried
-    and their excess in ``extras["body_stations_tried"]``. Contact points given in code (``contact_points``) are kept."""
+    ``reference_max_body_stations``, at a mode count whose modal part does not send the point to more modes anyway; the
+    count of the answer in ``extras["reference_body_stations"]``, the counts tried, their excess and wall times in
+    ``extras["body_stations_tried"]``. Contact points given in code (``contact_points``) are kept."""
     option = ReferenceOptions.from_inputs(inputs)
     count = int(option.reference_body_stations)
     top = max(count, int(option.reference_max_body_stations))
@@ -1552,7 +1553,7 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
         passed = (excess is not None and clearance is not None and np.isfinite(excess)
                   and excess > tolerance * clearance)
         tried.append(dict(stations=count, max_wall_excess=float(excess) if excess is not None else np.nan,
-                          cpu=float(result.wall_time or 0.0)))
+                          wall_time=float(result.wall_time or 0.0)))
         # a run whose modes left out take a figure over half the tolerance is run again with more modes (solve), which
         # raise their own stations: its stations are not raised
         parts = result.extras.get("convergence") or {}
@@ -1567,7 +1568,7 @@ def solve_with_modes(inputs: Mapping[str, Any]) -> PointResult:
         result.message += (f"; body stations raised from {tried[0]['stations']} to {count} (the body past its wall by "
                            + ", ".join(f"{t['stations']}: {t['max_wall_excess'] / clearance:.2%} c" for t in tried)
                            + ")")
-        result.wall_time = float(sum(t["cpu"] for t in tried))
+        result.wall_time = float(sum(t["wall_time"] for t in tried))
     return result
 
 

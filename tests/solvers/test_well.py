@@ -405,6 +405,10 @@ def test_a_turn_that_does_not_close_over_the_section_is_refused_naming_both_fiel
     reference.build_model(_default(100, 10, eccentricity_turn=np.radians(90.0), section_length=4 * 31 * 0.3048))
     point = config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "aligned"}).point()
     assert point["eccentricity_turn"] == 0.0
+    # and a config says it before any run (exit code 2 from the CLI), for a three-joint section
+    with pytest.raises(config.ConfigError, match=r"pipe\.eccentricity_turn = 90 deg.*multiple of 120 deg"):
+        config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "90 deg"})
+    config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "240 deg"})
 
 
 def test_a_whole_turn_between_joints_gives_the_aligned_answers():
