@@ -464,3 +464,16 @@ def test_the_joints_share_of_the_turning_load_by_the_balance_of_forces():
         swing = 0.5 * (force.max(axis=0) - force.min(axis=0))
         np.testing.assert_allclose(swing / share, ratio, atol=0.1 if ratio else 1e-6)
     assert "contact would open" in sliding.steady_state(_default(200, 30))["why"]
+    # and the whole string's balance (Newton): aligned, the turning load m_p ε Ω² L lifts it off the low side where it
+    # beats the side load of body and joints, w L + Σ W_j sin θ: at 227.0 rpm at 9 ppg in the 8° hole (docs/
+    # reference_model.md §1, §7; the sliding state's contact opens sooner, 177.7 rpm, by the spans' dynamics); turned a
+    # third of a turn from joint to joint, the three joints' loads sum to nothing (1 + e^{2πi/3} + e^{4πi/3} = 0): no
+    # speed lifts the string as a whole
+    model = reference.build_model(_default(200, 30))
+    w = float(np.hypot(*reference.side_loads(_default(200, 30), model.props)[:2]))
+    joints = model.kinds == 1
+    lift = np.sqrt((w * model.span + np.count_nonzero(joints) * model.joint_weight)
+                   / (model.props["pipe_mass"] * model.eccentricity * model.span))
+    assert lift * 30 / np.pi == pytest.approx(227.0, abs=0.1)
+    turned = reference.eccentric_factors(model.span, model.span / np.count_nonzero(joints), 4, 2 * np.pi / 3)
+    assert abs(turned[0]) < 1e-12 * model.span
