@@ -87,6 +87,17 @@ class Field:
         return kind + unit + (" " + " and ".join(parts) if parts else "") + note
 
 
+def _eccentricity_turn(raw) -> float:
+    """The turn between successive pipe joints' eccentricities [rad]: 'aligned' (0) or an angle ("120 deg"; a number
+    is in rad)."""
+    if isinstance(raw, str) and raw.strip() == "aligned":
+        return 0.0
+    try:
+        return parse_quantity(raw, "rad")
+    except UnitProblem as exc:
+        raise UnitProblem(f"{exc}; a turn is 'aligned' or an angle such as '120 deg'") from None
+
+
 def _dogleg_direction(raw) -> float:
     """A dogleg's direction [rad]: a name of ``DOGLEG_DIRECTIONS`` or an angle ("90 deg"; a number is in rad)."""
     if isinstance(raw, str) and raw.strip() in DOGLEG_DIRECTIONS:
@@ -126,6 +137,12 @@ FIELDS: tuple[Field, ...] = (
           "-12.5 % wall-thickness tolerance allows; see docs/reference_model.md)", "m",
           default=ReferenceOptions.default("eccentricity"),
           display_unit="in", **_NON_NEGATIVE),
+    Field("pipe.eccentricity_turn", "eccentricity_turn", "turn of each pipe joint's mass eccentricity from the "
+          "previous joint's along the string (method reference; default 'aligned', 0: all alike; '120 deg': successive "
+          "joints a third of a turn apart, which drives the string's lateral wave of that wavenumber; the periodic "
+          "section must hold whole turns of the pattern; see docs/reference_model.md)", "rad",
+          default=ReferenceOptions.default("eccentricity_turn"), display_unit="deg", lower=0.0, upper=2 * math.pi,
+          parser=_eccentricity_turn, rule_note="0 to 360 deg"),
     Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
           default=ReferenceOptions.default("tool_joint_diameter"), display_unit="in", **_POSITIVE),
     Field("pipe.tool_joint_inner_diameter", "tool_joint_inner_diameter", "tool-joint bore (method reference: the "
@@ -560,6 +577,29 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
     below("tool_joint_inner_diameter", "tool_joint_diameter", "a tool joint's wall needs thickness")
     below("tool_joint_length", "joint_length", "the tool joint is a part of the joint of pipe")
     below("min_span", "max_span", "the span search needs a range")
+
+    def values(name):
+        if name in axes:
+            return [float(v) for v in np.atleast_1d(axes[name])]
+        value = inputs.get(name, FIELDS_BY_NAME[name].default)
+        return [float(value)] if isinstance(value, (int, float)) else []
+
+    # the reference model's periodic section holds whole turns of the pipe joints' eccentricity pattern
+    # (study.solvers.reference.eccentricity_phases says it again where a section is built in code)
+    for length in values("section_length"):
+        for joint in values("joint_length"):
+            joints = length / joint
+            if abs(joints - round(joints)) > 1e-6 * max(joints, 1.0) or round(joints) < 1:
+                continue  # not a whole number of joints: the reference model says so
+            for turn in values("eccentricity_turn"):
+                turns = round(joints) * turn / (2 * math.pi)
+                if abs(turns - round(turns)) > 1e-9 * max(turns, 1.0):
+                    problems.append(
+                        f"pipe.eccentricity_turn = {math.degrees(turn):g} deg: the reference model's periodic section "
+                        f"(contact.section_length = {length:g} m, {round(joints)} joints of pipe.joint_length = "
+                        f"{joint:g} m) must hold whole turns of it; allowed: 0 (aligned) or a multiple of "
+                        f"{360 / round(joints):g} deg, or a section of a multiple of 360/turn joints")
+                    return
     yield_hi = span("yield_strength")[1]
     tensile_lo = span("tensile_strength")[0]
     for grade in axes.get("pipe_grade", [inputs.get("pipe_grade")]):

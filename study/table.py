@@ -61,6 +61,10 @@ EXTRA_OUTPUTS = {
     "modal_error": (None, "modal part of each figure's error: the size of the correction for the modes left out, "
                           "measured on the run"),
     "modes_tried": (None, "the mode counts the reference model ran, with their modal parts and figures"),
+    "reference_body_stations": ("1", "contact stations on the pipe body between neighbouring joints, raised where "
+                                "the body passed its wall between them"),
+    "body_stations_tried": (None, "the body station counts the reference model ran, with how far the body passed its "
+                                  "wall and their wall times"),
     "revolutions_needed": ("1", "revolutions in all that would bring the figures within the tolerance"),
     "modal_quarter_fraction": ("1", "share of the largest bending moment carried by the upper quarter of the modes "
                                "(a truncation indicator)"),

@@ -21,11 +21,12 @@ def penalty_rhs(model: reference.WhirlModel):
     Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
     S, wts, D = model.drag_shapes, model.drag_weights, model.drag
     phi = model.phi
+    ea, eb = reference.eccentric_parts(model)
 
     def f(t, z):
         qy, qz, vy, vz = z[:N], z[N:2 * N], z[2 * N:3 * N], z[3 * N:4 * N]
-        fy = model.eccentric * np.cos(Om * t) + model.side
-        fz = model.eccentric * np.sin(Om * t)
+        fy = ea * np.cos(Om * t) - eb * np.sin(Om * t) + model.side
+        fz = ea * np.sin(Om * t) + eb * np.cos(Om * t)
         ay = -w2 * qy - model.damping * vy + fy
         az = -w2 * qz - model.damping * vz + fz
         uy, uz = S @ vy, S @ vz

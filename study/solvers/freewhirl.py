@@ -4,10 +4,13 @@ wall, in closed form (docs/reference_model.md; the cheapest rung of the ``auto``
 The scene is the reference model's (:mod:`study.solvers.reference`): a periodic section of the long string
 (its modes :func:`study.solvers.reference.mode_shapes`) in both lateral directions, driven by its mass
 eccentricity ε (the centrifugal load m_p ε Ω² turning with the pipe); mud added mass in M and quadratic drag
-D |u̇| u̇. A uniform load drives the rigid translation ψ_0 alone, so away from the wall the string whirls as a
-rigid body (Jeffcott's rotor with no stiffness; Vance 1988 ch. 2): a circle of the same radius at every section,
-on which the speed |u̇| = Ω |A| is constant, so the drag is exactly a viscous damping c = D Ω |A| and the modal
-equation (−Ω²) a + iΩ C a / m = ε_0 is solved by fixed-point iteration on |A| (a few steps).
+D |u̇| u̇. The pipe joints' eccentricities aligned (``pipe.eccentricity_turn`` 0), a uniform load drives the rigid
+translation ψ_0 alone, so away from the wall the string whirls as a rigid body (Jeffcott's rotor with no stiffness;
+Vance 1988 ch. 2), bent only by its tool joints' mass; turned from joint to joint, the load drives the string's wave of
+the turn (:func:`study.solvers.reference.eccentric_factors`) and it whirls bent in it. Either way every section
+whirls forward on a circle, on which its speed |u̇| = Ω |A(x)| is constant, so the drag is exactly a viscous damping
+c(x) = D Ω |A(x)| and the modal equations (K − Ω² M) a + iΩ C a = ε are solved by fixed-point iteration on |A|
+(a few steps).
 
 Clear of the wall only where nothing lies on it: a side load (the buoyed weight in an inclined hole) lays the
 string on its tool joints on the low side — the rigid translation has no stiffness to hold it off — so there
@@ -26,7 +29,8 @@ import numpy as np
 
 from study.physics import section, well, whirl
 from study.solvers.options import ReferenceOptions, study_tolerance
-from study.solvers.reference import contact_layout, joint_modes, mode_shapes, mode_wavenumbers, side_loads
+from study.solvers.reference import (contact_layout, eccentric_factors, joint_modes, mode_shapes, mode_wavenumbers,
+                                     side_loads)
 from study.solvers.result import REGIMES, PointResult
 from study.solvers.scene import section_properties
 
@@ -61,8 +65,9 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
                                max(joint_mass, 0.0))
     lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
     mass = 0.5 * M * L
-    factors = np.zeros(modes)
-    factors[0] = L / np.sqrt(2.0)  # ∫ψ_n dx: a uniform load drives the rigid translation of the basis alone
+    # ∫ e^{iφ(x)} ψ_n dx: aligned, a uniform load drives the rigid translation of the basis alone; the joints'
+    # eccentricities turned, the Bloch wave of the turn (reference.eccentric_factors, as the reference model's)
+    factors = eccentric_factors(L, float(option.joint_length), modes, float(option.eccentricity_turn))
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors) / mass
     w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)

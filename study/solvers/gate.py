@@ -73,8 +73,8 @@ def within_clearance(values: Mapping[str, Any], inputs: Mapping[str, Any]) -> Pr
     excess = values.get("max_wall_excess")  # anywhere along the body, beyond each contact's own approach
     if excess is not None and np.isfinite(excess) and excess > clearance * study_tolerance(inputs):
         return ("unphysical", f"the pipe body passes its wall by up to {excess:.4g} m ({excess / clearance:.3g} c) "
-                              "beyond its contacts' Hertz approach between its contact stations (more "
-                              "reference_body_stations hold it)")
+                              "beyond its contacts' Hertz approach between its contact stations (the reference model "
+                              "raises them up to reference_max_body_stations; more hold it)")
     return None
 
 

@@ -216,6 +216,10 @@ class CrosscheckOptions(MethodOptions):
     check_tolerance: float = 0.02  #: relative difference accepted between the real contact and the periodic solution
 
 
+#: The default turn of each pipe joint's mass eccentricity from the previous joint's along the string [rad]: none, the
+#: joints aligned, which drives the string's stiffest lateral wave alone; a turn drives the wave of its wavenumber,
+#: whose resonance the rotary speed sweeps through (docs/reference_model.md §1, §7).
+TURN = 0.0
 #: Schemes of the reference model's compiled integrator (option ``reference_integrator``).
 INTEGRATOR_SCHEMES = ("lawson", "lawson-flight", "dopri5")
 
@@ -225,6 +229,9 @@ class ReferenceOptions(MethodOptions):
     """Options of the ``reference`` method (docs/reference_model.md)."""
 
     eccentricity: float = 0.1 * 0.0254  #: mass eccentricity of the pipe [m]
+    #: the turn of each pipe joint's eccentricity from the previous joint's along the string [rad] (0: aligned, the
+    #: default; docs/reference_model.md §1, §7)
+    eccentricity_turn: float = TURN
     tool_joint_diameter: float = 6.25 * 0.0254  #: [m]
     #: the tool joint's bore and length (box and pin), whose mass beyond the plain pipe's is lumped at the joints [m]
     tool_joint_inner_diameter: float = 3.25 * 0.0254
@@ -233,6 +240,9 @@ class ReferenceOptions(MethodOptions):
     section_length: float = 93 * 0.3048  #: the periodic section of the string, three joints [m]
     #: contact stations on the pipe body between neighbouring tool joints, evenly spaced (reference model)
     reference_body_stations: int = 1
+    #: the most body stations: the count goes k -> 2k + 1 (the stations kept, one more between each pair) while the body
+    #: passes its wall between them beyond the study's tolerance of its clearance (reference.solve_with_modes)
+    reference_max_body_stations: int = 31
     friction: float = 0.3  #: Coulomb coefficient of pipe on wall
     reference_modes: int = 16  #: modes per lateral direction (the first count tried)
     #: the most modes per direction: the count doubles from reference_modes while the modal part of an error is over

@@ -11,9 +11,10 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   the periodic basis ψ_0 = 1/√2 (the rigid translation, ω_0 = 0), ψ_{2j−1} = cos k_j x, ψ_{2j} = sin k_j x,
   k_j = 2πj/L (:func:`mode_shapes`), n = 0 … N − 1 (``reference_modes``, default 16, modes per direction),
   modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
-- **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), uniform
-  along the section, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
-  (:func:`study.physics.whirl.eccentric_load`); and the uniform side load (:func:`side_loads`): in an inclined
+- **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), the same size in every
+  pipe joint, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
+  (:func:`study.physics.whirl.eccentric_load`), in the same phase in every pipe joint (``eccentricity_turn`` 0, the
+  default) or turned from joint to joint (:func:`eccentric_factors`); and the uniform side load (:func:`side_loads`): in an inclined
   hole (``inclination``, config ``hole.inclination``, default 0) the buoyed weight's side component, in a curved
   hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
   curvature also bends the pipe that follows it (``side_load`` [N/m] sets the load directly in code). A uniform
@@ -26,7 +27,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   ``damping_ratio`` in every mode) and ``"none"``.
 - **contact points**: the tool joints at 0, s, 2s, … (s = ``joint_length``; x = L is the joint at 0 again),
   radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe body halfway between neighbouring
-  joints, radius r_o, clearance R − r_o (:func:`contact_layout`).
+  joints, radius r_o, clearance R − r_o (:func:`contact_layout`; ``reference_body_stations`` of them, raised by
+  :func:`solve_with_modes` where the body passes its wall between them).
   ``contact_points`` (fractions of L) and ``contact_kinds`` (0 body, 1 joint) replace them in code.
 - **wall**: Hertz normal force K_p δ^{3/2}(1 + χ δ̇)₊ with K_p from
   :func:`study.physics.hertz.hertz_stiffness` for the point's radius in the hole at the curvature of the
@@ -105,7 +107,9 @@ class WhirlModel:
     radius: np.ndarray  #: r_p [m]
     stiffness: np.ndarray  #: Hertz K_p [N m^-3/2]
     phi: np.ndarray  #: (P, N) ψ_n(x_p)
-    eccentric: np.ndarray  #: (N,) generalised eccentric force per modal mass [m/s²]
+    #: (N,) generalised eccentric force per modal mass [m/s²]; complex where the joints' eccentricities turn, its
+    #: phase the lead on cos Ωt (:func:`eccentric_factors`, :func:`eccentric_parts`)
+    eccentric: np.ndarray
     side: np.ndarray  #: (N,) generalised side load per modal mass [m/s²]
     damping: np.ndarray  #: (N,) linear modal damping per mass 2ζω_n [1/s]
     drag: float  #: D [kg/m²]
@@ -505,6 +509,52 @@ def contact_layout(span: float, joint_length: float, body_stations: int = 1) -> 
     return x[order], kinds[order]
 
 
+def eccentricity_phases(span: float, joint_length: float, turn: float) -> np.ndarray:
+    """The phases φ_j [rad] of the mass eccentricity of the section's pipe joints j = 0 … n − 1 (the body from the tool
+    joint at j s to the next), each turned by ``turn`` [rad] from the previous one: φ_j = j·turn. The section repeats,
+    so it must hold whole turns of the pattern, n·turn a multiple of 2π (within 1e-9): raises ValueError naming both
+    fields otherwise (docs/reference_model.md §1)."""
+    n = contact_layout(span, joint_length, 0)[0].size
+    turns = n * float(turn) / (2.0 * np.pi)
+    if abs(turns - round(turns)) > 1e-9 * max(turns, 1.0):
+        raise ValueError(f"pipe.eccentricity_turn = {np.degrees(turn):.6g} deg: the periodic section of "
+                         f"contact.section_length = {span:.6g} m holds {n} joints, which turn the eccentricity by "
+                         f"{np.degrees(n * turn):.6g} deg; allowed: a turn whose multiple by {n} is a whole number of "
+                         "turns (360 deg/n times an integer, 0 for aligned), or a section holding whole turns of it")
+    return np.arange(n) * float(turn)
+
+
+def eccentric_factors(span: float, joint_length: float, modes, turn: float = 0.0) -> np.ndarray:
+    """(N,) ∫₀ᴸ e^{iφ(x)} ψ_n(x) dx [m] over the periodic basis (:func:`mode_shapes`), φ(x) the phase of the mass
+    eccentricity of the pipe joint at x (:func:`eccentricity_phases`): the turning load m_p ε Ω² e^{i(Ωt + φ(x))}
+    per unit length (y + i z) drives basis function n by m_p ε Ω² times it. Aligned (``turn`` 0) it is real, L/√2 on
+    the rigid translation and nil on the others (a uniform load drives ψ_0 alone); turned, complex, its phase the
+    drive's lead on cos Ωt: the joints' loads sum to nil on ψ_0 where the phases close a whole turn, and drive the
+    Bloch wave of the turn (wavenumber turn/s) and its images."""
+    n = _indices(modes)
+    out = np.zeros(n.size)
+    if float(turn) == 0.0:
+        out[n == 0] = span / np.sqrt(2.0)
+        return out
+    phases = eccentricity_phases(span, joint_length, turn)
+    s = span / phases.size
+    a = np.arange(phases.size) * s
+    k = mode_wavenumbers(span, n)
+    kk = np.where(k > 0, k, 1.0)
+    # ∫ over each pipe joint [a, a + s] of ψ_n: s/√2 (ψ_0), (sin k b − sin k a)/k (cos), (cos k a − cos k b)/k (sin)
+    lo, hi = np.outer(a, k), np.outer(a + s, k)
+    pieces = np.where(n % 2 == 1, (np.sin(hi) - np.sin(lo)) / kk, (np.cos(lo) - np.cos(hi)) / kk)
+    pieces[:, n == 0] = s / np.sqrt(2.0)
+    return np.exp(1j * phases) @ pieces
+
+
+def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
+    """(a, b) (N,) the real and imaginary parts of the model's generalised eccentric force per modal mass [m/s²]:
+    the turning load drives mode n by (a cos Ωt − b sin Ωt, a sin Ωt + b cos Ωt) in (y, z)."""
+    e = np.asarray(model.eccentric)
+    return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
+
+
 def side_loads(inputs: Mapping[str, Any], props: Mapping[str, float]) -> tuple[float, float, np.ndarray]:
     """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
     hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
@@ -589,7 +639,9 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     eps = float(option.eccentricity)
     factors = np.zeros(N)
     factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
-    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om) * factors) / mass  # the body's, not the joints'
+    # the body's, not the joints'; in phases that turn from pipe joint to pipe joint (eccentric_factors)
+    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om)
+                     * eccentric_factors(L, joint, N, float(option.eccentricity_turn))) / mass
     w_y, w_z, curvature = side_loads(inputs, props)
     if joint_side and inputs.get("side_load") is None:
         w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
@@ -1591,8 +1643,9 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
     turn = model.rotary_speed * window.times[:, None]
     w2 = model.omega**2
     out = shapes if shapes is not None else np.eye(N)
-    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (model.eccentric @ out)
-    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (model.eccentric @ out)
+    ea, eb = eccentric_parts(model)
+    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (ea @ out) - np.sin(turn) * (eb @ out)
+    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (ea @ out) + np.cos(turn) * (eb @ out)
     if model.drag > 0.0:
         S, wts = model.drag_shapes, model.drag_weights
         uy, uz = vy @ S.T, vz @ S.T
@@ -1786,9 +1839,48 @@ def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> di
 
 
 def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
-    """One run of the ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count);
-    with the residual vectors and the run at half the modes (``previous``) the modal part of the errors is measured
-    between the two (:func:`doubling_modal_error`) where the motion does not repeat."""
+    """The ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count): one run
+    (:func:`solve_with_stations`), run again with the body's contact stations raised k -> 2k + 1 (the stations kept, one
+    more between each pair) while the body passes its wall between them (``max_wall_excess``, a bound along the whole
+    body, docs/reference_model.md §2) by more than the study's tolerance of its clearance — the gate's test — up to
+    ``reference_max_body_stations``, at a mode count whose modal part does not send the point to more modes anyway; the
+    count of the answer in ``extras["reference_body_stations"]``, the counts tried, their excess and wall times in
+    ``extras["body_stations_tried"]``. Contact points given in code (``contact_points``) are kept. With the residual
+    vectors and the run at half the modes (``previous``) the modal part of the errors is measured between the two
+    (:func:`doubling_modal_error`) where the motion does not repeat."""
+    option = ReferenceOptions.from_inputs(inputs)
+    count = int(option.reference_body_stations)
+    top = max(count, int(option.reference_max_body_stations))
+    tolerance = study_tolerance(inputs)
+    more_modes = 2 * int(option.reference_modes) <= int(option.reference_max_modes)
+    tried = []
+    while True:
+        result = solve_with_stations({**inputs, "reference_body_stations": count}, previous)
+        excess, clearance = result.values.get("max_wall_excess"), result.values.get("clearance")
+        passed = (excess is not None and clearance is not None and np.isfinite(excess)
+                  and excess > tolerance * clearance)
+        tried.append(dict(stations=count, max_wall_excess=float(excess) if excess is not None else np.nan))
+        # a run whose modes left out take a figure over half the tolerance is run again with more modes (solve), which
+        # raise their own stations: its stations are not raised
+        parts = result.extras.get("convergence") or {}
+        modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
+        if (result.status != "ok" or not passed or 2 * count + 1 > top or inputs.get("contact_points") is not None
+                or (more_modes and modal > 0.5 * tolerance)):
+            break
+        count = 2 * count + 1
+    result.extras["reference_body_stations"] = count
+    result.extras["body_stations_tried"] = tried
+    if len(tried) > 1:
+        result.message += (f"; body stations raised from {tried[0]['stations']} to {count} (the body past its wall by "
+                           + ", ".join(f"{t['stations']}: {t['max_wall_excess'] / clearance:.2%} c" for t in tried)
+                           + ")")
+    return result
+
+
+def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+    """One run of the ``reference`` method with the inputs' ``reference_modes`` and ``reference_body_stations``; with
+    the residual vectors and the run at half the modes (``previous``) the modal part of the errors is measured between
+    the two (:func:`doubling_modal_error`)."""
     result = PointResult(method=METHOD)
     model = build_model(inputs)
     vals = result.values

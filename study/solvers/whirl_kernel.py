@@ -33,7 +33,7 @@ that the energy balance is checked to the integrator's own accuracy.
 Right-hand side (per modal mass m = M L/2, φ_pn = ψ_n(x_p), the periodic basis of
 :func:`study.solvers.reference.mode_shapes`):
 
-    q̈ = −ω_n² q − d_n q̇ + ε_n (cos Ωt, sin Ωt) + s_n e_y
+    q̈ = −ω_n² q − d_n q̇ + Re/Im(ε_n e^{iΩt}) + s_n e_y
          − Σ_g w_g S_gn D |u̇_g| u̇_g / m + Σ_p φ_pn F_p / m
 
 with the contact force on the pipe at point p, penetration δ = |u_p| − c_p, outward normal n̂,
@@ -155,7 +155,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (6, G) holds the drag points' velocities and
     their half sums.
 
-    sy = (omega2, damping, eccentric, side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
+    sy = (omega2, damping, eccentric (1 or 2, N: in phase with cos Ωt, and in quadrature where the joints'
+    eccentricities turn), side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
     fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring):
     the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
@@ -169,12 +170,16 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
     co = np.cos(Om * t)
     si = np.sin(Om * t)
+    turned = ecc.shape[0] > 1
     p_load = 0.0
     for n in range(N):
         vy = z[2 * N + n]
         vz = z[3 * N + n]
-        fy = ecc[n] * co + side[n]
-        fz = ecc[n] * si
+        fy = ecc[0, n] * co + side[n]
+        fz = ecc[0, n] * si
+        if turned:  # the joints' eccentricities in turned phases: the load's part in quadrature
+            fy -= ecc[1, n] * si
+            fz += ecc[1, n] * co
         if linear:
             out[n] = vy
             out[N + n] = vz
@@ -638,6 +643,9 @@ def kernel_system(sy: tuple) -> tuple:
     the residual flexibility per point."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy
     SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
+    # the eccentric load's modal amplitudes as rows (in phase with cos Ωt; in quadrature, where complex: the joints'
+    # eccentricities turned, reference.eccentric_factors)
+    ecc = (np.stack((ecc.real, ecc.imag)) if np.iscomplexobj(ecc) else np.asarray(ecc, float)[None, :]).astype(float)
     return (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity,
             np.ascontiguousarray(fr, dtype=float))
 

@@ -10,7 +10,7 @@ import pytest
 from study import config
 from study.physics import well
 from study.physics import whirl as whirl_physics
-from study.solvers import reference, sliding
+from study.solvers import freewhirl, reference, sliding
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -333,6 +333,29 @@ def test_set_rolling_the_joints_roll_backwards_without_slip_with_the_body_clear(
     assert reference.stresses(inputs, model, window)["max_wall_excess"] < -0.2 * float(np.max(model.clearance))
 
 
+def test_a_backward_bouncing_body_past_its_wall_gets_stations_until_it_is_within_it():
+    # the chaotic backward bouncing of a drop (μ = 0.8, 30°, 200 rpm, 20 000 lbf; short: 16 modes, 6 revolutions and
+    # a window of 2, held to a tolerance of 5 %) passes its wall between one body station a joint by 26 % of the
+    # body's clearance (max_wall_excess, the bound along the whole body); the model raises its stations 1 -> 3 -> 7
+    # (measured 15 %, then 2.8 %) and the answer's body is within its wall but for its contacts' Hertz approach and
+    # the tolerance: the gate's clearance check passes (docs/reference_model.md §2, §7)
+    from study.solvers import gate
+
+    inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_initial": "rest",
+              "reference_modes": 16, "reference_max_modes": 16, "reference_revolutions": 6, "reference_window": 2,
+              "reference_max_revolutions": 8, "tolerance": 0.05}
+    result = reference.solve_with_modes(inputs)
+    tried = result.extras["body_stations_tried"]
+    clearance = result.values["clearance"]
+    assert tried[0]["stations"] == 1 and tried[0]["max_wall_excess"] > 0.1 * clearance
+    assert [t["stations"] for t in tried] == [2 ** (i + 1) - 1 for i in range(len(tried))]
+    assert result.extras["reference_body_stations"] == tried[-1]["stations"] <= 31
+    assert result.values["max_wall_excess"] <= 0.05 * clearance
+    assert gate.within_clearance(result.values, inputs) is None
+    assert result.values["whirl_frequency_ratio"] < -0.5 and result.values["impacts_per_revolution"] > 1
+    assert "body stations raised from 1" in result.message
+
+
 def test_the_modal_accelerations_are_the_recorded_velocities_rate():
     # the joints' inertia forces −m_j ü(x_j) of the quasi-static correction take q̈ from the modal equations with the
     # recorded contact forces (reference.modal_accelerations): on a recorded revolution of the string lying on its
@@ -353,3 +376,104 @@ def test_the_modal_accelerations_are_the_recorded_velocities_rate():
     joints = reference.modal_accelerations(model, window, model.phi[at].T)
     J = int(np.count_nonzero(at))
     np.testing.assert_allclose(joints[:, :J], acc[:, :N] @ model.phi[at].T, atol=1e-12 * np.max(np.abs(joints)))
+
+
+# --- the eccentricity's phases from pipe joint to pipe joint -----------------------------------------------------
+
+def test_the_turned_eccentric_load_is_its_integral_over_the_pipe_joints():
+    # ∫₀ᴸ e^{iφ(x)} ψ_n(x) dx with φ = j·turn on the j-th pipe joint (reference.eccentric_factors) against Gauss–Legendre
+    # quadrature on each joint (exact to rounding for these smooth pieces at 64 nodes); aligned, L/√2 on the rigid
+    # translation alone (a uniform load); a third of a turn over three joints sums to nothing on it (1 + e^{2πi/3} +
+    # e^{4πi/3} = 0) and drives the Bloch wave of wavenumber 2π/L (cos and sin k_1 x) most
+    L, s, N = 3 * 9.4488, 9.4488, 16
+    aligned = reference.eccentric_factors(L, s, N, 0.0)
+    assert not np.iscomplexobj(aligned) and aligned[0] == L / np.sqrt(2.0) and np.all(aligned[1:] == 0.0)
+    g, w = np.polynomial.legendre.leggauss(64)
+    for turn in (2 * np.pi / 3, 4 * np.pi / 3, 2 * np.pi):
+        quad = np.zeros(N, complex)
+        for j in range(3):
+            x = j * s + 0.5 * s * (g + 1.0)
+            quad += np.exp(1j * j * turn) * (0.5 * s * w) @ reference.mode_shapes(x, L, N)
+        np.testing.assert_allclose(reference.eccentric_factors(L, s, N, turn), quad, atol=1e-12 * L)
+    turned = reference.eccentric_factors(L, s, N, 2 * np.pi / 3)
+    assert abs(turned[0]) < 1e-12 * L and int(np.argmax(np.abs(turned))) in (1, 2)
+
+
+def test_a_turn_that_does_not_close_over_the_section_is_refused_naming_both_fields():
+    with pytest.raises(ValueError, match=r"pipe\.eccentricity_turn = 90 deg.*contact\.section_length"):
+        reference.build_model(_default(100, 10, eccentricity_turn=np.radians(90.0)))
+    reference.build_model(_default(100, 10, eccentricity_turn=np.radians(90.0), section_length=4 * 31 * 0.3048))
+    point = config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "aligned"}).point()
+    assert point["eccentricity_turn"] == 0.0
+    # and a config says it before any run (exit code 2 from the CLI), for a three-joint section
+    with pytest.raises(config.ConfigError, match=r"pipe\.eccentricity_turn = 90 deg.*multiple of 120 deg"):
+        config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "90 deg"})
+    config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "240 deg"})
+
+
+def test_a_whole_turn_between_joints_gives_the_aligned_answers():
+    # 360° between successive joints is the aligned string taken through the turned load's path (its complex modal
+    # load, the kernel's quadrature part): the same answers to rounding, on the wall (the sliding state, 100 rpm,
+    # 10 000 lbf; 356.653 N measured before the turn was an input) and clear of it (the paper's point, vertical:
+    # the free whirl and the reference model's forward whirl)
+    aligned = sliding.solve(_default(100, 10))
+    whole = sliding.solve(_default(100, 10, eccentricity_turn=2 * np.pi))
+    assert aligned.values["peak_contact_force"] == pytest.approx(356.6533, rel=1e-6)
+    for name in ("peak_contact_force", "max_normal_stress", "alternating_bending_stress"):
+        assert whole.values[name] == pytest.approx(aligned.values[name], rel=1e-9), name
+    paper = config.load(ROOT / "configs" / "paper.toml").point()
+    a, b = reference.solve_with_modes(paper), reference.solve_with_modes({**paper, "eccentricity_turn": 2 * np.pi})
+    for name in ("max_deflection", "max_bending_stress", "alternating_bending_stress"):
+        assert b.values[name] == pytest.approx(a.values[name], rel=1e-8), name
+
+
+def test_clear_of_the_wall_the_turned_string_whirls_as_the_free_whirl_says():
+    # a third of a turn between joints, the paper's point (vertical, 300 rpm): the string is no longer a rigid rotor;
+    # it whirls forward bent in the Bloch wave of the turn, which the free whirl solves in closed form and the
+    # reference model integrates (measured 0.8 % apart in deflection, 0.2 % in bending: the reference model's 16
+    # modes and its start-up's drift off the centre, docs/reference_model.md §7)
+    paper = {**config.load(ROOT / "configs" / "paper.toml").point(), "eccentricity_turn": 2 * np.pi / 3}
+    free, ref = freewhirl.solve(paper), reference.solve_with_modes(paper)
+    assert free.status == ref.status == "ok" and ref.values["peak_contact_force"] == 0.0
+    assert ref.values["whirl_frequency_ratio"] == pytest.approx(1.0, abs=1e-3)
+    assert ref.values["max_deflection"] == pytest.approx(free.values["max_deflection"], rel=0.02)
+    assert ref.values["max_bending_stress"] == pytest.approx(free.values["max_bending_stress"], rel=0.02)
+    # five times the aligned string's bending (its joints' mass only bends that one)
+    aligned = freewhirl.solve({**paper, "eccentricity_turn": 0.0})
+    assert free.values["max_bending_stress"] > 5 * aligned.values["max_bending_stress"]
+
+
+def test_the_joints_share_of_the_turning_load_by_the_balance_of_forces():
+    # on the wall, turning at 100 rpm (below the spans' first mode on the joints, 224 rpm at 30 000 lbf, and above the
+    # string's sway along the wall, a pendulum of about 45 rpm), the turning load is carried nearly statically: aligned,
+    # every span carries the same load, so each joint its share m_p ε Ω² s (as the side load's, by the periodic
+    # string's symmetry), and the joint's force swings by that about its rest (measured 1.06 times it: the spans'
+    # dynamics; 1.18 at 50 rpm, near the sway, 1.32 at 200 rpm, near the spans' mode); the joints alternating
+    # (180°), the two spans on a joint pull it equally in opposite senses, so its force does not swing at all — at any
+    # speed, also at 200 rpm and 30 000 lbf, where the aligned string's joints lift (their share amplified 1.32 times
+    # by the spans' dynamics beats the 290 N they rest with, docs/reference_model.md §7) and the alternating ones lie
+    # with their rest's force
+    for rpm, klbf, turn, ratio in ((100, 30, 0.0, 1.0), (50, 30, np.pi, 0.0), (200, 30, np.pi, 0.0)):
+        state = sliding.steady_state(_default(rpm, klbf, eccentricity_turn=turn, section_length=2 * 31 * 0.3048))
+        assert state["why"] is None, (rpm, turn, state["why"])
+        model = state["model"]
+        joints = model.kinds == 1
+        force = state["window"].forces[:, joints, 2]
+        share = float(whirl_physics.eccentric_load(model.props["pipe_mass"], model.eccentricity, model.rotary_speed)
+                      * model.span / np.count_nonzero(joints))
+        swing = 0.5 * (force.max(axis=0) - force.min(axis=0))
+        np.testing.assert_allclose(swing / share, ratio, atol=0.1 if ratio else 1e-6)
+    assert "contact would open" in sliding.steady_state(_default(200, 30))["why"]
+    # and the whole string's balance (Newton): aligned, the turning load m_p ε Ω² L lifts it off the low side where it
+    # beats the side load of body and joints, w L + Σ W_j sin θ: at 227.0 rpm at 9 ppg in the 8° hole (docs/
+    # reference_model.md §1, §7; the sliding state's contact opens sooner, 177.7 rpm, by the spans' dynamics); turned a
+    # third of a turn from joint to joint, the three joints' loads sum to nothing (1 + e^{2πi/3} + e^{4πi/3} = 0): no
+    # speed lifts the string as a whole
+    model = reference.build_model(_default(200, 30))
+    w = float(np.hypot(*reference.side_loads(_default(200, 30), model.props)[:2]))
+    joints = model.kinds == 1
+    lift = np.sqrt((w * model.span + np.count_nonzero(joints) * model.joint_weight)
+                   / (model.props["pipe_mass"] * model.eccentricity * model.span))
+    assert lift * 30 / np.pi == pytest.approx(227.0, abs=0.1)
+    turned = reference.eccentric_factors(model.span, model.span / np.count_nonzero(joints), 4, 2 * np.pi / 3)
+    assert abs(turned[0]) < 1e-12 * model.span
