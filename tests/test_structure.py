@@ -29,14 +29,7 @@ PRIVATE_CROSSINGS: set[tuple[str, str]] = set()
 #: The one home of Hertz's contact law (its force with the Hunt–Crossley damping, energy, linearised stiffness).
 CONTACT_LAW_HOME = "study/physics/contact.py"
 #: Modules that still write the law out, each with its reason: the ones left to switch over to the home.
-CONTACT_LAW_LEFT = {
-    # the reference model's kernel: series_hertz's branch without flexibility, K d sqrt(d) (its contact evaluation
-    # is being changed at the same time; to call contact.hertz_force_one)
-    "study/solvers/whirl_kernel.py",
-    # the reference model: WhirlModel.energy's series contact energy 0.4 K d_H^2.5 and modal_check's K d^1.5 (the
-    # same work; to call contact.hertz_energy and contact.hertz_force)
-    "study/solvers/reference.py",
-}
+CONTACT_LAW_LEFT: set[str] = set()
 #: The law's exponent forms in code (comments and strings left out): ``** 1.5`` / ``** 2.5``, and ``d * sqrt(d)``.
 CONTACT_LAW_FORM = re.compile(r"\*\* [12]\.5(?!\d)|\b(\w+) \* (?:\w+ \. )?sqrt \( \1 \)")
 

@@ -64,7 +64,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import fatigue, hertz, limits, section, well, whirl
-from study.physics.contact import calibrated_hysteresis, linear_contact_damping, linearised_stiffness
+from study.physics.contact import (calibrated_hysteresis, hertz_energy, hertz_force, linear_contact_damping,
+                                   linearised_stiffness)
 from study.solvers import stress_kernel, whirl_kernel
 from study.solvers.options import ReferenceOptions, statistical_tolerance, study_tolerance
 from study.solvers.result import REGIMES, PointResult
@@ -279,7 +280,7 @@ class WhirlModel:
         w2 = np.tile(self.ritz["omega2"], 2)
         phi = self.ritz["phi"]
         d = np.maximum(np.hypot(phi @ z[:K], phi @ z[K:2 * K]) - self.clearance, 0.0)
-        contact = 0.4 * self.stiffness * d**2.5 if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
+        contact = hertz_energy(d, self.stiffness) if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
         return float(0.5 * self.mass * np.sum(z[2 * K:4 * K] ** 2 + w2 * z[:2 * K] ** 2) + np.sum(contact))
 
     @property
@@ -300,7 +301,7 @@ class WhirlModel:
         d = np.maximum(np.hypot(y, w) - self.clearance, 0.0)
         if self.law == 0:  # the Hertz spring's 2/5 K δ_H^{5/2} and the series flexibility's f F²/2
             approach, force = series_contact(d, self.stiffness, self.flexibility)
-            contact = 0.4 * self.stiffness * approach**2.5 + 0.5 * self.flexibility * force**2
+            contact = hertz_energy(approach, self.stiffness) + 0.5 * self.flexibility * force**2
         else:
             contact = 0.5 * self.penalty_stiffness * d**2
         return float(0.5 * self.mass * np.sum(v**2 + w2 * q**2) + np.sum(contact))
@@ -1228,7 +1229,7 @@ def modal_check(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
         if d <= 0:
             continue
         series = float(series_contact(np.array([d]), model.stiffness[p], flexibility[p])[1][0])
-        hertz = float(model.stiffness[p] * d**1.5)
+        hertz = float(hertz_force(d, model.stiffness[p]))
         if model.law == 0 and series > 0:
             changes.append(hertz / series - 1.0)
     out["peak_contact_force"] = ratio * float(np.mean(changes)) if changes else 0.0

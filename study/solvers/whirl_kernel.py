@@ -49,6 +49,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from study.physics.contact import hertz_force_one
+
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
 #: Approach speed [m/s] below which a contact opens with the Hunt–Crossley damping of this speed, χ = h(e)/v
@@ -120,7 +122,7 @@ def series_hertz(d, K, f):
     term of g alone reaches d there, so the start lies above the root, and g is increasing and convex for x > 0, so
     the iterates fall monotonically onto it (quadratically near it). f = 0: K d^{3/2} exactly."""
     if f <= 0.0:
-        return K * d * np.sqrt(d)
+        return hertz_force_one(d, K)
     c = f * K
     x = min(np.sqrt(d), (d / c) ** (1.0 / 3.0))
     for _ in range(40):
