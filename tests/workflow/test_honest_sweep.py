@@ -10,6 +10,7 @@ import xarray as xr
 from study.config import load_text
 from study.physics import hertz
 from study.solvers import METHODS, STATUS
+from study.solvers.options import DEFAULT_STATISTICAL_TOLERANCE
 from study.workflow.sweep import run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -52,8 +53,13 @@ def test_no_ok_point_breaks_a_physical_bound(tmp_path, method):
             approach = np.nan_to_num(ds.max_approach.values[ok]) if "max_approach" in ds else 0.0
             assert np.all(ds.max_deflection.values[ok] <= c * (1 + tolerance) + approach)
         if "error_estimate" in ds:
+            # held to the study's tolerance, or where the figures are means over a motion that does not repeat to the
+            # statistical one (configs/paper.toml sets neither: the defaults, study.solvers.options)
             estimate = ds.error_estimate.values[ok]
-            assert np.all(np.isnan(estimate) | (estimate <= tolerance))
+            held = np.full(estimate.shape, tolerance)
+            if "statistical_figures" in ds:
+                held[ds.statistical_figures.values[ok] == 1] = DEFAULT_STATISTICAL_TOLERANCE
+            assert np.all(np.isnan(estimate) | (estimate <= held))
         if "max_normal_stress" in ds:
             assert np.all(np.isfinite(ds.max_normal_stress.values[ok]))
             assert np.all(ds.max_normal_stress.values[ok] >= ds.max_bending_stress.values[ok])
