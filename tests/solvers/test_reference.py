@@ -304,12 +304,13 @@ def test_chaotic_bouncing_figures_are_statistics_whose_error_reflects_their_scat
         assert x.size >= 36
         sixes = np.mean([reference.standard_error(x[i:i + 6]) / np.mean(x[i:i + 6]) for i in range(0, x.size - 5, 6)])
         assert b[name]["error"] < 0.75 * sixes, name
-    # a bounce's peak force scatters more from revolution to revolution than the bending it leaves, so after 42
-    # revolutions the force's stated error is still well above the study's 1 % and twice the stresses' standard
-    # errors (measured 4.8 % against 1.0 and 1.2 %; a threshold of 5 % on the force alone held for one compilation
-    # of the integrator and not for the next: the last bits of the arithmetic move a chaotic trajectory)
-    stress_errors = [b[name]["error"] for name in ("max_normal_stress", "alternating_bending_stress")]
-    assert b["peak_contact_force"]["window"] > max(0.02, 2.0 * max(stress_errors))
+    # a bounce's peak force scatters from revolution to revolution, so after 42 revolutions the force's standard
+    # error is still above the study's 1 % and its stated window part (two standard errors, reference.CONFIDENCE)
+    # above 2 % (measured 4.8 % on one compilation; on a generic-CPU one 4.2 %, beside stresses' 4.1 and 4.7 %: which
+    # scatters more, the force or the bending it leaves, is the realisation's, so it is not asserted; a threshold of
+    # 5 % on the force alone held for one compilation and not for the next: the last bits move a chaotic trajectory)
+    assert b["peak_contact_force"]["error"] > 0.01
+    assert b["peak_contact_force"]["window"] >= reference.CONFIDENCE * b["peak_contact_force"]["error"] > 0.02
     result = solve_point(point, "reference")
     assert result.status == "not_converged" and result.extras["whirl"] == "bouncing"
     assert result.values["window_largest_contact_force"] > result.values["peak_contact_force"] > 0
