@@ -1796,7 +1796,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     while True:
         result = solve_with_modes({**inputs, "reference_modes": count}, previous if dynamic else None)
         parts = result.extras.get("convergence") or {}
-        modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
+        modal = modal_part(result)
         tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
                           **{name: float(result.values.get(name, np.nan)) for name in FIGURES},
                           window={name: float(e["window"]) for name, e in parts.items()}))
@@ -1820,6 +1820,13 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
                            + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
     return result
+
+
+def modal_part(result: PointResult) -> float:
+    """The largest modal part of a run's figures' errors (``extras["convergence"]``; 0 where none is stated): what
+    decides whether the point goes on to more modes (:func:`solve`, :func:`solve_with_modes`)."""
+    parts = result.extras.get("convergence") or {}
+    return max((float(e["modes"]) for e in parts.values()), default=0.0)
 
 
 def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> dict[str, float]:
@@ -1863,8 +1870,7 @@ def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = N
         tried.append(dict(stations=count, max_wall_excess=float(excess) if excess is not None else np.nan))
         # a run whose modes left out take a figure over half the tolerance is run again with more modes (solve), which
         # raise their own stations: its stations are not raised
-        parts = result.extras.get("convergence") or {}
-        modal = max((float(e["modes"]) for e in parts.values()), default=0.0)
+        modal = modal_part(result)
         if (result.status != "ok" or not passed or 2 * count + 1 > top or inputs.get("contact_points") is not None
                 or (more_modes and modal > 0.5 * tolerance)):
             break
