@@ -13,9 +13,11 @@ this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/perform
 - a sweep compiles in its own process before it starts its workers, which would otherwise each compile the
   same kernels at once.
 
-numba has no public API that tells whether its cache holds a kernel without compiling or loading it, so
-:func:`kernels`, :func:`cached` and :func:`_record_path` read the dispatcher's cache object (``_cache``: enabled,
-its index, its folder) of the pinned numba (pyproject.toml); an unreadable index counts as a missing one.
+numba has no public API that tells whether its cache holds a kernel without compiling or loading it (a
+dispatcher's ``stats`` counts cache hits and misses only once a call has loaded or compiled it), so :func:`cached`
+reads the index numba keeps per function through the dispatcher's private cache object, of the pinned numba
+(pyproject.toml); an unreadable index counts as a missing one. Whether a kernel is cached at all and where its cache
+folder is come from the dispatcher's public ``stats.cache_path`` (None without ``cache=True``).
 """
 
 from __future__ import annotations
@@ -58,7 +60,7 @@ def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
     for name in modules:
         module = importlib.import_module(name)
         for attr, value in vars(module).items():
-            if (isinstance(value, CPUDispatcher) and value._cache is not None and value._cache._enabled
+            if (isinstance(value, CPUDispatcher) and value.stats.cache_path is not None
                     and value.targetoptions.get("inline", "never") == "never"):
                 found[f"{name}.{attr}"] = value
     return found
@@ -66,7 +68,8 @@ def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
 
 def cached(dispatcher) -> bool:
     """Whether numba's on-disk cache holds at least one compiled version of ``dispatcher`` that is
-    current with its source (the index numba keeps per function: empty when absent or stale)."""
+    current with its source (the index numba keeps per function: empty when absent or stale). No public call reads
+    it without loading the kernel (numba 0.68), hence the private ``_cache._cache_file._load_index``."""
     try:
         return bool(dispatcher._cache._cache_file._load_index())
     except Exception:  # noqa: BLE001 - an unreadable index is a missing one: numba compiles again
@@ -78,7 +81,7 @@ def _record_path(found: dict[str, Any]) -> Path | None:
     under ``NUMBA_CACHE_DIR``); None without kernels or a cache folder."""
     first = next(iter(found.values()), None)
     try:
-        return Path(first._cache.cache_path) / RECORD if first is not None else None
+        return Path(first.stats.cache_path) / RECORD if first is not None else None
     except Exception:  # noqa: BLE001 - no cache folder: nothing recorded
         return None
 
