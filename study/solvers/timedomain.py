@@ -153,9 +153,10 @@ class ModalModel:
         return f / self.mass - self.omega**2 * q, fc
 
 
-def build_model(inputs: Mapping[str, Any]) -> ModalModel:
-    """The modal model of ``inputs`` (needs ``span_length``)."""
-    option = TimeDomainOptions.from_inputs(inputs)
+def build_model(inputs: Mapping[str, Any], option: TimeDomainOptions | None = None) -> ModalModel:
+    """The modal model of ``inputs`` (needs ``span_length``); ``option``: the method's options, else read from
+    ``inputs``."""
+    option = TimeDomainOptions.from_inputs(inputs) if option is None else option
     par = sdof.equivalent_parameters({**inputs, "sdof_mass": "modal",
                                       "sdof_damping": "none" if option.time_damping == "none" else "mud"})
     scene = par.scene
@@ -193,9 +194,9 @@ def build_model(inputs: Mapping[str, Any]) -> ModalModel:
     return model
 
 
-def initial_state(model: ModalModel, inputs: Mapping[str, Any]):
+def initial_state(model: ModalModel, inputs: Mapping[str, Any], option: TimeDomainOptions | None = None):
     N = len(model.modes)
-    option = TimeDomainOptions.from_inputs(inputs)
+    option = TimeDomainOptions.from_inputs(inputs) if option is None else option
     if option.initial_state is not None:
         q0, v0 = (np.asarray(a, float).reshape(N) for a in option.initial_state)
         return q0.copy(), v0.copy()
@@ -415,15 +416,17 @@ def _event_revolution(system, model, t0, t1, q, v, contacts, peak):
 # --- the run -----------------------------------------------------------------------------------------
 
 
-def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict[str, Any]:
+def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None,
+             option: TimeDomainOptions | None = None) -> dict[str, Any]:
     """Integrate revolution by revolution until periodic or ``time_revolutions`` (default 60).
 
     Returns a dict: verdict ('periodic', 'not_periodic', 'chattering', 'failed'), message, period (revolutions
     or None), impacts (contact records: point, start, approach, peak, duration, rebound,
-    hysteresis), boundary states, times, energies at the boundaries, step data, model.
+    hysteresis), boundary states, times, energies at the boundaries, step data, model. ``option``: the method's
+    options (built once by :func:`solve`), else read from ``inputs``.
     """
-    option = TimeDomainOptions.from_inputs(inputs)
-    model = model or build_model(inputs)
+    option = TimeDomainOptions.from_inputs(inputs) if option is None else option
+    model = model or build_model(inputs, option)
     integrator = option.time_integrator
     if integrator == "auto":
         integrator = "explicit" if model.drag_shapes is not None else "event"
@@ -431,7 +434,7 @@ def simulate(inputs: Mapping[str, Any], model: ModalModel | None = None) -> dict
     tol = float(option.time_tolerance)
     check = bool(option.time_check_periodic)
     tau = model.period
-    q, v = initial_state(model, inputs)
+    q, v = initial_state(model, inputs, option)
     v_scale = max(model.rotary_speed * model.clearance, float(np.max(np.abs(model.phi @ v))))
     lim = stability_limit(model, v_scale)
     contacts = _Contacts(model)
@@ -611,7 +614,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if given_span(inputs, result, "the time-domain method",
                   "effective tension {tension:.4g} N buckles the {span:.4g} m span") is None:
         return result
-    run = simulate(inputs)
+    run = simulate(inputs, option=option)
     model = run["model"]
     vals = result.values
     vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi),

@@ -273,3 +273,14 @@ def test_settled_period_finds_the_period_of_noisy_repeating_states_as_defined():
         assert td.settled_period(states, scale, 1e-4) == expected
         found += expected is not None
     assert found > 300  # periods were found, not only None
+
+
+def test_solve_reads_its_options_from_the_inputs_once(point, monkeypatch):
+    # issue 35: the method's options are built once, at solve, and passed down to simulate, build_model and
+    # initial_state (each read them from the inputs again before: four builds a point)
+    builds = []
+    read = td.TimeDomainOptions.from_inputs
+    monkeypatch.setattr(td.TimeDomainOptions, "from_inputs",
+                        classmethod(lambda cls, inputs: builds.append(cls) or read(inputs)))
+    result = td.solve({**point, "span_length": 10.0, "time_revolutions": 1, "time_check_periodic": False})
+    assert result.values["revolutions_simulated"] >= 1 and builds == [td.TimeDomainOptions]
