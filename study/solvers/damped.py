@@ -448,7 +448,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         return done("buckled", f"effective tension {scene.props['effective_tension']:.4g} N buckles every span "
                                f"longer than {scene.props['buckling_length']:.4g} m, below the shortest searched")
     options = Options(**{**options.__dict__, "max_span": max_span})
-    too_many = impact_model.span_search_too_large(scene, options, inputs.get("max_poles"))
+    too_many = impact_model.span_search_too_large(scene, options)
     if too_many is not None:
         return done("failed", too_many)
     c0 = assumed_damping(scene)

@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any, Mapping
 
 import numba
 import numpy as np
 
 from study.physics import beam, hertz, midspan, section
-from study.solvers.options import MAX_POLES, Options
-from study.solvers.scene import Scene
+from study.solvers.options import Options
+from study.solvers.scene import Scene, make_scene
 
 
 def odd_modes(n_modes: int) -> np.ndarray:
@@ -48,10 +49,11 @@ def resonance_candidates(scene: Scene, modes, min_span: float) -> int:
     return int(modes.size * (np.ceil(omega_max / scene.rotary_speed) + 1))
 
 
-def span_search_too_large(scene: Scene, options: Options, budget: int | None = None) -> str | None:
-    """None when the span search's resonance candidates (:func:`resonance_candidates`) fit ``budget`` (config
-    ``solver.max_poles``; default :data:`MAX_POLES`), otherwise why not, with the numbers."""
-    budget = int(budget or MAX_POLES)
+def span_search_too_large(scene: Scene, options: Options) -> str | None:
+    """None when the span search's resonance candidates (:func:`resonance_candidates`) fit ``options.max_poles``
+    (config ``solver.max_poles``; default :data:`study.solvers.options.MAX_POLES`), otherwise why not, with the
+    numbers."""
+    budget = int(options.max_poles)
     count = resonance_candidates(scene, odd_modes(options.modes), options.min_span)
     if count <= budget:
         return None
@@ -59,6 +61,12 @@ def span_search_too_large(scene: Scene, options: Options, budget: int | None = N
             f"at {scene.rotary_speed * 30 / np.pi:.4g} rpm down to a {options.min_span:.4g}-m span, above "
             f"solver.max_poles = {budget:.3g}: raise the rotary speed or solver.min_span, or solver.max_poles on a "
             "larger machine")
+
+
+def span_search_problem(inputs: Mapping[str, Any]) -> str | None:
+    """:func:`span_search_too_large` for a point given by its SI inputs: its scene and the periodic methods'
+    options built here, at the solvers' edge, for a caller that holds only the point (the sweep's check)."""
+    return span_search_too_large(make_scene(inputs), Options.from_inputs(inputs))
 
 
 def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:

@@ -131,7 +131,7 @@ class MethodOptions:
 class Options(MethodOptions):
     """Resolution and search settings of the periodic methods (``fast``, ``series``, ``auto``, ``crosscheck``).
 
-    The first five are config fields (``solver.modes`` ...); the rest are internal resolutions.
+    The first six are config fields (``solver.modes`` ...); the rest are internal resolutions.
     """
 
     modes: int = 41  #: highest (odd) mode number kept
@@ -139,6 +139,7 @@ class Options(MethodOptions):
     max_span: float = 304.8  #: longest span searched [m] (1000 ft)
     load_shape: str = "parabolic"  #: spatial shape of the contact load (beam.LOAD_SHAPES)
     resonance_width: float = 1e-6  #: resonances narrower than this (relative span) are not searched
+    max_poles: int = MAX_POLES  #: resonance candidates the span search may enumerate (a memory guard)
     samples: int = 4  #: samples of F inside each interval between (wide) poles
     time_points: int = 480  #: points over one (half) period outside the pulse, for condition 1
     pulse_points: int = 64  #: points across the pulse
@@ -148,7 +149,7 @@ class Options(MethodOptions):
 
     #: the fields a config sets (same names in the point's inputs); the others are internal resolutions (the
     #: point's ``tolerance`` is the study's, not condition 1's slack)
-    CONFIG_FIELDS = ("modes", "min_span", "max_span", "load_shape", "resonance_width")
+    CONFIG_FIELDS = ("modes", "min_span", "max_span", "load_shape", "resonance_width", "max_poles")
 
 
 #: Time-domain integrators; "auto": the event-driven one where the damping is linear, the explicit one with

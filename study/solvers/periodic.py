@@ -429,7 +429,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
                           f"longer than {scene.props['buckling_length']:.4g} m, below the shortest searched")
         return result
     options = Options(**{**options.__dict__, "max_span": max_span})
-    too_many = span_search_too_large(scene, options, inputs.get("max_poles"))
+    too_many = span_search_too_large(scene, options)
     if too_many is not None:
         result.status = "failed"
         result.message = too_many

@@ -17,8 +17,6 @@ import numpy as np
 
 from study.config import Study
 from study.solvers import OUTPUTS, impact_model
-from study.solvers.options import Options
-from study.solvers.scene import make_scene
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
 from study.workflow.compiled import ensure_compiled
@@ -78,8 +76,7 @@ def check_span_search(study: Study) -> None:
     axes = {name: (np.min(v), np.max(v)) for name, v in study.axes.items() if np.asarray(v).dtype.kind == "f"}
     for corner in itertools.product(*axes.values()):
         point = {**study.inputs, **dict(zip(axes, corner))}
-        problem = impact_model.span_search_too_large(make_scene(point), Options.from_inputs(point),
-                                                 point.get("max_poles"))
+        problem = impact_model.span_search_problem(point)
         if problem is not None:
             raise SweepError(f"{problem}; nothing was computed")
 

@@ -188,3 +188,16 @@ def test_a_rotary_speed_too_slow_to_search_fails_at_once_without_allocating(defa
     result = solve_point({**default, "rotary_speed": 0.001 * RPM, "span_length": None}, "fast")
     assert result.status == "failed" and "solver.max_poles" in result.message
     assert result.wall_time < 0.5
+
+
+def test_the_points_own_max_poles_bounds_the_span_search(default):
+    # solver.max_poles travels in the periodic methods' options (options.Options.max_poles), to the solver and to
+    # the sweep's check before any work alike: a budget of one candidate refuses the default point's search, which
+    # the default budget (options.MAX_POLES) holds
+    from study.solvers import impact_model
+
+    point = {**default, "span_length": None, "max_poles": 1}
+    result = solve_point(point, "fast")
+    assert result.status == "failed" and "solver.max_poles = 1:" in result.message
+    assert "solver.max_poles = 1:" in impact_model.span_search_problem(point)
+    assert impact_model.span_search_problem({**point, "max_poles": None}) is None
