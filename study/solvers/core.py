@@ -15,30 +15,28 @@ import numpy as np
 
 from study.physics import hertz, section
 from study.solvers.result import PointResult
-from study.solvers.scene import contact_compliance, section_properties
+from study.solvers.scene import Scene, make_scene
 
 # Modes reported for the natural frequencies of a given span.
 FREQUENCY_MODES = (1, 3, 5)
 
 
-def impact(inputs: Mapping[str, Any], props: Mapping[str, float], span_length: float,
-           impact_velocity: float, axial_curvature: float) -> dict[str, float]:
+def impact(scene: Scene, span_length: float, impact_velocity: float, axial_curvature: float) -> dict[str, float]:
     """Hertz impact of the equivalent mass and Lee's pulse for a span and impact velocity.
 
-    span_length L [m], impact_velocity V_p [m/s], axial_curvature κ of the pipe at the contact
+    scene: the design point's (:func:`study.solvers.scene.make_scene`: section, radii, contact compliance,
+    restitution); span_length L [m], impact_velocity V_p [m/s], axial_curvature κ of the pipe at the contact
     [1/m]. Returns the impact quantities (SI). The contact ellipse is evaluated at the pulse's peak
     force (paper §IV C: the ellipse is sized by the maximum force); whether it is a Hertz contact is
     decided by the gate every result passes (:mod:`study.solvers.gate`).
     """
-    r_o = inputs["outer_diameter"] / 2.0
-    hole_r = inputs["hole_diameter"] / 2.0
-    compliance = contact_compliance(inputs)
-    m_e = float(section.equivalent_mass(props["mass_per_length"], span_length))
+    r_o, hole_r, compliance = scene.outer_radius, scene.hole_radius, scene.compliance_sum
+    m_e = float(section.equivalent_mass(scene.props["mass_per_length"], span_length))
     a_sum, b_sum = hertz.curvature_sums(r_o, hole_r, axial_curvature)
     stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, compliance))
     elastic = hertz.hertz_impact(m_e, impact_velocity, stiffness)
     duration = float(hertz.lee_duration(m_e, impact_velocity, stiffness))
-    impulse = float(hertz.impact_impulse(m_e, impact_velocity, inputs["restitution"]))
+    impulse = float(hertz.impact_impulse(m_e, impact_velocity, scene.restitution))
     peak = float(hertz.lee_peak_force(impulse, duration))
     ellipse = hertz.contact_ellipse(peak, r_o, hole_r, axial_curvature, compliance)
     values = {
@@ -66,7 +64,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     contact and missing inputs are statuses.
     """
     result = PointResult(method="core")
-    props = section_properties(inputs)
+    scene = make_scene(inputs)
+    props = scene.props
     result.values.update(props)
     span = inputs.get("span_length")
     messages = []
@@ -87,14 +86,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         omega = section.natural_frequencies(span, props["bending_stiffness"], props["effective_tension"],
                                             props["mass_per_length"], FREQUENCY_MODES)
         result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
-        if inputs.get("closure", "prescribed") != "prescribed":
+        if scene.closure != "prescribed":
             result.status = "incomplete"
-            messages.append(f"closure {inputs.get('closure')!r} needs the periodic solution's own impact "
+            messages.append(f"closure {scene.closure!r} needs the periodic solution's own impact "
                             "velocity: impact outputs are omitted by the core method")
         else:
             clearance = props["clearance"]
-            velocity = inputs["rotary_speed"] * clearance
+            velocity = scene.rotary_speed * clearance
             curvature = clearance * (np.pi / span) ** 2
-            result.values.update(impact(inputs, props, span, velocity, curvature))
+            result.values.update(impact(scene, span, velocity, curvature))
     result.message = "; ".join(messages) if messages else "physics core evaluated at the given span"
     return result
