@@ -95,15 +95,16 @@ class EquivalentSdof:
     scene: Scene  #: the point's scene (section properties)
 
 
-def equivalent_parameters(inputs: Mapping[str, Any]) -> EquivalentSdof:
+def equivalent_parameters(inputs: Mapping[str, Any], option: SdofOptions | None = None) -> EquivalentSdof:
     """The SDOF model of the design point's span (see the module docstring and :class:`EquivalentSdof`).
 
     Needs ``inputs['span_length']``. The Hertz stiffness is at the assumed-mode curvature κ = c (π/L)².
+    ``option``: the SDOF options (its mass and damping models), else read from ``inputs``.
     """
     scene = make_scene(inputs)
     span = float(inputs["span_length"])
     props = scene.props
-    option = SdofOptions.from_inputs(inputs)
+    option = SdofOptions.from_inputs(inputs) if option is None else option
     mass_model, damping_model = option.sdof_mass, option.sdof_damping
     m = float(replace(scene, impact_mass=mass_model).equivalent_mass(span))
     omega1 = float(natural_frequencies(scene, span, [1])[0])
@@ -296,10 +297,11 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     Extras: floquet_multipliers, half_period_multipliers, stability, drive_source, orbit_phase, orbits_found.
     """
     result = PointResult(method="sdof")
+    option = SdofOptions.from_inputs(inputs)
     if given_span(inputs, result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
                   "load of the {span:.4g} m span: no first mode to reduce to") is None:
         return result
-    par = equivalent_parameters(inputs)
+    par = equivalent_parameters(inputs, option)
     p = impact_params(par)
     v = result.values
     v.update(span_length=par.span_length, first_natural_frequency=par.omega1 / (2 * np.pi),
@@ -319,7 +321,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "incomplete"
         result.message = "a side force breaks the symmetry: no alternating orbit (use impact_pattern one_wall)"
         return result
-    n_scan = int(SdofOptions.from_inputs(inputs).sdof_scan)
+    n_scan = int(option.sdof_scan)
     orbits = symmetric_orbits(p, n_scan) if par.pattern == "alternating" else one_wall_orbit(p, n_scan)
     result.extras["orbits_found"] = len(orbits)
     stable = [o for o in orbits if o["verdict"] == "stable"]

@@ -62,14 +62,14 @@ boundaries to match within ``time_tolerance`` (default 1e-4).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import contact, hertz, section, whirl
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
-from study.solvers.options import INTEGRATORS, TimeDomainOptions
+from study.solvers.options import INTEGRATORS, SdofOptions, TimeDomainOptions
 from study.solvers.result import PointResult
 from study.solvers.scene import given_span
 
@@ -157,8 +157,10 @@ def build_model(inputs: Mapping[str, Any], option: TimeDomainOptions | None = No
     """The modal model of ``inputs`` (needs ``span_length``); ``option``: the method's options, else read from
     ``inputs``."""
     option = TimeDomainOptions.from_inputs(inputs) if option is None else option
-    par = sdof.equivalent_parameters({**inputs, "sdof_mass": "modal",
-                                      "sdof_damping": "none" if option.time_damping == "none" else "mud"})
+    # the SDOF model's parameters with the modal mass and this method's damping (its drive and side force as set)
+    screen = replace(SdofOptions.from_inputs(inputs), sdof_mass="modal",
+                     sdof_damping="none" if option.time_damping == "none" else "mud")
+    par = sdof.equivalent_parameters(inputs, screen)
     scene = par.scene
     props = scene.props
     L = par.span_length

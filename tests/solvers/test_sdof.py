@@ -113,3 +113,12 @@ def test_a_side_force_holding_the_span_on_the_wall_is_sticking(point):
     assert par.side_force - par.drive_amplitude > par.stiffness * par.clearance
     r = sdof.solve(inputs)
     assert r.status == "sticking" and "(sticking)" in r.message
+
+
+def test_solve_reads_its_options_from_the_inputs_once(point, monkeypatch):
+    # issue 35: the screen's options are built once, at solve, and passed to equivalent_parameters (each read them
+    # from the inputs again before: two builds a point)
+    builds = []
+    read = sdof.SdofOptions.from_inputs
+    monkeypatch.setattr(sdof.SdofOptions, "from_inputs", classmethod(lambda cls, inputs: builds.append(cls) or read(inputs)))
+    assert sdof.solve(point).status == "ok" and builds == [sdof.SdofOptions]
