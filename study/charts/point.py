@@ -28,6 +28,7 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     as a :class:`~study.charts.design.Chart` named "point". Raises ValueError where the model cannot run there
     (a buckled section): the message says why."""
     from study.solvers import reference
+    from study.solvers.scene import make_scene
 
     model = reference.build_model(inputs)
     if not np.all(np.isfinite(model.omega)):
@@ -75,7 +76,8 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     fy, fz = (reference.periodic_fields(model, window.states[worst:worst + 1, j * N:(j + 1) * N], None, x, j)
               for j in range(2))
     radial = np.hypot(fy["deflection"][0], fz["deflection"][0])
-    r_o, r_i = float(inputs["outer_diameter"]) / 2.0, float(inputs["inner_diameter"]) / 2.0
+    scene = make_scene(inputs)
+    r_o, r_i = float(scene.outer_radius), float(scene.inner_radius)
     bending = np.hypot(fy["moment"][0], fz["moment"][0]) * r_o / float(section.second_moment_of_area(r_o, r_i))
     shape.plot(x / FT, radial / IN, color="C3", lw=1.5, label="radial deflection")
     shape.plot(model.points / FT, model.clearance / IN, ls="none", marker="_", ms=14, mew=2.0, color="k",
@@ -91,8 +93,8 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     lines = shape.get_legend_handles_labels()
     more = stress.get_legend_handles_labels()
     shape.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7)
-    speed = convert(float(inputs["rotary_speed"]), "rad/s", "rpm")
-    load = float(inputs["axial_tension"]) / LBF
+    speed = convert(scene.rotary_speed, "rad/s", "rpm")
+    load = scene.axial_tension / LBF
     figure_title(fig, "One point, seen: the reference model's motion", [
         f"{speed:.0f} rpm, {load:,.0f} lbf; whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Ω); "
         f"window of {revolutions[-1]:.1f} revolutions after {run['revolutions']} of transient"], 15.0)

@@ -60,7 +60,9 @@ class Scene:
 
     props: Mapping[str, float]
     outer_radius: float
+    inner_radius: float  #: the pipe's bore r_i [m]
     hole_radius: float
+    axial_tension: float  #: the true axial tension T0 [N] (the effective one is ``props["effective_tension"]``)
     compliance_sum: float
     rotary_speed: float
     restitution: float
@@ -105,7 +107,8 @@ def make_scene(inputs: Mapping[str, Any]) -> Scene:
                  compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
                  restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
                  closure=inputs.get("closure", "prescribed"),
-                 impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES))
+                 impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES),
+                 inner_radius=inputs["inner_diameter"] / 2.0, axial_tension=float(inputs["axial_tension"]))
 
 
 def given_span(inputs: Mapping[str, Any], result: PointResult, method: str, buckled: str) -> float | None:
