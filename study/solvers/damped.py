@@ -514,7 +514,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         status = "not_converged"
         notes.append(f"energy balance: the end moments feed {balance['end_moment_work']:.4g} J per period, the drag "
                      f"takes {balance['drag_dissipation']:.4g} J (residual {residual:.2g} > {tolerance:.2g})")
-    result.error_estimate = (periodic.truncation_bound(scene, impact, inputs, options) / values["max_normal_stress"]
+    result.error_estimate = (periodic.truncation_bound(scene, impact, options) / values["max_normal_stress"]
                              + values["location_residual"])
     message = (f"{summary}; the first valid is at {impact.span_length:.6g} m; equivalent damping "
                f"{chosen.spec.damping:.4g} N s/m² after {len(history) - 1} steps; end moment "

@@ -31,7 +31,7 @@ def finish(scene: Scene, chosen: impact_model.Impact, inputs: Mapping[str, Any],
     paper's term-ratio check."""
     values = stresses(scene, chosen, inputs, options)
     result.values.update(values)
-    result.error_estimate = (periodic.truncation_bound(scene, chosen, inputs, options) / values["max_normal_stress"]
+    result.error_estimate = (periodic.truncation_bound(scene, chosen, options) / values["max_normal_stress"]
                              + values["location_residual"])
     series.add_term_ratios(scene, chosen, inputs, options, result)
 

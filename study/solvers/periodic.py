@@ -51,8 +51,7 @@ from study.solvers.span_search import (SpanSearch, find_roots, midspan_screen, m
                                        search_intervals)
 
 
-def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
-                     options: Options, reach: int = 8) -> float:
+def truncation_bound(scene: Scene, impact: Impact, options: Options, reach: int = 8) -> float:
     """Upper bound [Pa] on the bending stress carried by the modes left out, n in (N, reach·N].
 
     Each left-out mode adds at most (r_o/I) EI k_n² |a_n(t) − a_n,qs(t)| to the stress anywhere on the
@@ -62,7 +61,7 @@ def truncation_bound(scene: Scene, impact: Impact, inputs: Mapping[str, Any],
     fewer modes cannot see; the modes beyond fall off like n⁻⁴ once ω_n T_L ≫ 1.
     """
     p = scene.props
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    r_o, r_i = scene.outer_radius, scene.inner_radius
     inertia = float(section.second_moment_of_area(r_o, r_i))
     n = odd_modes(reach * options.modes)
     n = n[n > options.modes]

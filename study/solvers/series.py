@@ -216,7 +216,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         s = converged_stresses(scene, chosen, inputs, options, truncation)
         result.values.update(s.values)
         # The change with the harmonics says nothing of the modes left out: add their bound.
-        modes_bound = periodic.truncation_bound(scene, chosen, inputs, options) / s.values["max_normal_stress"]
+        modes_bound = periodic.truncation_bound(scene, chosen, options) / s.values["max_normal_stress"]
         result.error_estimate = max(s.change, modes_bound) + s.values["location_residual"]
         result.extras.update(series_modes=int(options.modes), series_harmonics=int(s.harmonics),
                              series_history=[list(h) for h in s.history])
