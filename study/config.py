@@ -138,8 +138,9 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("eccentricity"),
           display_unit="in", **_NON_NEGATIVE),
     Field("pipe.eccentricity_turn", "eccentricity_turn", "turn of each pipe joint's mass eccentricity from the "
-          "previous joint's along the string (method reference; default 'aligned', 0: all alike; '120 deg': successive "
-          "joints a third of a turn apart, which drives the string's lateral wave of that wavenumber; the periodic "
+          "previous joint's along the string (method reference; default 'aligned', 0: all alike, the worst case turning "
+          "slowly; '90 deg', the default study's in a four-joint section: a string made up at random has that turn's "
+          "joint loads in the mean square; a turn drives the string's lateral wave of that wavenumber; the periodic "
           "section must hold whole turns of the pattern; see docs/reference_model.md)", "rad",
           default=ReferenceOptions.default("eccentricity_turn"), display_unit="deg", lower=0.0, upper=2 * math.pi,
           parser=_eccentricity_turn, rule_note="0 to 360 deg"),

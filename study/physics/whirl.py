@@ -45,6 +45,53 @@ def eccentric_load(pipe_mass, eccentricity, rotary_speed):
     return np.asarray(pipe_mass) * np.asarray(eccentricity) * np.asarray(rotary_speed) ** 2
 
 
+def turned_joint_share(turn, tension, bending_stiffness, spacing, terms=2000):
+    """Quasi-static load on each tool joint of a long string lying on its joints, from a uniform load q per length on
+    every pipe joint whose phase turns by ``turn`` from one pipe joint to the next, over the aligned share q s [-].
+
+    The string is a continuous beam-column (EI y'''' − T y'' = q(x) − Σ R_j δ(x − j s)) on rigid supports at the
+    joints, spacing s; the load on the j-th pipe joint is q e^{i j τ}, so the reactions are R_j = R e^{i j τ} (a Bloch
+    wave). Its Fourier–Bloch series over the wavenumbers k_m = (τ + 2πm)/s, with D_m = EI k_m⁴ + T k_m² and the load's
+    coefficients Q_m = q (1 − e^{−iτ})/(i k_m s), and the support condition y(0) = 0 give
+    R = s Σ Q_m/D_m / Σ 1/D_m (the sums over |m| ≤ ``terms``: their tails fall as m⁻⁴). Aligned (τ = 0) every support
+    carries q s; at T = 0 the series is Clapeyron's theorem of three moments for equal spans,
+    |cos(τ/2)| (5 + cos τ)/(4 + 2 cos τ) (Timoshenko, *Strength of Materials* I, §47); as T s²/EI grows the spans act
+    as strings and it tends to the two half spans' vector sum |1 + e^{iτ}|/2 = |cos(τ/2)|; at τ = 180° it is nil.
+    turn τ [rad], tension T [N] (below the span's Euler load if negative), bending_stiffness EI [N m²], spacing s [m].
+    """
+    tau = np.remainder(np.asarray(turn, dtype=float), 2.0 * np.pi)
+    m = np.arange(-int(terms), int(terms) + 1)
+    k = (tau[..., None] + 2.0 * np.pi * m) / float(spacing)
+    aligned = np.isclose(tau, 0.0, atol=1e-12) | np.isclose(tau, 2.0 * np.pi, atol=1e-12)
+    k = np.where(aligned[..., None] & (m == 0), 1.0, k)  # the aligned case's k = 0 term is set apart below
+    D = float(bending_stiffness) * k**4 + float(tension) * k**2
+    Q = (1.0 - np.exp(-1j * tau[..., None])) / (1j * k * float(spacing))
+    share = np.abs(np.sum(Q / D, axis=-1) / np.sum(1.0 / D, axis=-1))
+    return np.where(aligned, 1.0, share)
+
+
+def random_joint_share_rms(tension, bending_stiffness, spacing, samples=720):
+    """Root mean square of :func:`turned_joint_share` over a string made up at random [-]: each pipe joint's
+    eccentricity in an independent, uniformly distributed phase. The phases form white noise along the string, which
+    drives every Bloch wave τ alike, so a joint's mean-square load is the mean of the squared share over τ ∈ [0, 2π)
+    (Parseval; Rayleigh 1880's sum of vibrations of arbitrary phase), here by the midpoint rule on ``samples`` turns.
+    Its limit for strings (T s²/EI → ∞) is the two half spans' E|1 + e^{iφ}|/2 = √2/2, the share of a 90° turn.
+    tension T [N], bending_stiffness EI [N m²], spacing s [m]."""
+    tau = (np.arange(int(samples)) + 0.5) * 2.0 * np.pi / int(samples)
+    return float(np.sqrt(np.mean(turned_joint_share(tau, tension, bending_stiffness, spacing) ** 2)))
+
+
+def lift_off_speed(rest_force, share, pipe_mass, eccentricity, spacing):
+    """Rotary speed [rad/s] at which a tool joint's turning load, share · m_p ε Ω² s (:func:`turned_joint_share`),
+    equals the force it rests on the wall with, F = w s + W_j sin θ (its share of the body's side load and its own
+    weight's): the balance of forces Ω = √(F / (share m_p ε s)). Aligned (share 1) it is the whole string's, m_p ε Ω² L
+    = w L + Σ W_j sin θ. Quasi-static: the spans' dynamics lift the joints sooner near their modes on the joints
+    (docs/reference_model.md §7). rest_force F [N], share [-], pipe_mass m_p [kg/m], eccentricity ε [m], spacing s
+    [m]."""
+    return np.sqrt(np.asarray(rest_force, dtype=float)
+                   / (np.asarray(share, dtype=float) * float(pipe_mass) * float(eccentricity) * float(spacing)))
+
+
 def uniform_load_modal_factors(modes, span_length):
     """∫₀ᴸ sin(nπx/L) dx = L (1 − cos nπ)/(nπ) [m]: 2L/(nπ) for odd n, 0 for even n.
 

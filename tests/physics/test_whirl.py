@@ -16,6 +16,54 @@ def test_eccentric_load_is_the_centrifugal_force_of_the_offset_mass():
     assert whirl.eccentric_load(m, 0.0, 10 * np.pi) == 0.0
 
 
+# the 4 1/2-in, 3.826-in bore pipe of the default study (E = 30e6 psi) on 31-ft joints
+EI_DEFAULT = 30e6 * 6894.757 * np.pi / 64 * ((4.5 * IN) ** 4 - (3.826 * IN) ** 4)
+SPACING = 31 * 0.3048
+LBF = 4.4482216
+
+
+@pytest.mark.parametrize("deg", [0, 30, 60, 90, 120, 150, 179, 180, 270, 360])
+def test_turned_joint_share_without_tension_is_clapeyrons_three_moments(deg):
+    # equal spans, uniform load q e^{ijτ} on span j, supports pinned: the three-moment equation M_{j-1} + 4 M_j +
+    # M_{j+1} = −(q s²/4)(load on the two spans) with M_j ∝ e^{ijτ} gives each support |cos(τ/2)| (5 + cos τ)/(4 + 2 cos τ)
+    # of q s (Clapeyron; Timoshenko, Strength of Materials I, §47) — the Fourier–Bloch series to its truncation
+    tau = np.radians(deg)
+    expected = abs(np.cos(tau / 2)) * (5 + np.cos(tau)) / (4 + 2 * np.cos(tau))
+    assert whirl.turned_joint_share(tau, 0.0, EI_DEFAULT, SPACING) == pytest.approx(expected, abs=1e-9)
+
+
+def test_turned_joint_share_under_tension_tends_to_the_two_half_spans():
+    # a string on its supports carries half of each span: |1 + e^{iτ}|/2 = |cos(τ/2)| (T s²/EI = 1e6 here: the beam's
+    # continuity over the supports leaves a share of order 1/(k s), k = √(T/EI))
+    T = 1e6 * EI_DEFAULT / SPACING**2
+    for deg in (60, 90, 120):
+        tau = np.radians(deg)
+        assert whirl.turned_joint_share(tau, T, EI_DEFAULT, SPACING) == pytest.approx(abs(np.cos(tau / 2)), rel=5e-3)
+    assert whirl.random_joint_share_rms(T, EI_DEFAULT, SPACING) == pytest.approx(np.sqrt(0.5), rel=5e-3)
+
+
+@pytest.mark.parametrize("klbf", [0, 5, 30])
+def test_a_ninety_degree_turn_carries_a_random_strings_rms_joint_load(klbf):
+    # why the default study turns its pipe joints' eccentricities 90° apart (docs/reference_model.md §1, §7): in a
+    # string made up at random a joint's mean-square load is the mean over every turn (Parseval); a 90° turn's share
+    # lies within 10 % above that root mean square (8.9, 8.7, 7.4 % at 0, 5 000, 30 000 lbf: the beam's continuity),
+    # the aligned string's 23–29 % above it and a 120° turn's 8–15 % below
+    T = klbf * 1000 * LBF
+    rms = whirl.random_joint_share_rms(T, EI_DEFAULT, SPACING)
+    share = lambda deg: float(whirl.turned_joint_share(np.radians(deg), T, EI_DEFAULT, SPACING))
+    assert 1.0 < share(90) / rms < 1.1
+    assert 1.2 < share(0) / rms < 1.3
+    assert 0.84 < share(120) / rms < 0.93
+
+
+def test_lift_off_speed_is_the_balance_of_a_joints_forces():
+    # share m_p ε Ω² s = F at the returned Ω; aligned (share 1) the whole string's balance m_p ε Ω² L = F L/s
+    m, eps, F = 22.3, 0.1 * IN, 302.7
+    for share in (1.0, 0.8325, 0.5):
+        om = whirl.lift_off_speed(F, share, m, eps, SPACING)
+        assert share * whirl.eccentric_load(m, eps, om) * SPACING == pytest.approx(F, rel=1e-12)
+
+
 @pytest.mark.parametrize("n", [1, 2, 3, 4, 7])
 def test_uniform_load_modal_factor_is_the_integral_of_the_mode(n):
     L = 28.3

@@ -136,7 +136,9 @@ def _default_point(rpm, klbf, restitution, ppg, flow):
 
     from study import config
 
-    study = config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml")
+    # aligned in three joints, the reading these figures were measured in (the default study's is 90° in four)
+    study = config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml",
+                        {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"})
     return study.point(rotary_speed=rpm * np.pi / 30, axial_tension=klbf * 4448.2216152605, restitution=restitution,
                        mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
 

@@ -10,15 +10,29 @@ import pytest
 from study import config
 from study.physics import well
 from study.physics import whirl as whirl_physics
-from study.solvers import freewhirl, reference, sliding
+from study.solvers import auto, freewhirl, reference, sliding
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _default(rpm: float, klbf: float, **extra) -> dict:
+#: The pipe joints' eccentricities aligned in a three-joint section: the reading the figures of these tests were
+#: measured in (the default study turns them 90° in four joints, docs/reference_model.md §1; :func:`_study`).
+ALIGNED = {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"}
+
+
+def _study(rpm: float, klbf: float, **extra) -> dict:
+    """A point of configs/default.toml in its own reading (straight hole, e = 0.3, 9 ppg, no flow)."""
     point = config.load(ROOT / "configs" / "default.toml", {
         "load.rotary_speed": f"{rpm} rpm", "load.axial_tension": f"{klbf * 1000} lbf", "impact.restitution": 0.3,
         "mud.density": "9 ppg", "mud.flow_velocity": "0 ft/s"}).point()
+    return {**point, **extra}
+
+
+def _default(rpm: float, klbf: float, **extra) -> dict:
+    """:func:`_study`'s point with the pipe joints' eccentricities aligned in three joints (:data:`ALIGNED`)."""
+    point = config.load(ROOT / "configs" / "default.toml", {
+        "load.rotary_speed": f"{rpm} rpm", "load.axial_tension": f"{klbf * 1000} lbf", "impact.restitution": 0.3,
+        "mud.density": "9 ppg", "mud.flow_velocity": "0 ft/s", **ALIGNED}).point()
     return {**point, **extra}
 
 
@@ -405,10 +419,12 @@ def test_a_turn_that_does_not_close_over_the_section_is_refused_naming_both_fiel
     reference.build_model(_default(100, 10, eccentricity_turn=np.radians(90.0), section_length=4 * 31 * 0.3048))
     point = config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "aligned"}).point()
     assert point["eccentricity_turn"] == 0.0
-    # and a config says it before any run (exit code 2 from the CLI), for a three-joint section
+    # and a config says it before any run (exit code 2 from the CLI): the default study's 90° in a three-joint section
+    study = config.load(ROOT / "configs" / "default.toml").point()
+    assert study["eccentricity_turn"] == np.pi / 2 and study["section_length"] == pytest.approx(4 * 31 * 0.3048)
     with pytest.raises(config.ConfigError, match=r"pipe\.eccentricity_turn = 90 deg.*multiple of 120 deg"):
-        config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "90 deg"})
-    config.load(ROOT / "configs" / "default.toml", {"pipe.eccentricity_turn": "240 deg"})
+        config.load(ROOT / "configs" / "default.toml", {"contact.section_length": "93 ft"})
+    config.load(ROOT / "configs" / "default.toml", {**ALIGNED, "pipe.eccentricity_turn": "240 deg"})
 
 
 def test_a_whole_turn_between_joints_gives_the_aligned_answers():
@@ -477,3 +493,53 @@ def test_the_joints_share_of_the_turning_load_by_the_balance_of_forces():
     assert lift * 30 / np.pi == pytest.approx(227.0, abs=0.1)
     turned = reference.eccentric_factors(model.span, model.span / np.count_nonzero(joints), 4, 2 * np.pi / 3)
     assert abs(turned[0]) < 1e-12 * model.span
+
+
+def test_the_default_reading_lifts_a_joint_by_the_balance_of_its_forces():
+    # the default study's pipe joints turned 90° from one to the next in a four-joint section (docs/reference_model.md
+    # §1, §7). Turning slowly (30 rpm, 30 000 lbf, 9 ppg) each joint's force swings by the 90° wave's quasi-static share
+    # of the aligned m_p ε Ω² s: whirl.turned_joint_share, the Fourier–Bloch series of the beam-column on its joints
+    # (Clapeyron's three moments without tension), 0.8325 here (the sliding state: 0.839, the spans' dynamics)
+    point = _study(30, 30)
+    assert point["eccentricity_turn"] == np.pi / 2
+    state = sliding.steady_state(point)
+    assert state["why"] is None
+    model = state["model"]
+    joints = model.kinds == 1
+    assert np.count_nonzero(joints) == 4
+    s = model.span / 4
+    m_p, props = model.props["pipe_mass"], model.props
+    force = state["window"].forces[:, joints, 2]
+    swing = 0.5 * (force.max(axis=0) - force.min(axis=0))
+    aligned = float(whirl_physics.eccentric_load(m_p, model.eccentricity, model.rotary_speed) * s)
+    share = float(whirl_physics.turned_joint_share(np.pi / 2, props["effective_tension"], props["bending_stiffness"], s))
+    assert share == pytest.approx(0.8325, abs=1e-4)
+    np.testing.assert_allclose(swing / aligned, share, rtol=0.02)
+    # the balance of a joint's forces: it lifts where share · m_p ε Ω² s beats its rest, w s + W_j sin θ (302.8 N at
+    # 9 ppg, docs/reference_model.md §7): at 248.8 rpm for the 90° string, 227.0 rpm aligned (the whole string's
+    # balance, as test_the_joints_share_of_the_turning_load_by_the_balance_of_forces computes it)
+    w = float(np.hypot(*reference.side_loads(point, props)[:2]))
+    rest = w * s + model.joint_weight
+    assert rest == pytest.approx(302.77, abs=0.01)
+    rpm = lambda share_: float(whirl_physics.lift_off_speed(rest, share_, m_p, model.eccentricity, s)) * 30 / np.pi
+    assert rpm(share) == pytest.approx(248.8, abs=0.1)
+    assert rpm(1.0) == pytest.approx(227.0, abs=0.1)
+
+
+def test_at_200_rpm_and_30_klbf_the_default_string_lies_below_the_eccentricity_that_lifts_it():
+    # issue 33's check: at 200 rpm and 30 000 lbf in the straight hole (9 ppg) the joints lie, in contact all the time,
+    # each with a force of the order of its share of the side load w s + W_j sin θ — where the mass eccentricity lets
+    # them. The sliding state is linear in ε: with the default 0.1 in its joints' force swings by 343.9 N about the
+    # 290.0 N they rest with (1.46 aligned shares: the spans' dynamics near their first mode on the joints, 214 rpm,
+    # amplify the 90° wave's quasi-static 0.833 by 1.76): the contact opens and the string bounces (the reference model: docs/reference_model.md §7);
+    # below 0.1 in × 290.0/343.9 = 0.084 in they lie. At 0.08 in `auto` answers the sliding state, ok
+    opens = sliding.steady_state(_study(200, 30))
+    assert "contact would open" in opens["why"]
+    point = _study(200, 30, eccentricity=0.08 * 0.0254)
+    result = auto.solve(point)
+    assert (result.method, result.status) == ("sliding", "ok"), result.message
+    assert result.values["contact_fraction"] == 1.0
+    model = reference.build_model(point)
+    s = model.span / np.count_nonzero(model.kinds == 1)
+    share = float(np.hypot(*reference.side_loads(point, model.props)[:2])) * s + model.joint_weight
+    assert 1.0 < result.values["peak_contact_force"] / share < 2.5  # measured 568.5 N over 302.8 N: 1.88
