@@ -109,3 +109,16 @@ def test_points_clear_of_the_wall_keep_the_in_run_measure():
                              "reference_revolutions": 4})
     assert clear.extras["replay"] is None and [t["modes"] for t in clear.extras["modes_tried"]] == [16]
     assert clear.extras["convergence"]["peak_contact_force"]["modes"] == 0.0
+
+
+def test_a_pipe_sliding_on_the_wall_keeps_the_in_run_measure(monkeypatch):
+    # configs/default.toml at 75 rpm, 10 000 lbf, e = 0.3, 12 ppg, 7.4 ft/s: the joints slide on the low side (a short
+    # run: 12 revolutions of transient, 3-revolution windows). Nothing is replayed, and the answer is the one of the
+    # in-run measure alone (reference.modal_check), to the bit
+    point = {**_default_point(75, 10, 0.3, 12, 7.4), "reference_revolutions": 12, "reference_window": 3}
+    sliding = reference.solve(point)
+    assert sliding.extras["whirl"] == "sliding" and sliding.extras["replay"] is None
+    monkeypatch.setattr(reference.method, "impact_modal_error",
+                        lambda inputs, model, window, cycles, cache, measure: measure(inputs, model, window, cycles))
+    alone = reference.solve(point)
+    assert alone.values == sliding.values and alone.error_estimate == sliding.error_estimate
