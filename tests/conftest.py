@@ -19,6 +19,7 @@ def fresh_auto_memo():
 #: compiling for a generic x86-64 CPU (``NUMBA_CPU_NAME=generic``, ``-m precision``), so that each holds its figures
 #: to their real accuracy, not to one machine's bits (issue 32).
 PRECISION_MODULES = {
+    "test_replay.py",
     "test_validate.py", "test_sliding.py", "test_reference.py", "test_auto.py", "test_whirl_kernel.py",
     "test_timedomain.py", "test_fast.py", "test_periodic.py", "test_freewhirl.py", "test_event_driven.py",
     "test_orbit.py", "test_crosscheck.py", "test_damped.py", "test_refcheck.py", "test_trajectory.py",

@@ -353,6 +353,9 @@ def test_a_bouncing_window_grows_until_its_statistics_meet_the_statistical_toler
     # quasi-static correction's are set aside (at a bouncing point 16 modes state 10-60 %, above any statistical
     # tolerance, and the growth would stop at once): the window part alone decides
     monkeypatch.setattr(reference.method, "modal_check", lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
+    # (and the strikes' replayed part, docs/reference_model.md §2.2)
+    monkeypatch.setattr(reference.method, "impact_modal_error",
+                        lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
     assert first.extras["whirl"] == "bouncing" and first.values["statistical_figures"] == 1.0

@@ -40,7 +40,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   at each contact point (:func:`residual_flexibility`) in series with its Hertz spring, and their static field
   under every contact force at every instant in the stresses (:func:`static_correction`); or dynamically
   (``"dynamic"``): one residual vector per contact point, that static field, in the integrated modes
-  (:func:`residual_ritz`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`).
+  (:func:`residual_ritz`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`) where no
+  strike is replayed.
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
@@ -52,8 +53,10 @@ boundaries repeats (1–8 revolutions, :func:`study.solvers.timedomain.settled_p
 stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
 (default 6; the period's multiple when periodic) is recorded and the outputs are taken over it. Where the modes
-left out take a figure's error over half the study's tolerance (:func:`modal_check`, measured on the run) the point
-is run again with more modes, up to ``reference_max_modes`` (default 64; :func:`solve`).
+left out take a figure's error over half the study's tolerance (where the pipe strikes the wall, from a few of the
+window's strikes replayed at N, 2N and more modes, :mod:`study.solvers.reference.replay`, docs/reference_model.md §2.2;
+elsewhere :func:`modal_check`, measured on the run) the point is run again with more modes, up to
+``reference_max_modes`` (default 64; :func:`solve`).
 """
 
 from __future__ import annotations

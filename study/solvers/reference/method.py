@@ -15,6 +15,7 @@ from study.solvers.options import ReferenceOptions, statistical_tolerance, study
 from study.solvers.reference.fields import contact_spacing, energy_balance
 from study.solvers.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.reference.model import WhirlModel, build_model
+from study.solvers.reference.replay import impact_modal_error, replay_summary
 from study.solvers.reference.statistics import (CONFIDENCE, DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                 WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                 figure_tolerance, modal_check, settle_ratio, settling,
@@ -64,6 +65,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     states = [run.modal_state()]
     period = None
     ratio = float("nan")
+    replays: dict[str, Any] = {}  # the strikes replayed at more modes (impact_modal_error), once per run
 
     def failed(where: str) -> dict[str, Any]:
         return dict(model=model, integrator=run, verdict="failed", period=None, revolutions=len(states) - 1,
@@ -103,7 +105,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
         window_cycles, preceding, window = list(zip(blocks, cycle_values(inputs, model, blocks))), [], merge(blocks)
-        modal = modal_check(inputs, model, window, [v for _, v in window_cycles])
+        modal = impact_modal_error(inputs, model, window, [v for _, v in window_cycles], replays, modal_check)
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
@@ -137,7 +139,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 window_cycles, preceding = record[len(record) - 2 * half:], []
             window = merge([c for c, _ in window_cycles])
             cycles = [v for _, v in window_cycles]
-            modal = modal_check(inputs, model, window, cycles)
+            modal = impact_modal_error(inputs, model, window, cycles, replays, modal_check)
             errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
                                  modal=modal)
             used = len(states) - 1
@@ -176,7 +178,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
                 budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
-                stationary=bouncing, modal=modal, stats=None if period else stats)
+                stationary=bouncing, modal=modal, stats=None if period else stats, replay=replays.get("replay"))
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -200,10 +202,19 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                           window={name: float(e["window"]) for name, e in parts.items()}))
         # the gate's tolerance of the point: the statistical one where its figures are means over a motion that does
         # not repeat (with the residual vectors; the static law keeps the study's)
-        tolerance = (statistical_tolerance(inputs) if dynamic and result.values.get("statistical_figures")
+        replayed = result.extras.get("replay")
+        tolerance = (statistical_tolerance(inputs) if (dynamic or replayed) and result.values.get("statistical_figures")
                      else study_tolerance(inputs))
         if result.status != "ok" or modal <= 0.5 * tolerance or 2 * count > top:
             break
+        if replayed:
+            # the count chosen by the strikes replayed from this run (docs/reference_model.md §2.2): the fewest modes
+            # whose stated part (from the replays at it and more) is within half the tolerance, else the most
+            later = [n for n in replayed["stated"] if count < n < top
+                     and max(replayed["stated"][n][name] for name in FIGURES) <= 0.5 * tolerance]
+            count = min(later) if later else count * 2 ** int(np.log2(top // count))
+            previous = result
+            continue
         # the next count: doubled, or more where the modal part is far over (the residual flexibility falls like N⁻³,
         # so a part m asks about (m / (tolerance/2))^(1/3) times the modes): a choice of the count only, the part
         # stated is the one measured with it. With the residual vectors doubled: their modal part is measured
@@ -333,7 +344,8 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
     summary = window_summary(cycles, stats)
     budget = energy_balance(model, window)
     modal = run["modal"]
-    if (model.dynamic and previous is not None and not periodic and previous.status == "ok"
+    replayed = run.get("replay") if (run.get("replay") or {}).get("impacts") else None
+    if (model.dynamic and previous is not None and not periodic and previous.status == "ok" and replayed is None
             and previous.extras.get("reference_modes") == model.n_modes // 2):
         modal = doubling_modal_error(previous, summary)
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
@@ -350,6 +362,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                          energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
                          modal_error={name: float(v) for name, v in (modal or {}).items()},
+                         replay=None if replayed is None else replay_summary(replayed),
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
                                       for name, e in errors.items()})
     option = ReferenceOptions.from_inputs(inputs)
@@ -376,7 +389,9 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
                 f"{float(option.reference_rtol):g}"
                 f"{' and the residual flexibility and quasi-static correction of the modes left out' if correction else ''}"
-                f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})",
+                f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})"
+                + (f"; modal parts from {len(replayed['impacts'])} strike(s) replayed at "
+                   + ", ".join(str(n) for n in replayed["counts"]) + " modes" if replayed else ""),
                 f"error of each figure (its largest part): {figures}",
                 (f"held to solver.statistical_tolerance {statistical_tolerance(inputs):.3g} (means over the revolutions"
                  f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
