@@ -378,7 +378,7 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
     def modal(*args, **kwargs):
         return {**dict.fromkeys(reference.MODAL_FIGURES, 0.0), "peak_contact_force": 0.5}
 
-    monkeypatch.setattr(reference, "modal_check", modal)
+    monkeypatch.setattr(reference.method, "modal_check", modal)
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15,
              "force_tolerance": 0.3, "reference_max_modes": 16}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
