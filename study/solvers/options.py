@@ -86,7 +86,8 @@ def statistical_tolerance(inputs: Mapping[str, Any]) -> float:
 #: power 2/5 (Johnson, *Contact Mechanics* §11.4), and a rock modulus known to ±50 % (the default grid's 5e6 psi
 #: against the pipe's steel) moves it by −22/+15 %; a restitution known to ±0.1 of 0.3-0.7 moves the impulse by
 #: ±6-8 %. Held to 5 % instead, the mean of a chaotic bouncing's per-revolution largest forces, which scatter by
-#: 45-130 %, would take some 150-1 000 revolutions (docs/reference_model.md §3.1) to state a figure no better known.
+#: 14-75 %, would take 80-300 revolutions at the middle half of the bouncing points measured (up to 1 500; 9-34 at
+#: 15 %, docs/reference_model.md §3.1) to state a figure no better known.
 #: The force's error is still stated whole (``peak_contact_force_error``); the point's ``error_estimate`` counts it as
 #: its share of this tolerance times the point's own (:func:`study.solvers.reference.stress_equivalent`).
 DEFAULT_FORCE_TOLERANCE = 0.15
@@ -279,8 +280,8 @@ class ReferenceOptions(MethodOptions):
     reference_revolutions: int = 40  #: most revolutions of the transient
     reference_window: int = 6  #: revolutions of the output window (and of each extension of the record)
     #: revolution budget of a run that has not converged (transient included): where the motion does not repeat the
-    #: window grows within it for every figure that can reach its tolerance; at 8 bouncing points of the default grid
-    #: it held the force's 15 % at all 8, the stresses' 5 % at 6 and the damage rate's at 5 (docs/reference_model.md
+    #: window grows within it for every figure that can reach its tolerance; at 10 bouncing points of the default grid
+    #: it holds the force's 15 % at all 10, the stresses' 5 % at 8 and the damage rate's at 7 (docs/reference_model.md
     #: §3.1)
     reference_max_revolutions: int = 200
     reference_damping: str = option("drag", ("drag", "viscous", "none"))
