@@ -31,8 +31,8 @@ from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.physics.well import DOGLEG_DIRECTIONS, MAX_DOGLEG_SEVERITY
-from study.solvers.options import (DEFAULT_STATISTICAL_TOLERANCE, DEFAULT_TOLERANCE, IMPACT_MASSES, MAX_POLES,
-                                   METHOD_DESCRIPTIONS, CrosscheckOptions,
+from study.solvers.options import (DEFAULT_FORCE_TOLERANCE, DEFAULT_STATISTICAL_TOLERANCE, DEFAULT_TOLERANCE,
+                                   IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
                                    DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
                                    TimeDomainOptions)
 from study.units import UnitProblem, parse_angle_per_length, parse_quantity
@@ -224,6 +224,11 @@ FIELDS: tuple[Field, ...] = (
           "fatigue damage rate is held to (1 + it)^5 - 1): a result above it is not_converged", "",
           default=DEFAULT_STATISTICAL_TOLERANCE, lower=0.0, upper=1.0, lower_open=True, upper_open=True,
           why="it is a relative error of a mean: 0.05 asks for 5 %"),
+    Field("solver.force_tolerance", "force_tolerance", "relative accuracy asked of the peak contact force (the "
+          "reference model's; its inputs, the rock's modulus and the restitution, move it by more): a result whose "
+          "force error is above it is not_converged", "",
+          default=DEFAULT_FORCE_TOLERANCE, lower=0.0, upper=1.0, lower_open=True, upper_open=True,
+          why="it is a relative error of the force: 0.15 asks for 15 %"),
     Field("solver.harmonics", "harmonics", "highest time harmonic kept by the series method", "",
           default=SeriesOptions.default("harmonics"),
           integer=True, lower=1.0),

@@ -66,6 +66,8 @@ EXTRA_OUTPUTS = {
     "body_stations_tried": (None, "the body station counts the reference model ran, with how far the body passed its "
                                   "wall and their wall times"),
     "revolutions_needed": ("1", "revolutions in all that would bring the figures within the tolerance"),
+    "revolutions_needed_by_figure": (None, "per figure left over its tolerance, the revolutions in all that would "
+                                           "bring it within (inf: its modes or integrator part is over)"),
     "modal_quarter_fraction": ("1", "share of the largest bending moment carried by the upper quarter of the modes "
                                "(a truncation indicator)"),
     "drag_iterations": ("1", "iterations of the drag's fixed point"),

@@ -133,6 +133,10 @@ BAD = [
     ("[solver] statistical_tolerance = 0", "solver.statistical_tolerance = 0: must be a finite number > 0 and < 1 "
                                            "(it is a relative error of a mean: 0.05 asks for 5 %)"),
     ("[solver] statistical_tolerance = 5", "solver.statistical_tolerance = 5: must be a finite number > 0 and < 1"),
+    # the peak contact force's own tolerance likewise (docs/reference_model.md §3.1)
+    ("[solver] force_tolerance = 0", "solver.force_tolerance = 0: must be a finite number > 0 and < 1 (it is a "
+                                     "relative error of the force: 0.15 asks for 15 %)"),
+    ("[solver] force_tolerance = 1.5", "solver.force_tolerance = 1.5: must be a finite number > 0 and < 1"),
     ("[sweep] chunksize = 10", "did you mean 'chunk_size'"),
 ]
 

@@ -59,7 +59,9 @@ def _limit(ds: xr.Dataset, name: str) -> xr.DataArray:
 def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, criterion: str = "life"
              ) -> tuple[dict[str, xr.DataArray], bool]:
     """Per point, which of :data:`REASONS` keep it out of the envelope (each a boolean over every dimension),
-    and whether the critical speeds could be checked."""
+    and whether the critical speeds could be checked; beside them, under :data:`UNDECIDED`'s keys, the answered
+    points not converged whose figure (yield utilisation, and the fatigue criterion's figure) neither holds nor fails
+    its limit within its error: what keeps an undecided point open."""
     if criterion not in CRITERIA:
         raise ValueError(f"criterion = {criterion!r}; allowed: {', '.join(CRITERIA)}")
     if not target_hours > 0:
@@ -85,7 +87,15 @@ def failures(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS, cr
     band = in_band(ds)
     checked = band is not None
     critical = (band.transpose(*ds.sizes) if checked else xr.zeros_like(ok)).astype(bool)
-    return {"no valid answer": ~answered, "over yield": over_yield, "fatigue": fatigue, "critical speed": critical}, checked
+    fatigue_name = "fatigue life" if criterion == "life" else "endurance utilisation"
+    open_yield = rough & ~answered & ~yield_holds & ~yield_fails
+    open_fatigue = rough & ~answered & ~fatigue_holds & ~fatigue_fails
+    return {"no valid answer": ~answered, "over yield": over_yield, "fatigue": fatigue, "critical speed": critical,
+            UNDECIDED["yield utilisation"]: open_yield, UNDECIDED[fatigue_name]: open_fatigue}, checked
+
+
+#: The keys of :func:`failures`' masks of the points whose figure cannot be decided at its error, by figure.
+UNDECIDED = {name: f"undecided: {name}" for name in ("yield utilisation", "fatigue life", "endurance utilisation")}
 
 
 def _rough(ds: xr.Dataset) -> xr.DataArray:
@@ -167,7 +177,9 @@ def envelope_table(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOU
             verdict = "limited" if limited else ("undecided" if reduced[REASONS[0]][i, j] else "safe")
             why_open = []
             if open_count[i, j]:
-                why_open.append(f"{int(open_count[i, j])} point(s) undecided at their error")
+                held_open = [name for name, key in UNDECIDED.items() if key in reduced and reduced[key][i, j]]
+                why_open.append(f"{int(open_count[i, j])} point(s) undecided at their error"
+                                + (f" ({', '.join(held_open)})" if held_open else ""))
             if no_answer[i, j]:
                 why_open.append(f"{int(no_answer[i, j])} point(s) without an answer")
             row = {xq.label: _round(speed), yq.label: _round(load), "verdict": verdict, "safe": verdict == "safe",

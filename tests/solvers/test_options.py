@@ -53,3 +53,15 @@ def test_the_statistical_tolerance_is_five_percent_unless_set_and_refused_outsid
     for bad in (0.0, 1.0, -0.05, float("nan"), "five"):
         with pytest.raises(ValueError, match=r"solver.statistical_tolerance = .*: must be a number > 0 and < 1"):
             options.statistical_tolerance({"statistical_tolerance": bad})
+
+
+def test_the_force_tolerance_is_fifteen_percent_unless_set_and_refused_outside_zero_to_one():
+    # issue 36: the peak contact force is held to its own tolerance, what its inputs allow (a rock modulus known to
+    # ±50 % moves a Hertz peak force by −22/+15 %: options.DEFAULT_FORCE_TOLERANCE, docs/reference_model.md §3.1)
+    assert options.force_tolerance({}) == options.DEFAULT_FORCE_TOLERANCE == 0.15
+    assert options.force_tolerance({"force_tolerance": None}) == 0.15
+    assert options.force_tolerance({"force_tolerance": 0.05}) == 0.05
+    assert config.FIELDS_BY_NAME["force_tolerance"].default == 0.15
+    for bad in (0.0, 1.0, -0.1, float("nan"), "fifteen"):
+        with pytest.raises(ValueError, match=r"solver.force_tolerance = .*: must be a number > 0 and < 1"):
+            options.force_tolerance({"force_tolerance": bad})

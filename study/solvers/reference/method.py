@@ -11,7 +11,7 @@ import numpy as np
 
 from study.physics import fatigue
 from study.solvers import whirl_kernel
-from study.solvers.options import ReferenceOptions, statistical_tolerance, study_tolerance
+from study.solvers.options import ReferenceOptions, force_tolerance, statistical_tolerance, study_tolerance
 from study.solvers.reference.fields import contact_spacing, energy_balance
 from study.solvers.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.reference.model import WhirlModel, build_model
@@ -35,10 +35,12 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
     periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
     record (one cycle a revolution) grows while the error of a design figure (:func:`convergence`) is above its
-    tolerance (:func:`figure_tolerance` of ``solver.statistical_tolerance``), more revolutions could bring it there
-    (its window part is what is over; not foreseen beyond :data:`FORECAST_SLACK` times the budget) and
-    ``reference_max_revolutions`` allow, by the revolutions foreseen, at least ``reference_window`` and at most the
-    record's length at a time. Where the record's halves agree (no drift beyond :data:`DRIFT_SIGNIFICANCE`) and the
+    tolerance (:func:`figure_tolerance` of ``solver.statistical_tolerance``, the peak force's
+    ``solver.force_tolerance``), more revolutions could bring it there (its window part is what is over; not foreseen
+    beyond :data:`FORECAST_SLACK` times the budget) and ``reference_max_revolutions`` allow, by the revolutions
+    foreseen, at least ``reference_window`` and at most the record's length at a time: per figure, so that a figure
+    that cannot get there (its modes or integrator part over, or its scatter asking far beyond the budget) does not
+    stop the others' growth. Where the record's halves agree (no drift beyond :data:`DRIFT_SIGNIFICANCE`) and the
     state does not settle the window is the whole record; else the window is its second half, the preceding stretch
     its first, and where they differ significantly (still settling) the first half is dropped.
 
@@ -46,7 +48,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
     of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
     the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
-    the tolerance; inf where more would not), ratio (:func:`settle_ratio`), failure (text or None), stationary
+    the tolerance; inf where more would not), needed_by (the same per figure left over its tolerance), ratio (:func:`settle_ratio`), failure (text or None), stationary
     (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
     window), stats (:func:`settling` of the window as the last look took it; None when periodic).
     """
@@ -59,6 +61,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
     tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
+    force = force_tolerance(inputs)  # the peak contact force's own (solver.force_tolerance)
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     tol = float(option.reference_tolerance)
     scale = model.state_scale()
@@ -97,7 +100,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             bouncing = True
             break
     done = len(states) - 1
-    budget_spent, needed = False, float(done)
+    budget_spent, needed, needed_by = False, float(done), {}
     if period:
         blocks = []
         for _ in range(max(1, int(np.ceil(n_window / period)))):
@@ -143,28 +146,35 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
                                  modal=modal)
             used = len(states) - 1
-            more = 0.0  # the revolutions more that the figures over the tolerance need, as far as can be foreseen
+            # per figure over its tolerance, the revolutions more its window part is foreseen to need (inf: its modes
+            # or integrator part alone is over the tolerance, and more revolutions do not help)
+            wants: dict[str, float] = {}
             for name, e in errors.items():
-                limit = figure_tolerance(name, tolerance, exponent)
+                limit = figure_tolerance(name, tolerance, exponent, force)
                 room = limit - (e["total"] - e["window"])  # what the window part may be
                 if e["total"] <= limit:
                     continue
                 if room <= 0:
-                    more = np.inf  # the integrator or the modes take it over: more revolutions do not help
+                    wants[name] = np.inf  # the integrator or the modes take it over: more revolutions do not help
                 elif np.isfinite(ratio) and e["window"] > CONFIDENCE * stats[name]["error"]:  # settling: drifts shrink by ρ
-                    more = max(more, np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0)
+                    wants[name] = np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0
                 else:  # the standard error falls as the root of the window's length (half the record's if settling)
                     length = len(window_cycles) * (1 if stationary_record else 2)
                     if bouncing and e["window"] > CONFIDENCE * stats[name]["error"]:
                         # a stationary bouncing's halves' drift, not a standard error (its intermittency): no root law
                         # foresees it (it vanishes once the halves agree and the window is the whole record), so one
                         # record's length more and look again (a slide that settles slowly keeps the forecast)
-                        more = max(more, float(length))
+                        wants[name] = float(length)
                     else:
-                        more = max(more, length * ((e["window"] / room) ** 2 - 1.0))
-            needed = used + more
-            if more == 0.0 or used >= budget or used + more > FORECAST_SLACK * budget:
-                budget_spent = more > 0.0
+                        wants[name] = length * ((e["window"] / room) ** 2 - 1.0)
+            # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK of
+            # it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
+            # does not stop the others' growth (issue 36)
+            more = max((m for m in wants.values() if used + m <= FORECAST_SLACK * budget), default=0.0)
+            needed = used + max(wants.values(), default=0.0)
+            needed_by = {name: float(used + m) for name, m in wants.items()}
+            if more == 0.0 or used >= budget:
+                budget_spent = bool(wants)
                 break
             # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
             # the record's length again (a forecast from a short record's scatter is itself rough): few looks; the
@@ -177,8 +187,9 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
         done = used - len(window_cycles)
     return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
-                budget_spent=budget_spent, revolutions_needed=float(needed), ratio=ratio, failure=None,
-                stationary=bouncing, modal=modal, stats=None if period else stats, replay=replays.get("replay"))
+                budget_spent=budget_spent, revolutions_needed=float(needed), needed_by=needed_by, ratio=ratio,
+                failure=None, stationary=bouncing, modal=modal, stats=None if period else stats,
+                replay=replays.get("replay"))
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -361,6 +372,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
                          energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
+                         revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
                          modal_error={name: float(v) for name, v in (modal or {}).items()},
                          replay=None if replayed is None else replay_summary(replayed),
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
@@ -368,13 +380,17 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
     option = ReferenceOptions.from_inputs(inputs)
     cycle = f"{run['period']} revolution(s)" if periodic else "revolution"
     needed = run.get("revolutions_needed", np.nan)
+    names = {**{name: label for name, (_, label) in FIGURES.items()}, DAMAGE: "fatigue damage rate"}
     stopped = ""
     if run["budget_spent"]:
-        stopped = ("; more revolutions would not bring them within the tolerance (the modes or the integrator take "
-                   "them over)" if not np.isfinite(needed) else
-                   f"; about {needed:.0f} revolutions in all would bring them within the tolerance, more than the "
-                   f"budget of {option.reference_max_revolutions} (solver.reference_max_revolutions)")
-    names = {**{name: label for name, (_, label) in FIGURES.items()}, DAMAGE: "fatigue damage rate"}
+        # each figure left over its tolerance, and why: the window grew for the others all the same
+        why = [f"{names[name]}: more revolutions would not bring it within (its modes or integrator part is over)"
+               if not np.isfinite(n) else
+               f"{names[name]}: about {n:.0f} revolutions in all would, more than the budget of "
+               f"{option.reference_max_revolutions} (solver.reference_max_revolutions)"
+               for name, n in (run.get("needed_by") or {}).items()]
+        stopped = "; over the tolerance after the window grew for every figure that could get there: " + (
+            "; ".join(why) if why else f"about {needed:.0f} revolutions in all would bring them within")
     figures = ", ".join(f"{names[name]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
                         f"integrator {e['integrator']:.1e}, "
                         f"modes {e['modes']:.2%})"
@@ -395,7 +411,8 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                 f"error of each figure (its largest part): {figures}",
                 (f"held to solver.statistical_tolerance {statistical_tolerance(inputs):.3g} (means over the revolutions"
                  f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
-                 f"held to solver.tolerance {study_tolerance(inputs):.3g}")]
+                 f"held to solver.tolerance {study_tolerance(inputs):.3g}")
+                + f", the peak force to solver.force_tolerance {force_tolerance(inputs):.3g}"]
     # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"

@@ -10,7 +10,7 @@ import numpy as np
 
 from study.physics import fatigue, limits, section
 from study.physics.contact import hertz_force
-from study.solvers.options import ReferenceOptions
+from study.solvers.options import ReferenceOptions, force_tolerance, statistical_tolerance, study_tolerance
 from study.solvers.reference.fields import periodic_fields, stresses
 from study.solvers.reference.integrate import Window, merge
 from study.solvers.reference.model import WhirlModel, residual_flexibility
@@ -65,7 +65,8 @@ CONFIDENCE = 2.0
 DRIFT_SIGNIFICANCE = 2.0
 
 
-#: A run not converged goes on to its budget unless it foresees more than this many times the budget: a forecast from
+#: A figure not converged grows the window, up to the budget, unless it foresees more than this many times the budget (a
+#: figure that does not, the others still grow it: reference.method.simulate): a forecast from
 #: the scatter of a short record is itself uncertain by about a factor 2 (the standard error of 12 revolutions rests
 #: on three batches), and one that gave up at the first look's forecast left 246 of the default grid's 301 bouncing
 #: points short of 5 % (docs/reference_model.md §3.1).
@@ -342,7 +343,9 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
     which is whole but with ``reference_damping = "viscous"``),
     ``modes`` (measured on the run, :func:`modal_check`, given as ``modal``; 0 where not given); ``total`` their
-    sum. The alternating stress's error is relative to the larger of it and the max bending stress."""
+    sum; ``equivalent`` the total as the stress error the point's ``error_estimate`` counts (:func:`stress_equivalent`:
+    the damage's through the S-N exponent, the peak force's as its share of ``solver.force_tolerance``). The
+    alternating stress's error is relative to the larger of it and the max bending stress."""
     option = ReferenceOptions.from_inputs(inputs)
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
@@ -360,6 +363,8 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
                                                floor)}
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
+    # the peak force is held to its own tolerance: its error counts in the point's as its share of it (stress_equivalent)
+    force_share = (study_tolerance(inputs) if periodic else statistical_tolerance(inputs)) / force_tolerance(inputs)
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
     # the damage rate goes as the alternating stress to the power m: its window part, as the stress error that makes
     # it, is counted relative to the bending the stress alternates within, as the alternating stress's is (a
@@ -376,21 +381,28 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
         parts = dict(window=window_part, integrator=own, modes=modes[name])
         total = float(sum(parts.values()))
         out[name] = dict(parts, total=total, dominant=max(parts, key=parts.get),
-                         equivalent=stress_equivalent(name, total, exponent))
+                         equivalent=stress_equivalent(name, total, exponent, force_share))
     return out
 
 
-def stress_equivalent(name: str, error: float, exponent: float) -> float:
+def stress_equivalent(name: str, error: float, exponent: float, force_share: float = 1.0) -> float:
     """A figure's relative error as the stress error that makes it: the damage's (:data:`DAMAGE`) (1 + e)^(1/m) − 1
-    (D ∝ σ^m), the stress figures' and the force's the error itself. The point's ``error_estimate`` is the largest
-    of these, held against the tolerance as a stress error."""
-    return float((1.0 + error) ** (1.0 / exponent) - 1.0) if name == DAMAGE else float(error)
+    (D ∝ σ^m); the peak contact force's its share of its own tolerance (``solver.force_tolerance``) in the point's,
+    e × ``force_share`` (the point's tolerance over the force's); the stress figures' the error itself. The point's
+    ``error_estimate`` is the largest of these, held against the tolerance as a stress error."""
+    if name == DAMAGE:
+        return float((1.0 + error) ** (1.0 / exponent) - 1.0)
+    return float(error * force_share) if name == "peak_contact_force" else float(error)
 
 
-def figure_tolerance(name: str, tolerance: float, exponent: float) -> float:
+def figure_tolerance(name: str, tolerance: float, exponent: float, force: float | None = None) -> float:
     """The relative error a figure may have at the stress ``tolerance``: the damage's (:data:`DAMAGE`)
-    (1 + tolerance)^m − 1 (27.6 % for 5 % on m = 5), the others' the tolerance."""
-    return float((1.0 + tolerance) ** exponent - 1.0) if name == DAMAGE else float(tolerance)
+    (1 + tolerance)^m − 1 (27.6 % for 5 % on m = 5), the peak contact force's its own tolerance ``force``
+    (``solver.force_tolerance``, :func:`study.solvers.options.force_tolerance`; the stress tolerance where None), the
+    others' the tolerance."""
+    if name == DAMAGE:
+        return float((1.0 + tolerance) ** exponent - 1.0)
+    return float(force) if name == "peak_contact_force" and force is not None else float(tolerance)
 
 
 def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
