@@ -154,20 +154,25 @@ def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_point
 
 def test_large_sweep_bench_sweeps_the_config_and_accounts_for_every_point(tmp_path):
     # the default study on a 6-point grid (the dense config's 103 424 points are make bench-large's): the report
-    # states the grid, the time against issue 23's target, and every point under its method and status
+    # states the grid, the time against issue 23's target, the not_converged share and every point under its method
+    # and status
     from study.bench import LARGE_TARGET, STUDY_CONFIG, bench_large_sweep
 
     text = STUDY_CONFIG.read_text().split("[sweep.axes]")[0] + (
         '[sweep.axes]\nload.rotary_speed = ["100 rpm", "175 rpm", "250 rpm"]\nimpact.restitution = [0.3, 0.7]\n')
     config = tmp_path / "small.toml"
     config.write_text(text)
-    report = bench_large_sweep(config, workers=1, out=tmp_path / "large.md")
+    # thinned to 4 points as `make bench-large POINTS=4` does (the longest axis first, its ends kept)
+    report = bench_large_sweep(config, workers=1, out=tmp_path / "large.md", points=4)
     assert (tmp_path / "large.md").read_text() == report
-    assert "**Grid:** 6 points, 3 rotary_speed × 2 restitution." in report
-    assert f"10^5 points in {LARGE_TARGET / 60:.0f} minutes: not judged on 6 points" in report
+    assert report.startswith("# The large sweep's command on its grid thinned to 4 points (a smoke test")
+    assert "`study bench --large --points 4`" in report
+    assert "**Grid:** 4 points, 2 rotary_speed × 2 restitution." in report
+    assert f"10^5 points in {LARGE_TARGET / 60:.0f} minutes: not judged on 4 points" in report
+    assert re.search(r"\*\*Not converged:\*\* \d of 4 points \(\d+\.\d%\)\.", report)
     assert re.search(r"\*\*0 min \d{1,2} s\*\*", report)  # whole minutes, then the seconds left (under 60)
     rows = [line.split(" | ") for line in report.splitlines() if line.startswith("| `")]
-    assert sum(int(row[1]) for row in rows) == 6
+    assert sum(int(row[1]) for row in rows) == 4
     for row in rows:  # the statuses' counts add up to the method's points
         assert sum(int(part.rsplit(" ", 1)[1]) for part in row[2].split(", ")) == int(row[1])
         assert row[2].split(", ")[0].split(" ")[0] in STATUS_CODES
