@@ -349,7 +349,7 @@ def test_a_bouncing_window_grows_until_its_statistics_meet_the_statistical_toler
     # tolerance, and stops there (36 revolutions measured for 15 % and for 5 %, the default). The modes' part and the
     # quasi-static correction's are set aside (at a bouncing point 16 modes state 10-60 %, above any statistical
     # tolerance, and the growth would stop at once): the window part alone decides
-    monkeypatch.setattr(reference, "modal_check", lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
+    monkeypatch.setattr(reference.method, "modal_check", lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
     assert first.extras["whirl"] == "bouncing" and first.values["statistical_figures"] == 1.0
@@ -407,7 +407,7 @@ def test_the_cycles_compared_share_one_decision_on_the_quasi_static_correction(b
     # the first, not to the others), the window and the stretch before it would mix corrected and plain stresses and
     # show a drift that is not in the motion
     decisions = iter([True])
-    monkeypatch.setattr(reference, "quasi_static_applies", lambda model, window: next(decisions, False))
+    monkeypatch.setattr(reference.statistics, "quasi_static_applies", lambda model, window: next(decisions, False))
     run = reference.simulate({**base, "rotary_speed": 50 * np.pi / 30, "inclination": np.radians(8)})
     assert len(run["cycles"]) + len(run["preceding"]) > 6  # the record grew
     assert {c["correction"] for c in run["cycles"] + run["preceding"]} == {False}
