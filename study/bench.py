@@ -1,7 +1,9 @@
 """``study bench``: methods side by side in one run, with ratios (``make bench`` -> docs/performance.md).
 
 Speed is measured here, never in a timed test. Each figure is the median of repeated runs on this
-machine; the report names the machine's core count and the command that produced it.
+machine; the report names the machine's core count, its load average at the start and the end (the machine is
+shared) and the command that produced it, and times each of its sections (:data:`SECTIONS`; ``study bench --section
+NAME`` runs one alone).
 """
 
 from __future__ import annotations
@@ -376,8 +378,9 @@ def bench_reference_modes(point=None, modes=(16, 32, 64), residuals=("series", "
     ``reference_residual``) on one deterministic case (:func:`study.benchmarks.reference.fixed_window` from the thrown
     string: the same start at every count, no window growth, no mode doubling): time per revolution of the integrator
     (median of ``repeat``) and each figure of :data:`REFERENCE_MODES_FIGURES` as a ratio to a run with ``converged``
-    modes (the kept modes alone, ``reference_residual = "none"``: at 256 modes the laws agree within 0.3 % on the
-    thrown string's first impact, tests/solvers/test_modes.py; the converged count's run with ``"dynamic"`` is a row
+    modes (the kept modes alone, ``reference_residual = "none"``: at 256 modes it and ``"dynamic"`` agree within 0.3 %
+    in the peak force, tests/solvers/test_modes.py, and 1.2 % in the stresses over the window, docs/performance.md;
+    the converged count's run with ``"dynamic"`` is a row
     too, when that law is in ``residuals``, to show it), all in one run. The converged run is timed once. Returns rows
     (method: the residual
     law, modes, harmonics None, wall_time [s per revolution], time_ratio (the converged run's time over this one's),
