@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed-stamp
 CONFIG ?= configs/default.toml
 RUNS   ?= 10
 
-.PHONY: help setup test test-generic sweep charts bench bench-large validate coverage faults clean chromium
+.PHONY: help setup test test-generic sweep charts bench bench-compile bench-sweep-default bench-large validate coverage faults clean chromium
 
 help:
 	@echo "make setup     install into .venv and compile the solver kernels ahead (every target does it first)"
@@ -14,8 +14,13 @@ help:
 	@echo "make test-generic  the precision-sensitive tests again, numba compiling for a generic x86-64 CPU (CI runs it)"
 	@echo "make sweep     run the default study: $(CONFIG) -> outputs/<name>/"
 	@echo "make charts    redraw the charts of the default study"
-	@echo "make bench     benchmark the methods side by side (docs/performance.md)"
-	@echo "make bench-large  the measured sweep of 10^5 points, about 9 minutes (docs/large_sweep.md)"
+	@echo "make bench     benchmark the methods side by side, about 8 minutes on 2 quiet cores (docs/performance.md);"
+	@echo "               one section alone: .venv/bin/study bench --section NAME (the names: study.bench.SECTIONS)"
+	@echo "make bench-compile  the opt-in section: study compile into an empty cache, minutes (docs/performance_compile.md)"
+	@echo "make bench-sweep-default  the opt-in section: the default study's sweep on about 100 points against workers,"
+	@echo "               minutes (docs/performance_sweep-default.md)"
+	@echo "make bench-large  the measured sweep of 10^5 points, about 9 minutes (docs/large_sweep.md);"
+	@echo "               POINTS=N: its grid thinned to N points, a smoke test of the command (outputs/large_sweep_N.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
 	@echo "make coverage  the stated errors against 4x-modes, 4x-window runs on 20 impacting points (docs/validation.md;"
 	@echo "               hours at 256 modes; MODES=2 WINDOW=2 about 35 minutes on 2 cores; resumable)"
@@ -52,8 +57,19 @@ charts: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/study bench --out docs/performance.md
 
+bench-compile: $(STAMP)
+	$(BIN)/study bench --section compile --out docs/performance_compile.md
+
+bench-sweep-default: $(STAMP)
+	$(BIN)/study bench --section sweep-default --out docs/performance_sweep-default.md
+
 bench-large: $(STAMP)
+ifdef POINTS
+	mkdir -p outputs
+	$(BIN)/study bench --large --points $(POINTS) --out outputs/large_sweep_$(POINTS).md
+else
 	$(BIN)/study bench --large --out docs/large_sweep.md
+endif
 
 validate: $(STAMP)
 	$(BIN)/study validate --out docs/validation.md

@@ -133,9 +133,21 @@ def cmd_compile(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from study.bench import bench_large_sweep, run_bench
+    from study.bench import SECTIONS, bench_large_sweep, run_bench
 
-    print(bench_large_sweep(out=args.out) if args.large else run_bench(args.out))
+    problems = [f"--section {name!r}: not a section; allowed: {', '.join(SECTIONS)}"
+                for name in args.section or () if name not in SECTIONS]
+    if args.points is not None and not args.large:
+        problems.append(f"--points {args.points}: only with --large (the large sweep's grid thinned to N points)")
+    if args.large and args.section:
+        problems.append("--section: not with --large (the large sweep is one measurement)")
+    if problems:
+        print("study bench: " + "; ".join(problems), file=sys.stderr)
+        return 2
+    if args.large:
+        print(bench_large_sweep(out=args.out, points=args.points))
+    else:
+        print(run_bench(args.out, sections=args.section))
     return 0
 
 
@@ -231,6 +243,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="also write the report to this markdown file")
     p.add_argument("--large", action="store_true",
                    help="instead, the measured sweep of configs/dense.toml's 103 424 points (about 9 minutes)")
+    p.add_argument("--section", action="append", metavar="NAME",
+                   help="run this section alone (repeatable; default: make bench's sections); the sections: "
+                        "study.bench.SECTIONS")
+    p.add_argument("--points", type=whole_number(1, 10**6), default=None, metavar="N",
+                   help="with --large: the grid thinned evenly to at most N points (a smoke test of the command)")
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("validate", help="compare with the printed numbers of the sources")

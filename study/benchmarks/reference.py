@@ -82,3 +82,37 @@ def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e
     run.run(revolutions * model.period)
     return dict(wall_time=time.perf_counter() - start, outcome=run.outcome, steps=run.steps, final_state=run.z.copy(),
                 work=run.work.copy())
+
+
+def thrown_state(model: reference.WhirlModel, speed: float, gap: float = 1e-5) -> np.ndarray:
+    """The modal state (4N + 4,) of the straight string moved rigidly to ``gap`` [m] off its tool joints' wall on the
+    low side (+y) and thrown at it at ``speed`` [m/s]: the rigid translation's coordinate and velocity alone, the
+    same physical state at every mode count (tests/solvers/test_modes.py's thrown string)."""
+    n = model.n_modes
+    z = np.zeros(4 * n + 4)
+    z[0] = (float(np.min(model.clearance)) - gap) / model.phi[0, 0]
+    z[2 * n] = speed / model.phi[0, 0]
+    return z
+
+
+def fixed_window(inputs: Mapping[str, Any], revolutions: float, speed: float = 0.3,
+                 rtol: float = 1e-8) -> dict[str, Any]:
+    """The reference model's compiled integrator over ``revolutions`` from :func:`thrown_state` (deterministic: no
+    transient, no window growth, the same start at every mode count), its output figures over that window as one
+    cycle (:func:`study.solvers.reference.cycle_values`: the stresses with the quasi-static correction, the peak
+    contact force). Returns wall_time [s] of the integration alone, revolutions, the figures
+    (peak_contact_force [N], max_normal_stress, alternating_bending_stress [Pa], max_deflection [m]), onsets (contact
+    onsets in the window) and outcome (the kernel's)."""
+    model = reference.build_model(inputs)
+    run = reference.Integrator(model, rtol, thrown_state(model, speed),
+                               scheme=ReferenceOptions.from_inputs(inputs).reference_integrator)
+    start = time.perf_counter()
+    window = run.run(revolutions * model.period, record=True)
+    wall = time.perf_counter() - start
+    values = reference.cycle_values(inputs, model, [window])[0]
+    return dict(wall_time=wall, revolutions=float(revolutions), onsets=int(np.sum(window.onsets)), outcome=run.outcome,
+                **{name: float(values[name]) for name in FIXED_WINDOW_FIGURES})
+
+
+#: The figures :func:`fixed_window` returns, as :func:`study.solvers.reference.cycle_values` names them.
+FIXED_WINDOW_FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_deflection")

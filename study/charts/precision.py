@@ -8,16 +8,18 @@ MARKERS = {"fast": "o", "series": "s"}
 
 
 def work_precision_chart(rows, case: str, title: str = "Work and precision of the periodic methods",
-                         time_label: str = "time per evaluation [ms]") -> Figure:
-    """Relative error of the max normal and shear stresses against time per evaluation, per method.
+                         time_label: str = "time per evaluation [ms]",
+                         labels: tuple[str, str] = ("max normal stress", "max shear stress")) -> Figure:
+    """Relative error of two figures (``labels``: the rows' ``error`` and ``shear_error``) against time, per method.
 
     rows: the dicts of :func:`study.benchmarks.series.convergence_table` (method, modes, harmonics,
-    wall_time [s], error, shear_error) or of :func:`study.bench.bench_reference_precision` (with rtol instead of
-    harmonics); case: a one-line description for the title.
+    wall_time [s], error: max normal stress, shear_error: max shear stress) or of
+    :func:`study.bench.bench_reference_modes` (method the residual law, shear_error the peak contact force's);
+    case: a one-line description for the title.
     """
     figure = Figure(figsize=(9.0, 4.2), dpi=150, layout="constrained")
     axes = figure.subplots(1, 2, sharex=True)
-    for ax, key, label in zip(axes, ("error", "shear_error"), ("max normal stress", "max shear stress")):
+    for ax, key, label in zip(axes, ("error", "shear_error"), labels):
         for method in sorted({r["method"] for r in rows}):
             mine = [r for r in rows if r["method"] == method]
             ax.loglog([r["wall_time"] * 1e3 for r in mine], [max(r[key], 1e-16) for r in mine],

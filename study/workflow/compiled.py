@@ -3,7 +3,8 @@
 numba compiles a kernel on its first call in a process and, with ``cache=True``, keeps the machine code
 beside the source (``__pycache__``, keyed on the source file's time stamp and size), so that a later
 process loads it instead of compiling again. Compiling every method's kernels takes about 80 s on
-this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/performance.md``). So:
+this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/performance_compile.md``,
+``make bench-compile``). So:
 
 - ``make setup`` runs ``study compile``: every method solved once on the warm-up points (the paper's
   example in two readings and the default study's first point), which leaves every kernel in the cache;
@@ -46,7 +47,7 @@ WARM_UP_CONFIGS = (("paper.toml", {}),
                    ("default.toml", {}))
 CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs"
 #: Seconds to compile every kernel from nothing: ``study compile`` took 77 s into an empty cache on the project's 2-core
-#: machine (docs/performance.md; 54 s before the reference model's integrator became one licensed kernel with
+#: machine (docs/performance_compile.md; 54 s before the reference model's integrator became one licensed kernel with
 #: everything it calls inlined: docs/reference_model.md §6); quoted to the user before a compile starts.
 COMPILE_SECONDS = 80
 
