@@ -300,3 +300,7 @@ class ReferenceOptions(MethodOptions):
     #: the modes left out at a contact: their static flexibility in series with its spring ("series"), a residual
     #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), or nothing
     reference_residual: str = option("series", ("series", "none", "dynamic"))
+    #: the modal part of a bouncing point's error: each figure's change between whole runs at N/2 and N modes
+    #: ("doubling"), or from its strikes replayed at N, 2N … reference_max_modes modes ("replay",
+    #: docs/reference_model.md §2.2; opt-in: it did not lower the default study's not_converged share and costs more)
+    reference_modal_measure: str = option("doubling", ("doubling", "replay"))

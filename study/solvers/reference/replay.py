@@ -175,9 +175,11 @@ def impact_modal_error(inputs: Mapping[str, Any], model, window, cycles, cache: 
     window holds strikes (contact onsets, the Hertz law, the pipe not lying on the wall) from its strikes replayed at N,
     2N and on to ``reference_max_modes`` (:func:`replayed`, done once per run and kept in ``cache["replay"]``), the
     part :func:`stated_part` states at N; elsewhere, and where no strike is short enough to replay, the in-run measure
-    ``measure`` (:func:`reference.modal_check`), as before."""
+    ``measure`` (:func:`reference.modal_check`), as before; and everywhere unless ``reference_modal_measure`` is
+    ``"replay"``."""
 
-    if model.law != 0 or not np.any(window.onsets > 0) or whirl_measure(model, window)["whirl"] == "sliding":
+    if (ReferenceOptions.from_inputs(inputs).reference_modal_measure != "replay" or model.law != 0
+            or not np.any(window.onsets > 0) or whirl_measure(model, window)["whirl"] == "sliding"):
         return measure(inputs, model, window, cycles)
     if "replay" not in cache:
         counts = [model.n_modes, 2 * model.n_modes]
