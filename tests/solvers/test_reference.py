@@ -386,8 +386,11 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
 
     monkeypatch.setattr(reference.method, "modal_check", modal)
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15,
-             "force_tolerance": 0.3, "reference_max_modes": 16}
+             "force_tolerance": 0.3, "reference_max_modes": 16, "reference_window_growth": "figure"}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
+    # the default growth ("point") stops at the first look: the force cannot get there, so the point stays over
+    held = solve_point({**point, "reference_window_growth": "point"}, "reference")
+    assert held.values["revolutions_simulated"] == first.values["revolutions_simulated"]
     grown = solve_point(point, "reference")
     assert grown.extras["whirl"] == "bouncing" and grown.status == "not_converged"
     assert grown.values["revolutions_simulated"] > first.values["revolutions_simulated"]

@@ -62,6 +62,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     budget = int(option.reference_max_revolutions)
     tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
     force = force_tolerance(inputs)  # the peak contact force's own (solver.force_tolerance)
+    per_figure = option.reference_window_growth == "figure"
     exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
     tol = float(option.reference_tolerance)
     scale = model.state_scale()
@@ -170,7 +171,13 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK of
             # it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
             # does not stop the others' growth (issue 36)
-            more = max((m for m in wants.values() if used + m <= FORECAST_SLACK * budget), default=0.0)
+            # (with reference_window_growth = "point", the default, the window grows only while every figure over its
+            # tolerance can get there: a point that stays over it whatever the window stops at its first look)
+            reachable = [m for m in wants.values() if used + m <= FORECAST_SLACK * budget]
+            if per_figure or len(reachable) == len(wants):
+                more = max(reachable, default=0.0)
+            else:
+                more = 0.0
             needed = used + max(wants.values(), default=0.0)
             needed_by = {name: float(used + m) for name, m in wants.items()}
             if more == 0.0 or used >= budget:
