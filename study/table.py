@@ -58,9 +58,11 @@ EXTRA_OUTPUTS = {
                                  "contacts, as residual vectors in the modes (dynamic), or not at all (none)"),
     "steps": ("1", "integrator steps"),
     "quasi_static_correction": (None, "the quasi-static correction for the modes left out was applied"),
-    "modal_error": (None, "modal part of each figure's error: the size of the correction for the modes left out, "
-                          "measured on the run"),
+    "modal_error": (None, "modal part of each figure's error: from the strikes replayed at more modes, or the size "
+                          "of the correction for the modes left out, measured on the run"),
     "modes_tried": (None, "the mode counts the reference model ran, with their modal parts and figures"),
+    "replay": (None, "the strikes replayed at more modes for the modal part of the errors: the counts, the part stated "
+                     "at each and each strike's figures (docs/reference_model.md §2.2)"),
     "reference_body_stations": ("1", "contact stations on the pipe body between neighbouring joints, raised where "
                                 "the body passed its wall between them"),
     "body_stations_tried": (None, "the body station counts the reference model ran, with how far the body passed its "

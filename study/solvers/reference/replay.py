@@ -1,4 +1,4 @@
-"""The modal part of an impacting point's error, measured by replaying its impacts (docs/reference_model.md §2.1,
+"""The modal part of an impacting point's error, measured by replaying its impacts (docs/reference_model.md §2.2,
 §3.1).
 
 A bouncing window's figures are means over revolutions of a chaotic motion; the change of those means between two
