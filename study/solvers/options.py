@@ -64,21 +64,26 @@ def study_tolerance(inputs: Mapping[str, Any]) -> float:
 DEFAULT_STATISTICAL_TOLERANCE = 5e-2
 
 
-def statistical_tolerance(inputs: Mapping[str, Any]) -> float:
-    """The relative tolerance of statistical figures (config ``solver.statistical_tolerance``;
-    :data:`DEFAULT_STATISTICAL_TOLERANCE` unset). Raises ValueError naming the field, its value and what is allowed
-    for a value that is not a number in (0, 1)."""
-    value = inputs.get("statistical_tolerance")
+def relative_tolerance(inputs: Mapping[str, Any], name: str, default: float, meaning: str) -> float:
+    """A relative tolerance of the point (config ``solver.<name>``; ``default`` unset). Raises ValueError naming the
+    field, its value and what is allowed (``meaning`` says what it is a tolerance of) for a value that is not a number
+    in (0, 1)."""
+    value = inputs.get(name)
     if value is None:
-        return DEFAULT_STATISTICAL_TOLERANCE
+        return default
     try:
         number = float(value)
     except (TypeError, ValueError):
         number = float("nan")
     if not 0.0 < number < 1.0:  # NaN fails too
-        raise ValueError(f"solver.statistical_tolerance = {value!r}: must be a number > 0 and < 1 (a relative "
-                         f"error; default {DEFAULT_STATISTICAL_TOLERANCE:g})")
+        raise ValueError(f"solver.{name} = {value!r}: must be a number > 0 and < 1 ({meaning}; default {default:g})")
     return number
+
+
+def statistical_tolerance(inputs: Mapping[str, Any]) -> float:
+    """The relative tolerance of statistical figures (config ``solver.statistical_tolerance``;
+    :data:`DEFAULT_STATISTICAL_TOLERANCE` unset; :func:`relative_tolerance`)."""
+    return relative_tolerance(inputs, "statistical_tolerance", DEFAULT_STATISTICAL_TOLERANCE, "a relative error")
 
 
 #: Relative accuracy asked of the peak contact force (config ``solver.force_tolerance``): 15 %. What a Hertz impact's peak
@@ -95,19 +100,9 @@ DEFAULT_FORCE_TOLERANCE = 0.15
 
 def force_tolerance(inputs: Mapping[str, Any]) -> float:
     """The relative tolerance of the peak contact force (config ``solver.force_tolerance``;
-    :data:`DEFAULT_FORCE_TOLERANCE` unset). Raises ValueError naming the field, its value and what is allowed for a
-    value that is not a number in (0, 1)."""
-    value = inputs.get("force_tolerance")
-    if value is None:
-        return DEFAULT_FORCE_TOLERANCE
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        number = float("nan")
-    if not 0.0 < number < 1.0:  # NaN fails too
-        raise ValueError(f"solver.force_tolerance = {value!r}: must be a number > 0 and < 1 (a relative error of the "
-                         f"peak contact force; default {DEFAULT_FORCE_TOLERANCE:g})")
-    return number
+    :data:`DEFAULT_FORCE_TOLERANCE` unset; :func:`relative_tolerance`)."""
+    return relative_tolerance(inputs, "force_tolerance", DEFAULT_FORCE_TOLERANCE,
+                              "a relative error of the peak contact force")
 
 
 #: The mass of the closure's impulse (periodic.Scene.equivalent_mass): 2ML/π (the paper's) or ML/2.
