@@ -32,6 +32,7 @@ from study.physics import hertz
 from study.solvers import METHODS, STATUS_CODES, periodic, reference, solve_point, whirl_kernel
 from study.solvers.auto import clear_memo
 from study.solvers.result import REGIMES
+from study.solvers.scene import Scene
 from study.workflow.execute import configure_local_workers, run_grid, warm_up
 from study.workflow.grid import Grid
 
@@ -409,10 +410,11 @@ def bench_reference_modes(point=None, modes=(16, 32, 64), residuals=("series", "
                          error=abs(ratios["max_normal_stress_ratio"] - 1.0),
                          shear_error=abs(ratios["peak_contact_force_ratio"] - 1.0)))
     mpa = 1e-6
+    scene = Scene.from_inputs(point)
     lines = ["### Reference model: work and precision in the modes and the residual law", "",
-             f"`configs/default.toml` at {point['rotary_speed'] * 30 / np.pi:.4g} rpm, "
-             f"{point['axial_tension'] / 4.4482216152605:.5g} lbf, e = {point['restitution']:g}, "
-             f"{point['mud_density'] / 119.826427:.3g} ppg, {point['mud_flow_velocity'] / 0.3048:.3g} ft/s (a bouncing "
+             f"`configs/default.toml` at {scene.rotary_speed * 30 / np.pi:.4g} rpm, "
+             f"{scene.axial_tension / 4.4482216152605:.5g} lbf, e = {scene.restitution:g}, "
+             f"{scene.mud_density / 119.826427:.3g} ppg, {scene.mud_flow_velocity / 0.3048:.3g} ft/s (a bouncing "
              f"point of the default study), its string thrown rigidly at {speed:g} m/s onto its tool joints' wall on "
              f"the low side, then driven for {revolutions:g} revolution{'s' if revolutions != 1 else ''} at rtol "
              f"{rtol:g} (`study.bench.bench_reference_modes`): one deterministic window, the same start at every mode "

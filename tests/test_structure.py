@@ -1,5 +1,6 @@
 """The shape of the project a newcomer reads (issue 35): a short README that states the code's defaults, docs that
-describe the project as it is, no private name used across modules, modules of one job each (≤ 1 000 lines).
+describe the project as it is, no private name used across modules, modules of one job each (≤ 1 000 lines), a design
+point read by name only where it is made and typed (the config, the Scene and the options).
 
 Each check reads the sources only (no solver runs): fast.
 """
@@ -29,6 +30,69 @@ CONTACT_LAW_HOME = "study/physics/contact.py"
 CONTACT_LAW_LEFT: set[str] = set()
 #: The law's exponent forms in code (comments and strings left out): ``** 1.5`` / ``** 2.5``, and ``d * sqrt(d)``.
 CONTACT_LAW_FORM = re.compile(r"\*\* [12]\.5(?!\d)|\b(\w+) \* (?:\w+ \. )?sqrt \( \1 \)")
+
+
+#: Where a point's inputs are read by name (``inputs["k"]``, ``inputs.get("k")``): the config, which makes them, and
+#: the builders of the typed point from them — the Scene (study/solvers/scene.py) and the options
+#: (study/solvers/options.py); None: the whole module.
+INPUT_EDGE: dict[str, set[str] | None] = {
+    "study/config.py": None,
+    "study/solvers/scene.py": {"Scene.from_inputs"},
+    "study/solvers/options.py": {"study_tolerance", "relative_tolerance", "MethodOptions.from_inputs"},
+}
+#: The names a point's inputs go by (``study.inputs`` too, a Study's fixed inputs).
+INPUT_NAMES = ("inputs", "point")
+#: Reads by name left outside the edge: solve_point's method name (the dispatch), the sweep's method axis, and the
+#: coverage check's records of two runs of a point (named ``point``, not inputs).
+MAX_INPUT_READS = 5
+
+
+def _qualified_functions(tree: ast.AST) -> dict[ast.AST, str]:
+    """Every node of ``tree`` -> the qualified name of the function (or class) it sits in ('' at module level)."""
+    where: dict[ast.AST, str] = {}
+    stack = [(tree, "")]
+    while stack:
+        node, name = stack.pop()
+        for child in ast.iter_child_nodes(node):
+            inner = name
+            if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                inner = f"{name}.{child.name}" if name else child.name
+            where[child] = inner
+            stack.append((child, inner))
+    return where
+
+
+def _is_inputs(node: ast.AST) -> bool:
+    return (isinstance(node, ast.Name) and node.id in INPUT_NAMES
+            or isinstance(node, ast.Attribute) and node.attr == "inputs")
+
+
+def _is_name(key: ast.AST) -> bool:
+    return isinstance(key, ast.Constant) and isinstance(key.value, str)
+
+
+def input_reads(paths=SOURCES, root: Path = ROOT, edge=None) -> list[str]:
+    """'file:line (function): code' for every read of a point's inputs by name outside ``edge`` (default
+    :data:`INPUT_EDGE`): a subscript ``inputs["k"]`` that is read (not assigned) or a call ``inputs.get("k")``, ``k`` a
+    string written out (a loop over every input by a variable, as a point's hash, names none)."""
+    edge = INPUT_EDGE if edge is None else edge
+    found = []
+    for path in paths:
+        where = str(path.relative_to(root))
+        if where in edge and edge[where] is None:
+            continue
+        text = path.read_text()
+        tree = ast.parse(text)
+        functions = _qualified_functions(tree)
+        for node in sorted(ast.walk(tree), key=lambda n: (getattr(n, "lineno", 0), getattr(n, "col_offset", 0))):
+            read = (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _is_inputs(node.value)
+                    and _is_name(node.slice)
+                    or isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "get"
+                    and _is_inputs(node.func.value) and bool(node.args) and _is_name(node.args[0]))
+            if read and functions.get(node, "") not in (edge.get(where) or ()):
+                found.append(f"{where}:{node.lineno} ({functions.get(node) or 'module'}): "
+                             f"{ast.get_source_segment(text, node)}")
+    return found
 
 
 def _module(path: Path, root: Path) -> str:
@@ -153,3 +217,25 @@ def test_no_solver_module_benchmarks_or_times_itself():
                 found.append(f"{where}:{node.lineno}: {node.attr}")
     assert not found, "\n".join(found)
 
+
+
+def test_the_input_read_finder_finds_both_forms_outside_the_edge(tmp_path):
+    # hand-made: a subscript and a get in a function, one on a Study's inputs; an assignment, a read in the edge's
+    # builder, a read by a variable and a read of another dict are not counted
+    (tmp_path / "study").mkdir()
+    module = tmp_path / "study" / "m.py"
+    module.write_text('def f(inputs, study, values):\n    a = inputs["outer_diameter"] / 2\n'
+                      '    b = study.inputs.get("solver_method")\n    inputs["solver_method"] = "core"\n'
+                      '    return values["x"] + values.get("y") + inputs[k]\n\n\nclass Scene:\n    def from_inputs(point):\n'
+                      '        return point.get("restitution")\n')
+    found = input_reads([module], tmp_path, edge={"study/m.py": {"Scene.from_inputs"}})
+    assert found == ['study/m.py:2 (f): inputs["outer_diameter"]', 'study/m.py:3 (f): study.inputs.get("solver_method")']
+    assert len(input_reads([module], tmp_path, edge={})) == 3
+
+
+def test_the_inputs_are_read_by_name_only_where_the_point_is_made_and_typed():
+    # issue 35: a parameter followed from the TOML to the physics by reading signatures: the solvers read the typed
+    # Scene and options, built from the inputs in one place each
+    found = input_reads()
+    assert len(found) <= MAX_INPUT_READS, "inputs read by name outside the config, Scene.from_inputs and the options' " \
+        "builders (read the Scene's or the options' field):\n" + "\n".join(found)

@@ -15,7 +15,7 @@ from typing import Any, Mapping
 
 import importlib
 
-from study.solvers.options import METHOD_DESCRIPTIONS
+from study.solvers.options import METHOD_DESCRIPTIONS, LimitOptions, Tolerances
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
 #: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
@@ -50,11 +50,14 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
 
     Every result passes :func:`study.solvers.gate.admit`, the one place that decides whether an answer
     the method calls ``ok`` is physical, and gets the design limits of its stresses
-    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An
+    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life), both given the
+    point's typed :class:`~study.solvers.scene.Scene`, :class:`~study.solvers.options.LimitOptions` and
+    :class:`~study.solvers.options.Tolerances`, built here from ``inputs`` once. An
     unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
     that one bad point never sinks a sweep. The result's ``wall_time`` is stamped here, once, for every method.
     """
     from study.solvers import gate, utilisation
+    from study.solvers.scene import Scene
 
     methods = globals().get("METHODS") or __getattr__("METHODS")
     name = method or inputs.get("solver_method") or "core"
@@ -62,7 +65,10 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
         raise ValueError(f"method = {name!r}; allowed: {', '.join(methods)}")
     start = time.perf_counter()
     try:
-        result = gate.admit(utilisation.add_limits(methods[name][0](inputs), inputs), inputs)
+        result = methods[name][0](inputs)
+        scene = Scene.from_inputs(inputs)
+        result = gate.admit(utilisation.add_limits(result, scene, LimitOptions.from_inputs(inputs)), scene,
+                            Tolerances.from_inputs(inputs))
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         result = PointResult(method=name, status="failed",

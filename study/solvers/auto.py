@@ -44,8 +44,9 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.solvers import damped, fast, freewhirl, gate, reference, series, sliding
-from study.solvers.options import study_tolerance
+from study.solvers.options import SeriesOptions, Tolerances, study_tolerance
 from study.solvers.result import PointResult
+from study.solvers.scene import Scene
 
 Solve = Callable[[Mapping[str, Any]], PointResult]
 #: Statuses that are properties of the point: no model answers them differently.
@@ -86,7 +87,7 @@ def _drag_not_small(result: PointResult, inputs: Mapping[str, Any]) -> bool:
 def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
     """The series doubles its harmonics until the study's tolerance."""
     tolerance = study_tolerance(inputs)
-    return {**inputs, "series_tolerance": inputs.get("series_tolerance") or tolerance}
+    return {**inputs, "series_tolerance": SeriesOptions.from_inputs(inputs).series_tolerance or tolerance}
 
 
 #: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
@@ -143,10 +144,11 @@ def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
 def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     tried: list[PointResult] = []
+    scene, tolerances = Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)  # what the gate reads of the point
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
             continue
-        tried.append(gate.admit(solve_rung(method, prepare(inputs)), inputs))
+        tried.append(gate.admit(solve_rung(method, prepare(inputs)), scene, tolerances))
         if tried[-1].status == "ok":
             break
     result = tried[-1]

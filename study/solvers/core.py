@@ -67,7 +67,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     scene = make_scene(inputs)
     props = scene.props
     result.values.update(props)
-    span = inputs.get("span_length")
+    span = scene.span_length
     messages = []
     if span is None:
         result.status = "incomplete"

@@ -419,7 +419,7 @@ def stresses(scene: Scene, found: DampedImpact, inputs: Mapping[str, Any], optio
     def field_at(kind, xs, ts):
         return fields(scene, impact, found.spec, options, xs, ts, [kind])[kind]
 
-    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"],
+    return periodic.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
                                          field_at=field_at, tolerance=study_tolerance(inputs))
 
 

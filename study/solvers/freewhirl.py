@@ -32,7 +32,7 @@ from study.solvers.options import ReferenceOptions, study_tolerance
 from study.solvers.reference import (contact_layout, eccentric_factors, joint_modes, mode_shapes, mode_wavenumbers,
                                      side_loads)
 from study.solvers.result import REGIMES, PointResult
-from study.solvers.scene import section_properties
+from study.solvers.scene import Scene
 
 METHOD = "free-whirl"
 #: Inputs the answer does not depend on: nothing strikes the wall, so the restitution (which sets only the contacts'
@@ -46,20 +46,20 @@ POINTS = 401
 ITERATIONS, SETTLED = 50, 1e-10
 
 
-def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = POINTS) -> dict[str, Any]:
-    """The steady state of the section without wall contact: x [m], sag S and whirl A (complex) [m] and their
-    second and third derivatives along x, the section's data, and how the drag iteration ended. The sag is NaN
-    where a side load lays the string on the wall (its rigid translation has no stiffness)."""
-    option = ReferenceOptions.from_inputs(inputs)
-    props = section_properties(inputs)
-    L, M, Om = float(option.section_length), props["mass_per_length"], float(inputs["rotary_speed"])
+def steady_state(scene: Scene, option: ReferenceOptions, modes: int = MODES, points: int = POINTS) -> dict[str, Any]:
+    """The steady state of the section of the point ``scene`` with the reference model's ``option`` (its section,
+    joints and eccentricity) without wall contact: x [m], sag S and whirl A (complex) [m] and their second and third
+    derivatives along x, the section's data, and how the drag iteration ended. The sag is NaN where a side load lays
+    the string on the wall (its rigid translation has no stiffness)."""
+    props = scene.props
+    L, M, Om = float(option.section_length), props["mass_per_length"], scene.rotary_speed
     n = np.arange(modes)
     k = mode_wavenumbers(L, modes)
     # the tool joints' mass lumped at the joints, as the reference model's (reference.build_model, joint_modes)
-    joint_mass = well.tool_joint_excess(inputs.get("pipe_density") or 7850.0, float(option.tool_joint_diameter),
+    joint_mass = well.tool_joint_excess(scene.pipe_density, float(option.tool_joint_diameter),
                                         float(option.tool_joint_inner_diameter), float(option.tool_joint_length),
-                                        props["pipe_mass"], inputs["outer_diameter"], inputs["inner_diameter"],
-                                        inputs["mud_density"])[0]
+                                        props["pipe_mass"], scene.outer_diameter, scene.inner_diameter,
+                                        scene.mud_density)[0]
     joints = contact_layout(L, float(option.joint_length), 0)[0]
     omega, basis = joint_modes(L, modes, M, props["bending_stiffness"], props["effective_tension"], joints,
                                max(joint_mass, 0.0))
@@ -69,7 +69,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
     # eccentricities turned, the Bloch wave of the turn (reference.eccentric_factors, as the reference model's)
     factors = eccentric_factors(L, float(option.joint_length), modes, float(option.eccentricity_turn))
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors) / mass
-    w_side = float(np.hypot(*side_loads(inputs, props)[:2]))  # the weight's and, in a curved hole, the tension's
+    w_side = float(np.hypot(*side_loads(scene)[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)
     x = np.linspace(0.0, L, points)
     gx, gw = whirl.gauss_legendre(2 * modes + 8)
@@ -94,10 +94,10 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, points: int = PO
                 joint_mass=joint_mass)
 
 
-def clearances(inputs: Mapping[str, Any], x: np.ndarray, option: ReferenceOptions) -> tuple[np.ndarray, np.ndarray]:
+def clearances(scene: Scene, x: np.ndarray, option: ReferenceOptions) -> tuple[np.ndarray, np.ndarray]:
     """Clearance along the body [m] at every x, and the tool-joint stations [m] with theirs [m]."""
-    hole_r = inputs["hole_diameter"] / 2.0
-    body = np.full(x.shape, hole_r - inputs["outer_diameter"] / 2.0)
+    hole_r = scene.hole_radius
+    body = np.full(x.shape, hole_r - scene.outer_radius)
     L, joint = float(option.section_length), float(option.joint_length)
     stations = np.arange(0.0, L * (1.0 - 1e-9), joint)  # periodic: x = L is the joint at 0
     return body, np.column_stack([stations, np.full(stations.shape, hole_r - float(option.tool_joint_diameter) / 2)])
@@ -107,7 +107,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """The free steady whirl and sag of the section, or ``out_of_scope`` where it would touch the wall."""
     result = PointResult(method=METHOD)
     tolerance = study_tolerance(inputs)
-    props = section_properties(inputs)
+    scene = Scene.from_inputs(inputs)
+    props = dict(scene.props)
     option = ReferenceOptions.from_inputs(inputs)
     result.values.update(props)
     L = float(option.section_length)
@@ -117,7 +118,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = (f"effective tension {props['effective_tension']:.4g} N buckles the {L:.4g} m section "
                           "(contact.section_length)")
         return result
-    state = steady_state(inputs)
+    state = steady_state(scene, option)
     if state["side_load"] != 0.0:
         result.status = "out_of_scope"
         result.message = (f"a side load of {state['side_load']:.4g} N/m (the buoyed weight in the inclined hole, the "
@@ -126,7 +127,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         return result
     x, sag, spin = state["x"], state["sag"], state["whirl"]
     reach = np.abs(sag[0]) + np.abs(spin[0])  # largest distance from the hole's axis over a revolution [m]
-    body, joints = clearances(inputs, x, option)
+    body, joints = clearances(scene, x, option)
     at_joints = np.interp(joints[:, 0], x, reach)
     margin = 1.0 - tolerance
     touches = [f"the body at x = {x[i]:.3g} m ({reach[i] / body[i]:.3g} of its clearance)"
@@ -142,12 +143,12 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.message = f"{why}: the closed form holds only clear of the wall, a higher model answers"
         return result
     ei = props["bending_stiffness"]
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))  # σ_b = M r_o / I
     bending = ei * (np.abs(sag[2]) + np.abs(spin[2])) * scale
     alternating = ei * np.abs(sag[2]) * scale
     shear = 2.0 * ei * (np.abs(sag[3]) + np.abs(spin[3])) / props["steel_area"]
-    axial = abs(inputs["axial_tension"]) / props["steel_area"]
+    axial = abs(scene.axial_tension) / props["steel_area"]
     i_b, i_a, i_s = int(np.argmax(bending)), int(np.argmax(alternating)), int(np.argmax(shear))
     # truncation: the stress carried by the upper half of the odd modes kept
     upper = state["n"] >= state["n"].size // 2

@@ -105,6 +105,23 @@ def force_tolerance(inputs: Mapping[str, Any]) -> float:
                               "a relative error of the peak contact force")
 
 
+@dataclass(frozen=True)
+class Tolerances:
+    """The relative tolerances a point's answer is held to (config ``solver.tolerance``,
+    ``solver.statistical_tolerance``, ``solver.force_tolerance``), each checked once as it is read."""
+
+    tolerance: float = DEFAULT_TOLERANCE  #: the study's (:func:`study_tolerance`)
+    statistical: float = DEFAULT_STATISTICAL_TOLERANCE  #: of means over a motion that does not repeat
+    force: float = DEFAULT_FORCE_TOLERANCE  #: of the peak contact force
+
+    @classmethod
+    def from_inputs(cls, inputs: Mapping[str, Any]) -> "Tolerances":
+        """The tolerances of a point (:func:`study_tolerance`, :func:`statistical_tolerance`,
+        :func:`force_tolerance`; ValueError naming the field for a value out of range)."""
+        return cls(tolerance=study_tolerance(inputs), statistical=statistical_tolerance(inputs),
+                   force=force_tolerance(inputs))
+
+
 #: The mass of the closure's impulse (periodic.Scene.equivalent_mass): 2ML/π (the paper's) or ML/2.
 IMPACT_MASSES = ("momentum", "modal")
 #: Resonance candidates the span search may enumerate (config ``solver.max_poles``; a memory guard).
@@ -304,3 +321,28 @@ class ReferenceOptions(MethodOptions):
     #: on 24 reference points of the default study 3.4 times the CPU for one point fewer not_converged,
     #: docs/reference_model.md §3.1)
     reference_window_growth: str = option("point", ("point", "figure"))
+    #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and
+    #: their kinds (1: a tool joint, 0: the body; default all body)
+    contact_points: tuple | None = None
+    contact_kinds: tuple | None = None
+
+
+@dataclass(frozen=True)
+class LimitOptions(MethodOptions):
+    """The design limits' settings of a point (the config's fields of :data:`study.physics.limits.LIMIT_INPUTS`:
+    the grade, its strengths [Pa], the stress concentration, the S-N curve, the mean-stress correction and the cycles
+    per revolution), None where unset: :meth:`keywords` passes the set ones to
+    :func:`study.physics.limits.design_limits` and :func:`study.physics.limits.history_damage`, whose own defaults
+    hold elsewhere."""
+
+    pipe_grade: str | None = None
+    yield_strength: float | None = None
+    tensile_strength: float | None = None
+    stress_concentration: float | None = None
+    sn_curve: str | None = None
+    mean_stress_correction: str | None = None
+    cycles_per_revolution: float | None = None
+
+    def keywords(self) -> dict[str, Any]:
+        """The set settings, as keywords of :func:`study.physics.limits.design_limits`."""
+        return {spec.name: getattr(self, spec.name) for spec in fields(self) if getattr(self, spec.name) is not None}

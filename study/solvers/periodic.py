@@ -182,8 +182,7 @@ def options_from(inputs: Mapping[str, Any]) -> Options:
     return Options.from_inputs(inputs)
 
 
-def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflection, moment,
-                         shear=None, mirrored: bool | None = None, field_at=None,
+def stresses_from_fields(scene: Scene, x, t, deflection, moment, shear=None, mirrored: bool | None = None, field_at=None,
                          tolerance: float | None = None) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period from the fields (docs/model.md §5, paper
     eq. 37–38) — the same for every method, whatever made the fields.
@@ -202,7 +201,7 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     p = scene.props
     mirrored = scene.pattern == "alternating" if mirrored is None else mirrored
     x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    r_o, r_i = scene.outer_radius, scene.inner_radius
     inertia = float(section.second_moment_of_area(r_o, r_i))
     area = p["steel_area"]
     deflection, moment = np.asarray(deflection, dtype=float), np.asarray(moment, dtype=float)
@@ -210,7 +209,7 @@ def stresses_from_fields(scene: Scene, inputs: Mapping[str, Any], x, t, deflecti
     scale = r_o / inertia  # σ_b = M_b r_o/I
     # over the full period σ(t + τ/2) = −σ(t) when mirrored, so half its range is max |σ| there
     half_range = np.maximum(largest, -smallest) if mirrored else 0.5 * (largest - smallest)
-    axial = abs(inputs["axial_tension"]) / area
+    axial = abs(scene.axial_tension) / area
     i_y = _field_extremes(deflection)[0]
     out = {
         "max_deflection": float(np.abs(deflection[i_y])),

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum, StrEnum
-from typing import Any, Mapping
+from typing import Any
 
 
 class Status(StrEnum):
@@ -106,18 +106,6 @@ class PointResult:
         if self.error_estimate is not None:
             out["error_estimate"] = self.error_estimate
         return out
-
-
-def choice_input(inputs: Mapping[str, Any], name: str, default: str, allowed) -> str:
-    """A method's choice option: ``inputs[name]`` (``default`` when absent), checked against ``allowed``.
-
-    The config validates these already; this guards calls made from code. Raises ValueError naming the
-    option, its value and the choices.
-    """
-    value = inputs.get(name, default)
-    if value not in allowed:
-        raise ValueError(f"{name} = {value!r}; allowed: {', '.join(allowed)}")
-    return value
 
 
 #: Every scalar output a method may produce: name -> (SI unit, long name). The dataset and the

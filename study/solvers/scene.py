@@ -15,23 +15,35 @@ import numpy as np
 
 from study.physics import hertz, section
 from study.solvers.options import IMPACT_MASSES
-from study.solvers.result import PointResult, choice_input
+from study.solvers.result import PointResult
 
 
 def section_properties(inputs: Mapping[str, Any]) -> dict[str, float]:
-    """Span-independent properties of the design point (SI floats).
+    """Span-independent properties of the design point (SI floats): :attr:`Scene.props` of
+    :meth:`Scene.from_inputs` (``inputs``: the SI inputs of one point, keyed as :data:`study.config.FIELDS` names)."""
+    return dict(Scene.from_inputs(inputs).props)
 
-    inputs: the SI inputs of one point, keyed as in :data:`study.config.FIELDS` names.
-    """
-    r_o = inputs["outer_diameter"] / 2.0
-    r_i = inputs["inner_diameter"] / 2.0
-    hole_r = inputs["hole_diameter"] / 2.0
-    area = float(section.steel_area(r_o, r_i))
-    pipe_mass = inputs.get("pipe_linear_mass") or inputs.get("pipe_density", 7850.0) * area
-    m_i = float(section.internal_mud_mass(inputs["mud_density"], r_i))
-    m_a = float(section.added_mass(inputs["mud_density"], r_o, hole_r, inputs.get("added_mass_model", "potential_flow")))
-    ei = float(section.bending_stiffness(inputs["pipe_youngs_modulus"], r_o, r_i))
-    tension = float(section.effective_tension(inputs["axial_tension"], m_i, inputs.get("mud_flow_velocity", 0.0)))
+
+def contact_compliance(inputs: Mapping[str, Any]) -> float:
+    """K1 + K2 [1/Pa] of pipe steel and rock, K = (1 − ν²)/(π E) (docs/model.md §3, Hertz): :attr:`Scene.compliance_sum`
+    of :meth:`Scene.from_inputs`."""
+    return Scene.from_inputs(inputs).compliance_sum
+
+
+def section_of(outer_radius: float, inner_radius: float, hole_radius: float, pipe_linear_mass: float | None,
+               pipe_density: float, mud_density: float, added_mass_model: str, pipe_youngs_modulus: float,
+               axial_tension: float, mud_flow_velocity: float, drag_coefficient: float) -> dict[str, float]:
+    """Span-independent properties of the pipe section in its mud (SI floats, keyed as
+    :data:`study.solvers.result.OUTPUTS`): radii r_o, r_i and the hole's R [m], the pipe's mass per length [kg/m]
+    (None: its density [kg/m³] times the steel area), the mud's density [kg/m³], added-mass model and drag
+    coefficient [-], Young's modulus [Pa], the axial tension [N] and the mud's flow velocity inside the pipe [m/s]
+    (:mod:`study.physics.section`; docs/model.md §1–§2)."""
+    area = float(section.steel_area(outer_radius, inner_radius))
+    pipe_mass = pipe_linear_mass or pipe_density * area
+    m_i = float(section.internal_mud_mass(mud_density, inner_radius))
+    m_a = float(section.added_mass(mud_density, outer_radius, hole_radius, added_mass_model))
+    ei = float(section.bending_stiffness(pipe_youngs_modulus, outer_radius, inner_radius))
+    tension = float(section.effective_tension(axial_tension, m_i, mud_flow_velocity))
     return {
         "bending_stiffness": ei,
         "steel_area": area,
@@ -40,35 +52,71 @@ def section_properties(inputs: Mapping[str, Any]) -> dict[str, float]:
         "added_mass": m_a,
         "mass_per_length": float(section.mass_per_length(pipe_mass, m_i, m_a)),
         "drag_coefficient_per_length": float(
-            section.drag_coefficient_per_length(inputs["mud_density"], r_o, hole_r, inputs.get("drag_coefficient", 0.5))
+            section.drag_coefficient_per_length(mud_density, outer_radius, hole_radius, drag_coefficient)
         ),
         "effective_tension": tension,
-        "clearance": float(section.mean_gap(r_o, hole_r)),
+        "clearance": float(section.mean_gap(outer_radius, hole_radius)),
         "buckling_length": float(section.buckling_length(ei, tension)),
     }
 
 
-def contact_compliance(inputs: Mapping[str, Any]) -> float:
-    """K1 + K2 [1/Pa] of pipe steel and rock, K = (1 − ν²)/(π E) (docs/model.md §3, Hertz)."""
-    return float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
-                 + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
-
-
 @dataclass(frozen=True)
 class Scene:
-    """Span-independent data of the design point (SI)."""
+    """The design point a method solves (SI): the pipe, the hole, the rock, the mud, the load and the impact of
+    the config's sections of those names (:data:`study.config.FIELDS`), and the section's derived properties.
+    Built once from a point's inputs by :meth:`from_inputs`, the one place that reads them."""
 
-    props: Mapping[str, float]
-    outer_radius: float
-    inner_radius: float  #: the pipe's bore r_i [m]
-    hole_radius: float
+    props: Mapping[str, float]  #: the section's properties (:func:`section_of`)
+    outer_radius: float  #: the pipe's r_o [m] (pipe.outer_diameter / 2)
+    inner_radius: float  #: the pipe's bore r_i [m] (pipe.inner_diameter / 2)
+    hole_radius: float  #: the hole's R [m] (hole.diameter / 2)
     axial_tension: float  #: the true axial tension T0 [N] (the effective one is ``props["effective_tension"]``)
-    compliance_sum: float
-    rotary_speed: float
-    restitution: float
-    pattern: str
-    closure: str
+    compliance_sum: float  #: K1 + K2 [1/Pa] of pipe steel and rock (Hertz, docs/model.md §3)
+    rotary_speed: float  #: Ω [rad/s] (load.rotary_speed)
+    restitution: float  #: e [-] (impact.restitution)
+    pattern: str  #: impact.pattern: "alternating" or "one_wall"
+    closure: str  #: impact.closure: "prescribed" or "self_consistent"
     impact_mass: str = "momentum"  #: IMPACT_MASSES
+    mud_density: float = 0.0  #: ρ_m [kg/m³] (mud.density)
+    mud_flow_velocity: float = 0.0  #: V_m [m/s] inside the pipe (mud.flow_velocity)
+    pipe_density: float = 7850.0  #: the pipe steel's density [kg/m³] (pipe.density)
+    inclination: float = 0.0  #: the hole's inclination from vertical [rad] (hole.inclination)
+    dogleg_curvature: float = 0.0  #: the hole's curvature κ [1/m] (hole.dogleg_severity)
+    dogleg_direction: float = 0.0  #: the direction of the hole's centre of curvature from the low side [rad]
+    #: the uniform side load along +y [N/m] set directly (code and tests: the ``side_load`` input), None: the
+    #: buoyed weight's and the tension's in a curved hole (study.solvers.reference.side_loads)
+    side_load: float | None = None
+    #: the span given (solver.span_length) [m], None: a method that needs one searches for it or says it has none
+    span_length: float | None = None
+
+    @classmethod
+    def from_inputs(cls, inputs: Mapping[str, Any]) -> "Scene":
+        """The scene of a design point from its SI inputs (keyed as :data:`study.config.FIELDS` names): the one
+        place outside the config that reads them by name. Raises ValueError for a choice outside its values."""
+        r_o = inputs["outer_diameter"] / 2.0
+        r_i = inputs["inner_diameter"] / 2.0
+        hole_r = inputs["hole_diameter"] / 2.0
+        pipe_density = inputs.get("pipe_density", 7850.0)
+        flow = inputs.get("mud_flow_velocity", 0.0)
+        props = section_of(r_o, r_i, hole_r, inputs.get("pipe_linear_mass"), pipe_density, inputs["mud_density"],
+                           inputs.get("added_mass_model", "potential_flow"), inputs["pipe_youngs_modulus"],
+                           inputs["axial_tension"], flow, inputs.get("drag_coefficient", 0.5))
+        compliance = float(hertz.compliance(inputs["pipe_youngs_modulus"], inputs["pipe_poisson_ratio"])
+                           + hertz.compliance(inputs["rock_youngs_modulus"], inputs["rock_poisson_ratio"]))
+        side, span = inputs.get("side_load"), inputs.get("span_length")
+        impact_mass = inputs.get("impact_mass", "momentum")  # the config checks it; this guards calls from code
+        if impact_mass not in IMPACT_MASSES:
+            raise ValueError(f"impact_mass = {impact_mass!r}; allowed: {', '.join(IMPACT_MASSES)}")
+        return cls(props=props, outer_radius=r_o, hole_radius=hole_r, compliance_sum=compliance,
+                   rotary_speed=float(inputs["rotary_speed"]), restitution=float(inputs["restitution"]),
+                   pattern=inputs.get("impact_pattern", "alternating"), closure=inputs.get("closure", "prescribed"),
+                   impact_mass=impact_mass,
+                   inner_radius=r_i, axial_tension=float(inputs["axial_tension"]),
+                   mud_density=inputs["mud_density"], mud_flow_velocity=flow or 0.0,
+                   pipe_density=pipe_density or 7850.0, inclination=float(inputs.get("inclination") or 0.0),
+                   dogleg_curvature=float(inputs.get("dogleg_curvature") or 0.0),
+                   dogleg_direction=float(inputs.get("dogleg_direction") or 0.0),
+                   side_load=None if side is None else float(side), span_length=None if span is None else span)
 
     def equivalent_mass(self, span_length):
         """m_e [kg] of the closure's impulse J = m_e (1 + e) V_p: 2ML/π (``momentum``, the paper's
@@ -78,6 +126,16 @@ class Scene:
         if self.impact_mass == "modal":
             return 0.5 * mass * np.asarray(span_length, dtype=float)
         return section.equivalent_mass(mass, span_length)
+
+    @property
+    def outer_diameter(self) -> float:
+        """The pipe's outer diameter 2 r_o [m]."""
+        return 2.0 * self.outer_radius
+
+    @property
+    def inner_diameter(self) -> float:
+        """The pipe's bore 2 r_i [m]."""
+        return 2.0 * self.inner_radius
 
     @property
     def clearance(self) -> float:
@@ -100,30 +158,23 @@ class Scene:
 
 
 def make_scene(inputs: Mapping[str, Any]) -> Scene:
-    """The scene of a design point from its SI inputs (section, mud, tension, clearance, contact, rotation)."""
-    props = section_properties(inputs)
-    compliance = contact_compliance(inputs)
-    return Scene(props=props, outer_radius=inputs["outer_diameter"] / 2.0, hole_radius=inputs["hole_diameter"] / 2.0,
-                 compliance_sum=compliance, rotary_speed=float(inputs["rotary_speed"]),
-                 restitution=float(inputs["restitution"]), pattern=inputs.get("impact_pattern", "alternating"),
-                 closure=inputs.get("closure", "prescribed"),
-                 impact_mass=choice_input(inputs, "impact_mass", "momentum", IMPACT_MASSES),
-                 inner_radius=inputs["inner_diameter"] / 2.0, axial_tension=float(inputs["axial_tension"]))
+    """The scene of a design point from its SI inputs (:meth:`Scene.from_inputs`)."""
+    return Scene.from_inputs(inputs)
 
 
-def given_span(inputs: Mapping[str, Any], result: PointResult, method: str, buckled: str) -> float | None:
+def given_span(scene: Scene, result: PointResult, method: str, buckled: str) -> float | None:
     """The span of a method that is given one (``solver.span_length``) rather than searching for it.
 
     Returns the span [m], or None after recording on ``result`` the status ``incomplete`` (no span
     given) or ``buckled`` (``buckled``: the message, formatted with ``tension`` [N] and ``span`` [m]).
     ``method``: how the messages name the method.
     """
-    span = inputs.get("span_length")
+    span = scene.span_length
     if span is None:
         result.status = "incomplete"
         result.message = f"{method} needs a span (solver.span_length): it does not search for one"
     else:
-        props = make_scene(inputs).props
+        props = scene.props
         if not section.is_buckled(span, props["bending_stiffness"], props["effective_tension"]):
             return float(span)
         result.status = "buckled"

@@ -98,11 +98,11 @@ class EquivalentSdof:
 def equivalent_parameters(inputs: Mapping[str, Any], option: SdofOptions | None = None) -> EquivalentSdof:
     """The SDOF model of the design point's span (see the module docstring and :class:`EquivalentSdof`).
 
-    Needs ``inputs['span_length']``. The Hertz stiffness is at the assumed-mode curvature κ = c (π/L)².
+    Needs the span given (``solver.span_length``). The Hertz stiffness is at the assumed-mode curvature κ = c (π/L)².
     ``option``: the SDOF options (its mass and damping models), else read from ``inputs``.
     """
     scene = make_scene(inputs)
-    span = float(inputs["span_length"])
+    span = float(scene.span_length)
     props = scene.props
     option = SdofOptions.from_inputs(inputs) if option is None else option
     mass_model, damping_model = option.sdof_mass, option.sdof_damping
@@ -298,7 +298,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """
     result = PointResult(method="sdof")
     option = SdofOptions.from_inputs(inputs)
-    if given_span(inputs, result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
+    if given_span(make_scene(inputs), result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
                   "load of the {span:.4g} m span: no first mode to reduce to") is None:
         return result
     par = equivalent_parameters(inputs, option)

@@ -7,10 +7,10 @@ from the paper's double series :func:`study.physics.fourier.series_field`, n_mod
 harmonics (m ≤ M) terms, with NO quasi-static correction. It is the reproduction of the paper and
 the slow baseline against which the fast method is measured (:func:`study.benchmarks.series.convergence_table`).
 
-Truncation. N is ``inputs["modes"]`` (as for fast). M is ``inputs["harmonics"]`` (default
-:data:`DEFAULT_HARMONICS`) or, with ``inputs["series_tolerance"]`` set, found by doubling M from that
+Truncation. N is ``solver.modes`` (as for fast). M is ``solver.harmonics`` (default
+:data:`DEFAULT_HARMONICS`) or, with ``solver.series_tolerance`` set, found by doubling M from that
 start until the maximum normal stress changes by less than the tolerance, at most
-``inputs["series_max_harmonics"]`` (default :data:`MAX_HARMONICS`; status ``not_converged`` when the cap
+``solver.series_max_harmonics`` (default :data:`MAX_HARMONICS`; status ``not_converged`` when the cap
 is reached first).
 
 Error estimate. The larger of two: the relative change of the maximum normal stress between the last
@@ -117,7 +117,7 @@ def stresses(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any
     def field_at(kind, xs, ts):
         return fields(scene, impact, options, harmonics, (kind,), xs, ts)[kind]
 
-    return periodic.stresses_from_fields(scene, inputs, x, t, f["deflection"], f["moment"], f["shear"],
+    return periodic.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
                                          field_at=field_at, tolerance=study_tolerance(inputs))
 
 
@@ -169,7 +169,7 @@ def term_grid(scene: Scene, impact: impact_model.Impact, points_per_pulse: int =
             np.linspace(0.0, span_t, nt, endpoint=False))
 
 
-def term_ratio_table(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],
+def term_ratio_table(scene: Scene, impact: impact_model.Impact,
                      options: periodic.Options, harmonics: int = DEFAULT_HARMONICS) -> dict[str, Any]:
     """The paper's §VI table for this span and impact (docs/model.md §6) and its verdict.
 
@@ -183,9 +183,9 @@ def term_ratio_table(scene: Scene, impact: impact_model.Impact, inputs: Mapping[
     x, t = term_grid(scene, impact)
     f = fields(scene, impact, options, harmonics, checks.FIELDS, x, t)
     p = scene.props
-    props = {"bending_stiffness": p["bending_stiffness"], "axial_tension": float(inputs["axial_tension"]),
+    props = {"bending_stiffness": p["bending_stiffness"], "axial_tension": scene.axial_tension,
              "internal_mud_mass": p["internal_mud_mass"],
-             "mud_flow_velocity": float(inputs.get("mud_flow_velocity") or 0.0),
+             "mud_flow_velocity": float(scene.mud_flow_velocity),
              "mass_per_length": p["mass_per_length"],
              "drag_coefficient_per_length": p["drag_coefficient_per_length"]}
     magnitudes = checks.term_magnitudes(f, props)
@@ -201,7 +201,7 @@ def add_term_ratios(scene: Scene, impact: impact_model.Impact, inputs: Mapping[s
                     options: periodic.Options, result: PointResult, harmonics: int = DEFAULT_HARMONICS) -> None:
     """Store :func:`term_ratio_table` in ``result.extras["term_ratios"]``; an otherwise "ok" point whose
     dropped drag is not small becomes "terms_not_small" (either periodic method may call this)."""
-    table = term_ratio_table(scene, impact, inputs, options, harmonics)
+    table = term_ratio_table(scene, impact, options, harmonics)
     result.extras["term_ratios"] = table
     if not table["ok"] and result.status == "ok":
         result.status = "terms_not_small"

@@ -71,7 +71,7 @@ from study.physics import contact, hertz, section, whirl
 from study.solvers import event_driven, orbit, periodic, sdof, trajectory
 from study.solvers.options import INTEGRATORS, SdofOptions, TimeDomainOptions
 from study.solvers.result import PointResult
-from study.solvers.scene import given_span
+from study.solvers.scene import given_span, make_scene
 
 METHOD = "time-domain"
 MAX_PERIOD = 8
@@ -547,7 +547,7 @@ def stresses(inputs: Mapping[str, Any], model: ModalModel, samples: trajectory.S
     props = model.scene.props
     f = trajectory.fields(samples, x, model.modes, model.points, model.span, props["bending_stiffness"],
                           props["effective_tension"])
-    return periodic.stresses_from_fields(model.scene, inputs, x, samples.times - samples.times[0],
+    return periodic.stresses_from_fields(model.scene, x, samples.times - samples.times[0],
                                          f["deflection"], f["moment"], mirrored=False)
 
 
@@ -613,7 +613,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     """
     option = TimeDomainOptions.from_inputs(inputs)
     result = PointResult(method=METHOD)
-    if given_span(inputs, result, "the time-domain method",
+    if given_span(make_scene(inputs), result, "the time-domain method",
                   "effective tension {tension:.4g} N buckles the {span:.4g} m span") is None:
         return result
     run = simulate(inputs, option=option)

@@ -7,10 +7,17 @@ import pytest
 
 from study import config
 from study.solvers import freewhirl, solve_point
+from study.solvers.options import ReferenceOptions
+from study.solvers.scene import Scene
 from study.solvers.reference import mode_shapes
 
 ROOT = Path(__file__).resolve().parents[2]
 DEG = np.pi / 180
+
+
+def typed(inputs):
+    """The point's scene and reference options, as the method builds them at its entry."""
+    return Scene.from_inputs(inputs), ReferenceOptions.from_inputs(inputs)
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +40,7 @@ def test_without_drag_the_whirl_is_a_rigid_jeffcott_rotor(paper):
     # radius (m_p/M) eps at every section, opposite the unbalance, and no bending (without the tool joints' mass,
     # which the body's unbalance would bend the string against)
     inputs = {**paper, "drag_coefficient": 0.0, "tool_joint_length": 0.0}
-    state = freewhirl.steady_state(inputs)
+    state = freewhirl.steady_state(*typed(inputs))
     props = state["props"]
     radius = props["pipe_mass"] / props["mass_per_length"] * paper["eccentricity"]
     np.testing.assert_allclose(np.abs(state["whirl"][0]), radius, rtol=1e-12)
@@ -43,8 +50,8 @@ def test_without_drag_the_whirl_is_a_rigid_jeffcott_rotor(paper):
 
 
 def test_the_mud_drag_only_takes_from_the_whirl(paper):
-    dry = freewhirl.steady_state({**paper, "drag_coefficient": 0.0})
-    wet = freewhirl.steady_state(paper)
+    dry = freewhirl.steady_state(*typed({**paper, "drag_coefficient": 0.0}))
+    wet = freewhirl.steady_state(*typed(paper))
     assert np.max(np.abs(wet["whirl"][0])) < np.max(np.abs(dry["whirl"][0]))
     assert wet["change"] < 1e-10 and wet["iterations"] > 1
 
@@ -62,7 +69,7 @@ def test_with_the_joints_mass_the_string_whirls_about_its_centre_of_mass(paper):
     # m_p ε Ω² L, balances the centrifugal force of the whole mass on its centre's circle, so the mass-weighted mean
     # deflection (∫ M u dx + Σ m_j u(x_j))/(M L + Σ m_j) is a circle of radius m_p ε L/(M L + Σ m_j), opposite the
     # unbalance; the joints lag the body, so the string bends a little (the uniform circle without them: above)
-    state = freewhirl.steady_state({**paper, "drag_coefficient": 0.0})
+    state = freewhirl.steady_state(*typed({**paper, "drag_coefficient": 0.0}))
     props, L = state["props"], state["L"]
     m_j = state["joint_mass"]
     assert m_j > 40.0

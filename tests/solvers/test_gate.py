@@ -10,6 +10,8 @@ from study import config
 from study.physics.oscillator import ImpactParams, periodic_orbit
 from study.solvers import METHODS, gate, periodic, sdof, series, solve_point
 from study.solvers.result import PointResult
+from study.solvers.options import Tolerances
+from study.solvers.scene import Scene
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30.0
@@ -52,21 +54,21 @@ def _result(**values):
 def test_each_check_moves_an_ok_result_only_when_it_fails(default, values, error, status, words):
     result = _result(**values)
     result.error_estimate = error
-    admitted = gate.admit(result, default)
+    admitted = gate.admit(result, Scene.from_inputs(default), Tolerances.from_inputs(default))
     assert admitted.status == status and words in admitted.message
 
 
 def test_a_status_other_than_ok_is_left_alone(default):
     result = PointResult(method="test", status="no_span", message="none", values={"max_deflection": 1e3,
                                                                                    "clearance": 0.05})
-    assert gate.admit(result, default) is result
+    assert gate.admit(result, Scene.from_inputs(default), Tolerances.from_inputs(default)) is result
 
 
 def test_the_gate_computes_the_ellipse_a_method_does_not_report(default):
     # a peak force and a curvature alone (the time domain's, sdof's outputs): 9.4e6 N at the 345-ft span's
     # kappa = c (pi/L)^2 is a 7.1-m contact on a 4.5-in pipe
     result = _result(peak_contact_force=9.414e6, axial_curvature=4.8175e-5, span_length=105.156)
-    admitted = gate.admit(result, default)
+    admitted = gate.admit(result, Scene.from_inputs(default), Tolerances.from_inputs(default))
     assert admitted.status == "hertz_invalid" and "length 7.098 m > 1 x pipe diameter 0.1143 m" in admitted.message
 
 

@@ -7,7 +7,8 @@ import pytest
 
 from study.benchmarks import reference as reference_bench
 from study.solvers import METHODS, reference, solve_point
-from study.solvers.options import ReferenceOptions
+from study.solvers.options import ReferenceOptions, Tolerances
+from study.solvers.scene import Scene
 
 
 @pytest.fixture(scope="module")
@@ -246,7 +247,7 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     point = {**_default_point(default_study, 100, 5, 0.3, 9, 0.0), "reference_residual": "none",
              "statistical_tolerance": 0.01, "reference_max_revolutions": 100}
     raw = reference.solve(point)
-    short = gate.admit(raw, point)  # as solve_point does
+    short = gate.admit(raw, Scene.from_inputs(point), Tolerances.from_inputs(point))  # as solve_point does
     assert short.extras["whirl"] == "sliding"
     assert short.status == "not_converged", short.message
     assert "above the tolerance" in short.message and np.isfinite(short.values["peak_contact_force"])
@@ -261,7 +262,7 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     assert stated["total"] > 0.01 and stated["total"] + longer.extras["convergence"]["peak_contact_force"]["total"] >= off
     assert short.extras["revolutions_needed"] > reference.FORECAST_SLACK * 100
     # a looser tolerance admits the same answer, values unchanged
-    loose = gate.admit(raw, {**point, "statistical_tolerance": 0.5})
+    loose = gate.admit(raw, Scene.from_inputs(point), Tolerances.from_inputs({**point, "statistical_tolerance": 0.5}))
     assert loose.status == "ok" and loose.values["peak_contact_force"] == short.values["peak_contact_force"]
 
 

@@ -128,7 +128,7 @@ def test_tolerance_doubles_harmonics_until_met_or_capped(fixed_span):
 def test_term_ratio_table_on_the_fixed_span(fixed_span):
     # source: closed form of the table's convention (paper §VI: the dropped drag term = 1); every term finite
     inputs, scene, impact = fixed_span
-    out = series.term_ratio_table(scene, impact, inputs, periodic.Options(modes=41), harmonics=400)
+    out = series.term_ratio_table(scene, impact, periodic.Options(modes=41), harmonics=400)
     assert set(out["ratios"]) == set(checks.TERMS)
     assert out["ratios"]["drag"] == {"max": 1.0, "mean": 1.0, "least": 1.0}
     assert all(np.isfinite(v[k]) and v[k] > 0 for v in out["ratios"].values() for k in checks.RATIO_KINDS)

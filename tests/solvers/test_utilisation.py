@@ -51,10 +51,12 @@ def test_no_limits_without_stresses(paper_one_wall):
 def test_limits_of_a_method_that_does_not_report_the_section(paper_one_wall):
     # a result with stresses but not the steel area: the limits take it from the inputs
     from study.solvers.result import PointResult
+    from study.solvers.options import LimitOptions
+    from study.solvers.scene import Scene
     from study.solvers.utilisation import add_limits
 
     result = add_limits(PointResult(method="test", values={"max_normal_stress": 1e8, "alternating_bending_stress": 1e7}),
-                        paper_one_wall)
+                        Scene.from_inputs(paper_one_wall), LimitOptions.from_inputs(paper_one_wall))
     assert result.values["yield_utilisation"] == pytest.approx(1e8 / (75_000 * PSI))
 
 

@@ -11,6 +11,8 @@ from study import config
 from study.physics import well
 from study.physics import whirl as whirl_physics
 from study.solvers import auto, freewhirl, reference, sliding
+from study.solvers.options import Tolerances
+from study.solvers.scene import Scene
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -300,9 +302,9 @@ def test_the_gate_calls_a_body_past_its_wall_between_stations_unphysical():
     from study.solvers import gate
 
     values = {"max_deflection": 0.05, "clearance": 0.054, "max_wall_excess": 0.02 * 0.054}
-    status, message = gate.within_clearance(values, {"tolerance": 0.01})
+    status, message = gate.within_clearance(values, None, Tolerances(tolerance=0.01))
     assert status == "unphysical" and "beyond its contacts' Hertz approach" in message
-    assert gate.within_clearance({**values, "max_wall_excess": 0.005 * 0.054}, {"tolerance": 0.01}) is None
+    assert gate.within_clearance({**values, "max_wall_excess": 0.005 * 0.054}, None, Tolerances(tolerance=0.01)) is None
 
 
 # --- backward whirl --------------------------------------------------------------------------------------------
@@ -365,7 +367,7 @@ def test_a_backward_bouncing_body_past_its_wall_gets_stations_until_it_is_within
     assert [t["stations"] for t in tried] == [2 ** (i + 1) - 1 for i in range(len(tried))]
     assert result.extras["reference_body_stations"] == tried[-1]["stations"] <= 31
     assert result.values["max_wall_excess"] <= 0.05 * clearance
-    assert gate.within_clearance(result.values, inputs) is None
+    assert gate.within_clearance(result.values, Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)) is None
     assert result.values["whirl_frequency_ratio"] < -0.5 and result.values["impacts_per_revolution"] > 1
     assert "body stations raised from 1" in result.message
 
@@ -486,7 +488,7 @@ def test_the_joints_share_of_the_turning_load_by_the_balance_of_forces():
     # third of a turn from joint to joint, the three joints' loads sum to nothing (1 + e^{2πi/3} + e^{4πi/3} = 0): no
     # speed lifts the string as a whole
     model = reference.build_model(_default(200, 30))
-    w = float(np.hypot(*reference.side_loads(_default(200, 30), model.props)[:2]))
+    w = float(np.hypot(*reference.side_loads(Scene.from_inputs(_default(200, 30)))[:2]))
     joints = model.kinds == 1
     lift = np.sqrt((w * model.span + np.count_nonzero(joints) * model.joint_weight)
                    / (model.props["pipe_mass"] * model.eccentricity * model.span))
@@ -518,7 +520,7 @@ def test_the_default_reading_lifts_a_joint_by_the_balance_of_its_forces():
     # the balance of a joint's forces: it lifts where share · m_p ε Ω² s beats its rest, w s + W_j sin θ (302.8 N at
     # 9 ppg, docs/reference_model.md §7): at 248.8 rpm for the 90° string, 227.0 rpm aligned (the whole string's
     # balance, as test_the_joints_share_of_the_turning_load_by_the_balance_of_forces computes it)
-    w = float(np.hypot(*reference.side_loads(point, props)[:2]))
+    w = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2]))
     rest = w * s + model.joint_weight
     assert rest == pytest.approx(302.77, abs=0.01)
     rpm = lambda share_: float(whirl_physics.lift_off_speed(rest, share_, m_p, model.eccentricity, s)) * 30 / np.pi
@@ -541,5 +543,5 @@ def test_at_200_rpm_and_30_klbf_the_default_string_lies_below_the_eccentricity_t
     assert result.values["contact_fraction"] == 1.0
     model = reference.build_model(point)
     s = model.span / np.count_nonzero(model.kinds == 1)
-    share = float(np.hypot(*reference.side_loads(point, model.props)[:2])) * s + model.joint_weight
+    share = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2])) * s + model.joint_weight
     assert 1.0 < result.values["peak_contact_force"] / share < 2.5  # measured 568.5 N over 302.8 N: 1.88

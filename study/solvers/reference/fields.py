@@ -13,6 +13,7 @@ from study.solvers import stress_kernel
 from study.solvers.reference.integrate import Window
 from study.solvers.reference.model import WhirlModel, eccentric_parts, static_correction
 from study.solvers.reference.modes import mode_shapes
+from study.solvers.scene import Scene
 
 
 def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
@@ -164,7 +165,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         if inertia is not None:
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    scene = Scene.from_inputs(inputs)
+    r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]
     k = model.wavenumber
@@ -203,7 +205,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         excess += wall_excess_bound(model, x, largest)
         outs.append(dict(max_deflection=float(deflection), max_wall_excess=excess,
                          max_bending_stress=float(largest * scale),
-                         max_normal_stress=float(abs(inputs["axial_tension"]) / area + largest * scale),
+                         max_normal_stress=float(abs(scene.axial_tension) / area + largest * scale),
                          max_normal_stress_x=float(x[ix]), max_normal_stress_t=float(times[it] - times[0]),
                          alternating_bending_stress=float(np.max(half) * scale),
                          alternating_bending_stress_x=float(x[int(np.argmax(half))]),

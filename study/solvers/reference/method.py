@@ -11,7 +11,8 @@ import numpy as np
 
 from study.physics import fatigue
 from study.solvers import whirl_kernel
-from study.solvers.options import ReferenceOptions, force_tolerance, statistical_tolerance, study_tolerance
+from study.solvers.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
+                                   study_tolerance)
 from study.solvers.reference.fields import contact_spacing, energy_balance
 from study.solvers.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.reference.model import WhirlModel, build_model
@@ -63,7 +64,7 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
     force = force_tolerance(inputs)  # the peak contact force's own (solver.force_tolerance)
     per_figure = option.reference_window_growth == "figure"
-    exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
+    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
     tol = float(option.reference_tolerance)
     scale = model.state_scale()
     states = [run.modal_state()]
@@ -298,7 +299,7 @@ def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = N
         # a run whose modes left out take a figure over half the tolerance is run again with more modes (solve), which
         # raise their own stations: its stations are not raised
         modal = modal_part(result)
-        if (result.status != "ok" or not passed or 2 * count + 1 > top or inputs.get("contact_points") is not None
+        if (result.status != "ok" or not passed or 2 * count + 1 > top or option.contact_points is not None
                 or (more_modes and modal > 0.5 * tolerance)):
             break
         count = 2 * count + 1

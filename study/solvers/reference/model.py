@@ -16,7 +16,7 @@ from study.solvers.options import ReferenceOptions
 from study.solvers.reference.modes import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
                                            mode_wavenumbers, periodic_point_deflection, periodic_point_moment,
                                            series_contact, symmetric_points)
-from study.solvers.scene import make_scene, section_properties
+from study.solvers.scene import Scene, make_scene
 
 
 CONTACT_LAWS = ReferenceOptions.choices("contact_law")
@@ -303,23 +303,23 @@ def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
     return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
 
 
-def side_loads(inputs: Mapping[str, Any], props: Mapping[str, float]) -> tuple[float, float, np.ndarray]:
+def side_loads(scene: Scene) -> tuple[float, float, np.ndarray]:
     """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
     hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
     (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension and,
-    in a curved hole, ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side (the
-    tension's T κ towards the centre of curvature). ``side_load`` [N/m] in the inputs sets the load along +y
+    in a curved hole, the scene's ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side
+    (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load along +y
     directly (code and tests)."""
-    kappa = float(inputs.get("dogleg_curvature") or 0.0)
-    phi = float(inputs.get("dogleg_direction") or 0.0)
+    props = scene.props
+    kappa = scene.dogleg_curvature
+    phi = scene.dogleg_direction
     curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
-    if inputs.get("side_load") is not None:
-        return float(inputs["side_load"]), 0.0, curvature
-    r_o = inputs["outer_diameter"] / 2.0
-    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], inputs["mud_density"], r_o,
+    if scene.side_load is not None:
+        return scene.side_load, 0.0, curvature
+    r_o = scene.outer_radius
+    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], scene.mud_density, r_o,
                                    0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
-    w_y, w_z = well.side_load_vector(buoyed, float(inputs.get("inclination") or 0.0), props["effective_tension"],
-                                     kappa, phi)
+    w_y, w_z = well.side_load_vector(buoyed, scene.inclination, props["effective_tension"], kappa, phi)
     return float(w_y), float(w_z), curvature
 
 
@@ -327,9 +327,9 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     """The reference model of one design point (see the module docstring). Raises ValueError naming the
     field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
     option = ReferenceOptions.from_inputs(inputs)
-    props = section_properties(inputs)
     scene = make_scene(inputs)
-    r_o, hole_r = inputs["outer_diameter"] / 2.0, inputs["hole_diameter"] / 2.0
+    props = dict(scene.props)
+    r_o, hole_r = scene.outer_radius, scene.hole_radius
     if r_o >= hole_r:
         raise ValueError(f"pipe.outer_diameter = {2 * r_o:.6g} m: must be smaller than hole.diameter = "
                          f"{2 * hole_r:.6g} m")
@@ -358,20 +358,21 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m: must be >= 0 and shorter than "
                          f"pipe.joint_length ({joint:.6g} m)")
     joint_mass, joint_weight = well.tool_joint_excess(
-        inputs.get("pipe_density") or 7850.0, 2 * tj, tj_bore, tj_length, props["pipe_mass"], 2 * r_o,
-        inputs["inner_diameter"], inputs["mud_density"])
+        scene.pipe_density, 2 * tj, tj_bore, tj_length, props["pipe_mass"], 2 * r_o,
+        scene.inner_diameter, scene.mud_density)
     if joint_mass < 0.0:
         raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m with pipe.tool_joint_diameter = {2 * tj:.6g} m, "
                          f"pipe.tool_joint_inner_diameter = {tj_bore:.6g} m makes a joint {-joint_mass:.4g} kg lighter "
                          "than the plain pipe it replaces: set pipe.tool_joint_length = 0 where pipe.linear_mass "
                          "counts the joints already")
     joint_x = contact_layout(L, joint, 0)[0]
-    joint_side = joint_weight * float(np.sin(float(inputs.get("inclination") or 0.0)))  # along the low side
+    joint_side = joint_weight * float(np.sin(scene.inclination))  # along the low side
     # ω_n and the modes with the joints' mass (the basis itself without); NaN where ω² < 0: the section buckles
     omega, basis = joint_modes(L, N, M, props["bending_stiffness"], props["effective_tension"], joint_x, joint_mass)
-    if inputs.get("contact_points") is not None:
-        x = np.atleast_1d(np.asarray(inputs["contact_points"], float)) * L
-        kinds = np.atleast_1d(np.asarray(inputs.get("contact_kinds", np.zeros(x.size)), int))
+    if option.contact_points is not None:
+        x = np.atleast_1d(np.asarray(option.contact_points, float)) * L
+        kinds = np.atleast_1d(np.asarray(np.zeros(x.size) if option.contact_kinds is None else option.contact_kinds,
+                                         int))
     else:
         x, kinds = contact_layout(L, joint, int(option.reference_body_stations))
     radius = np.where(kinds == 1, tj, r_o)
@@ -383,15 +384,15 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     mass = 0.5 * M * L
     lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
     phi = lift(phi)
-    Om = float(inputs["rotary_speed"])
+    Om = scene.rotary_speed
     eps = float(option.eccentricity)
     factors = np.zeros(N)
     factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
     # the body's, not the joints'; in phases that turn from pipe joint to pipe joint (eccentric_factors)
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om)
                      * eccentric_factors(L, joint, N, float(option.eccentricity_turn))) / mass
-    w_y, w_z, curvature = side_loads(inputs, props)
-    if joint_side and inputs.get("side_load") is None:
+    w_y, w_z, curvature = side_loads(scene)
+    if joint_side and scene.side_load is None:
         w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
     # the scene is axisymmetric but for the side load, whose direction is constant: the model's frame is the hole's
     # turned by the side load's angle β, so that the load lies along its +y (every output is the same in any frame)
@@ -400,13 +401,13 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     cb, sb = np.cos(frame), np.sin(frame)
     hole_curvature = np.array([cb * curvature[0] + sb * curvature[1], -sb * curvature[0] + cb * curvature[1]])
     load = w_side * factors
-    if joint_side and inputs.get("side_load") is None:
+    if joint_side and scene.side_load is None:
         # the joints' weight at the joints less its mean (in w_side): a load at the supports, along the low side (its
         # part across the model's +y, where a walking dogleg turns the frame, is left out: docs/reference_model.md §9)
         load = load + joint_side * cb * (mode_shapes(joint_x, L, N).sum(axis=0) - joint_x.size / L * factors)
     at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)  # contacts at joints
     point_side = None
-    if joint_side and inputs.get("side_load") is None and np.any(at_joint):
+    if joint_side and scene.side_load is None and np.any(at_joint):
         point_side = np.where(at_joint, joint_side * cb, 0.0)
     side = lift(load) / mass
     damping_model = option.reference_damping
@@ -417,7 +418,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     gx, gw = whirl.gauss_legendre(G)
     shapes = lift(mode_shapes(0.5 * L * (gx + 1), L, N))
     drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
-    e = float(inputs["restitution"])
+    e = scene.restitution
     law = CONTACT_LAWS.index(option.contact_law)
     # the linear penalty: Hertz linearised at the elastic approach of the point's effective mass at Ω c_p
     m_eff = mass / np.maximum(np.sum(phi**2, axis=1), 1e-12)

@@ -10,13 +10,14 @@ import numpy as np
 
 from study.physics import fatigue, limits, section
 from study.physics.contact import hertz_force
-from study.solvers.options import ReferenceOptions, force_tolerance, statistical_tolerance, study_tolerance
+from study.solvers.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
+                                   study_tolerance)
 from study.solvers.reference.fields import periodic_fields, stresses
 from study.solvers.reference.integrate import Window, merge
 from study.solvers.reference.model import WhirlModel, residual_flexibility
 from study.solvers.reference.modes import series_contact
 from study.solvers.result import REGIMES
-from study.solvers.utilisation import limit_options
+from study.solvers.scene import Scene
 
 
 #: The regime of the study's charts (study.solvers.result.REGIMES) each whirl verdict is.
@@ -128,11 +129,12 @@ def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     x = np.array([float(station)])
     moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.correction_forces(model, j)
                                if correction else None, x, j)["moment"][:, 0] for j in range(2)]
-    r_o, r_i = inputs["outer_diameter"] / 2.0, inputs["inner_diameter"] / 2.0
+    scene = Scene.from_inputs(inputs)
+    r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     angle = model.rotary_speed * window.times[:, None] + 2.0 * np.pi * np.arange(fibres)[None, :] / fibres
     bending = moments[0][:, None] * np.cos(angle) + moments[1][:, None] * np.sin(angle)
-    return inputs["axial_tension"] / model.props["steel_area"] + scale * bending
+    return scene.axial_tension / model.props["steel_area"] + scale * bending
 
 
 def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float, starts,
@@ -144,7 +146,7 @@ def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
     periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
     stress = fibre_stress(inputs, model, window, station, correction)
-    options = limit_options(inputs)
+    options = LimitOptions.from_inputs(inputs).keywords()
     return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
                             for k in range(stress.shape[1])])
 
@@ -362,7 +364,7 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
                                                floor)}
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
-    exponent = fatigue.damage_exponent(inputs.get("sn_curve") or "B1")
+    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
     # the peak force is held to its own tolerance: its error counts in the point's as its share of it (stress_equivalent)
     force_share = (study_tolerance(inputs) if periodic else statistical_tolerance(inputs)) / force_tolerance(inputs)
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
