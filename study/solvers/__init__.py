@@ -66,9 +66,10 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     start = time.perf_counter()
     try:
         result = methods[name][0](inputs)
-        scene = Scene.from_inputs(inputs)
-        result = gate.admit(utilisation.add_limits(result, scene, LimitOptions.from_inputs(inputs)), scene,
-                            Tolerances.from_inputs(inputs))
+        if result.status == "ok" or "max_normal_stress" in result.values:  # what the limits and the gate judge
+            scene = Scene.from_inputs(inputs)
+            result = gate.admit(utilisation.add_limits(result, scene, LimitOptions.from_inputs(inputs)), scene,
+                                Tolerances.from_inputs(inputs))
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         result = PointResult(method=name, status="failed",

@@ -36,6 +36,7 @@ solution where the undamped one's dropped drag is not small (``terms_not_small``
 from __future__ import annotations
 
 import copy
+import functools
 import sys
 import threading
 from collections import OrderedDict
@@ -144,11 +145,13 @@ def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
 def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     tried: list[PointResult] = []
-    scene, tolerances = Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)  # what the gate reads of the point
+    # what the gate reads of the point, built once where it first judges an ok answer
+    point = functools.cache(lambda: (Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)))
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], inputs):
             continue
-        tried.append(gate.admit(solve_rung(method, prepare(inputs)), scene, tolerances))
+        answer = solve_rung(method, prepare(inputs))
+        tried.append(gate.admit(answer, *point()) if answer.status == "ok" else answer)
         if tried[-1].status == "ok":
             break
     result = tried[-1]
