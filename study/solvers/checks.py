@@ -60,7 +60,7 @@ FIELDS = {
     "velocity": "ẏ [m/s]",
 }
 
-#: Scalar properties :func:`term_magnitudes` needs (names as in :func:`study.solvers.scene.section_properties`
+#: Scalar properties :func:`term_magnitudes` needs (names as in :func:`study.solvers.scene.section_of`
 #: and the SI inputs): name → meaning [unit]. ``mud_flow_velocity`` defaults to 0.
 PROPS = {
     "bending_stiffness": "EI [N m²]",

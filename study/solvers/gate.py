@@ -7,7 +7,9 @@ method only reports success and a message. :func:`admit` is applied by
 failure status, appending what failed (with the numbers) to the message.
 
 The checks, in order (each a plain function ``check(values, scene, tolerances) -> problem | None`` in
-:data:`CHECKS`, given the point's :class:`~study.solvers.scene.Scene` and :class:`~study.solvers.options.Tolerances`; the first failed one sets the status, every failed one is named in the message):
+:data:`CHECKS`, given the point's :class:`~study.solvers.scene.Scene` and
+:class:`~study.solvers.options.Tolerances`; the first failed one sets the status, every failed one is named in the
+message):
 
 - ``finite``: the principal outputs (:data:`PRINCIPAL`) that a method reports are finite (``failed``).
 - ``within_clearance``: the largest deflection stays inside the hole, |y| ≤ c (1 + tol) + α_max — the

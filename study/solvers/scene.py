@@ -2,8 +2,10 @@
 
 The pipe section and its mud (masses, stiffness, drag, effective tension, clearance, buckling), the
 contact compliance of pipe steel and rock, the rotation and the impact reading — everything about a point
-that does not depend on a method. Every method builds its scene here (:func:`make_scene`), and a method
-that is given its span rather than searching for one takes it with :func:`given_span`.
+that does not depend on a method, typed. :meth:`Scene.from_inputs` builds it from a point's SI inputs: the one place
+outside the config that reads them by name (the options are built likewise in :mod:`study.solvers.options`). Every
+method builds its scene at its entry (:func:`make_scene`) and passes it down; a method that is given its span rather
+than searching for one takes it with :func:`given_span`.
 """
 
 from __future__ import annotations
@@ -16,18 +18,6 @@ import numpy as np
 from study.physics import hertz, section
 from study.solvers.options import IMPACT_MASSES
 from study.solvers.result import PointResult
-
-
-def section_properties(inputs: Mapping[str, Any]) -> dict[str, float]:
-    """Span-independent properties of the design point (SI floats): :attr:`Scene.props` of
-    :meth:`Scene.from_inputs` (``inputs``: the SI inputs of one point, keyed as :data:`study.config.FIELDS` names)."""
-    return dict(Scene.from_inputs(inputs).props)
-
-
-def contact_compliance(inputs: Mapping[str, Any]) -> float:
-    """K1 + K2 [1/Pa] of pipe steel and rock, K = (1 − ν²)/(π E) (docs/model.md §3, Hertz): :attr:`Scene.compliance_sum`
-    of :meth:`Scene.from_inputs`."""
-    return Scene.from_inputs(inputs).compliance_sum
 
 
 def section_of(outer_radius: float, inner_radius: float, hole_radius: float, pipe_linear_mass: float | None,
@@ -116,7 +106,7 @@ class Scene:
                    pipe_density=pipe_density or 7850.0, inclination=float(inputs.get("inclination") or 0.0),
                    dogleg_curvature=float(inputs.get("dogleg_curvature") or 0.0),
                    dogleg_direction=float(inputs.get("dogleg_direction") or 0.0),
-                   side_load=None if side is None else float(side), span_length=None if span is None else span)
+                   side_load=None if side is None else float(side), span_length=span)
 
     def equivalent_mass(self, span_length):
         """m_e [kg] of the closure's impulse J = m_e (1 + e) V_p: 2ML/π (``momentum``, the paper's

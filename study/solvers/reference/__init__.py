@@ -7,7 +7,7 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.whirl_kernel`):
   end joints lie on the wall like the others; docs/reference_model.md §1), length L = ``section_length`` (config
   ``contact.section_length``, default 93 ft: three 31-ft joints; a whole number of joints), under the effective
   tension T0 − m_i V_m², mass M = m_p + m_i + m_a per unit length
-  (:func:`study.solvers.scene.section_properties`); deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) ψ_n(x) over
+  (:func:`study.solvers.scene.section_of`); deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) ψ_n(x) over
   the periodic basis ψ_0 = 1/√2 (the rigid translation, ω_0 = 0), ψ_{2j−1} = cos k_j x, ψ_{2j} = sin k_j x,
   k_j = 2πj/L (:func:`mode_shapes`), n = 0 … N − 1 (``reference_modes``, default 16, modes per direction),
   modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
