@@ -65,3 +65,47 @@ def test_the_force_tolerance_is_fifteen_percent_unless_set_and_refused_outside_z
     for bad in (0.0, 1.0, -0.1, float("nan"), "fifteen"):
         with pytest.raises(ValueError, match=r"solver.force_tolerance = .*: must be a number > 0 and < 1"):
             options.force_tolerance({"force_tolerance": bad})
+
+
+def _typed(inputs):
+    """Everything a solver reads of a point: its Scene and every options class built from it."""
+    from study.solvers.scene import Scene
+
+    built = [Scene.from_inputs(inputs), options.Tolerances.from_inputs(inputs), options.LimitOptions.from_inputs(inputs)]
+    return built + [declared.from_inputs(inputs) for declared in (
+        options.Options, options.TimeDomainOptions, options.SdofOptions, options.SeriesOptions, options.DampedOptions,
+        options.CrosscheckOptions, options.ReferenceOptions)]
+
+
+def test_every_config_field_reaches_the_scene_or_an_options_class():
+    # issue 35: a parameter followed from the TOML to the physics by the typed point: each field of the config
+    # (configs/paper.toml's point, each field moved in turn within its rule) changes the Scene or an options object
+    # built from the point; solver.method alone is read by name, by solve_point's dispatch
+    from pathlib import Path
+
+    point = config.load(Path(__file__).resolve().parents[2] / "configs" / "paper.toml").point()
+    base = _typed(point)
+    unread = []
+    for spec in config.FIELDS:
+        value = point[spec.name]
+        if spec.name == "solver_method":
+            continue
+        if spec.choices is not None:
+            moved = next(choice for choice in spec.choices if choice != value)
+        elif value is None:
+            moved = 10.0 if spec.name != "yield_strength" else 5e8
+        elif value == 0:
+            moved = 0.1
+        else:
+            moved = type(value)(value * 2) if spec.integer else value * 0.9
+        if _typed({**point, spec.name: moved}) == base:
+            unread.append(spec.path)
+    assert not unread, unread
+
+
+def test_the_limit_options_are_the_limits_inputs():
+    # source: study/physics/limits.py LIMIT_INPUTS, the keywords of design_limits that a config sets
+    from study.physics.limits import LIMIT_INPUTS
+
+    assert tuple(f.name for f in fields(options.LimitOptions)) == LIMIT_INPUTS
+    assert options.LimitOptions.from_inputs({"sn_curve": "D", "yield_strength": None}).keywords() == {"sn_curve": "D"}
