@@ -28,3 +28,19 @@ def fixed_span(paper_inputs):
     impact = periodic.first_consistent_root(scene, periodic.Options(modes=15, min_span=9.0), longer_than=30.0)
     assert impact is not None, "no refined root without problems above 30 m"
     return inputs, scene, impact
+
+
+@pytest.fixture(scope="session")
+def default_point():
+    """``default_point(rpm, klbf, restitution, ppg, flow)``: a point of configs/default.toml's grid (8-degree hole,
+    straight), its swept inputs in the config's units, the SI inputs returned (study.config.Study.point). The joints'
+    eccentricities aligned in three joints, the reading the figures of test_modes.py and test_replay.py were measured
+    in (the default study's is 90° in four)."""
+    study = config.load(ROOT / "configs" / "default.toml",
+                        {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"})
+
+    def point(rpm, klbf, restitution, ppg, flow):
+        return study.point(rotary_speed=rpm * np.pi / 30, axial_tension=klbf * 4448.2216152605,
+                           restitution=restitution, mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
+
+    return point

@@ -130,24 +130,11 @@ def test_a_held_contact_is_at_rest_where_the_continuous_beam_rests(paper_inputs,
             np.testing.assert_allclose(field, total - f * F + sag, rtol=1e-9)
 
 
-def _default_point(rpm, klbf, restitution, ppg, flow):
-    """A point of configs/default.toml's grid (8-degree hole, straight), its swept inputs in the config's units."""
-    from pathlib import Path
-
-    from study import config
-
-    # aligned in three joints, the reading these figures were measured in (the default study's is 90° in four)
-    study = config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml",
-                        {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"})
-    return study.point(rotary_speed=rpm * np.pi / 30, axial_tension=klbf * 4448.2216152605, restitution=restitution,
-                       mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
-
-
 @pytest.fixture(scope="module")
-def bouncing():
+def bouncing(default_point):
     # configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the joints bounce chaotically, contacts of
     # 1-15 ms, shorter than the period of the first mode left out (ω_{N+1} T_c/2π = 0.4-1 at 16-64 modes)
-    point = _default_point(250, 5, 0.7, 9, 0.0)
+    point = default_point(250, 5, 0.7, 9, 0.0)
     return {n: reference.solve({**point, "reference_modes": n, "reference_max_modes": n}) for n in (16, 32)}
 
 
@@ -176,10 +163,10 @@ def test_at_impacts_n_and_2n_modes_agree_within_the_stated_error(bouncing):
     assert fine_parts["max_normal_stress"]["modes"] < coarse_parts["max_normal_stress"]["modes"]
 
 
-def test_the_mode_count_doubles_at_impacts_and_says_so():
+def test_the_mode_count_doubles_at_impacts_and_says_so(default_point):
     # the same point with the default counts: 16 modes state a modal part far over half the 1 % tolerance, so the
     # count grows to reference_max_modes (here 32, to keep the test short); a point clear of the wall keeps 16
-    point = _default_point(250, 5, 0.7, 9, 0.0)
+    point = default_point(250, 5, 0.7, 9, 0.0)
     result = reference.solve({**point, "reference_max_modes": 32})
     tried = result.extras["modes_tried"]
     assert [t["modes"] for t in tried] == [16, 32] and result.extras["reference_modes"] == 32
@@ -241,13 +228,13 @@ def _first_impact(inputs, n, residual, speed=0.3):
     return float(np.max(window.peak))
 
 
-def test_an_impact_converges_in_the_modes_faster_with_the_residual_vectors():
+def test_an_impact_converges_in_the_modes_faster_with_the_residual_vectors(default_point):
     # the three joints strike at once at 0.3 m/s (configs/default.toml's pipe, 250 rpm, 5 000 lbf, 9 ppg). Measured:
     # 256 modes 143.2 kN (residual vectors) and 143.5 kN (kept modes alone); with the residual vectors 186, 160, 146 kN at
     # 16, 32 and 64 modes, the kept modes alone 245, 187, 160 kN, the static series law 24, 49, 96 kN: the residual
     # vectors reach at N what the kept modes alone reach at 2N, and the series law, which puts the whole string's mass
     # behind the flexibility of the modes left out, is the slowest
-    inputs = {**_default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
+    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
               "reference_damping": "none"}
     converged = _first_impact(inputs, 256, "none")
     off = {(n, r): _first_impact(inputs, n, r) / converged - 1.0
@@ -258,7 +245,7 @@ def test_an_impact_converges_in_the_modes_faster_with_the_residual_vectors():
     assert abs(off[64, "series"]) > 0.25, off
 
 
-def test_with_the_residual_vectors_the_stated_error_covers_four_times_the_modes():
+def test_with_the_residual_vectors_the_stated_error_covers_four_times_the_modes(default_point):
     # the bouncing point of the tests above (250 rpm, 5 000 lbf, e = 0.7, 9 ppg) with the residual vectors, 8 then 16
     # modes (its modal part the figures' change between them, reference.doubling_modal_error), against 64 modes: each
     # figure a chaotic window's mean, so the 64-mode answer's own window part is allowed beside the 16-mode answer's
@@ -268,7 +255,7 @@ def test_with_the_residual_vectors_the_stated_error_covers_four_times_the_modes(
     # the true difference at 90 % of points), so one figure of the four may fall outside: on the merged model
     # (the joints' eccentricity parts, the contact law's own function) the max normal stress came out 39.8 against
     # 48.4 MPa (22 %) with 19 % stated and the 64-mode window's 3 % beside it, over 24-revolution windows.
-    point = {**_default_point(250, 5, 0.7, 9, 0.0), "reference_residual": "dynamic", "reference_max_revolutions": 60,
+    point = {**default_point(250, 5, 0.7, 9, 0.0), "reference_residual": "dynamic", "reference_max_revolutions": 60,
              "reference_window": 24}
     coarse = reference.solve({**point, "reference_modes": 8, "reference_max_modes": 16})
     fine = reference.solve({**point, "reference_modes": 64, "reference_max_modes": 64})

@@ -2,30 +2,18 @@
 docs/reference_model.md §2.1, §3.1): a replayed strike converges as the modes grow, the part stated at N covers four
 times the modes, and points clear of the wall or lying on it keep the in-run measure."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-from study import config
 from study.solvers import reference
 from study.solvers.reference import replay
 
 
-def _default_point(rpm, klbf, restitution, ppg, flow):
-    """A point of configs/default.toml's grid (8-degree hole, straight), its swept inputs in the config's units."""
-    # aligned in three joints, the reading these figures were measured in (the default study's is 90° in four)
-    study = config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml",
-                        {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"})
-    return study.point(rotary_speed=rpm * np.pi / 30, axial_tension=klbf * 4448.2216152605, restitution=restitution,
-                       mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
-
-
 @pytest.fixture(scope="module")
-def bouncing():
+def bouncing(default_point):
     # configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow (point A of docs/reference_model.md §3.1):
     # the joints bounce chaotically; a run at 16 modes (the series law) ends its transient at 18 revolutions
-    inputs = {**_default_point(250, 5, 0.7, 9, 0.0), "reference_modes": 16, "reference_modal_measure": "replay"}
+    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "reference_modes": 16, "reference_modal_measure": "replay"}
     model = reference.build_model(inputs)
     return inputs, model, reference.simulate(inputs, model)
 
@@ -104,20 +92,20 @@ def test_the_stated_modal_part_covers_four_times_the_modes(bouncing):
         assert true <= stated[name], (name, true, stated[name])
 
 
-def test_points_clear_of_the_wall_keep_the_in_run_measure():
+def test_points_clear_of_the_wall_keep_the_in_run_measure(default_point):
     # clear of the wall nothing is replayed (no strike): the modal part is the in-run measure's, nil, at 16 modes
-    point = {**_default_point(250, 5, 0.7, 9, 0.0), "reference_modal_measure": "replay"}
+    point = {**default_point(250, 5, 0.7, 9, 0.0), "reference_modal_measure": "replay"}
     clear = reference.solve({**point, "rotary_speed": 10.0, "inclination": 0.0, "reference_window": 2,
                              "reference_revolutions": 4})
     assert clear.extras["replay"] is None and [t["modes"] for t in clear.extras["modes_tried"]] == [16]
     assert clear.extras["convergence"]["peak_contact_force"]["modes"] == 0.0
 
 
-def test_a_pipe_sliding_on_the_wall_keeps_the_in_run_measure(monkeypatch):
+def test_a_pipe_sliding_on_the_wall_keeps_the_in_run_measure(monkeypatch, default_point):
     # configs/default.toml at 75 rpm, 10 000 lbf, e = 0.3, 12 ppg, 7.4 ft/s: the joints slide on the low side (a short
     # run: 12 revolutions of transient, 3-revolution windows). Nothing is replayed, and the answer is the one of the
     # in-run measure alone (reference.modal_check), to the bit
-    point = {**_default_point(75, 10, 0.3, 12, 7.4), "reference_revolutions": 12, "reference_window": 3,
+    point = {**default_point(75, 10, 0.3, 12, 7.4), "reference_revolutions": 12, "reference_window": 3,
              "reference_modal_measure": "replay"}
     sliding = reference.solve(point)
     assert sliding.extras["whirl"] == "sliding" and sliding.extras["replay"] is None
@@ -127,10 +115,10 @@ def test_a_pipe_sliding_on_the_wall_keeps_the_in_run_measure(monkeypatch):
     assert alone.values == sliding.values and alone.error_estimate == sliding.error_estimate
 
 
-def test_the_replay_is_opt_in():
+def test_the_replay_is_opt_in(default_point):
     # solver.reference_modal_measure's default ("doubling") keeps the whole-run measure: nothing replayed at a bouncing
     # point (configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, a short run)
-    point = {**_default_point(250, 5, 0.7, 9, 0.0), "reference_revolutions": 12, "reference_window": 3,
+    point = {**default_point(250, 5, 0.7, 9, 0.0), "reference_revolutions": 12, "reference_window": 3,
              "reference_max_modes": 16}
     run = reference.simulate(point, reference.build_model(point))
     assert run["replay"] is None and run["window"].onsets.any()
