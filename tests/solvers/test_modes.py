@@ -143,6 +143,49 @@ def _default_point(rpm, klbf, restitution, ppg, flow):
                        mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
 
 
+
+@pytest.mark.parametrize("n", [4, 16])
+def test_a_held_contacts_fields_are_the_continuous_beams_under_either_recovery(paper_inputs, n):
+    # the rest of the test above with the residual vectors: their coordinates at the contact's force (s_p = F where
+    # the contact is held, WhirlModel.extend), so the fields recovered from the contact force (the mode-acceleration
+    # method, reference_recovery = "force") and from the vectors' coordinates ("vectors") are one field, the continuous
+    # beam's: G(0) F at the contact less the sag (G(0) − G(s)) F, and its moment the periodic point load's
+    # (periodic_point_moment, Gradshteyn & Ryzhik 1.445.2), whatever n; the series law's the same
+    fields = {}
+    for residual, recovery in (("series", "force"), ("dynamic", "force"), ("dynamic", "vectors")):
+        m = reference.build_model({**paper_inputs, "inclination": np.radians(8), "reference_modes": n,
+                                   "tool_joint_length": 0.0, "contact_points": [0.0], "contact_kinds": [1],
+                                   "friction": 0.0, "eccentricity": 0.0, "reference_damping": "none",
+                                   "reference_residual": residual, "reference_recovery": recovery})
+        assert m.dynamic is (residual == "dynamic") and (not m.dynamic or m.recovery == recovery)
+        F = m.side[0] * m.mass / m.phi[0, 0]
+        f = float(reference.residual_flexibility(m)[0])
+        gain = np.zeros(n)
+        gain[1:] = 1.0 / (m.mass * m.omega[1:] ** 2)
+        z = np.zeros(4 * n + 4)
+        z[1:n] = -m.phi[0, 1:] * F * gain[1:]
+        total = m.clearance[0] + (F / m.stiffness[0]) ** (2.0 / 3.0) + f * F
+        z[0] = (total - m.phi[0, 1:] @ z[1:n]) / m.phi[0, 0]
+        kernel = m.extend(z)
+        forces = np.array([[[-F, 0.0, F]]])  # on the pipe, off the low side (−y)
+        window = reference.Window(times=np.zeros(1), states=m.reduce(kernel)[None], forces=forces,
+                                  peak=np.array([F]), onsets=np.zeros(1, int), contact_time=np.ones(1),
+                                  any_contact_time=1.0, start=0.0, end=0.0,
+                                  residual=m.residual_coordinates(kernel[None]) if m.dynamic else None)
+        if m.dynamic:
+            np.testing.assert_allclose(window.residual[0, 0], -F, rtol=1e-9)  # s_p = F (on the pipe) where held
+        x = np.linspace(0.0, m.span, 13)
+        fields[residual, recovery] = reference.periodic_fields(m, window.states[:, :n], window.correction_forces(m, 0),
+                                                               x)
+        ei, tn = m.props["bending_stiffness"], m.props["effective_tension"]
+        sag = (reference.periodic_point_deflection(0.0, m.span, ei, tn)
+               - reference.periodic_point_deflection(x, m.span, ei, tn)) * F
+        np.testing.assert_allclose(fields[residual, recovery]["deflection"][0], total - f * F + sag, rtol=1e-9)
+        np.testing.assert_allclose(fields[residual, recovery]["moment"][0],
+                                   -F * reference.periodic_point_moment(x, m.span, ei, tn),
+                                   rtol=1e-7, atol=1e-9 * F * m.span)
+
+
 @pytest.fixture(scope="module")
 def bouncing():
     # configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the joints bounce chaotically, contacts of
