@@ -186,6 +186,33 @@ def test_a_held_contacts_fields_are_the_continuous_beams_under_either_recovery(p
                                    rtol=1e-7, atol=1e-9 * F * m.span)
 
 
+
+def test_clear_of_the_wall_the_force_recovery_gives_the_series_laws_fields(paper_inputs):
+    # no contact force: the fields recovered from the contact forces ("force") take the joints' weight and inertia
+    # statically, as the series law's do (reference.stresses, the same kept modes and correction), so the same kept
+    # modes' motion gives the same stresses and deflection to rounding; from the vectors' coordinates ("vectors") it is
+    # another field (here the vectors at rest: no correction for the joints' weight and inertia)
+    inputs = {**paper_inputs, "inclination": np.radians(8), "reference_modes": 8}
+    series = reference.build_model(inputs)
+    models = {r: reference.build_model({**inputs, "reference_residual": "dynamic", "reference_recovery": r})
+              for r in ("force", "vectors")}
+    assert series.joint_points is not None and series.point_side is not None and models["force"].dynamic
+    rng = np.random.default_rng(36)
+    N, P, R = series.n_modes, series.points.size, 24
+    times = np.linspace(0.0, series.period, R)
+    states = np.zeros((R, 4 * N + 4))
+    states[:, :4 * N] = rng.normal(size=(R, 4 * N)) * series.state_scale() * 0.1
+    window = reference.Window(times=times, states=states, forces=np.zeros((R, P, 3)), peak=np.zeros(P),
+                              onsets=np.zeros(P, int), contact_time=np.zeros(P), any_contact_time=0.0, start=0.0,
+                              end=float(times[-1]), residual=np.zeros((R, 4, P)))
+    want = reference.stresses(inputs, series, window)
+    names = ("max_normal_stress", "alternating_bending_stress", "max_deflection", "max_shear_stress")
+    got = {r: reference.stresses(inputs, m, window) for r, m in models.items()}
+    for name in names:
+        assert got["force"][name] == pytest.approx(want[name], rel=1e-12), name
+    assert max(abs(got["vectors"][name] / want[name] - 1.0) for name in names) > 1e-3
+
+
 @pytest.fixture(scope="module")
 def bouncing():
     # configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the joints bounce chaotically, contacts of
