@@ -157,8 +157,8 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
     fields = []
     # the joints' inertia forces corrected statically; with the residual vectors too where the fields are recovered from
     # the contact forces (the mode-acceleration method: the modes left out take the contact force and the joints'
-    # inertia statically; without the inertia the stresses at 16-128 modes were 17-62 % off a 256-mode replay of a
-    # strike at 128, with it 1-6 %, docs/reference_model.md §2.1), not where from the vectors' coordinates (their
+    # inertia statically; without the inertia the stresses of replayed strikes were 5-81 % off a 256-mode replay at 128
+    # modes, with it 1-5 %, docs/reference_model.md §2.1), not where from the vectors' coordinates (their
     # coupling with the joints' mass is in the motion)
     inertia = (joint_inertia_forces(model, window) if correction and model.joint_points is not None
                and (not model.dynamic or model.recovery == "force") else None)

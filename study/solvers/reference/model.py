@@ -83,7 +83,7 @@ class WhirlModel:
     joint_points: np.ndarray | None = None
     #: with the residual vectors, what the fields take for the modes left out (``reference_recovery``): the contact
     #: forces' static field ("force", the mode-acceleration method) or the vectors' coordinates s_p ("vectors")
-    recovery: str = "vectors"
+    recovery: str = "force"
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
