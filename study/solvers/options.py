@@ -312,6 +312,11 @@ class ReferenceOptions(MethodOptions):
     #: the modes left out at a contact: their static flexibility in series with its spring ("series"), a residual
     #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), or nothing
     reference_residual: str = option("series", ("series", "none", "dynamic"))
+    #: the fields' part of the modes left out with the residual vectors: their static response to the contact forces and
+    #: the joints' inertia ("force": the mode-acceleration method, the vectors integrated for the contact), or the
+    #: vectors' own motion s_p ("vectors", which rings after a strike); docs/reference_model.md §2.1. The residual
+    #: vectors stay opt-in: their stresses either way converge slower than the series law's (§2.2)
+    reference_recovery: str = option("force", ("force", "vectors"))
     #: the modal part of a bouncing point's error: each figure's change between whole runs at N/2 and N modes
     #: ("doubling"), or from its strikes replayed at N, 2N … reference_max_modes modes ("replay",
     #: docs/reference_model.md §2.2; opt-in: it did not lower the default study's not_converged share and costs more)

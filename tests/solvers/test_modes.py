@@ -130,6 +130,75 @@ def test_a_held_contact_is_at_rest_where_the_continuous_beam_rests(paper_inputs,
             np.testing.assert_allclose(field, total - f * F + sag, rtol=1e-9)
 
 
+@pytest.mark.parametrize("n", [4, 16])
+def test_a_held_contacts_fields_are_the_continuous_beams_under_either_recovery(paper_inputs, n):
+    # the rest of the test above with the residual vectors: their coordinates at the contact's force (s_p = F where
+    # the contact is held, WhirlModel.extend), so the fields recovered from the contact force (the mode-acceleration
+    # method, reference_recovery = "force") and from the vectors' coordinates ("vectors") are one field, the continuous
+    # beam's: G(0) F at the contact less the sag (G(0) − G(s)) F, and its moment the periodic point load's
+    # (periodic_point_moment, Gradshteyn & Ryzhik 1.445.2), whatever n; the series law's the same
+    fields = {}
+    for residual, recovery in (("series", "force"), ("dynamic", "force"), ("dynamic", "vectors")):
+        m = reference.build_model({**paper_inputs, "inclination": np.radians(8), "reference_modes": n,
+                                   "tool_joint_length": 0.0, "contact_points": [0.0], "contact_kinds": [1],
+                                   "friction": 0.0, "eccentricity": 0.0, "reference_damping": "none",
+                                   "reference_residual": residual, "reference_recovery": recovery})
+        assert m.dynamic is (residual == "dynamic") and (not m.dynamic or m.recovery == recovery)
+        F = m.side[0] * m.mass / m.phi[0, 0]
+        f = float(reference.residual_flexibility(m)[0])
+        gain = np.zeros(n)
+        gain[1:] = 1.0 / (m.mass * m.omega[1:] ** 2)
+        z = np.zeros(4 * n + 4)
+        z[1:n] = -m.phi[0, 1:] * F * gain[1:]
+        total = m.clearance[0] + (F / m.stiffness[0]) ** (2.0 / 3.0) + f * F
+        z[0] = (total - m.phi[0, 1:] @ z[1:n]) / m.phi[0, 0]
+        kernel = m.extend(z)
+        forces = np.array([[[-F, 0.0, F]]])  # on the pipe, off the low side (−y)
+        window = reference.Window(times=np.zeros(1), states=m.reduce(kernel)[None], forces=forces,
+                                  peak=np.array([F]), onsets=np.zeros(1, int), contact_time=np.ones(1),
+                                  any_contact_time=1.0, start=0.0, end=0.0,
+                                  residual=m.residual_coordinates(kernel[None]) if m.dynamic else None)
+        if m.dynamic:
+            np.testing.assert_allclose(window.residual[0, 0], -F, rtol=1e-9)  # s_p = F (on the pipe) where held
+        x = np.linspace(0.0, m.span, 13)
+        fields[residual, recovery] = reference.periodic_fields(m, window.states[:, :n], window.correction_forces(m, 0),
+                                                               x)
+        ei, tn = m.props["bending_stiffness"], m.props["effective_tension"]
+        sag = (reference.periodic_point_deflection(0.0, m.span, ei, tn)
+               - reference.periodic_point_deflection(x, m.span, ei, tn)) * F
+        np.testing.assert_allclose(fields[residual, recovery]["deflection"][0], total - f * F + sag, rtol=1e-9)
+        np.testing.assert_allclose(fields[residual, recovery]["moment"][0],
+                                   -F * reference.periodic_point_moment(x, m.span, ei, tn),
+                                   rtol=1e-7, atol=1e-9 * F * m.span)
+
+
+
+def test_clear_of_the_wall_the_force_recovery_gives_the_series_laws_fields(paper_inputs):
+    # no contact force: the fields recovered from the contact forces ("force") take the joints' weight and inertia
+    # statically, as the series law's do (reference.stresses, the same kept modes and correction), so the same kept
+    # modes' motion gives the same stresses and deflection to rounding; from the vectors' coordinates ("vectors") it is
+    # another field (here the vectors at rest: no correction for the joints' weight and inertia)
+    inputs = {**paper_inputs, "inclination": np.radians(8), "reference_modes": 8}
+    series = reference.build_model(inputs)
+    models = {r: reference.build_model({**inputs, "reference_residual": "dynamic", "reference_recovery": r})
+              for r in ("force", "vectors")}
+    assert series.joint_points is not None and series.point_side is not None and models["force"].dynamic
+    rng = np.random.default_rng(36)
+    N, P, R = series.n_modes, series.points.size, 24
+    times = np.linspace(0.0, series.period, R)
+    states = np.zeros((R, 4 * N + 4))
+    states[:, :4 * N] = rng.normal(size=(R, 4 * N)) * series.state_scale() * 0.1
+    window = reference.Window(times=times, states=states, forces=np.zeros((R, P, 3)), peak=np.zeros(P),
+                              onsets=np.zeros(P, int), contact_time=np.zeros(P), any_contact_time=0.0, start=0.0,
+                              end=float(times[-1]), residual=np.zeros((R, 4, P)))
+    want = reference.stresses(inputs, series, window)
+    names = ("max_normal_stress", "alternating_bending_stress", "max_deflection", "max_shear_stress")
+    got = {r: reference.stresses(inputs, m, window) for r, m in models.items()}
+    for name in names:
+        assert got["force"][name] == pytest.approx(want[name], rel=1e-12), name
+    assert max(abs(got["vectors"][name] / want[name] - 1.0) for name in names) > 1e-3
+
+
 @pytest.fixture(scope="module")
 def bouncing(default_point):
     # configs/default.toml at 250 rpm, 5 000 lbf, e = 0.7, 9 ppg, no flow: the joints bounce chaotically, contacts of
@@ -255,8 +324,9 @@ def test_with_the_residual_vectors_the_stated_error_covers_four_times_the_modes(
     # the true difference at 90 % of points), so one figure of the four may fall outside: on the merged model
     # (the joints' eccentricity parts, the contact law's own function) the max normal stress came out 39.8 against
     # 48.4 MPa (22 %) with 19 % stated and the 64-mode window's 3 % beside it, over 24-revolution windows.
+    # (the fields recovered from the vectors' coordinates, the reading these figures were measured in)
     point = {**default_point(250, 5, 0.7, 9, 0.0), "reference_residual": "dynamic", "reference_max_revolutions": 60,
-             "reference_window": 24}
+             "reference_window": 24, "reference_recovery": "vectors"}
     coarse = reference.solve({**point, "reference_modes": 8, "reference_max_modes": 16})
     fine = reference.solve({**point, "reference_modes": 64, "reference_max_modes": 64})
     assert [t["modes"] for t in coarse.extras["modes_tried"]] == [8, 16]

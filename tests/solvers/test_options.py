@@ -33,6 +33,14 @@ def test_a_choice_outside_the_declared_values_is_refused_by_name():
         options.TimeDomainOptions.from_inputs({"time_damping": "viscous"})
 
 
+def test_the_residual_vectors_field_recovery_is_refused_by_name_outside_its_choices():
+    # reference_recovery (docs/reference_model.md §2.1): the contact forces' static field ("force", the default) or the
+    # residual vectors' coordinates ("vectors")
+    assert options.ReferenceOptions().reference_recovery == "force"
+    with pytest.raises(ValueError, match="reference_recovery = 'modes'; allowed: force, vectors"):
+        options.ReferenceOptions.from_inputs({"reference_recovery": "modes"})
+
+
 def test_unset_inputs_take_the_declared_defaults():
     chosen = options.TimeDomainOptions.from_inputs({"time_modes": 9, "time_step": None, "outer_diameter": 0.1})
     assert chosen.time_modes == 9 and chosen.time_step is None and chosen.time_revolutions == 60

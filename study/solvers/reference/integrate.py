@@ -44,10 +44,11 @@ class Window:
 
     def correction_forces(self, model: "WhirlModel", direction: int) -> np.ndarray:
         """(R, P) the forces [N] whose static field of the modes left out completes the kept modes' (the quasi-static
-        correction, :func:`static_correction`) in one direction: the contact forces on the pipe, or with the residual
-        vectors their coordinates s_p (:func:`residual_ritz`: the field their motion is), less the joints' weight that
-        :func:`periodic_fields` adds (it is in s_p already)."""
-        if self.residual is not None and model.dynamic:
+        correction, :func:`static_correction`) in one direction: the contact forces on the pipe (with the residual
+        vectors too where ``model.recovery`` is "force": the mode-acceleration method, docs/reference_model.md §2.1), or
+        with the residual vectors recovered as "vectors" their coordinates s_p (:func:`residual_ritz`: the field their
+        motion is), less the joints' weight that :func:`periodic_fields` adds (it is in s_p already)."""
+        if self.residual is not None and model.dynamic and model.recovery == "vectors":
             forces = self.residual[:, direction, :]
             return forces - model.point_side if direction == 0 and model.point_side is not None else forces
         return self.forces[:, :, direction]

@@ -81,6 +81,9 @@ class WhirlModel:
     #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
     #: correction of their inertia forces (:func:`joint_inertia_forces`)
     joint_points: np.ndarray | None = None
+    #: with the residual vectors, what the fields take for the modes left out (``reference_recovery``): the contact
+    #: forces' static field ("force", the mode-acceleration method) or the vectors' coordinates s_p ("vectors")
+    recovery: str = "force"
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -443,6 +446,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
         model.residual_mass = residual_second_moment(model) / model.residual**2
         model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
                                    float(option.damping_ratio) if damping_model == "viscous" else 0.0)
+        model.recovery = option.reference_recovery
     elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
         # the modes left out respond to a contact force statically: their flexibility at the point in series with its
         # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
