@@ -18,6 +18,11 @@ import importlib
 from study.solvers.options import METHOD_DESCRIPTIONS
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
+#: Methods whose results get the lift-off eccentricity (:func:`study.solvers.sliding.add_lift_off`): those whose
+#: scene is the reference model's and that may answer a pipe lying on the wall (the free whirl answers only where
+#: nothing lies there). Named here, so that solving another method imports no reference model.
+LIFT_OFF_METHODS = ("sliding", "reference")
+
 #: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
 #: package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
@@ -62,7 +67,12 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
         raise ValueError(f"method = {name!r}; allowed: {', '.join(methods)}")
     start = time.perf_counter()
     try:
-        result = gate.admit(utilisation.add_limits(methods[name][0](inputs), inputs), inputs)
+        result = methods[name][0](inputs)
+        if result.method in LIFT_OFF_METHODS:  # the lift-off eccentricity of the reference model's scene
+            from study.solvers import sliding
+
+            sliding.add_lift_off(result, inputs)
+        result = gate.admit(utilisation.add_limits(result, inputs), inputs)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
         result = PointResult(method=name, status="failed",
