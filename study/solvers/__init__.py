@@ -55,7 +55,9 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
 
     Every result passes :func:`study.solvers.gate.admit`, the one place that decides whether an answer
     the method calls ``ok`` is physical, and gets the design limits of its stresses
-    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life). An
+    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life); the methods of the
+    reference model's scene (:data:`LIFT_OFF_METHODS`) get the lift-off eccentricity
+    (:func:`study.solvers.sliding.add_lift_off`). An
     unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
     that one bad point never sinks a sweep. The result's ``wall_time`` is stamped here, once, for every method.
     """
