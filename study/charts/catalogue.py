@@ -19,11 +19,11 @@ from study.charts.design import (Chart, contact_force_and_duration_vs_rpm, cross
 from study.charts.drivers import drivers_chart
 from study.charts.envelope import envelope_chart
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, contact_force_map, fatigue_life_map, stress_limit_maps
-from study.charts.regimes import regime_map
+from study.charts.regimes import lift_off_map, regime_map
 from study.charts.validity import validity_map
 
 #: Every chart, in the order :func:`draw` draws them.
-CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, drivers_chart, regime_map,
+CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, drivers_chart, regime_map, lift_off_map,
           campbell_chart, validity_map, cost_accuracy_chart, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
           crosscheck_maps, orbit_maps, reference_maps)
 #: Charts that take the fatigue target (target_hours [h]) and, for the envelope, the fatigue criterion.

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from matplotlib.colors import ListedColormap
+from matplotlib.colors import ListedColormap, LogNorm
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from study.charts.critical import avoid_bands
 from study.charts.design import DPI, Chart, figure_title, full_array, mark_missing
-from study.charts.plane import BAND_LABEL, BAND_STYLE, draw_bands, draw_cells, plane, plane_axes
+from study.charts.plane import BAND_LABEL, BAND_STYLE, Panel, draw_bands, draw_cells, plane, plane_axes, plane_chart
 from study.solvers.result import REGIMES, STATUS_CODES
 
 #: The regime a status implies, for points without a ``regime`` output.
@@ -106,3 +106,48 @@ def _figure(p, index: np.ndarray, present: list[str]) -> Figure:
                       vmin=-0.5, vmax=len(present) - 0.5, shading="flat", edgecolors="white", linewidth=0.3)
     plane_axes(ax, p)
     return fig
+
+
+#: Inches per metre's unit: the lift-off map is drawn in inches, the unit of API Spec 5DP's wall tolerance.
+INCH = 0.0254
+LIFT_STYLE = {"colors": "k", "linewidths": 2.2}
+
+
+def lift_off_map(ds: xr.Dataset) -> list[Chart]:
+    """The lift-off eccentricity (output ``lift_off_eccentricity``: the pipe's mass eccentricity at which its tool
+    joints lift off the wall they lie on, :func:`study.solvers.sliding.lift_off_eccentricity`) over rotary speed ×
+    axial load, in inches on a log colour scale, the lowest over the other swept inputs (the first to bounce; every
+    point where it is defined, whatever its answer's status, as it depends on none). The configured eccentricity (the
+    output ``eccentricity``) is marked on the colour bar, and the cells where it is above the lift-off (the joints
+    bounce) are outlined; each cell's value is written in it."""
+    p = plane(ds)
+    if p is None or "lift_off_eccentricity" not in ds.data_vars:
+        return []
+    lift = full_array(ds, "lift_off_eccentricity")
+    values = p.reduce(lift, "min") / INCH
+    finite = values[np.isfinite(values) & (values > 0)]
+    if not finite.size:
+        return []
+    marks = []
+    if "eccentricity" in ds.data_vars and np.any(np.isfinite(ds["eccentricity"].values)):
+        marks = [float(np.nanmax(ds["eccentricity"].values)) / INCH]
+    low = min([float(finite.min())] + marks) / 1.5
+    high = max([float(finite.max())] + marks) * 1.5
+    panel = Panel(np.where(np.isposinf(values), high, values), "lift-off eccentricity [in]",
+                  "mass eccentricity at which the joints lift off the wall,\nlowest over every point "
+                  + (f"(bar line: the configured {marks[0]:.3g} in)" if marks else ""),
+                  cmap="viridis", norm=LogNorm(low, high), marks=marks)
+    if marks:
+        panel.limits.append((values < marks[0], f"black outline, hatched: the configured eccentricity "
+                             f"{marks[0]:.3g} in lifts the joints (they bounce)", LIFT_STYLE))
+    context = p.context("lowest lift-off eccentricity (the first to bounce)")
+    caption = ("Whether the pipe lies on the wall or bounces, as its mass eccentricity decides: your pipe lies where "
+               "its eccentricity is below the value in the cell (in inches; the lowest over the other swept inputs, "
+               "by the balance of the sliding state's joint force; blank where no side load lays the string down).")
+    chart = plane_chart(p, "lift_off_eccentricity", "Lift-off eccentricity: lying or bouncing", [panel], context,
+                        caption, bands=avoid_bands(p))
+    ax = chart.figure.axes[0]
+    for i, j in zip(*np.nonzero(np.isfinite(values))):
+        ax.text(p.xpos[j], p.ypos[i], f"{values[i, j]:.2g}", ha="center", va="center", fontsize=6.5,
+                color="w" if values[i, j] < np.sqrt(low * high) else "k", zorder=4, gid="lift-off eccentricity")
+    return [chart]

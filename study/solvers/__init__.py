@@ -18,6 +18,11 @@ import importlib
 from study.solvers.options import METHOD_DESCRIPTIONS, LimitOptions, Tolerances
 from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
+#: Methods whose results get the lift-off eccentricity (:func:`study.solvers.sliding.add_lift_off`): those whose
+#: scene is the reference model's and that may answer a pipe lying on the wall (the free whirl answers only where
+#: nothing lies there). Named here, so that solving another method imports no reference model.
+LIFT_OFF_METHODS = ("sliding", "reference")
+
 #: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
 #: package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
@@ -52,7 +57,8 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     the method calls ``ok`` is physical, and gets the design limits of its stresses
     (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life), both given the
     point's typed :class:`~study.solvers.scene.Scene`, :class:`~study.solvers.options.LimitOptions` and
-    :class:`~study.solvers.options.Tolerances`, built here from ``inputs`` once. An
+    :class:`~study.solvers.options.Tolerances`, built here from ``inputs`` once; the methods of the reference model's
+    scene (:data:`LIFT_OFF_METHODS`) get the lift-off eccentricity (:func:`study.solvers.sliding.add_lift_off`). An
     unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
     that one bad point never sinks a sweep. The result's ``wall_time`` is stamped here, once, for every method.
     """
@@ -66,6 +72,10 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     start = time.perf_counter()
     try:
         result = methods[name][0](inputs)
+        if result.method in LIFT_OFF_METHODS:  # the lift-off eccentricity of the reference model's scene
+            from study.solvers import sliding
+
+            sliding.add_lift_off(result, inputs)
         if result.status == "ok" or "max_normal_stress" in result.values:  # what the limits and the gate judge
             scene = Scene.from_inputs(inputs)
             result = gate.admit(utilisation.add_limits(result, scene, LimitOptions.from_inputs(inputs)), scene,

@@ -190,6 +190,10 @@ OUTPUTS = {
     "orbit_normal_stress_ratio": ("1", "largest normal stress on the real contact's periodic orbit over the periodic "
                                   "solution's (method crosscheck)"),
     "eccentricity": ("m", "mass eccentricity of the pipe (method reference)"),
+    "lift_off_eccentricity": ("m", "mass eccentricity at which the tool joints lift off the wall they lie on: below "
+                              "it the pipe lies there, above it bounces (the sliding state's balance; NaN where no "
+                              "side load lays the string down, inf where no eccentricity lifts it; methods sliding, "
+                              "reference, auto)"),
     "contact_fraction": ("1", "fraction of the window's time with any wall contact (method reference)"),
     "whirl_frequency_ratio": ("1", "whirl rate of the most-touching point over the rotary speed, negative backwards "
                               "(method reference)"),

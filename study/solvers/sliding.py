@@ -35,6 +35,7 @@ tangential direction nothing but the quadratic drag damps it (sliding friction h
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any, Mapping
 
 import numpy as np
@@ -397,6 +398,79 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
     return out
 
 
+#: The lift-off eccentricity's secant iteration (:func:`lift_off_eccentricity`): states solved at most, and the
+#: relative change of the eccentricity that ends it.
+LIFT_ITERATIONS, LIFT_SETTLED = 8, 1e-3
+#: The eccentricity [m] the lift-off is first sought at where the point's own is nil (0.1 in).
+LIFT_TRIAL = 0.1 * 0.0254
+
+
+def _least_force(state: Mapping[str, Any]) -> float:
+    """The smallest normal force over the revolution at the points touching at rest, over each one's force at rest
+    [-]: 1 at ε = 0, 0 where the contact opens (:func:`steady_state`'s window)."""
+    held = state["rest"]["touching"]
+    fn = state["window"].forces[:, held, 2]
+    return float(np.min(np.min(fn, axis=0) / state["rest"]["normal"][held]))
+
+
+def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | None = None) -> float:
+    """The mass eccentricity ε_lift [m] at which the point's joints lift off the wall: the smallest ε at which the
+    sliding state's normal force at a point touching at rest falls to nil during the revolution (the contact opens,
+    the pipe bounces; docs/reference_model.md §7, §10). The rest does not depend on ε and the turning load is linear in
+    it, so the swing of a joint's force is nearly so: ε_lift ≈ ε F_rest/(F_rest − min F_n), the joint's force at rest
+    over its fall at the point's ε; the drag made viscous by equal dissipation and the arc's second order (both
+    growing with the motion) are kept by a secant iteration on the least force (:data:`LIFT_ITERATIONS`, to
+    :data:`LIFT_SETTLED`), each step the whirl about the same rest with the eccentric load scaled. Slowly turning it is
+    the balance of a joint's forces, share · m_p ε Ω² s = F_rest (:func:`study.physics.whirl.lift_off_speed`
+    inverted); near the spans' modes on the joints the dynamics lower it.
+
+    NaN where no side load lays the string on the wall (nothing touches at rest: a vertical straight hole), where
+    the section buckles or no rest on the wall is found; inf where the turning load does not lower the force (the
+    two spans' loads cancel at every joint: a 180° turn). Slowly turning it may exceed any real eccentricity (inches
+    at 30 rpm): nothing a pipe has lifts the joints there.
+    ``state``: :func:`steady_state` of these inputs, where already solved."""
+    state = steady_state(inputs) if state is None else state
+    if state.get("rest") is None or state["why"] in ("buckled",) or not np.any(state["rest"]["touching"]):
+        return float("nan")
+    if "window" not in state:  # the rest was found, the whirl not solved (not this function's caller)
+        return float("nan")
+    model, rested, linear = state["model"], state["rest"], state["linear"]
+    base = model.eccentricity
+    if not base > 0:
+        model = reference.build_model({**inputs, "reference_modes": model.n_modes, "eccentricity": LIFT_TRIAL})
+        base = model.eccentricity
+
+    def least(eps: float) -> float:
+        scaled = dataclasses.replace(model, eccentric=model.eccentric * (eps / base), eccentricity=eps)
+        whirled = whirl(scaled, rested, linear=linear)
+        window, _ = revolution(scaled, rested, whirled)
+        return _least_force(dict(rest=rested, window=window))
+
+    # the secant on the least force h(ε), from h(0) = 1 (the rest) and the point's own ε (or the trial's)
+    e0, h0 = 0.0, 1.0
+    e1 = base
+    h1 = _least_force(state) if state["model"].eccentricity > 0 else least(e1)
+    if not h1 < h0:  # the turning load does not lower the force
+        return float("inf")
+    for _ in range(LIFT_ITERATIONS):
+        e2 = e1 + h1 * (e1 - e0) / (h0 - h1) if h0 != h1 else e1
+        if not (np.isfinite(e2) and e2 > 0):
+            break
+        if abs(e2 - e1) <= LIFT_SETTLED * e2:
+            return float(e2)
+        e0, h0, e1, h1 = e1, h1, e2, least(e2)
+    return float(e1)
+
+
+def add_lift_off(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
+    """``result`` with ``lift_off_eccentricity`` (:func:`lift_off_eccentricity`) in its values where it is not there
+    yet (unchanged otherwise): :func:`study.solvers.solve_point` adds it to the results of the methods whose scene is
+    this one's, the reference model's (:data:`study.solvers.LIFT_OFF_METHODS`)."""
+    if "lift_off_eccentricity" not in result.values:
+        result.values["lift_off_eccentricity"] = lift_off_eccentricity(inputs)
+    return result
+
+
 def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[dict[str, float]]:
     """The reference model's outputs (its own functions) on the revolution of each of ``states``, in order. The
     states of one model with the same quasi-static correction have their stresses from one call on their
@@ -431,7 +505,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     vals = result.values
     vals.update(model.props)
     vals.update(span_length=model.span, clearance=float(np.max(model.clearance)), eccentricity=model.eccentricity,
-                first_natural_frequency=model.omega[0] / (2 * np.pi) if np.isfinite(model.omega[0]) else np.nan)
+                first_natural_frequency=model.omega[0] / (2 * np.pi) if np.isfinite(model.omega[0]) else np.nan,
+                lift_off_eccentricity=lift_off_eccentricity(inputs, state))
 
     def finish(status: str, message: str) -> PointResult:
         result.status, result.message = status, message

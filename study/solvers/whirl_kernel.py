@@ -58,6 +58,14 @@ ONSET_TOLERANCE = 1e-6
 #: wall at a vanishing speed would otherwise get an unbounded χ, a stiffness that held the explicit steps of a
 #: pipe sliding on the wall 100 times below those of its elastic contact (docs/reference_model.md §6).
 ONSET_SPEED_FLOOR = 1e-3
+#: Cuts of a step after which the end of a Hunt–Crossley contact force (its bracket 1 + χ δ̇ through zero while the
+#: point is still inside the wall) is located to what the steps resolve of the rate δ̇, ONSET_TOLERANCE of Ω c, instead
+#: of ONSET_TOLERANCE of the bracket itself. The bracket moves by χ times the rate's error, and a contact that
+#: opened at the floor speed (ONSET_SPEED_FLOOR: χ = h(e)/1e-3 m/s, thousands of s/m) needs the rate to 1e-10 m/s,
+#: far below the steps' own error (rtol × Ω c): the continuous extension then put the end a little late at every
+#: cut, each cut shortened the step by 0.01-0.1 % and the sixty attempts ran out (a step size underflow; the
+#: default study's 275 rpm, 10 000 lbf, 12 ppg, 7.4 ft/s point in its straight hole, docs/reference_model.md §4).
+ENDING_RETRIES = 2
 #: Outcomes of :func:`advance`.
 OK, BLOWN_UP, STEP_UNDERFLOW, TOO_MANY_STEPS = 0, 1, 2, 3
 OUTCOMES = {OK: "ok", BLOWN_UP: "non-finite state or deflection above 100 clearances",
@@ -687,6 +695,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])
+    om = fpar[1]
     N = omega2.size
     P = phi.shape[0]
     n = z.size
@@ -762,10 +771,16 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                         continue
                     y, w, yd, wd = point_state(znew, phi, p, N)
                     f1 = _contact_function(y, w, yd, wd, cl[p], law, chi[p], kp[p], cpen[p], True)
-                    if f1 < -ONSET_TOLERANCE:
+                    # the end of the force: located within ONSET_TOLERANCE at the first cut; on a cut again, within
+                    # what the steps resolve of the Hunt–Crossley bracket 1 + χ δ̇, ONSET_TOLERANCE of Ω c_p in δ̇
+                    # (ENDING_RETRIES)
+                    tol = ONSET_TOLERANCE
+                    if law == 0 and _attempt >= ENDING_RETRIES:
+                        tol = ONSET_TOLERANCE * (1.0 + chi[p] * om * cl[p])
+                    if f1 < -tol:
                         th = _switch_fraction(z, vend if lawson else znew, kv if lawson else k, h, phi, p, N, cl[p],
-                                              law, chi[p], kp[p], cpen[p], True, -0.5 * ONSET_TOLERANCE,
-                                              0.25 * ONSET_TOLERANCE, lawson, omega2, damp, shift,
+                                              law, chi[p], kp[p], cpen[p], True, -0.5 * tol,
+                                              0.25 * tol, lawson, omega2, damp, shift,
                                               r_lawson if lawson else r_point, v_lawson if lawson else v_point)
                         cut = min(cut, max(th, 0.02))
                 elif pen[p, 0] > ONSET_TOLERANCE * cl[p] and pen_end[p, 0] < 0.0:

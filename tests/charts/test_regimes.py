@@ -4,7 +4,9 @@ import numpy as np
 from matplotlib.collections import QuadMesh
 
 from study.charts import figure_labels
-from study.charts.regimes import SEVERITY, regime_map, regimes
+import xarray as xr
+
+from study.charts.regimes import SEVERITY, lift_off_map, regime_map, regimes
 from study.solvers.result import REGIMES, STATUS
 
 
@@ -49,3 +51,27 @@ def test_a_regime_output_is_used_where_present(study):
 def test_every_regime_has_a_severity_and_the_codes_do_not_clash_with_the_status():
     assert set(SEVERITY) == set(REGIMES) and len(set(REGIMES.values())) == len(REGIMES)
     assert not set(REGIMES) & set(STATUS) - {"unstable"}
+
+
+def test_the_lift_off_map_shows_the_lowest_lift_off_eccentricity_and_outlines_where_the_configured_one_lifts(study):
+    # study.charts.regimes.lift_off_map on a synthetic dataset: ε_lift falling with the speed, 1 in × (60/n)^1.86
+    # (1 in at 60 rpm, 0.05 in at 300 rpm), 0.9 of it at the second mud density: the map shows the minimum over the
+    # other inputs, in inches, each cell's value written in it; the configured 0.1 in is in the legend and the cells
+    # below it outlined; without the output no chart
+    ds = study.copy()
+    n = ds.rotary_speed * 30 / np.pi
+    lift = 0.0254 * (60 / n) ** 1.86 * (1 + 0 * ds.axial_tension + 0 * ds.restitution)
+    lift = lift * xr.where(ds.mud_density == ds.mud_density[-1], 0.9, 1.0)
+    ds["lift_off_eccentricity"] = lift.transpose(*ds.status.dims).astype(float).assign_attrs(units="m")
+    ds["eccentricity"] = xr.full_like(ds.lift_off_eccentricity, 0.1 * 0.0254).assign_attrs(units="m")
+    (chart,) = lift_off_map(ds)
+    (mesh,) = [c for c in chart.figure.axes[0].collections if isinstance(c, QuadMesh)]
+    values = np.ma.masked_invalid(mesh.get_array()).reshape(ds.sizes["axial_tension"], ds.sizes["rotary_speed"])
+    expected = 0.9 * (60 / (ds.rotary_speed.values * 30 / np.pi)) ** 1.86
+    np.testing.assert_allclose(values[0], expected, rtol=1e-12)
+    labels = figure_labels(chart.figure)
+    assert any("configured eccentricity 0.1 in lifts the joints" in t for t in labels["legend"])
+    written = [t.get_text() for t in chart.figure.axes[0].texts if t.get_gid() == "lift-off eccentricity"]
+    assert len(written) == values.size and f"{expected[0]:.2g}" in written
+    assert "your pipe lies where its eccentricity is below" in chart.caption
+    assert lift_off_map(study) == []

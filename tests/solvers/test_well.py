@@ -545,3 +545,72 @@ def test_at_200_rpm_and_30_klbf_the_default_string_lies_below_the_eccentricity_t
     s = model.span / np.count_nonzero(model.kinds == 1)
     share = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2])) * s + model.joint_weight
     assert 1.0 < result.values["peak_contact_force"] / share < 2.5  # measured 568.5 N over 302.8 N: 1.88
+
+
+def test_the_lift_off_eccentricity_turning_slowly_is_the_balance_of_a_joints_forces():
+    # sliding.lift_off_eccentricity against the closed form it tends to where the spans' dynamics are weak (30 rpm,
+    # 30 000 lbf, 9 ppg, the default 90° string): a joint lifts where share · m_p ε Ω² s beats the normal force it
+    # rests with (whirl.lift_off_speed, tested above; the share whirl.turned_joint_share's 0.8325, the rest 290.0 N,
+    # the sliding rest's w s + W_j sin θ turned aside by the friction). Inverted: at the point's ε (0.1 in) the
+    # sliding state's linear estimate ε F/(F − min F_n) lifts the joints at the point's speed by the closed form (the
+    # sliding state's share 0.839 against the series' 0.8325: 0.5 % in speed, measured 30.16 rpm); the eccentricity
+    # itself (5.90 in, the secant on the least force) is lower by the second order of the joints' swing along the
+    # wall at so large an ε (measured: the closed form's speed at it 31.70 rpm, 5.7 % above)
+    point = _study(30, 30)
+    state = sliding.steady_state(point)
+    model, props = state["model"], state["model"].props
+    s = model.span / 4
+    share = float(whirl_physics.turned_joint_share(np.pi / 2, props["effective_tension"], props["bending_stiffness"], s))
+    joints = model.kinds == 1
+    rest = float(np.min(state["rest"]["normal"][joints]))
+    assert rest == pytest.approx(302.77 / np.hypot(1.0, model.friction), rel=1e-3)  # the balance above, turned aside
+    least = float(np.min(state["window"].forces[:, joints, 2]))
+    linear = model.eccentricity * rest / (rest - least)
+    speed = lambda eps: float(whirl_physics.lift_off_speed(rest, share, props["pipe_mass"], eps, s))
+    assert speed(linear) == pytest.approx(model.rotary_speed, rel=0.01)
+    lift = sliding.lift_off_eccentricity(point, state)
+    assert lift < linear
+    assert speed(lift) == pytest.approx(model.rotary_speed, rel=0.07)
+
+
+@pytest.mark.parametrize("ppg, inches", [(9, 0.0854), (12, 0.0669)])
+def test_the_lift_off_eccentricity_at_200_rpm_decides_whether_the_reference_model_lies_or_bounces(ppg, inches):
+    # issue 33's check at 200 rpm, 30 000 lbf in the straight hole: the default string's joints lie where its mass
+    # eccentricity is below sliding.lift_off_eccentricity (docs/reference_model.md §7: 0.1 in × 290.0/343.9 = 0.084
+    # in by the swing of the sliding state's joint force at 9 ppg, 0.066 in at 12 ppg; the least force's secant gives
+    # 0.0854 and 0.0669 in). The reference model itself (its run from the rest on the joints, 30 revolutions of
+    # transient): at 0.9 ε_lift in contact all the time, no onset, a joint's force of the order of its share of the
+    # side load (302.8 N at 9 ppg; measured 572-580 N: 1.9 shares, the turning load's swing on top); at 1.2 ε_lift the
+    # joints bounce (measured: 36-45 onsets in the window, in contact 26-28 % of the time, 10-13 kN peaks)
+    point = config.load(ROOT / "configs" / "default.toml", {
+        "load.rotary_speed": "200 rpm", "load.axial_tension": "30000 lbf", "impact.restitution": 0.3,
+        "mud.density": f"{ppg} ppg", "mud.flow_velocity": "0 ft/s"}).point()
+    lift = sliding.lift_off_eccentricity(point)
+    assert lift / 0.0254 == pytest.approx(inches, abs=0.001)
+    quick = dict(reference_revolutions=30, reference_max_revolutions=34)
+    lies = reference.simulate({**point, "eccentricity": 0.9 * lift, **quick})
+    window, model = lies["window"], lies["model"]
+    joints = model.kinds == 1
+    share = float(np.hypot(*reference.side_loads(point, model.props)[:2])) * model.span / 4 + model.joint_weight
+    assert np.all(window.onsets[joints] <= 1)
+    assert np.all(window.contact_time[joints] / (window.end - window.start) > 0.99)
+    assert np.all((window.peak[joints] > share) & (window.peak[joints] < 3 * share))
+    bounces = reference.simulate({**point, "eccentricity": 1.2 * lift, **quick})
+    window = bounces["window"]
+    assert np.all(window.onsets[joints] >= 5)
+    assert np.all(window.contact_time[joints] / (window.end - window.start) < 0.8)
+    assert np.max(window.peak[joints]) > 10 * share
+
+
+def test_the_lift_off_eccentricity_is_an_output_where_a_side_load_lays_the_string_down():
+    # solve_point adds it to the reference model's scene's methods (study.solvers.LIFT_OFF_METHODS), SI with its unit in
+    # OUTPUTS; NaN in a straight vertical hole, where nothing lies on the wall (the free whirl's scene); the sliding
+    # method's own value is the function's on its state
+    from study.solvers import OUTPUTS, solve_point
+
+    assert OUTPUTS["lift_off_eccentricity"][0] == "m"
+    point = _study(100, 10)
+    result = solve_point(point, "sliding")
+    assert result.values["lift_off_eccentricity"] == sliding.lift_off_eccentricity(point)
+    assert 0.0254 * 0.3 < result.values["lift_off_eccentricity"] < 0.0254 * 1.0  # measured 0.558 in
+    assert np.isnan(sliding.lift_off_eccentricity({**point, "inclination": 0.0}))
