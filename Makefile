@@ -36,8 +36,10 @@ $(STAMP): pyproject.toml
 	$(BIN)/study compile
 	touch $(STAMP)
 
+# The whole suite in two pytest-xdist workers (the machine's two cores; the kernels are compiled ahead by setup),
+# each test file on one worker, so that a module's fixtures (the validation record's, 2 minutes) are computed once.
 test: $(STAMP) chromium
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile
 
 # The precision-sensitive tests (marker `precision`, tests/conftest.py) again with numba compiling for a generic
 # x86-64 CPU: figures held to their real accuracy, not to this machine's last bits. CI runs it after make test.

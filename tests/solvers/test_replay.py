@@ -124,22 +124,27 @@ def test_the_replay_is_opt_in(default_point):
     assert run["replay"] is None and run["window"].onsets.any()
 
 
-def test_the_residual_vectors_stresses_recovered_from_the_force_converge_on_a_replayed_strike(bouncing):
-    # the largest strike of the 16-mode window replayed with the residual vectors at 64 modes, its fields recovered two
-    # ways from the same motion (reference_recovery): the vectors' coordinates s_p ("vectors", which ring after the
-    # strike), and the contact forces with the joints' inertia, statically ("force", the mode-acceleration method,
-    # docs/reference_model.md §2.1); the reference is the same strike replayed at 256 modes with the kept modes alone
-    # (the three laws meet there within 1 % on the force). Measured: the force 1.0 % off either way (one motion); the
-    # max normal stress 13 % off recovered from the force against 25 % from the vectors, the alternating stress 10 %
-    # against 40 %
+def test_the_residual_vectors_stresses_recovered_from_the_force_converge_on_replayed_strikes(bouncing):
+    # four strikes of the 16-mode window (the largest two and two spread over the rest, replay.impacts) replayed with the
+    # residual vectors at 64 modes, their fields recovered two ways from the same motion (reference_recovery): the
+    # vectors' coordinates s_p ("vectors", which ring after the strike), and the contact forces with the joints'
+    # inertia, statically ("force", the mode-acceleration method, docs/reference_model.md §2.1); the reference is each
+    # strike replayed at 256 modes with the kept modes alone (the three laws meet there within 1 % on the force). One
+    # strike is one chaotic realisation's, so the medians over the four are held. Measured: the force 0.4-2.0 % off
+    # either way (one motion); the max normal stress a median 1.0 % off recovered from the force against 24 % from the
+    # vectors, the alternating stress 13 % against 32 % (single strikes: 0.4-8.8 % against 15-44 %; 3.9-39 % against
+    # 13-187 %)
     inputs, model, run = bouncing
-    [reference_event] = _replays(inputs, model, run, (256,), residual="none")
-    ref = reference_event["figures"][256]
+    refs = [event["figures"][256] for event in _replays(inputs, model, run, (256,), residual="none", count=4)]
     off = {}
     for recovery in ("vectors", "force"):
-        [event] = _replays({**inputs, "reference_recovery": recovery}, model, run, (64,), residual="dynamic")
-        off[recovery] = {name: abs(event["figures"][64][name] / ref[name] - 1.0)
+        events = _replays({**inputs, "reference_recovery": recovery}, model, run, (64,), residual="dynamic", count=4)
+        off[recovery] = {name: np.array([abs(event["figures"][64][name] / ref[name] - 1.0)
+                                         for event, ref in zip(events, refs)])
                          for name in ("peak_contact_force", "max_normal_stress", "alternating_bending_stress")}
-    assert off["force"]["peak_contact_force"] == off["vectors"]["peak_contact_force"] < 0.05  # the same motion
+    assert len(refs) == 4
+    np.testing.assert_array_equal(off["force"]["peak_contact_force"], off["vectors"]["peak_contact_force"])  # one motion
+    assert np.all(off["force"]["peak_contact_force"] < 0.05)
     for name in ("max_normal_stress", "alternating_bending_stress"):
-        assert off["force"][name] < 0.2 < off["vectors"][name], (name, off)
+        force, vectors = np.median(off["force"][name]), np.median(off["vectors"][name])
+        assert force < 0.2 and force < vectors, (name, off)

@@ -591,7 +591,7 @@ def test_the_lift_off_eccentricity_at_200_rpm_decides_whether_the_reference_mode
     lies = reference.simulate({**point, "eccentricity": 0.9 * lift, **quick})
     window, model = lies["window"], lies["model"]
     joints = model.kinds == 1
-    share = float(np.hypot(*reference.side_loads(point, model.props)[:2])) * model.span / 4 + model.joint_weight
+    share = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2])) * model.span / 4 + model.joint_weight
     assert np.all(window.onsets[joints] <= 1)
     assert np.all(window.contact_time[joints] / (window.end - window.start) > 0.99)
     assert np.all((window.peak[joints] > share) & (window.peak[joints] < 3 * share))
