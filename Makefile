@@ -44,7 +44,7 @@ test: $(STAMP) chromium
 # The precision-sensitive tests (marker `precision`, tests/conftest.py) again with numba compiling for a generic
 # x86-64 CPU: figures held to their real accuracy, not to this machine's last bits. CI runs it after make test.
 test-generic: $(STAMP)
-	NUMBA_CPU_NAME=generic $(BIN)/python -m pytest -q -m precision -p no:cacheprovider
+	NUMBA_CPU_NAME=generic $(BIN)/python -m pytest -q -m precision -n 2 --dist loadfile -p no:cacheprovider
 
 # The report test opens outputs in a headless browser: Debian's chromium, installed once if absent.
 chromium:
