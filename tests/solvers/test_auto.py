@@ -165,7 +165,7 @@ def test_a_method_does_not_depend_on_the_inputs_it_says_it_does_not(module):
     # estimate
     import importlib
 
-    method = importlib.import_module(f"study.solvers.{module}")
+    method = importlib.import_module(f"study.solvers.methods.{module}")
     points, axes = _default_points(45)
     for name in method.INDEPENDENT_OF:
         for point in points:
