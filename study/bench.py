@@ -29,10 +29,12 @@ from study.benchmarks import series as series_bench
 from study.benchmarks import time_domain as time_domain_bench
 from study.config import load
 from study.physics import hertz
-from study.solvers import METHODS, STATUS_CODES, periodic, reference, solve_point, whirl_kernel
-from study.solvers.auto import clear_memo
-from study.solvers.result import REGIMES
-from study.solvers.scene import Scene
+from study.solvers import METHODS, STATUS_CODES, solve_point
+from study.solvers.methods import periodic, reference
+from study.solvers.kernels import whirl_kernel
+from study.solvers.methods.auto import clear_memo
+from study.solvers.model.result import REGIMES
+from study.solvers.model.scene import Scene
 from study.workflow.execute import configure_local_workers, run_grid, warm_up
 from study.workflow.grid import Grid
 

@@ -31,10 +31,10 @@ from study.physics.fatigue import MEAN_STRESS_CORRECTIONS, SN_CURVES
 from study.physics.materials import GRADES
 from study.physics.section import ADDED_MASS_MODELS
 from study.physics.well import DOGLEG_DIRECTIONS, MAX_DOGLEG_SEVERITY
-from study.solvers.options import (DEFAULT_FORCE_TOLERANCE, DEFAULT_STATISTICAL_TOLERANCE, DEFAULT_TOLERANCE,
-                                   IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
-                                   DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
-                                   TimeDomainOptions)
+from study.solvers.model.options import (DEFAULT_FORCE_TOLERANCE, DEFAULT_STATISTICAL_TOLERANCE, DEFAULT_TOLERANCE,
+                                         IMPACT_MASSES, MAX_POLES, METHOD_DESCRIPTIONS, CrosscheckOptions,
+                                         DampedOptions, Options, ReferenceOptions, SdofOptions, SeriesOptions,
+                                         TimeDomainOptions)
 from study.units import UnitProblem, parse_angle_per_length, parse_quantity
 
 REQUIRED = object()
@@ -591,7 +591,7 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
         return [float(value)] if isinstance(value, (int, float)) else []
 
     # the reference model's periodic section holds whole turns of the pipe joints' eccentricity pattern
-    # (study.solvers.reference.eccentricity_phases says it again where a section is built in code)
+    # (study.solvers.methods.reference.eccentricity_phases says it again where a section is built in code)
     for length in values("section_length"):
         for joint in values("joint_length"):
             joints = length / joint

@@ -51,7 +51,7 @@ MODES_FACTOR = 4
 WINDOW_FACTOR = 4
 #: The share of the sample each figure's stated error must cover (issue 36).
 TARGET = 0.9
-#: Regimes (study.solvers.result.Regime) of an impacting point: the pipe strikes the wall.
+#: Regimes (study.solvers.model.result.Regime) of an impacting point: the pipe strikes the wall.
 IMPACTING = ("bouncing", "periodic_impacts")
 #: The reported figures (output name -> label); the damage rate's stated error is ``fatigue_life_error``.
 FIGURES = {"peak_contact_force": "peak contact force", "max_normal_stress": "max normal stress",
@@ -94,7 +94,7 @@ def candidate_order(size: int) -> list[int]:
 def is_impacting(record: Mapping[str, Any]) -> bool:
     """Whether a default answer (:func:`summarise`) is one the sample takes: answered by the reference model at an
     impacting regime (:data:`IMPACTING`)."""
-    from study.solvers.result import REGIMES
+    from study.solvers.model.result import REGIMES
 
     regime = record.get("values", {}).get("regime")
     codes = {REGIMES[name] for name in IMPACTING}
@@ -168,8 +168,8 @@ def reference_options(inputs: Mapping[str, Any], modes: int, modes_factor: int =
                       window_factor: int = WINDOW_FACTOR) -> dict[str, Any]:
     """The reference answer's inputs: method ``reference`` with ``modes_factor`` times the default answer's
     ``modes`` (the count fixed: ``reference_max_modes`` raised to it) and ``window_factor`` times the default
-    options' window, transient and revolution budget (study.solvers.options.ReferenceOptions)."""
-    from study.solvers.options import ReferenceOptions
+    options' window, transient and revolution budget (study.solvers.model.options.ReferenceOptions)."""
+    from study.solvers.model.options import ReferenceOptions
 
     option = ReferenceOptions.from_inputs(inputs)
     count = int(modes_factor * modes)

@@ -1,6 +1,6 @@
 """The point table: one design point's result as ``study point`` prints it (``--json`` gives it whole, in SI).
 
-Every output the method returns is printed — the scalar outputs of :data:`study.solvers.result.OUTPUTS`, any
+Every output the method returns is printed — the scalar outputs of :data:`study.solvers.model.result.OUTPUTS`, any
 other scalar it returns, and its other results (lists, texts, flags; nested records as a pointer to ``--json``)
 — each in the table's unit system: oilfield units by default (psi, lbf, in, ft, ppg, h; the choices of
 :func:`study.units.display_unit`), SI with ``--si`` (MPa for stresses, else the base units). Dimensionless values
@@ -14,7 +14,7 @@ import math
 import re
 from typing import Any, Mapping
 
-from study.solvers.result import OUTPUTS, STATUS
+from study.solvers.model.result import OUTPUTS, STATUS
 from study.units import convert, display_unit, pint_unit
 
 UNIT_SYSTEMS = ("oilfield", "si")

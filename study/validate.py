@@ -16,8 +16,8 @@ from study import __version__
 from study.config import load
 from study.physics import hertz, restitution
 from study.solvers import OUTPUTS, solve_point
-from study.solvers.crosscheck import DEFAULT_TOLERANCE
-from study.solvers.orbit import STABILITY_TOL
+from study.solvers.methods.crosscheck import DEFAULT_TOLERANCE
+from study.solvers.kernels.orbit import STABILITY_TOL
 from study.units import convert, pint_unit
 from study.workflow.execute import run_grid
 from study.workflow.grid import Grid
@@ -331,13 +331,13 @@ def replay_section(modes: int = 21, restitutions=(0.5, 1.0)) -> list[str]:
         "the same span and modes, no damping or drive (the periodic model has neither), Hertz contact at "
         "midspan with the stiffness at the solution's own curvature and Hunt-Crossley damping that "
         "rebounds one mass with e - and run through one revolution of real contact "
-        "(`study.solvers.crosscheck`). Ratios are time domain over periodic solution; the periodicity "
+        "(`study.solvers.methods.crosscheck`). Ratios are time domain over periodic solution; the periodicity "
         "defect is the largest change of the modal state over the revolution (q in units of c, q' in "
         "units of Ω c); \"one mass\" is the peak of the equivalent mass alone on the same contact over "
         "Lee's peak; the last two columns are the periodic solution's midspan position at the peak of "
         "Lee's pulse (y - c, positive into the wall) and the Hertz approach (F̂/K)^(2/3) that peak force "
         "needs; the real-contact orbit is the periodic orbit of the replay's scene nearest the periodic "
-        "solution, found by shooting (`study.solvers.orbit`), with its distance from the periodic "
+        "solution, found by shooting (`study.solvers.kernels.orbit`), with its distance from the periodic "
         "solution's state, its peak force and largest normal stress over the periodic solution's, and its "
         f"largest Floquet multiplier. Tolerance {DEFAULT_TOLERANCE:g}.", "",
         _row("pattern", "e", "span [ft]", "impulse", "peak contact force", "max normal stress", "max deflection",
@@ -490,8 +490,9 @@ def _compared(result, ref: dict | None) -> tuple[str, float]:
 def damped_section() -> list[str]:
     """The damped periodic solution against the undamped one and the reference model on a handful of points of
     the paper's example, and whether any reading now has a span near the paper's 345 ft."""
-    from study.solvers import damped, periodic
-    from study.solvers.reference import WHIRL_CLASSES
+    from study.solvers.methods.periodic import damped
+    from study.solvers.methods import periodic
+    from study.solvers.methods.reference import WHIRL_CLASSES
 
     whirls = {code: name for name, code in WHIRL_CLASSES.items()}
     point = load(DEFAULT_CONFIG).point()

@@ -7,7 +7,7 @@ import pytest
 def fresh_auto_memo():
     """Each test starts with ``auto``'s memo of rung answers empty, so that a test changing a method (monkeypatch)
     is never answered from another test's run."""
-    from study.solvers import auto
+    from study.solvers.methods import auto
 
     auto.clear_memo()
     yield

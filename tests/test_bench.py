@@ -130,7 +130,7 @@ def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_point
     import xarray as xr
 
     from study.bench import bench_reference_schemes
-    from study.solvers.result import REGIMES
+    from study.solvers.model.result import REGIMES
 
     config = DEFAULT_CONFIG.with_name("default.toml")
     study = load(config)

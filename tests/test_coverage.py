@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from study import coverage, validate
-from study.solvers.result import REGIMES, PointResult
+from study.solvers.model.result import REGIMES, PointResult
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -33,12 +33,12 @@ CONTACT_LAW_FORM = re.compile(r"\*\* [12]\.5(?!\d)|\b(\w+) \* (?:\w+ \. )?sqrt \
 
 
 #: Where a point's inputs are read by name (``inputs["k"]``, ``inputs.get("k")``): the config, which makes them, and
-#: the builders of the typed point from them — the Scene (study/solvers/scene.py) and the options
-#: (study/solvers/options.py); None: the whole module.
+#: the builders of the typed point from them — the Scene (study/solvers/model/scene.py) and the options
+#: (study/solvers/model/options.py); None: the whole module.
 INPUT_EDGE: dict[str, set[str] | None] = {
     "study/config.py": None,
-    "study/solvers/scene.py": {"Scene.from_inputs"},
-    "study/solvers/options.py": {"study_tolerance", "relative_tolerance", "MethodOptions.from_inputs"},
+    "study/solvers/model/scene.py": {"Scene.from_inputs"},
+    "study/solvers/model/options.py": {"study_tolerance", "relative_tolerance", "MethodOptions.from_inputs"},
 }
 #: The names a point's inputs go by (``study.inputs`` too, a Study's fixed inputs).
 INPUT_NAMES = ("inputs", "point")
@@ -239,3 +239,103 @@ def test_the_inputs_are_read_by_name_only_where_the_point_is_made_and_typed():
     found = input_reads()
     assert len(found) <= MAX_INPUT_READS, "inputs read by name outside the config, Scene.from_inputs and the options' " \
         "builders (read the Scene's or the options' field):\n" + "\n".join(found)
+
+
+#: The kinds of study/solvers/ (issue 35): the model of a point and of a result, the compiled kernels, the methods.
+SOLVERS = ROOT / "study" / "solvers"
+#: What each kind may not import: the model no method nor kernel, the kernels no method.
+LAYER_RULES = {"model": ("methods", "kernels"), "kernels": ("methods",)}
+#: The ladder, which runs the other methods by design.
+LADDER = "auto"
+#: The methods that build on another, (importer, imported) -> why; every other sideways import fails the test.
+METHOD_EDGES = {
+    ("crosscheck", "periodic"): "it compares the periodic solution with the time domain's at one point: it runs both",
+    ("crosscheck", "timedomain"): "it compares the periodic solution with the time domain's at one point: it runs both",
+    ("refcheck", "periodic"): "reference-check compares the fast method with the reference model: it runs both",
+    ("refcheck", "reference"): "reference-check compares the fast method with the reference model: it runs both",
+    ("freewhirl", "reference"): "the free whirl is solved on the reference model's modes and contact layout",
+    ("sliding", "reference"): "the sliding rest is the reference model's static equilibrium (its WhirlModel)",
+    ("reference", "sliding"): "the reference model's integration starts from the sliding rest in a deviated hole",
+    ("reference", "timedomain"): "the reference model's settled period is the time domain's test (settled_period)",
+    ("sdof", "periodic"): "the oscillator's stiffness is the span's first natural frequency (impact_model)",
+    ("timedomain", "periodic"): "the time domain's stresses are the periodic methods' stresses_from_fields",
+    ("timedomain", "sdof"): "the time domain's drive amplitude is the oscillator's equivalent_parameters",
+}
+
+
+def _solvers_imports(path: Path, root: Path) -> list[tuple[str, ...]]:
+    """The study.solvers sub-paths ``path`` imports anywhere (a lazy import in a function too), as tuples of names
+    below study.solvers: ``from study.solvers.methods import sliding`` -> ('methods', 'sliding')."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("study.solvers"):
+            found += [tuple(f"{node.module}.{alias.name}".split(".")[2:]) for alias in node.names]
+        elif isinstance(node, ast.Import):
+            found += [tuple(alias.name.split(".")[2:]) for alias in node.names
+                      if alias.name.startswith("study.solvers")]
+    return found
+
+
+def solver_layer_breaches(paths=None, root: Path = ROOT) -> list[str]:
+    """'file: kind imports target' for every import of study/solvers/'s model or kernels against
+    :data:`LAYER_RULES`."""
+    solvers = root / "study" / "solvers"
+    found = []
+    for path in paths if paths is not None else sorted(solvers.rglob("*.py")):
+        kind = path.relative_to(solvers).parts[0]
+        for target in _solvers_imports(path, root):
+            if target and target[0] in LAYER_RULES.get(kind, ()):
+                found.append(f"{path.relative_to(root)}: {kind} imports {'.'.join(target)}")
+    return found
+
+
+def sideways_imports(paths=None, root: Path = ROOT) -> set[tuple[str, str]]:
+    """(importing method, imported method) for every import between two methods of study/solvers/methods/ (a method:
+    one module or package there), the ladder's (:data:`LADDER`) left out."""
+    methods = root / "study" / "solvers" / "methods"
+    found = set()
+    for path in paths if paths is not None else sorted(methods.rglob("*.py")):
+        parts = path.relative_to(methods).with_suffix("").parts
+        me = parts[0]
+        if me in ("__init__", LADDER):
+            continue
+        for target in _solvers_imports(path, root):
+            if len(target) > 1 and target[0] == "methods" and target[1] != me:
+                found.add((me, target[1]))
+    return found
+
+
+def test_the_import_finders_find_a_hand_made_breach_and_sideways_import(tmp_path):
+    # hand-made: a model module importing a kernel, a kernel importing a method lazily, a method importing two
+    # others (one lazily, one through a package's module), the ladder importing a method, and allowed imports
+    methods = tmp_path / "study" / "solvers" / "methods"
+    for folder in ("model", "kernels", "methods/one", "methods"):
+        (tmp_path / "study" / "solvers" / folder).mkdir(parents=True, exist_ok=True)
+    model = tmp_path / "study" / "solvers" / "model" / "m.py"
+    model.write_text("from study.physics import hertz\nfrom study.solvers.model import result\n"
+                     "from study.solvers.kernels.whirl_kernel import step\n")
+    kernel = tmp_path / "study" / "solvers" / "kernels" / "k.py"
+    kernel.write_text("from study.solvers.model.scene import Scene\ndef f():\n    import study.solvers.methods.core\n")
+    one = methods / "one" / "part.py"
+    one.write_text("from study.solvers.methods.one import other\nfrom study.solvers.kernels import orbit\n"
+                   "from study.solvers.methods.two.deep import x\n"
+                   "def f():\n    from study.solvers.methods import three\n")
+    ladder = methods / "auto.py"
+    ladder.write_text("from study.solvers.methods import one, two\n")
+    assert solver_layer_breaches([model, kernel], tmp_path) == [
+        "study/solvers/model/m.py: model imports kernels.whirl_kernel.step",
+        "study/solvers/kernels/k.py: kernels imports methods.core"]
+    assert sideways_imports([one, ladder], tmp_path) == {("one", "two"), ("one", "three")}
+
+
+def test_the_model_imports_no_method_nor_kernel_and_the_kernels_no_method():
+    found = solver_layer_breaches()
+    assert not found, "\n".join(found)
+
+
+def test_a_method_imports_another_only_through_the_ladder_or_a_listed_edge():
+    found = sideways_imports()
+    stray = sorted(found - set(METHOD_EDGES))
+    assert not stray, f"methods importing another (go through the model, the kernels or physics, or list the edge in " \
+        f"METHOD_EDGES with its reason): {stray}"
+    assert set(METHOD_EDGES) <= found, f"listed edges no longer taken (drop them): {sorted(set(METHOD_EDGES) - found)}"

@@ -9,13 +9,13 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.solvers import reference
-from study.solvers.options import ReferenceOptions
+from study.solvers.methods import reference
+from study.solvers.model.options import ReferenceOptions
 
 
 def penalty_rhs(model: reference.WhirlModel):
     """The same equations written in numpy, as a user would for solve_ivp, with the linear penalty
-    contact (law 1 of :mod:`study.solvers.whirl_kernel`): returns f(t, z)."""
+    contact (law 1 of :mod:`study.solvers.kernels.whirl_kernel`): returns f(t, z)."""
     N = model.n_modes
     w2 = model.omega**2
     Om, mu, vreg, m = model.rotary_speed, model.friction, model.slip_velocity, model.mass
@@ -75,7 +75,7 @@ def whirl_penalty_reference(inputs: Mapping[str, Any], revolutions: float, *, rt
 def compiled_run(inputs: Mapping[str, Any], revolutions: float, rtol: float = 1e-6) -> dict[str, Any]:
     """The compiled integrator (its scheme ``reference_integrator`` of the inputs) over ``revolutions`` from the
     centred pipe at rest: wall_time [s], outcome, steps, final_state, work (the kernel's counts,
-    :data:`study.solvers.whirl_kernel.N_STATS`)."""
+    :data:`study.solvers.kernels.whirl_kernel.N_STATS`)."""
     model = reference.build_model(inputs)
     run = reference.Integrator(model, rtol, scheme=ReferenceOptions.from_inputs(inputs).reference_integrator)
     start = time.perf_counter()
@@ -99,7 +99,7 @@ def fixed_window(inputs: Mapping[str, Any], revolutions: float, speed: float = 0
                  rtol: float = 1e-8) -> dict[str, Any]:
     """The reference model's compiled integrator over ``revolutions`` from :func:`thrown_state` (deterministic: no
     transient, no window growth, the same start at every mode count), its output figures over that window as one
-    cycle (:func:`study.solvers.reference.cycle_values`: the stresses with the quasi-static correction, the peak
+    cycle (:func:`study.solvers.methods.reference.cycle_values`: the stresses with the quasi-static correction, the peak
     contact force). Returns wall_time [s] of the integration alone, revolutions, the figures
     (peak_contact_force [N], max_normal_stress, alternating_bending_stress [Pa], max_deflection [m]), onsets (contact
     onsets in the window) and outcome (the kernel's)."""
@@ -114,5 +114,5 @@ def fixed_window(inputs: Mapping[str, Any], revolutions: float, speed: float = 0
                 **{name: float(values[name]) for name in FIXED_WINDOW_FIGURES})
 
 
-#: The figures :func:`fixed_window` returns, as :func:`study.solvers.reference.cycle_values` names them.
+#: The figures :func:`fixed_window` returns, as :func:`study.solvers.methods.reference.cycle_values` names them.
 FIXED_WINDOW_FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_deflection")

@@ -11,8 +11,9 @@ from typing import Any
 import numpy as np
 
 from study.physics import fourier
-from study.solvers import impact_model, periodic, series
-from study.solvers.scene import Scene
+from study.solvers.methods.periodic import impact_model, series
+from study.solvers.methods import periodic
+from study.solvers.model.scene import Scene
 
 
 def convergence_table(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any],

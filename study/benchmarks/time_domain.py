@@ -11,8 +11,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import contact
-from study.solvers import timedomain
-from study.solvers.options import TimeDomainOptions
+from study.solvers.methods import timedomain
+from study.solvers.model.options import TimeDomainOptions
 
 
 def modal_penalty_reference(inputs: Mapping[str, Any], revolutions: float | None = None, *, rtol: float = 1e-6,
@@ -123,7 +123,7 @@ def step_stability(inputs: Mapping[str, Any], revolutions: int = 3, fractions=(0
     """Error and outcome of the explicit and event-driven integrators against their step (docs/model.md §9).
 
     The step is given as a fraction of the explicit step limit 2/ω_max
-    (:func:`study.solvers.timedomain.stability_limit`, the contact linearised at the expected penetration): the
+    (:func:`study.solvers.methods.timedomain.stability_limit`, the contact linearised at the expected penetration): the
     Verlet step for ``"explicit"`` at each of
     ``fractions``, the RK4 contact step for ``"event"`` at each of ``contact_steps`` steps per contact.
     Error as in :func:`benchmark`, against LSODA at rtol 1e-12. Returns rows: name, step_ratio,

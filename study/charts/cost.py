@@ -2,7 +2,7 @@
 
 Every point of a sweep carries the method that answered it, its wall-clock time and the method's own error
 estimate (relative). The chart puts each point at (time, error estimate), one colour per method, with the study's
-tolerance as a line: an answer above it is not ``ok`` (:func:`study.solvers.gate.admit`). Points whose method
+tolerance as a line: an answer above it is not ``ok`` (:func:`study.solvers.model.gate.admit`). Points whose method
 gives no estimate sit on a band at the bottom, so that every point is seen. The legend says, per method, how
 many points it answered, their median time and the share of the sweep's compute they took: where the time
 went, and what it bought.
@@ -24,7 +24,7 @@ def study_tolerance_of(ds: xr.Dataset) -> float | None:
     if not text:
         return None
     from study.config import ConfigError, load_text
-    from study.solvers.options import study_tolerance
+    from study.solvers.model.options import study_tolerance
 
     try:
         return float(study_tolerance(load_text(str(text)).point()))

@@ -607,7 +607,7 @@ def contact_force_and_duration_vs_rpm(ds: xr.Dataset) -> list[Chart]:
     title = _join([quantity(ds[n]).short_name for n in names]).capitalize() + " against rotary speed"
     rough = None
     if "status" in ds.data_vars:  # answers only: ok, or not converged (marked); other statuses' values are not drawn
-        from study.solvers.result import STATUS_CODES
+        from study.solvers.model.result import STATUS_CODES
 
         status = full_array(ds, "status")
         answered = (status == STATUS_CODES["ok"]) | (status == STATUS_CODES["not_converged"])

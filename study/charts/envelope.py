@@ -40,7 +40,7 @@ from study.charts.labels import format_value, quantity
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS, HOUR
 from study.charts.plane import (LIFE_SLOPE, MARGIN, answered_points, bounds, caption_from, draw_boundary,  # noqa: F401
                                 figure_errors, ok_points, plane, plane_axes, solved_points, worst_in_cells)
-from study.solvers.result import STATUS_CODES
+from study.solvers.model.result import STATUS_CODES
 
 #: Why a cell is outside the envelope, in the order the map colours them (the first that applies).
 REASONS = ("no valid answer", "over yield", "fatigue", "critical speed")

@@ -26,7 +26,7 @@ from matplotlib.patches import Patch
 from study.charts.design import (DPI, LOAD, RPM, Chart, axis_names, axis_positions, cell_edges, figure_title,
                                  format_axis, full_array, mark_missing)
 from study.charts.labels import TickFormatter, quantity
-from study.solvers.result import STATUS_CODES
+from study.solvers.model.result import STATUS_CODES
 
 BAND_STYLE = {"facecolor": (0.25, 0.35, 0.9, 0.22), "edgecolor": (0.15, 0.25, 0.75, 0.9), "linewidth": 0.8}
 BAND_LABEL = "critical speed ±15 % (rpm to avoid)"

@@ -1,5 +1,5 @@
 """One point, seen: what the pipe does at a design point, from the reference model's motion there
-(:mod:`study.solvers.reference`: the section in both lateral directions, with its tool joints and the wall).
+(:mod:`study.solvers.methods.reference`: the section in both lateral directions, with its tool joints and the wall).
 
 Three panels: the orbit of the most-touching point of the section in the hole's cross-section, with the wall (the
 clearance circle of that point: the pipe's centre cannot go past it but for the Hertz approach); the normal contact
@@ -27,8 +27,8 @@ def point_chart(inputs: Mapping[str, Any]) -> Chart:
     """The reference model's motion at the point ``inputs`` (SI, as :meth:`study.config.Study.point` gives them)
     as a :class:`~study.charts.design.Chart` named "point". Raises ValueError where the model cannot run there
     (a buckled section): the message says why."""
-    from study.solvers import reference
-    from study.solvers.scene import make_scene
+    from study.solvers.methods import reference
+    from study.solvers.model.scene import make_scene
 
     model = reference.build_model(inputs)
     if not np.all(np.isfinite(model.omega)):

@@ -1,7 +1,7 @@
 """The regime map: how the pipe moves at each rotary speed and load.
 
 No contact / forward whirl / backward whirl / bouncing impacts / periodic impacts (the source paper's
-state) / unstable, as the codes of :data:`study.solvers.result.REGIMES`. A method that classifies the motion
+state) / unstable, as the codes of :data:`study.solvers.model.result.REGIMES`. A method that classifies the motion
 writes the output ``regime``; where a point has none, the regime is read from its status (no_impact: no
 contact; ok or disagrees: periodic impacts; unstable or period_doubling: unstable; not_periodic or
 chattering: bouncing) and the title says so. Any other status leaves the regime undetermined (hatched).
@@ -19,7 +19,7 @@ from matplotlib.patches import Patch
 from study.charts.critical import avoid_bands
 from study.charts.design import DPI, Chart, figure_title, full_array, mark_missing
 from study.charts.plane import BAND_LABEL, BAND_STYLE, Panel, draw_bands, draw_cells, plane, plane_axes, plane_chart
-from study.solvers.result import REGIMES, STATUS_CODES
+from study.solvers.model.result import REGIMES, STATUS_CODES
 
 #: The regime a status implies, for points without a ``regime`` output.
 FROM_STATUS = {"no_impact": "no_contact", "ok": "periodic_impacts", "disagrees": "periodic_impacts",
@@ -115,7 +115,7 @@ LIFT_STYLE = {"colors": "k", "linewidths": 2.2}
 
 def lift_off_map(ds: xr.Dataset) -> list[Chart]:
     """The lift-off eccentricity (output ``lift_off_eccentricity``: the pipe's mass eccentricity at which its tool
-    joints lift off the wall they lie on, :func:`study.solvers.sliding.lift_off_eccentricity`) over rotary speed ×
+    joints lift off the wall they lie on, :func:`study.solvers.methods.sliding.lift_off_eccentricity`) over rotary speed ×
     axial load, in inches on a log colour scale, the lowest over the other swept inputs (the first to bounce; every
     point where it is defined, whatever its answer's status, as it depends on none). The configured eccentricity (the
     output ``eccentricity``) is marked on the colour bar, and the cells where it is above the lift-off (the joints

@@ -104,7 +104,7 @@ def representative_points(ds) -> list[tuple[str, dict]]:
 
     from study.charts.design import full_array
     from study.charts.plane import answered_points
-    from study.solvers.result import REGIMES
+    from study.solvers.model.result import REGIMES
 
     if "regime" not in ds.data_vars or not ds.sizes:
         return []
@@ -179,7 +179,7 @@ def _answers(ds) -> str:
     import numpy as np
 
     from study.charts.plane import answered_points
-    from study.solvers.result import STATUS
+    from study.solvers.model.result import STATUS
 
     names = {code: name for name, (code, _) in STATUS.items()}
     codes = np.asarray(ds["status"].values).ravel()

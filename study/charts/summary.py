@@ -12,7 +12,7 @@ import xarray as xr
 
 from study.charts.envelope import VERDICTS, criterion_text, envelope_table, safe_ranges
 from study.charts.limits import DEFAULT_TARGET_LIFE_HOURS
-from study.solvers.result import STATUS
+from study.solvers.model.result import STATUS
 
 
 def _statuses(ds: xr.Dataset) -> np.ndarray:

@@ -18,7 +18,7 @@ from matplotlib.patches import Patch
 from study.charts.design import (DPI, Chart, axis_names, axis_positions, cell_edges, figure_title, format_axis,
                                  full_array, map_or_line_dims, preferred_dims)
 from study.charts.labels import quantity
-from study.solvers.result import STATUS
+from study.solvers.model.result import STATUS
 
 #: Colours of the status flags: green for ok, warm for physical limits, cool/grey for numerics.
 STATUS_COLOURS = {

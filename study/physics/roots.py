@@ -1,5 +1,5 @@
 """Regula falsi with the Illinois modification, one compiled step at a time, for the compiled root
-finders of the physics and solvers (the span search, :mod:`study.solvers.periodic`, shrinks thousands
+finders of the physics and solvers (the span search, :mod:`study.solvers.methods.periodic`, shrinks thousands
 of sign-changing brackets of its screening residual in one compiled loop).
 
 Pure numerics on floats, no I/O. A caller's loop::

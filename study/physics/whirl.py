@@ -1,7 +1,7 @@
 """Whirl of a rotating pipe section in the hole: the drive, the wall friction and the closed forms.
 
 Pure functions of numpy arrays, SI units. They are the pieces of the reference model
-(``docs/reference_model.md``; :mod:`study.solvers.reference`) that have a closed form, and the
+(``docs/reference_model.md``; :mod:`study.solvers.methods.reference`) that have a closed form, and the
 closed forms the model is checked against:
 
 - the rotating centrifugal load of a mass eccentricity ε of the pipe, m_p ε Ω² per unit length

@@ -2,8 +2,8 @@
 
 ``METHODS`` is the registry (as scipy.integrate's solver table): name -> (solve function, one-line
 description), built on first use from :data:`METHOD_MODULES` and the descriptions declared with the options
-(:mod:`study.solvers.options`). Every solve function takes the SI inputs of one point and returns a
-:class:`~study.solvers.result.PointResult` whose status and message say what happened; none raises
+(:mod:`study.solvers.model.options`). Every solve function takes the SI inputs of one point and returns a
+:class:`~study.solvers.model.result.PointResult` whose status and message say what happened; none raises
 for a numerical or physical failure of the point.
 """
 
@@ -15,19 +15,20 @@ from typing import Any, Mapping
 
 import importlib
 
-from study.solvers.options import METHOD_DESCRIPTIONS, LimitOptions, Tolerances
-from study.solvers.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
+from study.solvers.model.options import METHOD_DESCRIPTIONS, LimitOptions, Tolerances
+from study.solvers.model.result import OUTPUTS, STATUS, STATUS_CODES, PointResult
 
-#: Methods whose results get the lift-off eccentricity (:func:`study.solvers.sliding.add_lift_off`): those whose
+#: Methods whose results get the lift-off eccentricity (:func:`study.solvers.methods.sliding.add_lift_off`): those whose
 #: scene is the reference model's and that may answer a pipe lying on the wall (the free whirl answers only where
 #: nothing lies there). Named here, so that solving another method imports no reference model.
 LIFT_OFF_METHODS = ("sliding", "reference")
 
-#: The module of each method (its ``solve`` is the method); imported on first use, so that importing the
+#: The module of each method under :mod:`study.solvers.methods` (its ``solve`` is the method); imported on first use, so that importing the
 #: package, its options or its result type (as the config does) loads no solver.
-METHOD_MODULES = {"core": "core", "fast": "fast", "series": "series", "auto": "auto", "time-domain": "timedomain",
-                  "crosscheck": "crosscheck", "reference": "reference", "reference-check": "refcheck",
-                  "free-whirl": "freewhirl", "sliding": "sliding", "sdof": "sdof", "damped": "damped"}
+METHOD_MODULES = {"core": "core", "fast": "periodic.fast", "series": "periodic.series", "auto": "auto",
+                  "time-domain": "timedomain", "crosscheck": "crosscheck", "reference": "reference",
+                  "reference-check": "refcheck", "free-whirl": "freewhirl", "sliding": "sliding", "sdof": "sdof",
+                  "damped": "periodic.damped"}
 
 
 #: Methods whose solve function is not their module's ``solve``: name -> (module, function).
@@ -36,8 +37,8 @@ METHOD_FUNCTIONS = {"periodic": ("auto", "solve_periodic")}
 
 def _registry() -> dict:
     table = {name: (module, "solve") for name, module in METHOD_MODULES.items()} | METHOD_FUNCTIONS
-    return {name: (getattr(importlib.import_module(f"study.solvers.{module}"), function), METHOD_DESCRIPTIONS[name])
-            for name, (module, function) in table.items()}
+    return {name: (getattr(importlib.import_module(f"study.solvers.methods.{module}"), function),
+                   METHOD_DESCRIPTIONS[name]) for name, (module, function) in table.items()}
 
 
 def __getattr__(name: str):
@@ -53,17 +54,17 @@ __all__ = ["METHODS", "OUTPUTS", "STATUS", "STATUS_CODES", "PointResult", "solve
 def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointResult:
     """Solve one design point with ``method`` (default: ``inputs['solver_method']``, config solver.method).
 
-    Every result passes :func:`study.solvers.gate.admit`, the one place that decides whether an answer
+    Every result passes :func:`study.solvers.model.gate.admit`, the one place that decides whether an answer
     the method calls ``ok`` is physical, and gets the design limits of its stresses
-    (:func:`study.solvers.utilisation.add_limits`: yield and endurance utilisation, fatigue life), both given the
-    point's typed :class:`~study.solvers.scene.Scene`, :class:`~study.solvers.options.LimitOptions` and
-    :class:`~study.solvers.options.Tolerances`, built here from ``inputs`` once; the methods of the reference model's
-    scene (:data:`LIFT_OFF_METHODS`) get the lift-off eccentricity (:func:`study.solvers.sliding.add_lift_off`). An
+    (:func:`study.solvers.model.utilisation.add_limits`: yield and endurance utilisation, fatigue life), both given the
+    point's typed :class:`~study.solvers.model.scene.Scene`, :class:`~study.solvers.model.options.LimitOptions` and
+    :class:`~study.solvers.model.options.Tolerances`, built here from ``inputs`` once; the methods of the reference model's
+    scene (:data:`LIFT_OFF_METHODS`) get the lift-off eccentricity (:func:`study.solvers.methods.sliding.add_lift_off`). An
     unexpected exception inside a method is caught and returned as status ``failed`` with its message, so
     that one bad point never sinks a sweep. The result's ``wall_time`` is stamped here, once, for every method.
     """
-    from study.solvers import gate, utilisation
-    from study.solvers.scene import Scene
+    from study.solvers.model import gate, utilisation
+    from study.solvers.model.scene import Scene
 
     methods = globals().get("METHODS") or __getattr__("METHODS")
     name = method or inputs.get("solver_method") or "core"
@@ -73,7 +74,7 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
     try:
         result = methods[name][0](inputs)
         if result.method in LIFT_OFF_METHODS:  # the lift-off eccentricity of the reference model's scene
-            from study.solvers import sliding
+            from study.solvers.methods import sliding
 
             sliding.add_lift_off(result, inputs)
         if result.status == "ok" or "max_normal_stress" in result.values:  # what the limits and the gate judge

@@ -18,7 +18,7 @@ from study import __version__
 from study.atomic import atomic_path
 from study.config import FIELDS_BY_NAME, Study
 from study.solvers import OUTPUTS, STATUS
-from study.solvers.result import ALIASES, REGIMES
+from study.solvers.model.result import ALIASES, REGIMES
 from study.workflow.grid import Grid, code_hash
 
 CONVENTIONS = "CF-1.10"

@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from study.config import Study
-from study.solvers import OUTPUTS, impact_model
+from study.solvers import OUTPUTS
+from study.solvers.methods.periodic import impact_model
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
 from study.workflow.compiled import ensure_compiled

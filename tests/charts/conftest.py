@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 from study.physics.limits import design_limits
-from study.solvers.result import STATUS
+from study.solvers.model.result import STATUS
 
 RPM = 2 * math.pi / 60  # rad/s per rpm
 LBF = 4.4482216152605  # N
@@ -68,7 +68,7 @@ def build(axes=None, status=None, mud_mass=True):
         "span_length": (full(FT * (300 - 0.3 * n) + 0 * t).where(ok), "m"),
         "bending_stiffness": (full(EI + 0 * n), "N m2"), "effective_tension": (full(t * LBF + 0 * n), "N"),
         "mass_per_length": (full(STEEL + mud + 0 * n + 0 * t), "kg m-1"),
-        # as study.solvers.utilisation: limits only where the stresses are (design_limits gives life 0 for NaN)
+        # as study.solvers.model.utilisation: limits only where the stresses are (design_limits gives life 0 for NaN)
         "yield_utilisation": (np.where(ok, limits.yield_utilisation, np.nan), "1"),
         "endurance_utilisation": (np.where(ok, limits.endurance_utilisation, np.nan), "1"),
         "fatigue_life": (np.where(ok, limits.fatigue_life, np.nan), "s"),

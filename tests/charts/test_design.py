@@ -28,7 +28,7 @@ from study.charts import (
     validity_map,
 )
 from study.charts.design import CRITICAL_SPEED_LABEL
-from study.solvers.result import STATUS
+from study.solvers.model.result import STATUS
 
 RPM = 2 * math.pi / 60  # rad/s
 LBF = 4.4482216152605  # N
@@ -582,7 +582,7 @@ def test_the_span_chart_is_not_drawn_where_no_point_searched_a_span(full):
 def test_contact_lines_draw_answers_only_and_mark_the_points_not_converged(full):
     """Issue 34: the contact chart drew unmarked not-converged points, and values of invalid points."""
     from study.charts.design import ROUGH_POINT_LABEL, contact_force_and_duration_vs_rpm
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = full.copy(deep=True)
     dims = ds.status.dims

@@ -85,7 +85,7 @@ def test_safe_ranges_per_load_and_the_csv(study, tmp_path):
 
 def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_decision(study):
     from study.charts.envelope import LIFE_SLOPE, MARGIN, decided_within_error, failures
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = study.copy(deep=True)
     ok = (ds.status == STATUS_CODES["ok"]) & (ds.yield_utilisation < 0.5) & (ds.fatigue_life > 50 * 1000 * 3600)
@@ -110,11 +110,11 @@ def test_a_point_not_converged_counts_only_where_its_error_cannot_change_the_dec
 
 
 def test_a_point_that_yields_is_over_yield_not_unanswered_and_the_limit_charts_show_it(study):
-    # issue 32: a point past the grade's yield gets status yields (study.solvers.gate.within_yield); its figures
+    # issue 32: a point past the grade's yield gets status yields (study.solvers.model.gate.within_yield); its figures
     # are kept, so the envelope must call its cell over yield (not "no valid answer") and the limit charts' values (answered_values) must keep it.
     from study.charts.envelope import failures
     from study.charts.plane import answered_values
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = study.copy(deep=True)
     answered = (ds.status == 0).values
@@ -132,7 +132,7 @@ def test_every_cell_states_its_verdict_and_its_worst_value_with_the_undecided_po
     """The issue's case (issue 34): a cell holding a 1 103-h point at a 106 % error must show that point as its worst
     life, with its error, and be undecided rather than "no valid answer" or safe."""
     from study.charts.envelope import LIFE_SLOPE, MARGIN
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = study.copy(deep=True)
     dims = ds.status.dims
@@ -177,7 +177,7 @@ def test_every_cell_states_its_verdict_and_its_worst_value_with_the_undecided_po
 
 def test_an_error_of_100_percent_or_more_can_show_a_limit_holds_never_that_it_fails(study):
     from study.charts.envelope import LIFE_SLOPE, MARGIN, failures
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = study.copy(deep=True)
     dims = ds.status.dims
@@ -218,7 +218,7 @@ def test_each_limit_is_decided_with_its_own_figure_error_where_the_point_states_
     # that scatters most and decides no limit); the yield limit is decided with the max normal stress's own error and
     # the fatigue life with its own (the damage rate's, life within life/(1 +- 2e)), where the point states them
     from study.charts.envelope import MARGIN, decided_within_error, failures
-    from study.solvers.result import STATUS_CODES
+    from study.solvers.model.result import STATUS_CODES
 
     ds = study.copy(deep=True)
     dims = ds.status.dims

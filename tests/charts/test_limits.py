@@ -9,7 +9,7 @@ from matplotlib.colors import LogNorm
 from study.charts import figure_labels
 from study.charts.limits import contact_force_map, fatigue_life_map, stress_limit_maps
 from study.charts.plane import MISSING_LABEL, PARTIAL_LABEL, ROUGH_LABEL, cell_boundary, plane
-from study.solvers.result import STATUS_CODES
+from study.solvers.model.result import STATUS_CODES
 
 PSI = 6894.757293168361
 LBF = 4.4482216152605

@@ -7,7 +7,7 @@ from study.charts import figure_labels
 import xarray as xr
 
 from study.charts.regimes import SEVERITY, lift_off_map, regime_map, regimes
-from study.solvers.result import REGIMES, STATUS
+from study.solvers.model.result import REGIMES, STATUS
 
 
 def test_regimes_are_read_from_the_status_where_no_method_gives_one(build_study):

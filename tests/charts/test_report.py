@@ -124,7 +124,7 @@ def test_a_study_without_any_answer_says_so_at_the_top(study, tmp_path):
 
 def test_one_representative_point_of_each_regime_the_study_found(study):
     from study.charts.report import representative_points
-    from study.solvers.result import REGIMES
+    from study.solvers.model.result import REGIMES
 
     ds = study.copy(deep=True)
     assert representative_points(ds) == []  # no regime recorded: nothing to draw

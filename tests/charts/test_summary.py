@@ -7,7 +7,7 @@ import numpy as np
 
 from study.charts.envelope import envelope_table, safe_ranges
 from study.charts.summary import sweep_summary
-from study.solvers.result import STATUS_CODES
+from study.solvers.model.result import STATUS_CODES
 
 
 def test_the_summary_counts_the_points_by_status_and_method_and_gives_the_envelope_per_load(study):

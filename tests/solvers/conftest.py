@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from study import config
-from study.solvers import periodic
+from study.solvers.methods import periodic
 
 ROOT = Path(__file__).resolve().parents[2]
 

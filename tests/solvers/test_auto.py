@@ -1,4 +1,4 @@
-"""The model hierarchy (study.solvers.auto): method auto climbs free whirl -> reference model; method periodic
+"""The model hierarchy (study.solvers.methods.auto): method auto climbs free whirl -> reference model; method periodic
 climbs the paper's fast -> series."""
 
 from pathlib import Path
@@ -104,8 +104,8 @@ def test_a_buckled_section_is_not_sent_up(paper):
 def test_a_dropped_drag_that_is_not_small_goes_to_the_damped_solution(monkeypatch):
     # the periodic ladder passes over the series (it mends only an error estimate) and sends the undamped
     # solution's terms_not_small (docs/model.md §6) to the damped one, which keeps the drag (§7.1)
-    from study.solvers import auto
-    from study.solvers.result import PointResult
+    from study.solvers.methods import auto
+    from study.solvers.model.result import PointResult
 
     def rung(name, status, calls):
         def solve(inputs):
@@ -142,8 +142,8 @@ def test_a_thick_mud_climbs_to_the_damped_solution(valid_point):
 def test_a_sliding_answer_near_the_tolerance_stands_and_a_far_one_goes_up(estimate, goes_up):
     # auto.SLIDING_STANDS_BELOW = 5 %: the reference model reaches the sliding state only over hundreds of
     # revolutions (docs/reference_model.md §10); out_of_scope always goes up
-    from study.solvers import auto
-    from study.solvers.result import PointResult
+    from study.solvers.methods import auto
+    from study.solvers.model.result import PointResult
     answer = PointResult(method="sliding", status="not_converged", error_estimate=estimate)
     assert auto.MENDS["reference"](answer, {}) is goes_up
     assert auto.MENDS["reference"](PointResult(method="sliding", status="out_of_scope"), {}) is True
@@ -165,7 +165,7 @@ def test_a_method_does_not_depend_on_the_inputs_it_says_it_does_not(module):
     # estimate
     import importlib
 
-    method = importlib.import_module(f"study.solvers.{module}")
+    method = importlib.import_module(f"study.solvers.methods.{module}")
     points, axes = _default_points(45)
     for name in method.INDEPENDENT_OF:
         for point in points:
@@ -179,7 +179,7 @@ def test_a_method_does_not_depend_on_the_inputs_it_says_it_does_not(module):
 def test_auto_solves_the_cheap_rungs_once_across_the_inputs_they_do_not_depend_on(monkeypatch):
     # two points that differ only in the restitution: the free whirl and the sliding state are solved once, the
     # second point's answers copies of the first's; the reference model (which the restitution enters) twice
-    from study.solvers import auto, freewhirl, reference, sliding
+    from study.solvers.methods import auto, freewhirl, reference, sliding
 
     calls = {"free-whirl": 0, "sliding": 0, "reference": 0}
 

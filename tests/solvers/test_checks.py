@@ -1,4 +1,4 @@
-"""Tests of study.solvers.checks: the paper's term-ratio table (paper §VI, docs/model.md §6).
+"""Tests of study.solvers.methods.periodic.checks: the paper's term-ratio table (paper §VI, docs/model.md §6).
 
 Synthetic field y = Y sin(πx/L) sin(Ωt) on a grid where every term's max and mean are known in
 closed form ("closed form"): x at the midpoints x_i = (i + ½)L/n_x, n_x odd (so x = L/2 is a grid
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from study.physics import fourier as fs
-from study.solvers import checks
+from study.solvers.methods.periodic import checks
 
 L, TAU, Y = 40.0, 0.2, 0.02  # span [m], period [s], amplitude [m]
 OMEGA = 2 * np.pi / TAU

@@ -1,4 +1,4 @@
-"""The physics-core method (study.solvers.core) and the method registry (study.solvers)."""
+"""The physics-core method (study.solvers.methods.core) and the method registry (study.solvers)."""
 
 from pathlib import Path
 
@@ -20,7 +20,7 @@ def paper_point():
 def test_paper_example_is_consistent_and_not_a_hertz_contact(paper_point):
     # At the paper's printed 345-ft span the prescribed closure drives the equivalent mass 2ML/pi (7700 lb)
     # into the wall at Omega c: Lee's peak is 1.6e7 N (3.6 million lbf) over an 8.5-m contact on a 4.5-in
-    # pipe - not a Hertz contact, so the gate (study.solvers.gate) does not call it ok; the values stay.
+    # pipe - not a Hertz contact, so the gate (study.solvers.model.gate) does not call it ok; the values stay.
     result = solve_point(paper_point)
     assert result.status == "hertz_invalid", result.message
     assert "length_vs_pipe_diameter" in result.message and "1.594e+07 N" in result.message

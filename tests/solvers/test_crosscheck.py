@@ -1,9 +1,11 @@
-"""The periodic solution replayed through real contact (study.solvers.crosscheck)."""
+"""The periodic solution replayed through real contact (study.solvers.methods.crosscheck)."""
 
 import numpy as np
 import pytest
 
-from study.solvers import crosscheck, impact_model, periodic, solve_point
+from study.solvers.methods import crosscheck, periodic
+from study.solvers.methods.periodic import impact_model
+from study.solvers import solve_point
 
 
 @pytest.fixture(scope="module")
@@ -81,7 +83,7 @@ def test_one_mass_peak_over_lees_half_sine_depends_on_e_alone(restitution, ratio
     # LSODA integration (rtol 1e-11) of m d'' = -K d^1.5 (1 + h d'/v0), m = K = v0 = 1
     from study.physics import hertz
     from study.physics import contact
-    from study.solvers import crosscheck
+    from study.solvers.methods import crosscheck
 
     for m_e, velocity, stiffness in ((1.0, 1.0, 1.0), (350.0, 0.8, 3e9)):
         lee = hertz.lee_peak_force(m_e * (1 + restitution) * velocity, hertz.lee_duration(m_e, velocity, stiffness))
@@ -129,8 +131,8 @@ def test_at_e_1_the_real_contact_has_an_unstable_orbit_near_the_periodic_solutio
     # Measured: with the elastic contact the replay's scene is conservative, and shooting from the
     # periodic solution's state finds a periodic orbit 0.024 (units of c, Omega c) away; it peaks at
     # 0.79x Lee's force and is unstable (largest Floquet multiplier 1.57). Its periodicity is checked
-    # with an independent integrator (LSODA with events, study.solvers.timedomain "implicit").
-    from study.solvers import timedomain
+    # with an independent integrator (LSODA with events, study.solvers.methods.timedomain "implicit").
+    from study.solvers.methods import timedomain
 
     r, run, found = elastic_orbit
     assert r.values["max_floquet_multiplier"] > 1.1
@@ -153,7 +155,7 @@ def test_the_orbits_instability_is_what_a_perturbation_does_in_time(elastic_orbi
     # event-driven integrator that found the orbit and its Jacobian) for two revolutions from 1e-4 off
     # the orbit, it grows by 1.569 and 1.573 per revolution against mu = 1.573 (measured; 1.557-1.581 over
     # four revolutions, which cost twice the time of LSODA's stiff contacts and test the same map).
-    from study.solvers import timedomain
+    from study.solvers.methods import timedomain
 
     _, run, found = elastic_orbit
     values, vectors = np.linalg.eig(found["jacobian"])

@@ -1,4 +1,4 @@
-"""The damped periodic solution (study.solvers.damped; paper appendices A and B, docs/model.md §7.1)."""
+"""The damped periodic solution (study.solvers.methods.periodic.damped; paper appendices A and B, docs/model.md §7.1)."""
 
 from pathlib import Path
 
@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from study import config
-from study.solvers import damped, fast, solve_point
-from study.solvers import periodic
+from study.solvers.methods.periodic import damped, fast
+from study.solvers import solve_point
+from study.solvers.methods import periodic
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -1,11 +1,11 @@
-"""Event-driven integration (study.solvers.event_driven): exact flights, located onsets, RK4 through contact."""
+"""Event-driven integration (study.solvers.kernels.event_driven): exact flights, located onsets, RK4 through contact."""
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 from study.physics import hertz
-from study.solvers import event_driven as ev
+from study.solvers.kernels import event_driven as ev
 
 MASS, STIFFNESS, CLEARANCE = 300.0, 3e9, 0.05  # modal mass [kg], Hertz K [N m^-3/2], c [m]
 

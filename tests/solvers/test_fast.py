@@ -1,11 +1,13 @@
-"""The fast periodic method (study.solvers.fast): span, constraints, stresses, honest error estimate."""
+"""The fast periodic method (study.solvers.methods.periodic.fast): span, constraints, stresses, honest error estimate."""
 
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from study.solvers import fast, periodic, solve_point
+from study.solvers.methods.periodic import fast
+from study.solvers.methods import periodic
+from study.solvers import solve_point
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30

@@ -1,4 +1,4 @@
-"""The free whirl (study.solvers.freewhirl): the reference model's scene clear of the wall, in closed form."""
+"""The free whirl (study.solvers.methods.freewhirl): the reference model's scene clear of the wall, in closed form."""
 
 from pathlib import Path
 
@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 
 from study import config
-from study.solvers import freewhirl, solve_point
-from study.solvers.options import ReferenceOptions
-from study.solvers.scene import Scene
-from study.solvers.reference import mode_shapes
+from study.solvers.methods import freewhirl
+from study.solvers import solve_point
+from study.solvers.model.options import ReferenceOptions
+from study.solvers.model.scene import Scene
+from study.solvers.methods.reference import mode_shapes
 
 ROOT = Path(__file__).resolve().parents[2]
 DEG = np.pi / 180

@@ -1,4 +1,4 @@
-"""The gate every result passes (study.solvers.gate), and the cases of impossible values called ok that it,
+"""The gate every result passes (study.solvers.model.gate), and the cases of impossible values called ok that it,
 and the fixes behind it, stop (each case from the honest-results issue, as a new user met it)."""
 
 from pathlib import Path
@@ -8,10 +8,13 @@ import pytest
 
 from study import config
 from study.physics.oscillator import ImpactParams, periodic_orbit
-from study.solvers import METHODS, gate, periodic, sdof, series, solve_point
-from study.solvers.result import PointResult
-from study.solvers.options import Tolerances
-from study.solvers.scene import Scene
+from study.solvers import METHODS, solve_point
+from study.solvers.model import gate
+from study.solvers.methods import periodic, sdof
+from study.solvers.methods.periodic import series
+from study.solvers.model.result import PointResult
+from study.solvers.model.options import Tolerances
+from study.solvers.model.scene import Scene
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30.0
@@ -196,7 +199,7 @@ def test_the_points_own_max_poles_bounds_the_span_search(default):
     # solver.max_poles travels in the periodic methods' options (options.Options.max_poles), to the solver and to
     # the sweep's check before any work alike: a budget of one candidate refuses the default point's search, which
     # the default budget (options.MAX_POLES) holds
-    from study.solvers import impact_model
+    from study.solvers.methods.periodic import impact_model
 
     point = {**default, "span_length": None, "max_poles": 1}
     result = solve_point(point, "fast")

@@ -6,7 +6,8 @@ modal part measured between N/2 and N modes."""
 import numpy as np
 import pytest
 
-from study.solvers import reference, whirl_kernel
+from study.solvers.methods import reference
+from study.solvers.kernels import whirl_kernel
 
 L, EI = 93 * 0.3048, 8.3e5  # the default section (three 31-ft joints) and about the 4½-in pipe's EI [N m²]
 

@@ -1,4 +1,4 @@
-"""Every method's options declared once (study.solvers.options): the config takes its defaults from them, a bad
+"""Every method's options declared once (study.solvers.model.options): the config takes its defaults from them, a bad
 choice is refused naming it, and loading the config loads no solver."""
 
 import subprocess
@@ -8,7 +8,7 @@ from dataclasses import fields
 import pytest
 
 from study import config
-from study.solvers import options
+from study.solvers.model import options
 
 
 @pytest.mark.parametrize("declared", [options.Options, options.TimeDomainOptions, options.SdofOptions,
@@ -49,7 +49,7 @@ def test_unset_inputs_take_the_declared_defaults():
 def test_loading_the_config_loads_no_solver():
     code = ("import sys, study.config; print(sorted(m for m in sys.modules if m.startswith('study.solvers.')))")
     loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert loaded.strip() == "['study.solvers.options', 'study.solvers.result']"
+    assert loaded.strip() == "['study.solvers.model', 'study.solvers.model.options', 'study.solvers.model.result']"
 
 
 def test_the_statistical_tolerance_is_five_percent_unless_set_and_refused_outside_zero_to_one():
@@ -77,7 +77,7 @@ def test_the_force_tolerance_is_fifteen_percent_unless_set_and_refused_outside_z
 
 def _typed(inputs):
     """Everything a solver reads of a point: its Scene and every options class built from it."""
-    from study.solvers.scene import Scene
+    from study.solvers.model.scene import Scene
 
     built = [Scene.from_inputs(inputs), options.Tolerances.from_inputs(inputs), options.LimitOptions.from_inputs(inputs)]
     return built + [declared.from_inputs(inputs) for declared in (

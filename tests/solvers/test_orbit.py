@@ -1,9 +1,10 @@
-"""Periodic orbits of the modal model found by shooting (study.solvers.orbit)."""
+"""Periodic orbits of the modal model found by shooting (study.solvers.kernels.orbit)."""
 
 import numpy as np
 import pytest
 
-from study.solvers import event_driven, orbit, timedomain
+from study.solvers.kernels import event_driven, orbit
+from study.solvers.methods import timedomain
 
 OMEGA = np.array([3.0, 11.0, 27.0])  # rad/s
 ZETA = np.array([0.05, 0.02, 0.01])
@@ -70,7 +71,7 @@ def settled(paper_inputs):
 
 def test_where_the_time_domain_settles_shooting_finds_the_same_stable_orbit(settled):
     # Two methods, one answer: integrating revolution after revolution until the state repeats
-    # (study.solvers.timedomain) and Newton on the section map from an early, unsettled state.
+    # (study.solvers.methods.timedomain) and Newton on the section map from an early, unsettled state.
     inputs, run = settled
     model = run["model"]
     scale = model.state_scale()

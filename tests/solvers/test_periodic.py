@@ -1,4 +1,4 @@
-"""The periodic solution's closure, pole location and span search (study.solvers.periodic)."""
+"""The periodic solution's closure, pole location and span search (study.solvers.methods.periodic)."""
 
 import re
 from pathlib import Path
@@ -6,7 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from study.solvers import impact_model, periodic, span_search
+from study.solvers.methods.periodic import impact_model, span_search
+from study.solvers.methods import periodic
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30

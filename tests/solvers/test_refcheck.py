@@ -1,9 +1,10 @@
-"""Tests of study.solvers.refcheck: the periodic solution against the reference model."""
+"""Tests of study.solvers.methods.refcheck: the periodic solution against the reference model."""
 
 import numpy as np
 import pytest
 
-from study.solvers import refcheck, solve_point
+from study.solvers.methods import refcheck
+from study.solvers import solve_point
 
 PERIODIC = dict(peak_contact_force=1000.0, max_normal_stress=2e7, alternating_bending_stress=1e7)
 

@@ -1,4 +1,4 @@
-"""Tests of the reference model (study.solvers.reference): checked against closed forms no one here wrote."""
+"""Tests of the reference model (study.solvers.methods.reference): checked against closed forms no one here wrote."""
 
 from pathlib import Path
 
@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 from study.benchmarks import reference as reference_bench
-from study.solvers import METHODS, reference, solve_point
-from study.solvers.options import ReferenceOptions, Tolerances
-from study.solvers.scene import Scene
+from study.solvers import METHODS, solve_point
+from study.solvers.methods import reference
+from study.solvers.model.options import ReferenceOptions, Tolerances
+from study.solvers.model.scene import Scene
 
 
 @pytest.fixture(scope="module")
@@ -52,7 +53,7 @@ def test_registered_as_a_method():
 
 
 def test_every_value_is_a_registered_output(base):
-    from study.solvers.result import OUTPUTS
+    from study.solvers.model.result import OUTPUTS
 
     result = solve_point({**base, "inclination": np.pi / 6, "reference_modes": 4, "reference_revolutions": 4,
                           "reference_window": 2}, "reference")
@@ -241,7 +242,7 @@ def test_slow_settling_on_the_wall_is_not_called_ok(default_study):
     # the motion settles slowly (on the pinned section of issue 20 at 50 rpm the peak force after the default 40
     # revolutions was 17 % above the one after 120 and the old fixed run called it ok; starting from the rest on the
     # joints, 0.9 % here): its stated error says so, and more revolutions than the budget would bring it within 1 %
-    from study.solvers import gate
+    from study.solvers.model import gate
 
     # (the kept modes' stiff contact, without the residual flexibility of docs/reference_model.md §2.1: with it the
     # joints' contact is softer and this point settles within 0.6 % in 46 revolutions; a motion that does not repeat:

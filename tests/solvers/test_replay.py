@@ -1,12 +1,12 @@
-"""The modal part of an impacting point's error measured by replaying its strikes (study/solvers/reference/replay.py,
+"""The modal part of an impacting point's error measured by replaying its strikes (study/solvers/methods/reference/replay.py,
 docs/reference_model.md §2.1, §3.1): a replayed strike converges as the modes grow, the part stated at N covers four
 times the modes, and points clear of the wall or lying on it keep the in-run measure."""
 
 import numpy as np
 import pytest
 
-from study.solvers import reference
-from study.solvers.reference import replay
+from study.solvers.methods import reference
+from study.solvers.methods.reference import replay
 
 
 @pytest.fixture(scope="module")

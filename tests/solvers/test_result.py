@@ -1,4 +1,4 @@
-"""The typed result of a design point (study.solvers.result, issue 35): the status an Enum of strings with one code
+"""The typed result of a design point (study.solvers.model.result, issue 35): the status an Enum of strings with one code
 table, the regime one code table written once to the dataset, the wall time stamped once by solve_point."""
 
 from pathlib import Path
@@ -8,14 +8,15 @@ import pytest
 import xarray as xr
 
 from study import config
-from study.solvers import core, solve_point
-from study.solvers.result import ALIASES, OUTPUTS, REGIMES, STATUS, STATUS_CODES, PointResult, Regime, Status
+from study.solvers.methods import core
+from study.solvers import solve_point
+from study.solvers.model.result import ALIASES, OUTPUTS, REGIMES, STATUS, STATUS_CODES, PointResult, Regime, Status
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_a_status_is_a_string_and_a_member_with_its_code():
-    # source: the definition (study.solvers.result.Status): existing string comparisons keep working
+    # source: the definition (study.solvers.model.result.Status): existing string comparisons keep working
     result = PointResult(method="core", status="not_converged")
     assert result.status is Status.NOT_CONVERGED and result.status == "not_converged"
     assert f"{result.status}" == "not_converged" and result.status_code == 6
@@ -31,7 +32,7 @@ def test_the_status_tables_are_views_of_the_one_enum():
 
 
 def test_the_regime_has_one_code_table_and_the_whirl_verdicts_use_it():
-    from study.solvers import reference
+    from study.solvers.methods import reference
 
     assert REGIMES == {r.name.lower(): r.value for r in Regime} and len(set(REGIMES.values())) == len(Regime)
     assert all(reference.WHIRL_CLASSES[v] == REGIMES[r] for v, r in reference.WHIRL_REGIMES.items())

@@ -1,4 +1,4 @@
-"""The one-degree-of-freedom screen (study.solvers.sdof): the design point -> SDOF mapping and the orbit."""
+"""The one-degree-of-freedom screen (study.solvers.methods.sdof): the design point -> SDOF mapping and the orbit."""
 
 from pathlib import Path
 
@@ -7,7 +7,7 @@ import pytest
 
 from study import config
 from study.physics import oscillator, section
-from study.solvers import sdof
+from study.solvers.methods import sdof
 
 ROOT = Path(__file__).resolve().parents[2]
 

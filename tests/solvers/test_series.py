@@ -1,4 +1,4 @@
-"""The paper's double-Fourier-series method (study.solvers.series): agreement with the fast method,
+"""The paper's double-Fourier-series method (study.solvers.methods.periodic.series): agreement with the fast method,
 convergence, work-precision data, the design-point pipeline and the §VI term ratios.
 
 Measured on the fixed span below (100 rpm, alternating, prescribed, L = 30.287 m, T_L = 1.384 ms,
@@ -27,8 +27,9 @@ import numpy as np
 import pytest
 
 from study.benchmarks import series as series_bench
-from study.solvers import checks, fast, periodic, series
-from study.solvers.result import PointResult
+from study.solvers.methods.periodic import checks, fast, series
+from study.solvers.methods import periodic
+from study.solvers.model.result import PointResult
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30

@@ -1,4 +1,4 @@
-"""The pipe lying on the wall, sliding (study.solvers.sliding): its rest against closed forms, the whirl about it
+"""The pipe lying on the wall, sliding (study.solvers.methods.sliding): its rest against closed forms, the whirl about it
 against the energy balance and the reference model's own equations, and where it does not answer."""
 
 from pathlib import Path
@@ -8,7 +8,8 @@ import pytest
 
 from study import config
 from study.workflow.grid import Grid
-from study.solvers import reference, sliding, solve_point
+from study.solvers.methods import reference, sliding
+from study.solvers import solve_point
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The figures of these tests are the aligned pipe joints' eccentricities in a three-joint section (the default

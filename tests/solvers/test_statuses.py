@@ -1,8 +1,8 @@
-"""Every status of study.solvers.result.STATUS, each from a real design point (issue 18: "a test builds, for
+"""Every status of study.solvers.model.result.STATUS, each from a real design point (issue 18: "a test builds, for
 each status, a point that triggers it").
 
 Each case is the default config's inputs (configs/paper.toml) with a few overrides, solved through
-study.solvers.solve_point, i.e. through the gate (study.solvers.gate); the source of each trigger is named in
+study.solvers.solve_point, i.e. through the gate (study.solvers.model.gate); the source of each trigger is named in
 its id and comment. A status no real point reaches is listed in UNREACHABLE with the reason, not faked.
 """
 
@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 from study import config
-from study.solvers import METHODS, STATUS, sdof, solve_point
-from study.solvers.result import PointResult
+from study.solvers import METHODS, STATUS, solve_point
+from study.solvers.methods import sdof
+from study.solvers.model.result import PointResult
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM = np.pi / 30.0

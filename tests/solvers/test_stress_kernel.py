@@ -1,9 +1,9 @@
-"""The compiled extremes of the reference model's stress fields (study/solvers/stress_kernel.py)."""
+"""The compiled extremes of the reference model's stress fields (study/solvers/kernels/stress_kernel.py)."""
 
 import numpy as np
 import pytest
 
-from study.solvers import stress_kernel
+from study.solvers.kernels import stress_kernel
 
 FIBRES = np.linspace(0.0, np.pi, 16, endpoint=False)
 

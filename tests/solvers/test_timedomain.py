@@ -1,4 +1,4 @@
-"""The time-domain method (study.solvers.timedomain): modal span integrated through Hertz contact."""
+"""The time-domain method (study.solvers.methods.timedomain): modal span integrated through Hertz contact."""
 
 from pathlib import Path
 
@@ -8,9 +8,9 @@ import pytest
 from study import config
 from study.benchmarks import time_domain as time_domain_bench
 from study.physics import contact, hertz
-from study.solvers import sdof
-from study.solvers.periodic import make_scene
-from study.solvers import timedomain as td
+from study.solvers.methods import sdof
+from study.solvers.methods.periodic import make_scene
+from study.solvers.methods import timedomain as td
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -123,7 +123,7 @@ def test_accumulating_contacts_are_reported_as_chattering(point, monkeypatch):
     # ends in one revolution than event_driven.MAX_EVENTS allows is stopped and flagged as chatter, not
     # as a numerical failure. The cap is lowered to 3 so that the two impacts per revolution of the
     # driven span reach it in its second revolution.
-    from study.solvers import event_driven
+    from study.solvers.kernels import event_driven
     monkeypatch.setattr(event_driven, "MAX_EVENTS", 3)
     r = td.solve(_driven(point, time_integrator="event", time_revolutions=4))
     assert r.status == "chattering"
@@ -190,7 +190,7 @@ def test_explicit_fails_near_its_limit_while_event_driven_converges(point):
 
 
 def test_stresses_of_the_settled_motion_converge_with_the_modes(point):
-    # Source: convergence. The quasi-static correction (study.solvers.trajectory) carries the modes
+    # Source: convergence. The quasi-static correction (study.solvers.kernels.trajectory) carries the modes
     # above N statically, so the largest normal stress and deflection of the settled motion at a
     # 20 m span change by well under 1 % from 5 to 11 modes.
     runs = [td.solve({**point, "span_length": 20.0, "time_modes": n}) for n in (5, 11)]
@@ -229,7 +229,7 @@ def test_quadratic_drag_decays_the_free_first_mode_as_averaging_predicts(point):
 
 @pytest.mark.parametrize("span", [20.0, 105.0])
 def test_a_settled_run_reports_the_floquet_multiplier_it_converged_with(paper_inputs, span):
-    # Independent check: the largest Floquet multiplier of the settled orbit (shooting, study.solvers.orbit)
+    # Independent check: the largest Floquet multiplier of the settled orbit (shooting, study.solvers.kernels.orbit)
     # is the rate at which the run's own revolution-to-revolution change shrinks once it is near the
     # orbit (log-linear fit over revolutions 20-49 of a run that does not stop when periodic).
     r = td.solve({**paper_inputs, "span_length": span})

@@ -1,10 +1,10 @@
-"""Sampled time-domain motion and its fields (study.solvers.trajectory)."""
+"""Sampled time-domain motion and its fields (study.solvers.kernels.trajectory)."""
 
 import numpy as np
 import pytest
 
 from study.physics import beam
-from study.solvers import event_driven, trajectory
+from study.solvers.kernels import event_driven, trajectory
 
 
 def test_contact_intervals_pair_onsets_with_ends():

@@ -1,4 +1,4 @@
-"""Design limits added to every solved point (study.solvers.utilisation): data, never a status."""
+"""Design limits added to every solved point (study.solvers.model.utilisation): data, never a status."""
 
 from pathlib import Path
 
@@ -50,10 +50,10 @@ def test_no_limits_without_stresses(paper_one_wall):
 
 def test_limits_of_a_method_that_does_not_report_the_section(paper_one_wall):
     # a result with stresses but not the steel area: the limits take it from the inputs
-    from study.solvers.result import PointResult
-    from study.solvers.options import LimitOptions
-    from study.solvers.scene import Scene
-    from study.solvers.utilisation import add_limits
+    from study.solvers.model.result import PointResult
+    from study.solvers.model.options import LimitOptions
+    from study.solvers.model.scene import Scene
+    from study.solvers.model.utilisation import add_limits
 
     result = add_limits(PointResult(method="test", values={"max_normal_stress": 1e8, "alternating_bending_stress": 1e7}),
                         Scene.from_inputs(paper_one_wall), LimitOptions.from_inputs(paper_one_wall))

@@ -10,9 +10,9 @@ import pytest
 from study import config
 from study.physics import well
 from study.physics import whirl as whirl_physics
-from study.solvers import auto, freewhirl, reference, sliding
-from study.solvers.options import Tolerances
-from study.solvers.scene import Scene
+from study.solvers.methods import auto, freewhirl, reference, sliding
+from study.solvers.model.options import Tolerances
+from study.solvers.model.scene import Scene
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -299,7 +299,7 @@ def test_the_body_wall_excess_bounds_every_point_between_the_stations():
 
 
 def test_the_gate_calls_a_body_past_its_wall_between_stations_unphysical():
-    from study.solvers import gate
+    from study.solvers.model import gate
 
     values = {"max_deflection": 0.05, "clearance": 0.054, "max_wall_excess": 0.02 * 0.054}
     status, message = gate.within_clearance(values, None, Tolerances(tolerance=0.01))
@@ -355,7 +355,7 @@ def test_a_backward_bouncing_body_past_its_wall_gets_stations_until_it_is_within
     # body's clearance (max_wall_excess, the bound along the whole body); the model raises its stations 1 -> 3 -> 7
     # (measured 15 %, then 2.8 %) and the answer's body is within its wall but for its contacts' Hertz approach and
     # the tolerance: the gate's clearance check passes (docs/reference_model.md §2, §7)
-    from study.solvers import gate
+    from study.solvers.model import gate
 
     inputs = {**_default(200, 20), "friction": 0.8, "inclination": np.radians(30.0), "reference_initial": "rest",
               "reference_modes": 16, "reference_max_modes": 16, "reference_revolutions": 6, "reference_window": 2,

@@ -1,4 +1,4 @@
-"""Tests of the compiled integrator of the reference model (study.solvers.whirl_kernel).
+"""Tests of the compiled integrator of the reference model (study.solvers.kernels.whirl_kernel).
 
 The model's physics checks (Jeffcott, rolling whirl, energy, the event-driven time domain, scipy on the same
 equations) are in test_reference.py; here the integrator itself: an impact on a linear wall against the
@@ -14,7 +14,8 @@ import textwrap
 import numpy as np
 import pytest
 
-from study.solvers import reference, whirl_kernel
+from study.solvers.methods import reference
+from study.solvers.kernels import whirl_kernel
 
 
 def _one_mode(inputs):

@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 
 from study.config import load_text
-from study.solvers.result import OUTPUTS, REGIMES
+from study.solvers.model.result import OUTPUTS, REGIMES
 from study.workflow.dataset import EXTRA_OUTPUTS, write_dataset
 from study.workflow.grid import Grid
 

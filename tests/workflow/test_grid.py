@@ -60,7 +60,7 @@ def test_code_hash_changes_with_a_solver_source_and_not_with_other_files(tmp_pat
     assert code_hash(str(copy)) == code_hash()  # the same sources, wherever they are
     (copy / "cli.py").write_text((copy / "cli.py").read_text() + "\n# a comment\n")
     assert code_hash(str(copy)) == code_hash()  # the command line does not compute a point
-    core = copy / "solvers" / "core.py"
+    core = copy / "solvers" / "methods" / "core.py"
     core.write_text(core.read_text().replace('"peak_contact_force": peak,', '"peak_contact_force": 2.0 * peak,'))
     assert code_hash(str(copy)) != code_hash()
 

@@ -10,7 +10,7 @@ import xarray as xr
 from study.config import load_text
 from study.physics import hertz
 from study.solvers import METHODS, STATUS
-from study.solvers.options import DEFAULT_FORCE_TOLERANCE, DEFAULT_STATISTICAL_TOLERANCE
+from study.solvers.model.options import DEFAULT_FORCE_TOLERANCE, DEFAULT_STATISTICAL_TOLERANCE
 from study.workflow.sweep import run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -54,7 +54,7 @@ def test_no_ok_point_breaks_a_physical_bound(tmp_path, method):
             assert np.all(ds.max_deflection.values[ok] <= c * (1 + tolerance) + approach)
         if "error_estimate" in ds:
             # held to the study's tolerance, or where the figures are means over a motion that does not repeat to the
-            # statistical one (configs/paper.toml sets neither: the defaults, study.solvers.options)
+            # statistical one (configs/paper.toml sets neither: the defaults, study.solvers.model.options)
             estimate = ds.error_estimate.values[ok]
             held = np.full(estimate.shape, tolerance)
             if "statistical_figures" in ds:

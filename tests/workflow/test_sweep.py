@@ -57,7 +57,7 @@ def test_failing_points_are_flagged_and_the_sweep_goes_on(reference):
     assert np.all(buckled == 1)
     assert "Euler load" in str(reference.message.sel(axial_tension=reference.axial_tension.values[0]).values.flat[0])
     # the rest are solved, and none is called ok: at the printed 345-ft span the prescribed closure's contact is
-    # metres long on a 4.5-in pipe, not a Hertz contact (the gate, study.solvers.gate)
+    # metres long on a 4.5-in pipe, not a Hertz contact (the gate, study.solvers.model.gate)
     assert np.all(reference.status.sel(axial_tension=reference.axial_tension.values[1:]) == 2)
     assert np.all(np.isnan(reference.peak_contact_force.sel(axial_tension=reference.axial_tension.values[0])))
 
@@ -252,7 +252,7 @@ def test_a_changed_solver_source_recomputes_every_point(tmp_path, reference):
     # numba's cache beside the sources comes along (copy2 keeps the time stamps it is keyed on): the copy loads
     # the compiled kernels instead of compiling them all again (core.py, edited, holds none)
     shutil.copytree(ROOT / "study", package / "study")
-    core = package / "study" / "solvers" / "core.py"
+    core = package / "study" / "solvers" / "methods" / "core.py"
     core.write_text(core.read_text().replace('"peak_contact_force": peak,', '"peak_contact_force": 2.0 * peak,'))
     config = tmp_path / "small.toml"
     config.write_text(small_study().text)

@@ -1,0 +1,185 @@
+"""The model hierarchy: per design point, the cheapest model that serves it (docs/model.md §9).
+
+A ladder is module data (:data:`LADDERS`), cheapest rung first: each rung names a method and, above the
+first, which failures of the rung below it the rung can mend (:data:`MENDS`). A point is solved by the first
+rung; its result passes the gate every result passes (:func:`study.solvers.model.gate.admit`); if it is not ``ok``
+and the next rung can mend that failure, the point goes up. What a point ends with is the first ``ok``
+result, or — when nothing served — the ``not_converged`` answer with the smallest error estimate among the
+rungs tried (else the last rung's result), with the ladder it climbed at the head of its message and in
+``extras["methods_tried"]`` (method → status and error estimate). A status no rung
+can mend (buckling, missing inputs) is a property of the point, returned at once.
+
+``auto`` (the default study's method) climbs the reference model's hierarchy:
+
+- ``free-whirl``: the reference model's scene clear of the wall, in closed form (synchronous whirl about the
+  sag; exact there) — a few milliseconds; ``out_of_scope`` where the free motion would reach the wall;
+- ``sliding``: the same scene lying on the wall at its tool joints (an inclined hole), the contact held and
+  sliding round: the rest on the wall and the synchronous whirl about it — milliseconds; the state the
+  reference model reaches only as its start-up ringing dies (after hundreds of revolutions, more than its
+  budget); ``out_of_scope`` where the contact would open or the section does not reach the wall; where its
+  error estimate is above the tolerance but within :data:`SLIDING_STANDS_BELOW` (5 %) its ``not_converged``
+  answer stands, the reference model's being farther from convergence there;
+- ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
+  second to seconds; it mends whatever the cheaper rungs could not answer.
+
+The free whirl and the sliding state depend on no restitution (``INDEPENDENT_OF`` in their modules): their answers
+are kept by the other inputs (:func:`solve_rung`), so a sweep over the restitution solves them once.
+
+The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
+docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
+where the section whirls clear of it, and where both touch its forces and stresses are off by factors. It keeps
+a ladder of its own, ``periodic``: ``fast``, then the paper's ``series`` where only ``fast``'s error estimate
+failed and its span held with doubled modes (the series searches the same spans), then the paper's ``damped``
+solution where the undamped one's dropped drag is not small (``terms_not_small``, docs/model.md §6, §7.1).
+"""
+
+from __future__ import annotations
+
+import copy
+import functools
+import sys
+import threading
+from collections import OrderedDict
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from study.solvers.methods.periodic import damped, fast, series
+from study.solvers.methods import freewhirl, reference, sliding
+from study.solvers.model import gate
+from study.solvers.model.options import SeriesOptions, Tolerances, study_tolerance
+from study.solvers.model.result import PointResult
+from study.solvers.model.scene import Scene
+
+Solve = Callable[[Mapping[str, Any]], PointResult]
+#: Statuses that are properties of the point: no model answers them differently.
+FINAL = ("buckled", "incomplete")
+
+
+def _error_only(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """The span held with doubled modes and only the error estimate is above the tolerance."""
+    tolerance = study_tolerance(inputs)
+    return (result.status == "not_converged" and result.extras.get("span_converged", False)
+            and result.error_estimate is not None and result.error_estimate > tolerance)
+
+
+def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """Anything but a property of the point: the reference model answers what the free whirl cannot."""
+    return result.status not in FINAL
+
+
+#: Up to this error estimate a sliding answer stands where it is not converged: the reference model reaches the
+#: sliding state only over hundreds of revolutions (docs/reference_model.md §10), more than its budget, and at the
+#: default study's 8 such points it ended 19-31 % from convergence against the sliding method's 1.9-2.2 %.
+SLIDING_STANDS_BELOW = 0.05
+
+
+def _not_final_nor_sliding(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
+    not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
+    if result.method == "sliding" and result.status == "not_converged":
+        return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
+    return _not_final(result, inputs)
+
+
+def _drag_not_small(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+    """The undamped solution answered but its dropped drag term is not small: the damped solution keeps it."""
+    return result.status == "terms_not_small"
+
+
+def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """The series doubles its harmonics until the study's tolerance."""
+    tolerance = study_tolerance(inputs)
+    return {**inputs, "series_tolerance": SeriesOptions.from_inputs(inputs).series_tolerance or tolerance}
+
+
+#: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
+LADDERS: dict[str, dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]]] = {
+    "auto": {"free-whirl": (freewhirl.solve, dict), "sliding": (sliding.solve, dict), "reference": (reference.solve, dict)},
+    "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs), "damped": (damped.solve, dict)},
+}
+#: For each rung above the first: which results of the rung below it the rung can mend.
+MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
+    "sliding": _not_final,
+    "reference": _not_final_nor_sliding,
+    "series": _error_only,
+    "damped": _drag_not_small,
+}
+
+
+#: The answers of rungs whose method declares inputs it does not depend on (its module's ``INDEPENDENT_OF``), kept
+#: by the other inputs, at most this many in a process (the least recently used dropped): a sweep over the
+#: restitution solves the free whirl and the sliding state once for all its values.
+MEMO_SIZE = 4096
+_memo: OrderedDict[tuple, PointResult] = OrderedDict()
+_memo_lock = threading.Lock()  # a worker may run several threads
+
+
+def clear_memo() -> None:
+    """Empty the memo of rung answers (:data:`MEMO_SIZE`): a benchmark's runs each start from nothing."""
+    with _memo_lock:
+        _memo.clear()
+
+
+def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
+    """``method(inputs)``, or a copy of its answer at inputs that differ only in what the method does not depend on
+    (:data:`MEMO_SIZE`)."""
+    ignored = getattr(sys.modules[method.__module__], "INDEPENDENT_OF", ())
+    if not ignored:
+        return method(inputs)
+    key = (method.__module__, method.__qualname__,
+           tuple(sorted((name, repr(value)) for name, value in inputs.items() if name not in ignored)))
+    with _memo_lock:
+        kept = _memo.get(key)
+        if kept is not None:
+            _memo.move_to_end(key)
+    if kept is None:
+        result = method(inputs)
+        with _memo_lock:
+            _memo[key] = copy.deepcopy(result)  # as answered, before the gate and the climb add to it
+            if len(_memo) > MEMO_SIZE:
+                _memo.popitem(last=False)
+        return result
+    result = copy.deepcopy(kept)
+    return result
+
+
+def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
+    """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
+    tried: list[PointResult] = []
+    # what the gate reads of the point, built once where it first judges an ok answer
+    point = functools.cache(lambda: (Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)))
+    for name, (method, prepare) in LADDERS[ladder].items():
+        if tried and not MENDS[name](tried[-1], inputs):
+            continue
+        answer = solve_rung(method, prepare(inputs))
+        tried.append(gate.admit(answer, *point()) if answer.status == "ok" else answer)
+        if tried[-1].status == "ok":
+            break
+    result = tried[-1]
+    answers = [r for r in tried if r.status == "not_converged" and r.error_estimate is not None
+               and np.isfinite(r.error_estimate)]
+    if result.status == "not_converged" and answers:  # nothing converged: the answer nearest to it stands
+        result = min(answers, key=lambda r: r.error_estimate)
+    why = (f"{result.method} answered" if result.status == "ok" else
+           f"no model served ({result.method}'s {result.status} is what is known)")
+    if len(tried) > 1:
+        why += " after " + ", ".join(f"{r.method}: {r.status}" + (f" (error {r.error_estimate:.2g})"
+                                                                  if r.status == "not_converged" else "")
+                                     for r in tried if r is not result)
+    result.message = f"{ladder}: {why}; {result.message}"
+    result.extras["methods_tried"] = {r.method: {"status": r.status, "error_estimate": r.error_estimate}
+                                      for r in tried}
+    return result
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The reference model's hierarchy: the free whirl where the pipe stays clear, the sliding state where it lies
+    on the wall, else the reference model."""
+    return climb("auto", inputs)
+
+
+def solve_periodic(inputs: Mapping[str, Any]) -> PointResult:
+    """The paper's periodic solution: ``fast``, then ``series`` where only its error estimate failed, then
+    ``damped`` where the dropped drag is not small."""
+    return climb("periodic", inputs)

@@ -1,0 +1,428 @@
+"""The reference method (``reference``): a design point simulated until its statistics settle (:func:`simulate`),
+its figures with their error estimates (:func:`solve_with_stations`), run again with more body stations
+(:func:`solve_with_modes`) and more modes (:func:`solve`) where the model's own error asks for them. The
+method's contract is the package's docstring (:mod:`study.solvers.methods.reference`)."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import fatigue
+from study.solvers.kernels import whirl_kernel
+from study.solvers.model.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
+                                         study_tolerance)
+from study.solvers.methods.reference.fields import contact_spacing, energy_balance
+from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
+from study.solvers.methods.reference.model import WhirlModel, build_model
+from study.solvers.methods.reference.replay import impact_modal_error, replay_summary
+from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
+                                                        WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
+                                                        figure_tolerance, modal_check, settle_ratio, settling,
+                                                        stationary, whirl_measure, window_summary)
+from study.solvers.model.result import REGIMES, PointResult
+from study.solvers.methods.timedomain import settled_period
+
+
+METHOD = "reference"
+
+
+def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
+    """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
+    recorded window, extended while its
+    figures have not converged (docs/reference_model.md §3.1).
+
+    Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
+    periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
+    record (one cycle a revolution) grows while the error of a design figure (:func:`convergence`) is above its
+    tolerance (:func:`figure_tolerance` of ``solver.statistical_tolerance``, the peak force's
+    ``solver.force_tolerance``), more revolutions could bring it there (its window part is what is over; not foreseen
+    beyond :data:`FORECAST_SLACK` times the budget) and ``reference_max_revolutions`` allow, by the revolutions
+    foreseen, at least ``reference_window`` and at most the record's length at a time: per figure, so that a figure
+    that cannot get there (its modes or integrator part over, or its scatter asking far beyond the budget) does not
+    stop the others' growth. Where the record's halves agree (no drift beyond :data:`DRIFT_SIGNIFICANCE`) and the
+    state does not settle the window is the whole record; else the window is its second half, the preceding stretch
+    its first, and where they differ significantly (still settling) the first half is dropped.
+
+    Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or None),
+    revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
+    of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
+    the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
+    the tolerance; inf where more would not), needed_by (the same per figure left over its tolerance), ratio (:func:`settle_ratio`), failure (text or None), stationary
+    (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
+    window), stats (:func:`settling` of the window as the last look took it; None when periodic).
+    """
+    option = ReferenceOptions.from_inputs(inputs)
+    model = model or build_model(inputs)
+    start = initial_state(model, option.reference_initial)
+    run = Integrator(model, float(option.reference_rtol), start, option.reference_integrator)
+    tau = model.period
+    revolutions = int(option.reference_revolutions)
+    n_window = int(option.reference_window)
+    budget = int(option.reference_max_revolutions)
+    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
+    force = force_tolerance(inputs)  # the peak contact force's own (solver.force_tolerance)
+    per_figure = option.reference_window_growth == "figure"
+    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
+    tol = float(option.reference_tolerance)
+    scale = model.state_scale()
+    states = [run.modal_state()]
+    period = None
+    ratio = float("nan")
+    replays: dict[str, Any] = {}  # the strikes replayed at more modes (impact_modal_error), once per run
+
+    def failed(where: str) -> dict[str, Any]:
+        return dict(model=model, integrator=run, verdict="failed", period=None, revolutions=len(states) - 1,
+                    window=None, cycles=[], preceding=[], budget_spent=False,
+                    failure=f"{whirl_kernel.OUTCOMES[run.outcome]} {where}")
+
+    kept: list[Window] = []  # the transient's last revolutions, recorded
+    peaks, impacts = [], []  # each revolution's largest contact force [N] and contact onsets
+    bouncing = False  # the transient ended on stationary bouncing
+    for k in range(1, revolutions + 1):
+        # the last revolutions are kept: n_window where the transient ends at the last, 2 n_window where a
+        # stationary bouncing ends it (from 3 n_window on): those are its window and the stretch before it
+        keep = k > min(n_window, revolutions - n_window)
+        cycle = run.run(k * tau, record=keep)
+        if run.outcome != whirl_kernel.OK:
+            return failed(f"in revolution {k}")
+        if keep:
+            kept = (kept + [cycle])[-2 * n_window:]
+        peaks.append(float(np.max(cycle.peak)) if cycle.peak.size else 0.0)
+        impacts.append(float(np.sum(cycle.onsets)))
+        states.append(run.modal_state())
+        if np.max(np.abs(states[-1]) / scale) == 0.0:  # nothing moves
+            period = 1 if k >= 2 else None
+        else:
+            period = settled_period(states, scale, tol)
+        if period is not None:
+            break
+        if k % n_window == 0 and stationary(peaks, impacts, states, scale, n_window):
+            bouncing = True
+            break
+    done = len(states) - 1
+    budget_spent, needed, needed_by = False, float(done), {}
+    if period:
+        blocks = []
+        for _ in range(max(1, int(np.ceil(n_window / period)))):
+            blocks.append(run.run(run.t + period * tau, record=True))
+            if run.outcome != whirl_kernel.OK:
+                return failed("in the output window")
+        window_cycles, preceding, window = list(zip(blocks, cycle_values(inputs, model, blocks))), [], merge(blocks)
+        modal = impact_modal_error(inputs, model, window, [v for _, v in window_cycles], replays, modal_check)
+    else:
+        # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
+        # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
+        kept = kept if bouncing else kept[-n_window:]
+        record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
+        first = 0  # the record's first revolution
+        step = 0 if bouncing else n_window  # revolutions to add before the next look
+        while True:
+            added = []
+            for _ in range(step):
+                added.append(run.run(run.t + tau, record=True))
+                if run.outcome != whirl_kernel.OK:
+                    return failed("in the output window")
+                states.append(run.modal_state())
+            if added:
+                record += zip(added, cycle_values(inputs, model, added))
+                live = record[first:]  # the cycles still recorded: one decision on the correction for them all
+                if len({values["correction"] for _, values in live}) > 1:
+                    record[first:] = zip([c for c, _ in live], cycle_values(inputs, model, [c for c, _ in live]))
+            half = (len(record) - first) // 2
+            preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
+            window_cycles = record[len(record) - half:]
+            ratio = settle_ratio(states, scale)
+            stats = settling([v for _, v in window_cycles], preceding, ratio)
+            stationary_record = not np.isfinite(ratio) and not any(s["significant"] for s in stats.values())
+            if stationary_record:
+                # the halves agree and nothing settles: the figures are means over the whole record, their window
+                # part its standard error; the halves' drifts are kept as what they were (window_spread)
+                whole = settling([v for _, v in record[len(record) - 2 * half:]], [], ratio)
+                stats = {name: dict(whole[name], drift=stats[name]["drift"]) for name in whole}
+                window_cycles, preceding = record[len(record) - 2 * half:], []
+            window = merge([c for c, _ in window_cycles])
+            cycles = [v for _, v in window_cycles]
+            modal = impact_modal_error(inputs, model, window, cycles, replays, modal_check)
+            errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
+                                 modal=modal)
+            used = len(states) - 1
+            # per figure over its tolerance, the revolutions more its window part is foreseen to need (inf: its modes
+            # or integrator part alone is over the tolerance, and more revolutions do not help)
+            wants: dict[str, float] = {}
+            for name, e in errors.items():
+                limit = figure_tolerance(name, tolerance, exponent, force)
+                room = limit - (e["total"] - e["window"])  # what the window part may be
+                if e["total"] <= limit:
+                    continue
+                if room <= 0:
+                    wants[name] = np.inf  # the integrator or the modes take it over: more revolutions do not help
+                elif np.isfinite(ratio) and e["window"] > CONFIDENCE * stats[name]["error"]:  # settling: drifts shrink by ρ
+                    wants[name] = np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0
+                else:  # the standard error falls as the root of the window's length (half the record's if settling)
+                    length = len(window_cycles) * (1 if stationary_record else 2)
+                    if bouncing and e["window"] > CONFIDENCE * stats[name]["error"]:
+                        # a stationary bouncing's halves' drift, not a standard error (its intermittency): no root law
+                        # foresees it (it vanishes once the halves agree and the window is the whole record), so one
+                        # record's length more and look again (a slide that settles slowly keeps the forecast)
+                        wants[name] = float(length)
+                    else:
+                        wants[name] = length * ((e["window"] / room) ** 2 - 1.0)
+            # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK of
+            # it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
+            # does not stop the others' growth (issue 36)
+            # (with reference_window_growth = "point", the default, the window grows only while every figure over its
+            # tolerance can get there: a point that stays over it whatever the window stops at its first look)
+            reachable = [m for m in wants.values() if used + m <= FORECAST_SLACK * budget]
+            if per_figure or len(reachable) == len(wants):
+                more = max(reachable, default=0.0)
+            else:
+                more = 0.0
+            needed = used + max(wants.values(), default=0.0)
+            needed_by = {name: float(used + m) for name, m in wants.items()}
+            if more == 0.0 or used >= budget:
+                budget_spent = bool(wants)
+                break
+            # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
+            # the record's length again (a forecast from a short record's scatter is itself rough): few looks; the
+            # budget is spent where the forecast is within FORECAST_SLACK of it
+            step = int(np.ceil(min(max(more, n_window), max(len(record) - first, n_window), budget - used)))
+            if any(s["significant"] for s in stats.values()):
+                first = len(record) - half  # still settling: drop the first half
+            for i in range(first):
+                record[i] = (None, record[i][1])  # free the recordings no longer needed
+        done = used - len(window_cycles)
+    return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
+                revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
+                budget_spent=budget_spent, revolutions_needed=float(needed), needed_by=needed_by, ratio=ratio,
+                failure=None, stationary=bouncing, modal=modal, stats=None if period else stats,
+                replay=replays.get("replay"))
+
+
+def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The ``reference`` method (module docstring). Values (SI) are listed in ``docs/reference_model.md``.
+
+    The mode count is chosen per point: from ``reference_modes`` it doubles (or grows by the power of two that the
+    residual flexibility's N⁻³ foresees) while the modal part of a design figure's error (:func:`modal_check`) is over
+    half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
+    figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
+    option = ReferenceOptions.from_inputs(inputs)
+    dynamic = option.reference_residual == "dynamic"
+    count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
+    tried = []
+    previous = None
+    while True:
+        result = solve_with_modes({**inputs, "reference_modes": count}, previous if dynamic else None)
+        parts = result.extras.get("convergence") or {}
+        modal = modal_part(result)
+        tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
+                          **{name: float(result.values.get(name, np.nan)) for name in FIGURES},
+                          window={name: float(e["window"]) for name, e in parts.items()}))
+        # the gate's tolerance of the point: the statistical one where its figures are means over a motion that does
+        # not repeat (with the residual vectors; the static law keeps the study's)
+        replayed = result.extras.get("replay")
+        tolerance = (statistical_tolerance(inputs) if (dynamic or replayed) and result.values.get("statistical_figures")
+                     else study_tolerance(inputs))
+        if result.status != "ok" or modal <= 0.5 * tolerance or 2 * count > top:
+            break
+        if replayed:
+            # the count chosen by the strikes replayed from this run (docs/reference_model.md §2.2): the fewest modes
+            # whose stated part (from the replays at it and more) is within half the tolerance, else the most
+            later = [n for n in replayed["stated"] if count < n < top
+                     and max(replayed["stated"][n][name] for name in FIGURES) <= 0.5 * tolerance]
+            count = min(later) if later else count * 2 ** int(np.log2(top // count))
+            previous = result
+            continue
+        # the next count: doubled, or more where the modal part is far over (the residual flexibility falls like N⁻³,
+        # so a part m asks about (m / (tolerance/2))^(1/3) times the modes): a choice of the count only, the part
+        # stated is the one measured with it. With the residual vectors doubled: their modal part is measured
+        # between a count and its half (:func:`doubling_modal_error`)
+        factor = 2 if dynamic else 2 ** max(1, int(np.ceil(np.log2(max(modal / (0.5 * tolerance), 1.0)) / 3.0)))
+        while count * factor > top:
+            factor //= 2
+        count *= factor
+        previous = result
+    result.extras["modes_tried"] = tried
+    if len(tried) > 1:
+        result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
+                           + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
+    return result
+
+
+def modal_part(result: PointResult) -> float:
+    """The largest modal part of a run's figures' errors (``extras["convergence"]``; 0 where none is stated): what
+    decides whether the point goes on to more modes (:func:`solve`, :func:`solve_with_modes`)."""
+    parts = result.extras.get("convergence") or {}
+    return max((float(e["modes"]) for e in parts.values()), default=0.0)
+
+
+def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> dict[str, float]:
+    """The modal part of each figure's error (relative) at N modes with the residual vectors, from the run at N/2
+    (``previous``): the figures' change between the two, relative to the figure at N (the alternating stress's to the
+    larger of it and the max bending stress, as :func:`convergence` counts it). It is the error left at N if that
+    falls at least as fast as 1/N, and its statistical part (the two windows' scatter) is not taken out: at the
+    bouncing points measured the figures did not change monotonically from 8 to 128 modes (docs/reference_model.md
+    §2.1), and less would not have covered them."""
+    out = dict.fromkeys(MODAL_FIGURES, 0.0)
+    for name in MODAL_FIGURES:
+        now, then = float(values.get(name, np.nan)), float(previous.values.get(name, np.nan))
+        if not (np.isfinite(now) and np.isfinite(then)) or now <= 0:
+            continue
+        size = max(now, float(values.get("max_bending_stress", now))) if name == "alternating_bending_stress" else now
+        out[name] = float(abs(now - then) / size)
+    return out
+
+
+def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+    """The ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count): one run
+    (:func:`solve_with_stations`), run again with the body's contact stations raised k -> 2k + 1 (the stations kept, one
+    more between each pair) while the body passes its wall between them (``max_wall_excess``, a bound along the whole
+    body, docs/reference_model.md §2) by more than the study's tolerance of its clearance — the gate's test — up to
+    ``reference_max_body_stations``, at a mode count whose modal part does not send the point to more modes anyway; the
+    count of the answer in ``extras["reference_body_stations"]``, the counts tried, their excess and wall times in
+    ``extras["body_stations_tried"]``. Contact points given in code (``contact_points``) are kept. With the residual
+    vectors and the run at half the modes (``previous``) the modal part of the errors is measured between the two
+    (:func:`doubling_modal_error`) where the motion does not repeat."""
+    option = ReferenceOptions.from_inputs(inputs)
+    count = int(option.reference_body_stations)
+    top = max(count, int(option.reference_max_body_stations))
+    tolerance = study_tolerance(inputs)
+    more_modes = 2 * int(option.reference_modes) <= int(option.reference_max_modes)
+    tried = []
+    while True:
+        result = solve_with_stations({**inputs, "reference_body_stations": count}, previous)
+        excess, clearance = result.values.get("max_wall_excess"), result.values.get("clearance")
+        passed = (excess is not None and clearance is not None and np.isfinite(excess)
+                  and excess > tolerance * clearance)
+        tried.append(dict(stations=count, max_wall_excess=float(excess) if excess is not None else np.nan))
+        # a run whose modes left out take a figure over half the tolerance is run again with more modes (solve), which
+        # raise their own stations: its stations are not raised
+        modal = modal_part(result)
+        if (result.status != "ok" or not passed or 2 * count + 1 > top or option.contact_points is not None
+                or (more_modes and modal > 0.5 * tolerance)):
+            break
+        count = 2 * count + 1
+    result.extras["reference_body_stations"] = count
+    result.extras["body_stations_tried"] = tried
+    if len(tried) > 1:
+        result.message += (f"; body stations raised from {tried[0]['stations']} to {count} (the body past its wall by "
+                           + ", ".join(f"{t['stations']}: {t['max_wall_excess'] / clearance:.2%} c" for t in tried)
+                           + ")")
+    return result
+
+
+def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+    """One run of the ``reference`` method with the inputs' ``reference_modes`` and ``reference_body_stations``; with
+    the residual vectors and the run at half the modes (``previous``) the modal part of the errors is measured between
+    the two (:func:`doubling_modal_error`)."""
+    result = PointResult(method=METHOD)
+    model = build_model(inputs)
+    vals = result.values
+    vals.update(model.props)  # the section's properties, as every method of the hierarchy reports them
+    vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi)
+                if np.isfinite(model.omega[0]) else np.nan, clearance=float(np.max(model.clearance)))
+    if not np.all(np.isfinite(model.omega)):
+        result.status = "buckled"
+        result.message = (f"effective tension {model.props['effective_tension']:.4g} N buckles the "
+                          f"{model.span:.4g} m section")
+        return result
+    run = simulate(inputs, model)
+    result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
+                         reference_modes=model.n_modes,
+                         reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
+                         else "none")
+    if run["verdict"] == "failed":
+        result.status = "failed"
+        result.message = f"integration failed: {run['failure']}"
+        return result
+    window, cycles = run["window"], run["cycles"]
+    tau = model.period
+    revs = (window.end - window.start) / tau
+    periodic = bool(run["period"])
+    vals.update(revolutions_simulated=float(run["revolutions"] + revs), window_revolutions=float(revs),
+                impacts_per_revolution=float(np.sum(window.onsets) / revs),
+                contact_fraction=float(window.any_contact_time / (window.end - window.start)),
+                eccentricity=model.eccentricity)
+    if run["period"]:
+        vals["period_revolutions"] = float(run["period"])
+    measure = whirl_measure(model, window)
+    vals.update(whirl_frequency_ratio=measure["whirl_frequency_ratio"],
+                whirl_class=float(WHIRL_CLASSES[measure["whirl"]]), regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
+    spacing, touching = contact_spacing(model, window)
+    vals["contact_spacing"] = spacing
+    # the largest Hertz approach of a contact on the body (the gate holds the largest deflection, on the body, to the
+    # body's clearance plus it): its peak force's (F/K)^(2/3), or the penalty's F/k
+    body = model.kinds == 0
+    if np.any(body):
+        peak = window.peak[body]
+        approach = ((peak / model.stiffness[body]) ** (2.0 / 3.0) if model.law == 0
+                    else peak / model.penalty_stiffness[body])
+        vals["max_approach"] = float(np.max(approach))
+    stats = run.get("stats") or settling(cycles, run["preceding"], run.get("ratio", np.nan))
+    summary = window_summary(cycles, stats)
+    budget = energy_balance(model, window)
+    modal = run["modal"]
+    replayed = run.get("replay") if (run.get("replay") or {}).get("impacts") else None
+    if (model.dynamic and previous is not None and not periodic and previous.status == "ok" and replayed is None
+            and previous.extras.get("reference_modes") == model.n_modes // 2):
+        modal = doubling_modal_error(previous, summary)
+    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
+    correction = summary.pop("correction")
+    quarter = summary.pop("modal_quarter_fraction")
+    damage = summary.pop(DAMAGE)  # the worst fibre's mean damage per cycle
+    vals.update(summary, window_spread=stats["peak_contact_force"]["drift"])
+    # the damage rate counted by rainflow (add_limits keeps it and gives its fatigue life), its error the life's
+    vals.update(damage_rate=float(damage * len(cycles) / (window.end - window.start)),
+                fatigue_life_error=errors[DAMAGE]["total"], statistical_figures=float(not periodic),
+                **{f"{name}_error": errors[name]["total"] for name in FIGURES})
+    result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
+    result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
+                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
+                         revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
+                         revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
+                         modal_error={name: float(v) for name, v in (modal or {}).items()},
+                         replay=None if replayed is None else replay_summary(replayed),
+                         convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
+                                      for name, e in errors.items()})
+    option = ReferenceOptions.from_inputs(inputs)
+    cycle = f"{run['period']} revolution(s)" if periodic else "revolution"
+    needed = run.get("revolutions_needed", np.nan)
+    names = {**{name: label for name, (_, label) in FIGURES.items()}, DAMAGE: "fatigue damage rate"}
+    stopped = ""
+    if run["budget_spent"]:
+        # each figure left over its tolerance, and why: the window grew for the others all the same
+        why = [f"{names[name]}: more revolutions would not bring it within (its modes or integrator part is over)"
+               if not np.isfinite(n) else
+               f"{names[name]}: about {n:.0f} revolutions in all would, more than the budget of "
+               f"{option.reference_max_revolutions} (solver.reference_max_revolutions)"
+               for name, n in (run.get("needed_by") or {}).items()]
+        stopped = "; over the tolerance after the window grew for every figure that could get there: " + (
+            "; ".join(why) if why else f"about {needed:.0f} revolutions in all would bring them within")
+    figures = ", ".join(f"{names[name]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
+                        f"integrator {e['integrator']:.1e}, "
+                        f"modes {e['modes']:.2%})"
+                        for name, e in errors.items())
+    messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
+                (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
+                 f"bouncing with stationary statistics after {run['revolutions']} revolutions (transient ended)"
+                 if run.get("stationary") and run["revolutions"] < option.reference_revolutions else
+                 f"not periodic within {run['revolutions']} revolutions"),
+                f"figures: means over the window's {len(cycles)} cycle(s) of {cycle} of each cycle's largest value"
+                f" (largest seen: window_largest_*){stopped}",
+                f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
+                f"{float(option.reference_rtol):g}"
+                f"{' and the residual flexibility and quasi-static correction of the modes left out' if correction else ''}"
+                f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})"
+                + (f"; modal parts from {len(replayed['impacts'])} strike(s) replayed at "
+                   + ", ".join(str(n) for n in replayed["counts"]) + " modes" if replayed else ""),
+                f"error of each figure (its largest part): {figures}",
+                (f"held to solver.statistical_tolerance {statistical_tolerance(inputs):.3g} (means over the revolutions"
+                 f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
+                 f"held to solver.tolerance {study_tolerance(inputs):.3g}")
+                + f", the peak force to solver.force_tolerance {force_tolerance(inputs):.3g}"]
+    # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
+    # study's tolerance makes the gate call it not_converged
+    result.status = "ok"
+    result.message = "; ".join(messages)
+    return result

@@ -1,0 +1,587 @@
+"""The reference model's section (docs/reference_model.md §1–2): :class:`WhirlModel` and :func:`build_model` from a
+design point's inputs; the modes left out given back statically (:func:`residual_flexibility`,
+:func:`static_correction`) or as residual vectors (:func:`residual_ritz`); the side loads."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import hertz, well, whirl
+from study.physics.contact import (calibrated_hysteresis, hertz_energy, linear_contact_damping,
+                                   linearised_stiffness)
+from study.solvers.model.options import ReferenceOptions
+from study.solvers.methods.reference.modes import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
+                                                   mode_wavenumbers, periodic_point_deflection, periodic_point_moment,
+                                                   series_contact, symmetric_points)
+from study.solvers.model.scene import Scene, make_scene
+
+
+CONTACT_LAWS = ReferenceOptions.choices("contact_law")
+
+
+#: Default regularisation velocity of the Coulomb friction [m/s]: 1/250 of the 4½-in body's surface
+#: speed at 100 rpm; tested not to change the outputs beyond 2 % when divided by ten.
+SLIP_VELOCITY = ReferenceOptions.default("slip_velocity")
+
+
+@dataclass
+class WhirlModel:
+    """The section's modal model in both directions (SI)."""
+
+    span: float  #: section length L [m]
+    modes: np.ndarray  #: mode indices n = 0 … N − 1 (N,) of the periodic basis (:func:`mode_shapes`)
+    omega: np.ndarray  #: ω_n [rad/s] (ω_0 = 0: the rigid translation)
+    mass: float  #: modal mass M L/2 [kg]
+    rotary_speed: float
+    points: np.ndarray  #: contact positions x_p [m]
+    kinds: np.ndarray  #: 0 body, 1 tool joint
+    clearance: np.ndarray  #: c_p [m]
+    radius: np.ndarray  #: r_p [m]
+    stiffness: np.ndarray  #: Hertz K_p [N m^-3/2]
+    phi: np.ndarray  #: (P, N) ψ_n(x_p)
+    #: (N,) generalised eccentric force per modal mass [m/s²]; complex where the joints' eccentricities turn, its
+    #: phase the lead on cos Ωt (:func:`eccentric_factors`, :func:`eccentric_parts`)
+    eccentric: np.ndarray
+    side: np.ndarray  #: (N,) generalised side load per modal mass [m/s²]
+    damping: np.ndarray  #: (N,) linear modal damping per mass 2ζω_n [1/s]
+    drag: float  #: D [kg/m²]
+    drag_shapes: np.ndarray  #: (G, N)
+    drag_weights: np.ndarray  #: (G,) [m]
+    friction: float
+    slip_velocity: float
+    restitution: float
+    hysteresis: float  #: calibrated h(e) = χ v0 [-]
+    law: int  #: 0 Hertz, 1 linear penalty
+    penalty_stiffness: np.ndarray  #: (P,) [N/m]
+    penalty_damping: np.ndarray  #: (P,) [N s/m]
+    props: Mapping[str, float] = field(default_factory=dict)
+    eccentricity: float = 0.0
+    frame: float = 0.0  #: angle β of the model's +y from the hole's low side towards +z: the side load's direction [rad]
+    hole_curvature: np.ndarray = field(default_factory=lambda: np.zeros(2))  #: κ⃗ of the hole in the model's frame [1/m]
+    #: (N, N) the modes on the periodic basis with the tool joints' mass (:func:`joint_modes`); None: the basis itself
+    basis: np.ndarray | None = None
+    joint_mass: float = 0.0  #: m_j, each tool joint's mass beyond the plain pipe's, lumped at the joint [kg]
+    joint_weight: float = 0.0  #: the side component of each joint's buoyed weight beyond the pipe's [N]
+    #: (P,) the joints' weight at the contact points that are joints, along the model's +y [N] (None: none), for the
+    #: quasi-static correction (:func:`periodic_fields`), which completes it as it completes the contact forces
+    point_side: np.ndarray | None = None
+    #: (P,) residual flexibility of the modes left out at each contact point [m/N], in series with its Hertz spring
+    #: (:func:`residual_flexibility`; empty: the kept modes alone)
+    residual: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: (P,) the residual oscillator's mass μ_p = g_p/f_p² at each contact point [kg] (``reference_residual =
+    #: "dynamic"``: :func:`residual_second_moment`; empty: the residual flexibility, if any, static in series)
+    residual_mass: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: the modes left out as residual vectors, one per contact point, in the kernel's modes (``reference_residual =
+    #: "dynamic"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
+    ritz: dict | None = None
+    joint_x: np.ndarray = field(default_factory=lambda: np.zeros(0))  #: the tool joints' positions x_j [m]
+    #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
+    #: correction of their inertia forces (:func:`joint_inertia_forces`)
+    joint_points: np.ndarray | None = None
+    #: with the residual vectors, what the fields take for the modes left out (``reference_recovery``): the contact
+    #: forces' static field ("force", the mode-acceleration method) or the vectors' coordinates s_p ("vectors")
+    recovery: str = "force"
+    cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
+
+    @property
+    def wavenumber(self) -> np.ndarray:
+        """k_n [1/m] of the modes (0 for the rigid translation)."""
+        return mode_wavenumbers(self.span, self.modes)
+
+    @property
+    def weights(self) -> np.ndarray:
+        """(N,) each mode's weight in the integrator's error scale: 1/n² with n = k L/π the half-waves of its
+        wavenumber over the section (at least 1: the rigid translation weighs as the first bending mode), so that
+        each mode's contribution to the moment (k² q) is held alike."""
+        return 1.0 / np.maximum(self.wavenumber * self.span / np.pi, 1.0) ** 2
+
+    def first_left_out(self) -> float:
+        """ω of the first mode left out of the basis [rad/s]."""
+        k = float(mode_wavenumbers(self.span, [int(np.max(self.modes)) + 1])[0])
+        return float(np.sqrt((self.props["bending_stiffness"] * k**4 + self.props["effective_tension"] * k**2)
+                             / self.props["mass_per_length"]))
+
+    @property
+    def period(self) -> float:
+        return 2.0 * np.pi / self.rotary_speed
+
+    @property
+    def n_modes(self) -> int:
+        return int(self.modes.size)
+
+    def state_scale(self) -> np.ndarray:
+        """(4N,) scale of the state: the body clearance c for q, Ω c for q̇."""
+        c = float(np.max(self.clearance))
+        N = self.n_modes
+        return np.concatenate((np.full(2 * N, c), np.full(2 * N, self.rotary_speed * c)))
+
+    def shapes(self, x, derivative: int = 0) -> np.ndarray:
+        """(X, N) the modes' shapes (or their ``derivative``-th derivative along x) at x [m]: :func:`mode_shapes`, on
+        the joints' modes (:attr:`basis`) where the tool joints' mass is lumped."""
+        out = mode_shapes(x, self.span, self.modes, derivative)
+        return out if self.basis is None else out @ self.basis
+
+    def moment_shapes(self, x) -> np.ndarray:
+        """(X, N) each mode's moment −EI ψ_n'' at x [m] per unit coordinate [N m/m]: EI k_n² ψ_n on the basis."""
+        out = mode_shapes(x, self.span, self.modes) * (self.props["bending_stiffness"] * self.wavenumber**2)
+        return out if self.basis is None else out @ self.basis
+
+    def system(self) -> tuple:
+        """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple). With
+        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + P modes of the kept modes and one
+        residual vector per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
+        points and loads; the linear damping the modes' ratio at their frequencies (none with the drag)."""
+        fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
+                         float(self.law), self.hysteresis])
+        if not self.dynamic:
+            return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
+                    self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
+                    self.penalty_damping, fpar, self.flexibility)
+        r = self.ritz
+        return (r["omega2"], r["damping"], r["eccentric"], r["side"], r["drag_shapes"], self.drag_weights,
+                r["phi"], self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
+                fpar, np.zeros(self.points.size))
+
+    @property
+    def dynamic(self) -> bool:
+        """Whether the modes left out are residual vectors in the kernel's modes (``reference_residual =
+        "dynamic"``)."""
+        return self.ritz is not None
+
+    @property
+    def kernel_modes(self) -> int:
+        """The kernel's modes per direction: N, and P more with the residual vectors."""
+        return self.n_modes + (self.points.size if self.dynamic else 0)
+
+    @property
+    def kernel_phi(self) -> np.ndarray:
+        """(P, kernel modes) the kernel's modes' shapes at the contact points."""
+        return self.ritz["phi"] if self.dynamic else self.phi
+
+    @property
+    def residual_omega2(self) -> np.ndarray:
+        """(P,) k_p/μ_p = 1/(f_p μ_p) [rad²/s²]: each residual vector's own frequency (its Rayleigh quotient without
+        the joints' mass; with :attr:`residual_mass`)."""
+        return 1.0 / (self.residual * self.residual_mass)
+
+    def extend(self, z) -> np.ndarray:
+        """The kernel's state from the modal one (4N + 4,): with the residual vectors their coordinates set to their
+        static response to each contact's normal force at the kept modes' approach, s_p = −F_n n̂ (the series law's
+        split, :func:`series_contact`), zero rates, mapped onto the kernel's modes; else z itself (a copy)."""
+        z = np.array(z, float)
+        if not self.dynamic or z.size == 4 * self.kernel_modes + 4:
+            return z
+        N, P, K = self.n_modes, self.points.size, self.kernel_modes
+        y, w = self.phi @ z[:N], self.phi @ z[N:2 * N]
+        r = np.hypot(y, w)
+        force = series_contact(r - self.clearance, self.stiffness, self.residual)[1]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = np.where(r > 0, -force / np.maximum(r, 1e-300), 0.0)
+        forces = [scale * y, scale * w, np.zeros(P), np.zeros(P)]
+        inverse, T = self.ritz["inverse"], self.ritz["combinations"]
+        out = np.zeros(4 * K + 4)
+        for j in range(4):
+            out[j * K:(j + 1) * K] = inverse @ np.concatenate((z[j * N:(j + 1) * N], T.T @ forces[j]))
+        out[-4:] = z[4 * N:]
+        return out
+
+    def reduce(self, z) -> np.ndarray:
+        """The modal state(s) (..., 4N + 4) from the kernel's: with the residual vectors the kept modes' coordinates
+        of the kernel's modes (:meth:`residual_coordinates` gives the residual vectors')."""
+        z = np.asarray(z, float)
+        if not self.dynamic:
+            return z
+        N, K = self.n_modes, self.kernel_modes
+        kept = self.ritz["vectors"][:N]
+        return np.concatenate([z[..., j * K:(j + 1) * K] @ kept.T for j in range(4)] + [z[..., -4:]], axis=-1)
+
+    def residual_coordinates(self, z) -> np.ndarray:
+        """(..., 4, P) the residual vectors' coordinates s_y, s_z, ṡ_y, ṡ_z [N, N/s] from the kernel's state(s): the
+        forces at the contact points whose static field of the modes left out (:func:`static_correction`) their
+        motion is."""
+        z = np.asarray(z, float)
+        N, K = self.n_modes, self.kernel_modes
+        to_forces = self.ritz["combinations"] @ self.ritz["vectors"][N:]  # (P, K)
+        return np.stack([z[..., j * K:(j + 1) * K] @ to_forces.T for j in range(4)], axis=-2)
+
+    def kernel_energy(self, z) -> float:
+        """The kernel state's Σ ½ m (η̇² + ω² η²) over its modes in both directions plus the contacts' Hertz energy
+        [J] (the residual vectors' kinetic and strain energy in the modes' sum)."""
+        if not self.dynamic:
+            return self.energy(z)
+        K = self.kernel_modes
+        z = np.asarray(z, float)
+        w2 = np.tile(self.ritz["omega2"], 2)
+        phi = self.ritz["phi"]
+        d = np.maximum(np.hypot(phi @ z[:K], phi @ z[K:2 * K]) - self.clearance, 0.0)
+        contact = hertz_energy(d, self.stiffness) if self.law == 0 else 0.5 * self.penalty_stiffness * d**2
+        return float(0.5 * self.mass * np.sum(z[2 * K:4 * K] ** 2 + w2 * z[:2 * K] ** 2) + np.sum(contact))
+
+    @property
+    def flexibility(self) -> np.ndarray:
+        """(P,) the residual flexibility in series with each contact's Hertz spring [m/N] (zeros where none, and with
+        the residual oscillators, which carry it dynamically)."""
+        if self.dynamic or self.residual.size != self.points.size:
+            return np.zeros(self.points.size)
+        return self.residual
+
+    def energy(self, z) -> float:
+        """Σ ½ m (q̇² + ω² q²) over both directions plus the contacts' elastic energy [J]."""
+        N = self.n_modes
+        z = np.asarray(z, float)
+        q, v = z[:2 * N], z[2 * N:4 * N]
+        w2 = np.concatenate((self.omega, self.omega)) ** 2
+        y, w = self.phi @ z[:N], self.phi @ z[N:2 * N]
+        d = np.maximum(np.hypot(y, w) - self.clearance, 0.0)
+        if self.law == 0:  # the Hertz spring's 2/5 K δ_H^{5/2} and the series flexibility's f F²/2
+            approach, force = series_contact(d, self.stiffness, self.flexibility)
+            contact = hertz_energy(approach, self.stiffness) + 0.5 * self.flexibility * force**2
+        else:
+            contact = 0.5 * self.penalty_stiffness * d**2
+        return float(0.5 * self.mass * np.sum(v**2 + w2 * q**2) + np.sum(contact))
+
+
+def residual_flexibility(model: "WhirlModel") -> np.ndarray:
+    """(P,) the static flexibility of the modes left out at each contact point [m/N], f_p = Σ_{n ≥ N} ψ_n(x_p)²/(m ω_n²)
+    (m = M L/2): the periodic beam-column's whole, :func:`periodic_point_deflection` at s = 0, less the kept modes'
+    terms (the rigid translation has none). It vanishes as N grows (like N⁻³: terms like j⁻⁴); in series with a
+    contact's Hertz spring (:func:`study.solvers.kernels.whirl_kernel.series_hertz`) it makes a held contact's static answer
+    the continuous beam's (docs/reference_model.md §2.1). With the tool joints' mass the kept modes span the same
+    basis functions, so their static part is the basis' own, a matter of stiffness alone (as in
+    :func:`static_correction`): m ω_n² = (L/2)(EI k_n⁴ + T k_n²) on the basis."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    whole = float(periodic_point_deflection(0.0, model.span, ei, tn))
+    return np.maximum(whole - mode_shapes(model.points, model.span, model.modes) ** 2 @ basis_static_gain(model), 0.0)
+
+
+#: Harmonics above the kept ones that :func:`residual_second_moment` sums (its terms fall like j⁻⁸: the tail past them
+#: is below 1e-9 of the sum up to 128 modes, and counted by its integral beyond).
+SECOND_MOMENT_HARMONICS = 4096
+
+
+def residual_second_moments(model: "WhirlModel") -> np.ndarray:
+    """(P, P) the modes left out's second moments between the contact points [m/N s²], G_pq = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x_q)
+    /(m ω_n⁴): the mass of the residual vectors (:func:`residual_ritz`); its diagonal is :func:`residual_second_moment`
+    (the tail beyond the harmonics summed counted there only: off it the terms alternate in sign and fall like j⁻⁸)."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    L, N = model.span, model.n_modes
+    n = np.arange(N, N + 2 * SECOND_MOMENT_HARMONICS)
+    k = mode_wavenumbers(L, n)
+    gain = 1.0 / (0.5 * L * (ei * k**4 + tn * k**2))
+    shapes = mode_shapes(model.points, L, n)
+    out = (shapes * (model.mass * gain**2)) @ shapes.T
+    J = (N + 2 * SECOND_MOMENT_HARMONICS - 1) // 2
+    out[np.diag_indices_from(out)] += model.mass * (2.0 / (L * ei)) ** 2 * (L / (2 * np.pi)) ** 8 / (7.0 * (J + 0.5) ** 7)
+    return out
+
+
+def residual_second_moment(model: "WhirlModel") -> np.ndarray:
+    """(P,) the second moment of the modes left out at each contact point [m/N s²], g_p = Σ_{n ≥ N} ψ_n(x_p)²/(m ω_n⁴)
+    (m = M L/2): the ω² term of their receptance Σ ψ_n²/(m (ω_n² − ω²)) = f_p + g_p ω² + O(ω⁴) at the point, the
+    diagonal of :func:`residual_second_moments`. On the basis functions left out (as :func:`residual_flexibility`, a
+    matter of stiffness and the one modal mass), summed over :data:`SECOND_MOMENT_HARMONICS` harmonics and the tail
+    beyond by its integral (terms (2/L)² m/(EI k⁴)² per harmonic where tension no longer counts; tested against the
+    tensionless closed form (2/(L EI))² m (L/2π)⁸ ζ(8) and the series summed further)."""
+    return np.diag(residual_second_moments(model)).copy()
+
+
+def basis_static_gain(model: "WhirlModel") -> np.ndarray:
+    """(N,) each basis function's static gain 1/(m ω_n²) = 1/((L/2)(EI k_n⁴ + T k_n²)) [m/N per unit shape], 0 for the
+    rigid translation: a matter of stiffness alone, so the same with or without the tool joints' mass."""
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    k = model.wavenumber
+    gain = np.zeros(model.n_modes)
+    flexible = k > 0
+    gain[flexible] = 1.0 / (0.5 * model.span * (ei * k[flexible] ** 4 + tn * k[flexible] ** 2))
+    return gain
+
+
+def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
+    """(a, b) (N,) the real and imaginary parts of the model's generalised eccentric force per modal mass [m/s²]:
+    the turning load drives mode n by (a cos Ωt − b sin Ωt, a sin Ωt + b cos Ωt) in (y, z)."""
+    e = np.asarray(model.eccentric)
+    return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
+
+
+def side_loads(scene: Scene) -> tuple[float, float, np.ndarray]:
+    """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
+    hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
+    (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension and,
+    in a curved hole, the scene's ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side
+    (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load along +y
+    directly (code and tests)."""
+    props = scene.props
+    kappa = scene.dogleg_curvature
+    phi = scene.dogleg_direction
+    curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
+    if scene.side_load is not None:
+        return scene.side_load, 0.0, curvature
+    r_o = scene.outer_radius
+    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], scene.mud_density, r_o,
+                                   0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
+    w_y, w_z = well.side_load_vector(buoyed, scene.inclination, props["effective_tension"], kappa, phi)
+    return float(w_y), float(w_z), curvature
+
+
+def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
+    """The reference model of one design point (see the module docstring). Raises ValueError naming the
+    field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
+    option = ReferenceOptions.from_inputs(inputs)
+    scene = make_scene(inputs)
+    props = dict(scene.props)
+    r_o, hole_r = scene.outer_radius, scene.hole_radius
+    if r_o >= hole_r:
+        raise ValueError(f"pipe.outer_diameter = {2 * r_o:.6g} m: must be smaller than hole.diameter = "
+                         f"{2 * hole_r:.6g} m")
+    tj = float(option.tool_joint_diameter) / 2.0
+    if not r_o <= tj < hole_r:
+        raise ValueError(f"pipe.tool_joint_diameter = {2 * tj:.6g} m: must be at least pipe.outer_diameter "
+                         f"({2 * r_o:.6g} m) and smaller than hole.diameter ({2 * hole_r:.6g} m)")
+    L = float(option.section_length)
+    joint = float(option.joint_length)
+    if L <= 0 or joint <= 0:
+        raise ValueError(f"contact.section_length = {L:.6g} m, pipe.joint_length = {joint:.6g} m: both must be > 0")
+    mu = float(option.friction)
+    if mu < 0:
+        raise ValueError(f"contact.friction = {mu}: must be >= 0")
+    N = int(option.reference_modes)
+    if N < 1:
+        raise ValueError(f"reference_modes = {N}: at least 1")
+    modes = np.arange(N)
+    M = props["mass_per_length"]
+    # the tool joints' mass beyond the plain pipe's, lumped at the joints (docs/reference_model.md §1, §9)
+    tj_bore, tj_length = float(option.tool_joint_inner_diameter), float(option.tool_joint_length)
+    if not 0.0 <= tj_bore < 2 * tj:
+        raise ValueError(f"pipe.tool_joint_inner_diameter = {tj_bore:.6g} m: must be >= 0 and smaller than "
+                         f"pipe.tool_joint_diameter ({2 * tj:.6g} m)")
+    if not 0.0 <= tj_length < joint:
+        raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m: must be >= 0 and shorter than "
+                         f"pipe.joint_length ({joint:.6g} m)")
+    joint_mass, joint_weight = well.tool_joint_excess(
+        scene.pipe_density, 2 * tj, tj_bore, tj_length, props["pipe_mass"], 2 * r_o,
+        scene.inner_diameter, scene.mud_density)
+    if joint_mass < 0.0:
+        raise ValueError(f"pipe.tool_joint_length = {tj_length:.6g} m with pipe.tool_joint_diameter = {2 * tj:.6g} m, "
+                         f"pipe.tool_joint_inner_diameter = {tj_bore:.6g} m makes a joint {-joint_mass:.4g} kg lighter "
+                         "than the plain pipe it replaces: set pipe.tool_joint_length = 0 where pipe.linear_mass "
+                         "counts the joints already")
+    joint_x = contact_layout(L, joint, 0)[0]
+    joint_side = joint_weight * float(np.sin(scene.inclination))  # along the low side
+    # ω_n and the modes with the joints' mass (the basis itself without); NaN where ω² < 0: the section buckles
+    omega, basis = joint_modes(L, N, M, props["bending_stiffness"], props["effective_tension"], joint_x, joint_mass)
+    if option.contact_points is not None:
+        x = np.atleast_1d(np.asarray(option.contact_points, float)) * L
+        kinds = np.atleast_1d(np.asarray(np.zeros(x.size) if option.contact_kinds is None else option.contact_kinds,
+                                         int))
+    else:
+        x, kinds = contact_layout(L, joint, int(option.reference_body_stations))
+    radius = np.where(kinds == 1, tj, r_o)
+    clearance = hole_r - radius
+    kappa = clearance * (np.pi / L) ** 2
+    a_sum, b_sum = hertz.curvature_sums(radius, hole_r, kappa)
+    K = np.asarray(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum), float)
+    phi = mode_shapes(x, L, N)
+    mass = 0.5 * M * L
+    lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
+    phi = lift(phi)
+    Om = scene.rotary_speed
+    eps = float(option.eccentricity)
+    factors = np.zeros(N)
+    factors[0] = L / np.sqrt(2.0)  # ∫₀ᴸ ψ_n dx: a uniform load drives the rigid translation only
+    # the body's, not the joints'; in phases that turn from pipe joint to pipe joint (eccentric_factors)
+    eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om)
+                     * eccentric_factors(L, joint, N, float(option.eccentricity_turn))) / mass
+    w_y, w_z, curvature = side_loads(scene)
+    if joint_side and scene.side_load is None:
+        w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
+    # the scene is axisymmetric but for the side load, whose direction is constant: the model's frame is the hole's
+    # turned by the side load's angle β, so that the load lies along its +y (every output is the same in any frame)
+    frame = float(np.arctan2(w_z, w_y)) if (w_y or w_z) else 0.0
+    w_side = float(np.hypot(w_y, w_z))
+    cb, sb = np.cos(frame), np.sin(frame)
+    hole_curvature = np.array([cb * curvature[0] + sb * curvature[1], -sb * curvature[0] + cb * curvature[1]])
+    load = w_side * factors
+    if joint_side and scene.side_load is None:
+        # the joints' weight at the joints less its mean (in w_side): a load at the supports, along the low side (its
+        # part across the model's +y, where a walking dogleg turns the frame, is left out: docs/reference_model.md §9)
+        load = load + joint_side * cb * (mode_shapes(joint_x, L, N).sum(axis=0) - joint_x.size / L * factors)
+    at_joint = (kinds == 1) & np.any(np.abs(x[:, None] - joint_x[None, :]) <= 1e-9 * L, axis=1)  # contacts at joints
+    point_side = None
+    if joint_side and scene.side_load is None and np.any(at_joint):
+        point_side = np.where(at_joint, joint_side * cb, 0.0)
+    side = lift(load) / mass
+    damping_model = option.reference_damping
+    damping = np.zeros(N)
+    if damping_model == "viscous":
+        damping = 2.0 * float(option.damping_ratio) * omega
+    G = 2 * N + 8
+    gx, gw = whirl.gauss_legendre(G)
+    shapes = lift(mode_shapes(0.5 * L * (gx + 1), L, N))
+    drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
+    e = scene.restitution
+    law = CONTACT_LAWS.index(option.contact_law)
+    # the linear penalty: Hertz linearised at the elastic approach of the point's effective mass at Ω c_p
+    m_eff = mass / np.maximum(np.sum(phi**2, axis=1), 1e-12)
+    alpha = hertz.hertz_impact(m_eff, np.maximum(Om * clearance, 1e-6), K).max_approach
+    kp = linearised_stiffness(alpha, K)
+    cp = linear_contact_damping(kp, m_eff, e)
+    model = WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
+                      clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
+                      damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
+                      friction=mu, slip_velocity=float(option.slip_velocity),
+                      restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
+                      penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
+                      eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
+                      joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
+                      joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
+    if option.reference_residual == "dynamic" and np.all(np.isfinite(omega)) and symmetric_points(x, L):
+        # the modes left out as one residual vector per contact point in the kernel's modes, matched to their
+        # flexibility and its second moment (their receptance f + g ω² + … at low frequency), the joints' mass on them;
+        # docs/reference_model.md §2.1
+        model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
+        model.residual = residual_flexibility(model)
+        model.residual_mass = residual_second_moment(model) / model.residual**2
+        model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
+                                   float(option.damping_ratio) if damping_model == "viscous" else 0.0)
+        model.recovery = option.reference_recovery
+    elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
+        # the modes left out respond to a contact force statically: their flexibility at the point in series with its
+        # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
+        # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
+        model.residual = residual_flexibility(model)
+        model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
+    return model
+
+
+def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0) -> dict:
+    """The kept modes augmented by one residual vector per contact point (modal truncation augmentation: Dickens,
+    Nakagawa & Wittbrodt, Comput. Struct. 62, 985–998, 1997; the residual flexibility and mass of Rubin, AIAA J. 13,
+    995–1006, 1975), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual vector p is the static
+    field of the modes left out under a unit force at contact point x_p, v_p(x) (:func:`static_correction`'s
+    deflection: the periodic beam-column's less the kept modes'); with the coordinates (q, s), s_p [N] the force whose
+    field v_p is, u(x) = Σ q_n φ_n(x) + Σ s_p v_p(x), the stiffness is diag(m ω_n²) ⊕ F, F_pq = v_p(x_q) (Maxwell–Betti:
+    v_p is the left-out modes' flexibility), the mass m I ⊕ G + the tool joints' m_j at x_j on u(x_j) (their coupling
+    of the kept modes and the vectors, m_j φ(x_j) v_p(x_j)), G_pq = Σ_{n≥N} ψ_n(x_p) ψ_n(x_q)/(m ω_n⁴)
+    (:func:`residual_second_moments`). The kept modes and the vectors are each of one parity about the section's middle
+    where the contact points are (pairs x, L − x: their sum and difference), so the modes are solved per parity and
+    keep one, as the kernel's drag sums need. Raises ValueError where the contact points are not so
+    (:func:`symmetric_points`; :func:`build_model` keeps the series law there).
+
+    Returns omega2 (K,) with K = N + P, vectors (K, K) (column k: mode k on (q, σ), σ the vectors' parity
+    combinations, s = C σ; scaled to the modal mass m), combinations C (P, P), inverse (K, K) (vectorsᵀ M/m: (q, σ) to
+    the modes), and the kernel's phi (P, K), drag_shapes (G, K) at ``drag_points`` [m], eccentric and side (K,) per
+    modal mass, damping (K,) 2ζω, weights (K,) of the error scale (1/n² of the half-waves of each mode's
+    frequency)."""
+    from scipy.linalg import eigh
+
+    N, P, L, m = model.n_modes, model.points.size, model.span, model.mass
+    x = model.points
+    # the contact points' mirror images about the middle: pairs and points of their own
+    mirror = np.mod(L - x, L)
+    gap = np.abs(np.mod(mirror[:, None] - x[None, :] + 0.5 * L, L) - 0.5 * L)
+    partner = np.argmin(gap, axis=1)
+    if not symmetric_points(x, L):
+        raise ValueError("reference_residual = 'dynamic': the contact points must lie symmetrically about the "
+                         f"section's middle (x and L - x), at {np.round(x / L, 6).tolist()} of L")
+    symmetric, antisymmetric = [], []
+    for p in range(P):
+        q = int(partner[p])
+        e = np.zeros(P)
+        if q == p:
+            e[p] = 1.0
+            symmetric.append(e)
+        elif p < q:
+            e[p], e[q] = np.sqrt(0.5), np.sqrt(0.5)
+            symmetric.append(e.copy())
+            e[q] = -np.sqrt(0.5)
+            antisymmetric.append(e)
+    combinations = np.column_stack(symmetric + antisymmetric)
+    flexibility = static_correction(model, x)[:, :P]
+    flexibility = 0.5 * (flexibility + flexibility.T)
+    mass_rr = residual_second_moments(model)
+    coupling = np.zeros((N, P))
+    if model.joint_mass > 0.0 and model.joint_x.size:
+        at_joints = static_correction(model, model.joint_x)[:, :model.joint_x.size]  # (P, J): v_p(x_j)
+        coupling = model.joint_mass * model.shapes(model.joint_x).T @ at_joints.T
+        mass_rr = mass_rr + model.joint_mass * at_joints @ at_joints.T
+    K = N + P
+    stiffness = np.zeros((K, K))
+    stiffness[:N, :N] = np.diag(m * np.nan_to_num(model.omega) ** 2)
+    stiffness[N:, N:] = combinations.T @ flexibility @ combinations
+    mass = np.zeros((K, K))
+    mass[:N, :N] = m * np.eye(N)
+    mass[:N, N:] = coupling @ combinations
+    mass[N:, :N] = mass[:N, N:].T
+    mass[N:, N:] = combinations.T @ mass_rr @ combinations
+    kept_symmetric = (model.modes == 0) | (model.modes % 2 == 1)
+    n_sym = len(symmetric)
+    rows_of = [np.concatenate((np.flatnonzero(kept_symmetric), N + np.arange(n_sym))),
+               np.concatenate((np.flatnonzero(~kept_symmetric), N + np.arange(n_sym, P)))]
+    omega2, vectors = np.zeros(K), np.zeros((K, K))
+    column = 0
+    for rows in rows_of:
+        if rows.size == 0:
+            continue
+        values, vecs = eigh(stiffness[np.ix_(rows, rows)], mass[np.ix_(rows, rows)])
+        vecs = vecs * np.sqrt(m)  # eigh's have yᵀ M y = 1
+        rigid = rows == 0  # the rigid translation (kept mode 0): no stiffness, exactly a mode of its own
+        if np.any(rigid) and model.omega[0] == 0.0:
+            first = int(np.argmin(np.abs(values)))
+            values[first] = 0.0
+            vecs[:, first] = 0.0
+            vecs[rigid, first] = 1.0
+        span = slice(column, column + rows.size)
+        omega2[span] = np.maximum(values, 0.0)
+        vectors[np.ix_(rows, np.arange(column, column + rows.size))] = vecs
+        column += rows.size
+    kept, residual = vectors[:N], vectors[N:]
+    phi = np.hstack((model.phi, flexibility @ combinations)) @ vectors
+    at_drag = static_correction(model, np.asarray(drag_points, float))[:, :np.size(drag_points)]  # (P, G)
+    drag_shapes = np.hstack((model.drag_shapes, at_drag.T @ combinations)) @ vectors
+    side = kept.T @ model.side
+    if model.point_side is not None:  # the joints' weight at the joints: on the vectors, Σ_q W_q v_p(x_q)
+        side = side + residual.T @ (combinations.T @ (flexibility @ model.point_side)) / m
+    omega = np.sqrt(omega2)
+    ei, tn, M = (model.props[k] for k in ("bending_stiffness", "effective_tension", "mass_per_length"))
+    wavenumber = np.sqrt(np.maximum((-tn + np.sqrt(tn**2 + 4 * ei * M * omega2)) / (2 * ei), 0.0))
+    return dict(omega2=omega2, vectors=vectors, combinations=combinations, inverse=vectors.T @ mass / m, phi=phi,
+                drag_shapes=drag_shapes, eccentric=kept.T @ model.eccentric, side=side,
+                damping=2.0 * float(damping_ratio) * omega,
+                weights=1.0 / np.maximum(wavenumber * L / np.pi, 1.0) ** 2)
+
+
+def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:
+    """Per unit force at each contact point, the static deflection and moment of the modes left out on the stations
+    x [m], [y_s, m_s] (P, 2X): the full static field of a point load on the periodic beam-column
+    (:func:`periodic_point_moment`, :func:`periodic_point_deflection`, both in closed form) minus the
+    kept modes' static terms ψ_n(x_p) ψ_n(x)/(m ω_n²) (the rigid translation has no static term: the load's mean
+    is carried by the other contacts). Cached on the model per stations."""
+    key = np.asarray(x, float).tobytes()
+    if key in model.cache:
+        return model.cache[key]
+    L, N = model.span, model.n_modes
+    ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
+    k = model.wavenumber
+    flexible = k > 0  # the kept modes with a static term (the rigid translation has none)
+    at = model.points
+    gain = np.zeros(N)
+    if model.basis is None:
+        shapes, kept_at = model.shapes(x), model.phi  # (X, N), (P, N)
+        gain[flexible] = 1.0 / (model.mass * model.omega[flexible] ** 2)
+    else:
+        # with the joints' mass the kept modes span the same basis functions: their static part is the basis' own, a
+        # matter of stiffness alone (the static field the correction completes balances the load's mean uniformly)
+        shapes, kept_at = mode_shapes(x, L, model.modes), mode_shapes(at, L, model.modes)
+        gain = basis_static_gain(model)
+    kept_moment = (kept_at * gain * ei * k**2) @ shapes.T
+    moment = periodic_point_moment(x[None, :] - at[:, None], L, ei, tn) - kept_moment
+    # the deflection likewise: the whole static field in closed form (:func:`periodic_point_deflection`) less the kept
+    # modes' terms (the harmonics above the kept ones, and the sine of a harmonic whose cosine alone is kept)
+    deflection = periodic_point_deflection(x[None, :] - at[:, None], L, ei, tn) - (kept_at * gain) @ shapes.T
+    out = np.hstack([deflection, moment])
+    out.flags.writeable = False
+    model.cache[key] = out
+    return out

@@ -1,0 +1,437 @@
+"""The reference model's statistics (docs/reference_model.md §3): whether a motion is stationary or still
+settling, the figures of each cycle and their window summary with standard errors, the modal check of the
+modes left out, the error estimate of each figure (:func:`convergence`) and the whirl's verdict."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import numpy as np
+
+from study.physics import fatigue, limits, section
+from study.physics.contact import hertz_force
+from study.solvers.model.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
+                                         study_tolerance)
+from study.solvers.methods.reference.fields import periodic_fields, stresses
+from study.solvers.methods.reference.integrate import Window, merge
+from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
+from study.solvers.methods.reference.modes import series_contact
+from study.solvers.model.result import REGIMES
+from study.solvers.model.scene import Scene
+
+
+#: The regime of the study's charts (study.solvers.model.result.REGIMES) each whirl verdict is.
+WHIRL_REGIMES = {"no_contact": "no_contact", "forward": "forward_whirl", "backward": "backward_whirl",
+                 "bouncing": "bouncing", "sliding": "sliding"}
+
+
+#: Whirl verdicts -> integer code (output ``whirl_class``): its regime's code, one code table (result.Regime).
+WHIRL_CLASSES = {verdict: REGIMES[regime] for verdict, regime in WHIRL_REGIMES.items()}
+
+
+#: |whirl rate/Ω| below which a pipe in contact at least SLIDING_CONTACT of the time lies on the wall, sliding.
+SLIDING_RATE, SLIDING_CONTACT = 0.05, 0.99
+
+
+#: The design figures whose convergence the error estimate states, with the names of their largest values seen
+#: in the window and what the message calls them (docs/reference_model.md §3.1).
+FIGURES = {"peak_contact_force": ("window_largest_contact_force", "peak force"),
+           "max_normal_stress": ("window_largest_normal_stress", "max normal stress"),
+           "alternating_bending_stress": ("window_largest_alternating_stress", "alternating stress"),
+           "max_deflection": ("window_largest_deflection", "max deflection")}
+
+
+#: The statistic of the fatigue damage beside :data:`FIGURES`: Miner's damage per cycle of the worst fibre's stress
+#: history, counted by rainflow (:func:`fibre_damage`), named as the output it is reported as (per second; its
+#: relative error the same), whose inverse is the fatigue life.
+DAMAGE = "damage_rate"
+
+
+#: Fibres round the pipe, evenly from ψ = 0, whose stress histories the damage is counted on, the worst of them the
+#: figure. Where the bending stands in the hole's frame and the pipe turns through it every fibre sees the same
+#: history; where it turns with the pipe (a whirl) the fibre nearest the worst may lie π/8 off it, its amplitude
+#: cos(π/8) = 0.92 of the worst's, its damage 0.92^5 = 0.67 (and in a chaotic bouncing the fibres are alike on
+#: average).
+DAMAGE_FIBRES = 8
+
+
+#: Standard errors in a figure's window part: a mean's stated error is a bound at about 95 % (two standard errors of a
+#: normal mean), not its 1-sigma scatter, which a figure passes at one point in three; the held-back check of the
+#: stated errors (``study coverage``, docs/validation.md) asks them to cover the true difference at 90 % of points.
+CONFIDENCE = 2.0
+
+
+#: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
+#: this many of their combined standard errors (a two-sided z-test at about 95 %).
+DRIFT_SIGNIFICANCE = 2.0
+
+
+#: A figure not converged grows the window, up to the budget, unless it foresees more than this many times the budget (a
+#: figure that does not, the others still grow it: reference.method.simulate): a forecast from
+#: the scatter of a short record is itself uncertain by about a factor 2 (the standard error of 12 revolutions rests
+#: on three batches), and one that gave up at the first look's forecast left 246 of the default grid's 301 bouncing
+#: points short of 5 % (docs/reference_model.md §3.1).
+FORECAST_SLACK = 2.0
+
+
+#: The largest per-revolution settling ratio :func:`settle_ratio` states: a drift over h revolutions that shrinks
+#: by 1 % a revolution is taken to have 1/(1 − 0.99^h) times itself still to come.
+MAX_SETTLE_RATIO = 0.99
+
+
+def stationary(peaks, impacts, states, scale, n: int) -> bool:
+    """Whether a motion that has not repeated is done with its transient: it bounces — contact onsets in at least a
+    third of the revolutions of each of the last two stretches of n revolutions —, the means of each revolution's
+    largest contact force and of its contact onsets over those two stretches differ by no more than
+    :data:`DRIFT_SIGNIFICANCE` of their combined standard errors (:func:`standard_error`), and the state's changes
+    from one revolution boundary to the next do not shrink beyond doubt (:func:`settle_ratio`): a chaotic
+    bouncing, whose statistics are stationary, and not a motion still settling towards a rest, a slide or a
+    cycle (docs/reference_model.md §3.1). The first n revolutions (the start-up, whose scatter would hide any
+    drift) are never in the two stretches: False before 3n revolutions."""
+    if len(peaks) < 3 * n:
+        return False
+    if min(np.count_nonzero(impacts[-2 * n:-n]), np.count_nonzero(impacts[-n:])) < n / 3:
+        return False  # too few strikes: lying or sliding on the wall, or clear of it, not bouncing
+    for series in (impacts, peaks):
+        before, last = np.asarray(series[-2 * n:-n], float), np.asarray(series[-n:], float)
+        spread = np.hypot(*(standard_error(x) if np.ptp(x) > 0 else 0.0 for x in (before, last)))
+        if abs(np.mean(last) - np.mean(before)) > DRIFT_SIGNIFICANCE * spread:
+            return False
+    return not np.isfinite(settle_ratio(states, scale))
+
+
+def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
+    """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
+    :func:`stresses` (with the quasi-static correction of the modes left out wherever a contact force acts,
+    :func:`quasi_static_applies`; the fields computed once) and the peak contact force, exact at every step of the
+    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]; :data:`DAMAGE` the Miner's
+    damage of each of :data:`DAMAGE_FIBRES` fibres in the cycle (F,), counted by rainflow over the cycles' joined
+    history at the section of their largest alternating stress (:func:`fibre_damage`)."""
+    joined = merge(cycles)
+    correction = quasi_static_applies(model, joined)
+    ends = np.cumsum([c.times.size for c in cycles])
+    segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
+    values = stresses(inputs, model, joined, correction=correction, segments=segments)
+    station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
+    damage = fibre_damage(inputs, model, joined, station, [first for first, _ in segments], correction)
+    return [dict(v, peak_contact_force=float(np.max(c.peak)), correction=correction, start=c.start, **{DAMAGE: d})
+            for v, c, d in zip(values, cycles, damage)]
+
+
+def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float,
+                 correction: bool = True, fibres: int = DAMAGE_FIBRES) -> np.ndarray:
+    """(R, F) the normal stress [Pa] of ``fibres`` fibres of the turning pipe, at ψ = 2πk/F from the fibre that
+    faces +y at t = 0, at the section x = ``station`` [m] over the window's rows: T0/A_s plus
+    (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I (the moments of :func:`periodic_fields`, with the quasi-static
+    correction where ``correction``; the fibre stress whose half range over a cycle is the alternating stress of
+    :func:`stresses`)."""
+    N = model.n_modes
+    x = np.array([float(station)])
+    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.correction_forces(model, j)
+                               if correction else None, x, j)["moment"][:, 0] for j in range(2)]
+    scene = Scene.from_inputs(inputs)
+    r_o, r_i = scene.outer_radius, scene.inner_radius
+    scale = r_o / float(section.second_moment_of_area(r_o, r_i))
+    angle = model.rotary_speed * window.times[:, None] + 2.0 * np.pi * np.arange(fibres)[None, :] / fibres
+    bending = moments[0][:, None] * np.cos(angle) + moments[1][:, None] * np.sin(angle)
+    return scene.axial_tension / model.props["steel_area"] + scale * bending
+
+
+def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float, starts,
+                 correction: bool = True) -> np.ndarray:
+    """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
+    each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
+    counted by rainflow (ASTM E1049, :func:`study.physics.limits.history_damage` with the point's strengths, stress
+    concentration, S-N curve and mean-stress correction), each cycle's damage spread over the stretches the time
+    between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
+    periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
+    stress = fibre_stress(inputs, model, window, station, correction)
+    options = LimitOptions.from_inputs(inputs).keywords()
+    return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
+                            for k in range(stress.shape[1])])
+
+
+def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
+    """The stress outputs of the window from its cycles' (:func:`cycle_values`): the design figures as
+    :func:`settling` states them (the mean over the cycles) and their largest values; the max bending stress
+    the mean of the cycles' too (so that normal = axial + bending holds); the largest shear stress over the
+    window (a bound); positions and times (from the window's start) of the cycle with the
+    largest normal (alternating) stress; the modal tail and quarter fractions the means over the cycles;
+    ``correction`` whether the quasi-static correction was applied in every cycle."""
+    out = {name: s["value"] for name, s in stats.items()}
+    out.update({largest: stats[name]["largest"] for name, (largest, _) in FIGURES.items()})
+    origin = cycles[0]["start"]
+    worst = cycles[int(np.argmax([c["max_normal_stress"] for c in cycles]))]
+    alternating = cycles[int(np.argmax([c["alternating_bending_stress"] for c in cycles]))]
+    sheared = cycles[int(np.argmax([c["max_shear_stress"] for c in cycles]))]
+    out.update(max_bending_stress=float(np.mean([c["max_bending_stress"] for c in cycles])),
+               max_wall_excess=float(np.max([c["max_wall_excess"] for c in cycles])),
+               max_normal_stress_x=worst["max_normal_stress_x"],
+               max_normal_stress_t=worst["max_normal_stress_t"] + worst["start"] - origin,
+               alternating_bending_stress_x=alternating["alternating_bending_stress_x"],
+               max_shear_stress=sheared["max_shear_stress"], max_shear_stress_x=sheared["max_shear_stress_x"],
+               max_shear_stress_t=sheared["max_shear_stress_t"] + sheared["start"] - origin,
+               modal_tail_fraction=float(np.mean([c["modal_tail_fraction"] for c in cycles])),
+               modal_quarter_fraction=float(np.mean([c["modal_quarter_fraction"] for c in cycles])),
+               correction=all(c["correction"] for c in cycles))
+    return out
+
+
+def standard_error(x) -> float:
+    """Standard error of the mean of the series x: the larger of the batch-means estimate (batches of ⌊√n⌋
+    consecutive values, the first values dropped to make them whole; Schmeiser 1982, doi:10.1287/opre.30.3.556),
+    which holds where consecutive values are correlated, and the plain s/√n, which is steadier where the batches
+    are few. 0 for a constant series, NaN for fewer than two values."""
+    x = np.asarray(x, float)
+    if x.size < 2:
+        return float("nan")
+    plain = float(np.std(x, ddof=1) / np.sqrt(x.size))
+    size = max(1, int(np.sqrt(x.size)))
+    count = x.size // size
+    if count < 2:
+        return plain
+    means = x[x.size - count * size:].reshape(count, size).mean(axis=1)
+    return max(plain, float(np.std(means, ddof=1) / np.sqrt(count)))
+
+
+def settle_ratio(states, scale) -> float:
+    """Per-revolution ratio ρ by which the change of the state from one revolution boundary to the next shrinks
+    while the motion settles, taken at the slow end of what the data allow: exp of the least-squares slope of the
+    change's logarithm over the later half of the revolutions run, plus two of its standard errors, at most
+    :data:`MAX_SETTLE_RATIO`. NaN where the changes do not shrink beyond doubt (that bound is 1 or more: a
+    stationary or wandering motion) or there are fewer than six of them."""
+    S = np.asarray(states) / scale
+    change = np.max(np.abs(np.diff(S, axis=0)), axis=1)
+    change = change[change.size // 2:]
+    k = np.flatnonzero(change > 0)
+    if k.size < 6:
+        return float("nan")
+    (slope, _), cov = np.polyfit(k, np.log(change[k]), 1, cov=True)
+    upper = float(np.exp(slope + 2.0 * np.sqrt(cov[0, 0])))
+    return min(upper, MAX_SETTLE_RATIO) if upper < 1.0 else float("nan")
+
+
+def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]],
+             ratio: float = float("nan")) -> dict[str, dict[str, Any]]:
+    """Per design figure (:data:`FIGURES`, and :data:`DAMAGE` where the cycles carry it: per fibre, the fibre of the
+    largest mean over the window taken, ``fibre``), from its per-cycle values over the window and the preceding
+    stretch of equal length (empty when the motion is periodic, or taken as stationary): ``value`` (the mean over
+    the window's cycles), ``largest`` (over them), ``error`` (relative standard error of the mean by batch means),
+    ``drift`` (relative difference of the window's and the preceding stretch's means), ``significant`` (that
+    difference is more than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the
+    window's part of the figure's error: the larger of :data:`CONFIDENCE` standard errors and the drift, and where the motion
+    settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to
+    come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
+    out = {}
+    h = len(window)
+    settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
+    for name in (*FIGURES, DAMAGE):
+        if name not in window[0]:
+            continue
+        x = np.array([v[name] for v in window], float)
+        fibre = None
+        if x.ndim == 2:  # the damage per fibre: the fibre of the largest mean over the window
+            fibre = int(np.argmax(np.mean(x, axis=0)))
+            x = x[:, fibre]
+        value, largest = float(np.mean(x)), float(np.max(x))
+        size = max(abs(value), 1e-300)
+        error = standard_error(x) if np.ptp(x) > 0 else 0.0
+        drift, significant = 0.0, False
+        if preceding:
+            before = np.array([v[name] for v in preceding], float)
+            before = before[:, fibre] if fibre is not None else before
+            change = abs(value - float(np.mean(before)))
+            spread = np.hypot(np.nan_to_num(error, nan=np.inf), standard_error(before) if np.ptp(before) > 0 else 0.0)
+            drift, significant = change / size, bool(change > DRIFT_SIGNIFICANCE * spread)
+        error = error / size if np.isfinite(error) else np.inf
+        part = max(CONFIDENCE * error, drift / (1.0 - ratio**h) if settles else drift)
+        out[name] = dict(value=value, largest=largest, error=error, drift=drift, significant=significant,
+                         window=float(part))
+        if fibre is not None:
+            out[name]["fibre"] = fibre
+    return out
+
+
+#: The figures whose modal part :func:`modal_check` measures: the design figures, the bending stress and the deflection.
+MODAL_FIGURES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_bending_stress",
+                 "max_deflection")
+
+
+def quasi_static_ratio(model: WhirlModel, window: Window) -> float:
+    """(2π/(ω_{N+1} T_c))², at most 1: how far the first mode left out is from responding statically to the window's
+    contacts, T_c the shortest mean contact (contact time over onsets per touching point; the window's length for a
+    contact held throughout). A mode of frequency ω under a force that changes over a time T responds statically but
+    for a remainder of relative size (2π/(ω T))² (its static response's second derivative over ω²); a held contact's
+    is nil, an impact's (shorter than that mode's period) the whole. 0 without contact."""
+    touching = window.contact_time > 0
+    if not np.any(touching):  # clear of the wall: the joints' inertia forces corrected, their frequency Ω's
+        if model.joint_points is None or np.any(window.onsets > 0):
+            return 0.0
+        return float(min(1.0, (model.rotary_speed / model.first_left_out()) ** 2))
+    durations = window.contact_time[touching] / np.maximum(window.onsets[touching], 1)
+    ratio = 2.0 * np.pi / (model.first_left_out() * float(np.min(durations)))
+    return float(min(1.0, ratio**2))
+
+
+def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
+    """Whether the quasi-static correction of the modes left out (:func:`static_correction`) enters the window's
+    stresses: wherever a contact force acts in it. It is applied to every contact force at every instant, in step
+    with the residual flexibility the contact's spring has in series (:func:`residual_flexibility`), and is not
+    switched on or off by the contacts' durations (docs/reference_model.md §2.1, §3). Without contact: where the tool
+    joints' mass is lumped (their inertia forces, point loads of the motion's own frequencies, are completed
+    statically: :func:`joint_inertia_forces`), else False (nothing to correct)."""
+    return bool(np.any(window.contact_time > 0) or np.any(window.onsets > 0) or model.joint_points is not None)
+
+
+def modal_check(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
+                cycles: list[Mapping[str, Any]]) -> dict[str, float]:
+    """The modal part of each figure's error (relative), measured on the run (docs/reference_model.md §3.1): the size
+    of what the modes left out were given — the quasi-static correction of the fields and the residual flexibility in
+    series with the contacts (:func:`residual_flexibility`) — times :func:`quasi_static_ratio`, how far they are from
+    responding statically (1 at impacts: the whole correction; nil for held contacts, where it is exact). Stresses
+    and deflection: the cycles' figures recomputed from the same motion and forces without the correction, the mean
+    over the cycles of each cycle's difference over the figure's mean (the largest deflection: its difference).
+    Peak contact force: at each cycle's largest recorded force, the Hertz force K d^{3/2} at the contact's total
+    approach d against the series force there (:func:`series_contact`), the mean of their relative differences: how
+    much the flexibility of the modes left out softened the contact. Both vanish as the modes grow (the residual
+    flexibility like N⁻³). Zeros without contact."""
+    out = dict.fromkeys(MODAL_FIGURES, 0.0)
+    ratio = quasi_static_ratio(model, window)
+    if not cycles or window.times.size == 0 or ratio == 0.0:
+        return out
+    first = np.searchsorted(window.times, [c["start"] for c in cycles])
+    segments = list(zip(first, list(first[1:]) + [window.times.size]))
+    plain = stresses(inputs, model, window, correction=False, segments=segments)
+    for name in ("max_normal_stress", "alternating_bending_stress", "max_bending_stress"):
+        mean = float(np.mean([c[name] for c in cycles]))
+        if name == "alternating_bending_stress":  # relative to the bending it alternates within (convergence)
+            mean = max(mean, float(np.mean([c["max_bending_stress"] for c in cycles])))
+        if mean > 0:
+            out[name] = ratio * float(np.mean([abs(a[name] - c[name]) for a, c in zip(plain, cycles)]) / mean)
+    largest = max(c["max_deflection"] for c in cycles)
+    if largest > 0:
+        out["max_deflection"] = ratio * abs(max(a["max_deflection"] for a in plain) - largest) / largest
+    # the peak force: the Hertz force at each cycle's largest recorded force's total approach against the series one
+    N = model.n_modes
+    flexibility = model.flexibility if np.any(model.flexibility > 0) else residual_flexibility(model)
+    fn = window.forces[:, :, 2]
+    changes = []
+    for a, b in segments:
+        if b <= a or not np.any(fn[a:b] > 0):
+            continue
+        row, p = np.unravel_index(int(np.argmax(fn[a:b])), fn[a:b].shape)
+        q = window.states[a + row]
+        d = float(np.hypot(model.phi[p] @ q[:N], model.phi[p] @ q[N:2 * N]) - model.clearance[p])
+        if d <= 0:
+            continue
+        series = float(series_contact(np.array([d]), model.stiffness[p], flexibility[p])[1][0])
+        hertz = float(hertz_force(d, model.stiffness[p]))
+        if model.law == 0 and series > 0:
+            changes.append(hertz / series - 1.0)
+    out["peak_contact_force"] = ratio * float(np.mean(changes)) if changes else 0.0
+    return out
+
+
+#: A bending stress below this share of the max normal stress is nothing (the rounding of a string whirling as a
+#: rigid body): its error parts are counted relative to the normal stress (:func:`convergence`).
+NEGLIGIBLE_BENDING = 1e-9
+
+
+def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
+                stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None,
+                modal: Mapping[str, float] | None = None) -> dict:
+    """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
+    larger of the standard error and the drift from the preceding stretch; the periodicity tolerance when the
+    motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
+    which is whole but with ``reference_damping = "viscous"``),
+    ``modes`` (measured on the run, :func:`modal_check`, given as ``modal``; 0 where not given); ``total`` their
+    sum; ``equivalent`` the total as the stress error the point's ``error_estimate`` counts (:func:`stress_equivalent`:
+    the damage's through the S-N exponent, the peak force's as its share of ``solver.force_tolerance``). The
+    alternating stress's error is relative to the larger of it and the max bending stress."""
+    option = ReferenceOptions.from_inputs(inputs)
+    # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
+    whole = residual is not None and option.reference_damping != "viscous"
+    integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
+    normal = values["max_normal_stress"]
+    modes = {name: float((modal or {}).get(name, 0.0)) for name in FIGURES}
+    # an alternating stress far below the bending stress (a synchronous whirl's remnant) is counted relative to the
+    # bending it alternates within, as the modal part is: its relative size alone would make noise of nothing; and a
+    # bending stress below NEGLIGIBLE_BENDING of the normal stress (the rounding of a string whirling as a rigid body,
+    # 1e-11 Pa) relative to that
+    floor = NEGLIGIBLE_BENDING * normal
+    if values["max_bending_stress"] < floor:
+        modes = {name: 0.0 for name in modes}
+    scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
+                                               floor)}
+    # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
+    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
+    # the peak force is held to its own tolerance: its error counts in the point's as its share of it (stress_equivalent)
+    force_share = (study_tolerance(inputs) if periodic else statistical_tolerance(inputs)) / force_tolerance(inputs)
+    modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
+    # the damage rate goes as the alternating stress to the power m: its window part, as the stress error that makes
+    # it, is counted relative to the bending the stress alternates within, as the alternating stress's is (a
+    # synchronous whirl's remnant of tens of Pa has a damage rate whose relative scatter is large and means nothing)
+    alternating_share = min(1.0, values["alternating_bending_stress"] / scale["alternating_bending_stress"]
+                            if scale["alternating_bending_stress"] > 0 else 1.0)
+    out = {}
+    for name, s in stats.items():
+        share = abs(s["value"]) / scale[name] if scale.get(name, 0) > 0 else 1.0
+        window_part = float(option.reference_tolerance) if periodic else s["window"] * share
+        if name == DAMAGE and not periodic:
+            window_part = (1.0 + stress_equivalent(DAMAGE, s["window"], exponent) * alternating_share) ** exponent - 1.0
+        own = (1.0 + integrator) ** exponent - 1.0 if name == DAMAGE else integrator
+        parts = dict(window=window_part, integrator=own, modes=modes[name])
+        total = float(sum(parts.values()))
+        out[name] = dict(parts, total=total, dominant=max(parts, key=parts.get),
+                         equivalent=stress_equivalent(name, total, exponent, force_share))
+    return out
+
+
+def stress_equivalent(name: str, error: float, exponent: float, force_share: float = 1.0) -> float:
+    """A figure's relative error as the stress error that makes it: the damage's (:data:`DAMAGE`) (1 + e)^(1/m) − 1
+    (D ∝ σ^m); the peak contact force's its share of its own tolerance (``solver.force_tolerance``) in the point's,
+    e × ``force_share`` (the point's tolerance over the force's); the stress figures' the error itself. The point's
+    ``error_estimate`` is the largest of these, held against the tolerance as a stress error."""
+    if name == DAMAGE:
+        return float((1.0 + error) ** (1.0 / exponent) - 1.0)
+    return float(error * force_share) if name == "peak_contact_force" else float(error)
+
+
+def figure_tolerance(name: str, tolerance: float, exponent: float, force: float | None = None) -> float:
+    """The relative error a figure may have at the stress ``tolerance``: the damage's (:data:`DAMAGE`)
+    (1 + tolerance)^m − 1 (27.6 % for 5 % on m = 5), the peak contact force's its own tolerance ``force``
+    (``solver.force_tolerance``, :func:`study.solvers.model.options.force_tolerance`; the stress tolerance where None), the
+    others' the tolerance."""
+    if name == DAMAGE:
+        return float((1.0 + tolerance) ** exponent - 1.0)
+    return float(force) if name == "peak_contact_force" and force is not None else float(tolerance)
+
+
+def whirl_measure(model: WhirlModel, window: Window) -> dict[str, Any]:
+    """Whirl rate over Ω of the most-touching contact point (midspan without contact) and its verdict:
+    no_contact; sliding (in contact nearly all the time, |rate| < 0.05 Ω: lying on the wall); forward
+    (rate > 0.5 Ω); backward (rate < −0.5 Ω); otherwise bouncing (impacts without a settled whirl)."""
+    N = model.n_modes
+    if np.any(window.contact_time > 0):
+        p = int(np.argmax(window.contact_time))
+        shape = model.phi[p]
+        where = float(model.points[p])
+    else:
+        p, where = -1, 0.5 * model.span
+        shape = model.shapes(where)[0]
+    y = window.states[:, :N] @ shape
+    w = window.states[:, N:2 * N] @ shape
+    angle = np.unwrap(np.arctan2(w, y))
+    duration = window.times[-1] - window.times[0]
+    ratio = float((angle[-1] - angle[0]) / (model.rotary_speed * duration)) if duration > 0 else float("nan")
+    if not np.any(window.onsets > 0) and not np.any(window.contact_time > 0):
+        verdict = "no_contact"
+    elif abs(ratio) < SLIDING_RATE and window.any_contact_time >= SLIDING_CONTACT * duration:
+        verdict = "sliding"
+    elif ratio > 0.5:
+        verdict = "forward"
+    elif ratio < -0.5:
+        verdict = "backward"
+    else:
+        verdict = "bouncing"
+    return dict(whirl_frequency_ratio=ratio, whirl=verdict, whirl_point=where)
