@@ -247,19 +247,15 @@ SOLVERS = ROOT / "study" / "solvers"
 LAYER_RULES = {"model": ("methods", "kernels"), "kernels": ("methods",)}
 #: The ladder, which runs the other methods by design.
 LADDER = "auto"
-#: The methods that build on another, (importer, imported) -> why; every other sideways import fails the test.
+#: The methods that build on another, (importer, imported) -> why; every other sideways import fails the test. A method
+#: that runs another at the same point reaches it through the registry (study.solvers.method), not by import.
 METHOD_EDGES = {
-    ("crosscheck", "periodic"): "it compares the periodic solution with the time domain's at one point: it runs both",
-    ("crosscheck", "timedomain"): "it compares the periodic solution with the time domain's at one point: it runs both",
-    ("refcheck", "periodic"): "reference-check compares the fast method with the reference model: it runs both",
-    ("refcheck", "reference"): "reference-check compares the fast method with the reference model: it runs both",
+    ("crosscheck", "periodic"): "it rebuilds fast's impact at its span (the periodic methods' impact_model, Options)",
+    ("crosscheck", "timedomain"): "it replays the periodic solution through the time domain's modal model and "
+                                  "integrator (build_model, simulate, stresses), not through the method",
     ("freewhirl", "reference"): "the free whirl is solved on the reference model's modes and contact layout",
     ("sliding", "reference"): "the sliding rest is the reference model's static equilibrium (its WhirlModel)",
     ("reference", "sliding"): "the reference model's integration starts from the sliding rest in a deviated hole",
-    ("reference", "timedomain"): "the reference model's settled period is the time domain's test (settled_period)",
-    ("sdof", "periodic"): "the oscillator's stiffness is the span's first natural frequency (impact_model)",
-    ("timedomain", "periodic"): "the time domain's stresses are the periodic methods' stresses_from_fields",
-    ("timedomain", "sdof"): "the time domain's drive amplitude is the oscillator's equivalent_parameters",
 }
 
 

@@ -115,16 +115,16 @@ def test_a_dropped_drag_that_is_not_small_goes_to_the_damped_solution(monkeypatc
 
     point = config.load(ROOT / "configs" / "paper.toml").point()  # the gate reads its scene
     calls = []
-    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "terms_not_small", calls), dict),
-                                                   "series": (rung("series", "ok", calls), dict),
-                                                   "damped": (rung("damped", "ok", calls), dict)})
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "terms_not_small", calls), auto.as_is),
+                                                   "series": (rung("series", "ok", calls), auto.as_is),
+                                                   "damped": (rung("damped", "ok", calls), auto.as_is)})
     result = auto.solve_periodic(point)
     assert calls == ["fast", "damped"] and result.method == "damped" and result.status == "ok"
     assert result.message.startswith("periodic: damped answered after fast: terms_not_small")
     calls.clear()
-    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "no_span", calls), dict),
-                                                   "series": (rung("series", "ok", calls), dict),
-                                                   "damped": (rung("damped", "ok", calls), dict)})
+    monkeypatch.setitem(auto.LADDERS, "periodic", {"fast": (rung("fast", "no_span", calls), auto.as_is),
+                                                   "series": (rung("series", "ok", calls), auto.as_is),
+                                                   "damped": (rung("damped", "ok", calls), auto.as_is)})
     assert auto.solve_periodic(point).method == "fast" and calls == ["fast"]  # nothing above mends no_span
 
 

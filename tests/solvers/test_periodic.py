@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from study.solvers.kernels import extremes
 from study.solvers.methods.periodic import impact_model, span_search
 from study.solvers.methods import periodic
 
@@ -25,7 +26,7 @@ def test_poles_are_where_a_natural_frequency_meets_a_harmonic(paper_inputs, patt
     modes = impact_model.odd_modes(9)
     poles = impact_model.resonant_spans(scene, modes, 10.0, 300.0)
     assert poles.size > 10 and np.all(np.diff(poles) > 0)
-    nu = impact_model.natural_frequencies(scene, poles, modes) * scene.period / (2 * np.pi)  # (poles, modes)
+    nu = scene.natural_frequencies(poles, modes) * scene.period / (2 * np.pi)  # (poles, modes)
     nearest = np.round(nu)
     hit = np.abs(nu - nearest) < 1e-9 * nu
     if pattern == "alternating":
@@ -239,24 +240,24 @@ def test_field_extremes_ignore_nan_as_numpy_does():
     wide = rng.normal(size=(40, 30))
     field = wide[:, 10:20]
     field[5, 3] = np.nan
-    index, largest, smallest = periodic._field_extremes(field, columns=True)
+    index, largest, smallest = extremes._field_extremes(field, columns=True)
     assert index == np.unravel_index(np.nanargmax(np.abs(field)), field.shape)
     np.testing.assert_array_equal(largest, field.max(axis=0))  # NaN in column 3
     np.testing.assert_array_equal(smallest, field.min(axis=0))
     with pytest.raises(ValueError, match="all the field's values are NaN"):
-        periodic._field_extremes(np.full((3, 4), np.nan))
+        extremes._field_extremes(np.full((3, 4), np.nan))
 
 
 @pytest.mark.parametrize("jitter", [-1e-13, 0.0, 1e-13])
 def test_field_extremes_report_the_first_of_equal_maxima(jitter):
-    # source: the definition (periodic.TIE_TOLERANCE) - a maximum reached twice, at t index 7 and 31
+    # source: the definition (extremes.TIE_TOLERANCE) - a maximum reached twice, at t index 7 and 31
     # (a symmetric motion), differing only by rounding: the earlier one is reported whichever is larger.
     field = np.zeros((40, 6))
     field[7, 2] = -5.0
     field[31, 4] = 5.0 * (1.0 + jitter)
-    assert periodic._field_extremes(field)[0] == (7, 2)
+    assert extremes._field_extremes(field)[0] == (7, 2)
     field[31, 4] = 5.0 * (1.0 + 1e-6)  # a real difference still wins
-    assert periodic._field_extremes(field)[0] == (31, 4)
+    assert extremes._field_extremes(field)[0] == (31, 4)
 
 
 @pytest.mark.parametrize("low, high", [(5.2035, 5.2065), (3.1900, 3.1930), (4.7480, 4.7520)])

@@ -8,8 +8,16 @@ import pytest
 from study import config
 from study.physics import oscillator, section
 from study.solvers.methods import sdof
+from study.solvers.model.point import DesignPoint
+from study.solvers.model.equivalent import equivalent_parameters as equivalent_of
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
+def equivalent_parameters(inputs):
+    """The span's one-degree-of-freedom model at a point given by its inputs (its Scene and sdof options)."""
+    point = DesignPoint.from_inputs(inputs)
+    return equivalent_of(point.scene, point.sdof)
 
 
 @pytest.fixture(scope="module")
@@ -18,7 +26,7 @@ def point():
 
 
 def test_equivalent_parameters_of_the_span(point):
-    par = sdof.equivalent_parameters(point)
+    par = equivalent_parameters(point)
     props = par.scene.props
     L, M = point["span_length"], props["mass_per_length"]
     w1 = float(section.natural_frequencies(L, props["bending_stiffness"], props["effective_tension"], M)[0])
@@ -31,7 +39,7 @@ def test_equivalent_parameters_of_the_span(point):
     # default drive: mean impact force of the prescribed closure, two impacts per revolution
     tau = 2 * np.pi / Om
     assert par.drive_amplitude == pytest.approx(2 * par.mass * 1.5 * Om * c / tau)
-    other = sdof.equivalent_parameters({**point, "sdof_mass": "momentum", "sdof_damping": "none",
+    other = equivalent_parameters({**point, "sdof_mass": "momentum", "sdof_damping": "none",
                                         "drive_amplitude": 123.0, "span_length": 40.0})
     assert other.mass == pytest.approx(2 * M * 40.0 / np.pi) and other.damping == 0.0
     assert other.drive_amplitude == 123.0
@@ -42,7 +50,7 @@ def test_equivalent_parameters_of_the_span(point):
 def test_stable_alternating_orbit_satisfies_the_impact_map(point):
     r = sdof.solve(point)
     assert r.status == "ok" and r.extras["stability"] == "stable", r.message
-    p = sdof.impact_params(sdof.equivalent_parameters(point))
+    p = sdof.impact_params(equivalent_parameters(point))
     v, tau, T = r.values["impact_velocity"], r.extras["orbit_phase"], 2 * np.pi / point["rotary_speed"]
     # the flight from +c (leaving at -e v) reaches -c half a revolution later at speed v
     st = oscillator.flight_state(tau + T / 2, (p.gap, -p.restitution * v), p, tau)
@@ -59,7 +67,7 @@ def test_stable_alternating_orbit_satisfies_the_impact_map(point):
 
 
 def test_half_map_jacobian_against_finite_differences(point):
-    p = sdof.impact_params(sdof.equivalent_parameters(point))
+    p = sdof.impact_params(equivalent_parameters(point))
     o = [o for o in sdof.symmetric_orbits(p) if o["verdict"] == "stable"][0]
     T, e = o["period"], p.restitution
 
@@ -82,7 +90,7 @@ def test_one_wall_orbit_satisfies_the_one_wall_impact_map(point):
     assert r.status == "ok" and r.extras["stability"] == "stable", r.message
     assert r.values["impacts_per_revolution"] == 1
     assert sdof.solve({**inputs, "impact_pattern": "alternating"}).status == "incomplete"
-    p = sdof.impact_params(sdof.equivalent_parameters(inputs))
+    p = sdof.impact_params(equivalent_parameters(inputs))
     ev = oscillator.impact_map(r.extras["orbit_phase"], r.values["impact_velocity"], p)
     T = 2 * np.pi / point["rotary_speed"]
     assert ev.time == pytest.approx(r.extras["orbit_phase"] + T, rel=1e-9)
@@ -109,16 +117,18 @@ def test_a_side_force_holding_the_span_on_the_wall_is_sticking(point):
     # force was left out of the net force)
     inputs = {**point, "impact_pattern": "one_wall", "span_length": 20.0, "drive_amplitude": 100.0,
               "side_force": 1e3}
-    par = sdof.equivalent_parameters(inputs)
+    par = equivalent_parameters(inputs)
     assert par.side_force - par.drive_amplitude > par.stiffness * par.clearance
     r = sdof.solve(inputs)
     assert r.status == "sticking" and "(sticking)" in r.message
 
 
 def test_solve_reads_its_options_from_the_inputs_once(point, monkeypatch):
-    # issue 35: the screen's options are built once, at solve, and passed to equivalent_parameters (each read them
-    # from the inputs again before: two builds a point)
+    # issue 35: the screen's options are built once, with the design point, and passed to equivalent_parameters (each
+    # read them from the inputs again before: two builds a point)
+    from study.solvers.model.options import SdofOptions
+
     builds = []
-    read = sdof.SdofOptions.from_inputs
-    monkeypatch.setattr(sdof.SdofOptions, "from_inputs", classmethod(lambda cls, inputs: builds.append(cls) or read(inputs)))
-    assert sdof.solve(point).status == "ok" and builds == [sdof.SdofOptions]
+    read = SdofOptions.from_inputs
+    monkeypatch.setattr(SdofOptions, "from_inputs", classmethod(lambda cls, inputs: builds.append(cls) or read(inputs)))
+    assert sdof.solve(point).status == "ok" and builds == [SdofOptions]

@@ -13,7 +13,8 @@ import pytest
 
 from study import config
 from study.solvers import METHODS, STATUS, solve_point
-from study.solvers.methods import sdof
+from study.solvers.model.equivalent import equivalent_parameters
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -29,7 +30,8 @@ SERIES_150 = {"rotary_speed": 150 * RPM, "restitution": 0.2, "impact_pattern": "
 def _resonant(default):
     """The 345-ft span undamped, turned at its own first natural frequency (the speed found from the span)."""
     undamped = {**default, "sdof_damping": "none"}
-    return {**undamped, "rotary_speed": sdof.equivalent_parameters(undamped).omega1}
+    point = DesignPoint.from_inputs(undamped)
+    return {**undamped, "rotary_speed": equivalent_parameters(point.scene, point.sdof).omega1}
 
 
 def _liar(inputs):

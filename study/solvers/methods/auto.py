@@ -22,6 +22,9 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 - ``reference``: the section in both lateral directions through Hertz contact with friction — a fraction of a
   second to seconds; it mends whatever the cheaper rungs could not answer.
 
+Every rung is given the same typed design point (:class:`~study.solvers.model.point.DesignPoint`, built once by
+:func:`study.solvers.solve_point`); the series gets it with its own harmonics' tolerance.
+
 The free whirl and the sliding state depend on no restitution (``INDEPENDENT_OF`` in their modules): their answers
 are kept by the other inputs (:func:`solve_rung`), so a sweep over the restitution solves them once.
 
@@ -36,10 +39,10 @@ solution where the undamped one's dropped drag is not small (``terms_not_small``
 from __future__ import annotations
 
 import copy
-import functools
 import sys
 import threading
 from collections import OrderedDict
+from dataclasses import replace
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -47,23 +50,22 @@ import numpy as np
 from study.solvers.methods.periodic import damped, fast, series
 from study.solvers.methods import freewhirl, reference, sliding
 from study.solvers.model import gate
-from study.solvers.model.options import SeriesOptions, Tolerances, study_tolerance
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import Scene
 
-Solve = Callable[[Mapping[str, Any]], PointResult]
+Solve = Callable[[DesignPoint], PointResult]
 #: Statuses that are properties of the point: no model answers them differently.
 FINAL = ("buckled", "incomplete")
 
 
-def _error_only(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+def _error_only(result: PointResult, point: DesignPoint) -> bool:
     """The span held with doubled modes and only the error estimate is above the tolerance."""
-    tolerance = study_tolerance(inputs)
+    tolerance = point.tolerances.tolerance
     return (result.status == "not_converged" and result.extras.get("span_converged", False)
             and result.error_estimate is not None and result.error_estimate > tolerance)
 
 
-def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+def _not_final(result: PointResult, point: DesignPoint) -> bool:
     """Anything but a property of the point: the reference model answers what the free whirl cannot."""
     return result.status not in FINAL
 
@@ -74,32 +76,37 @@ def _not_final(result: PointResult, inputs: Mapping[str, Any]) -> bool:
 SLIDING_STANDS_BELOW = 0.05
 
 
-def _not_final_nor_sliding(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
-    return _not_final(result, inputs)
+    return _not_final(result, point)
 
 
-def _drag_not_small(result: PointResult, inputs: Mapping[str, Any]) -> bool:
+def _drag_not_small(result: PointResult, point: DesignPoint) -> bool:
     """The undamped solution answered but its dropped drag term is not small: the damped solution keeps it."""
     return result.status == "terms_not_small"
 
 
-def _series_inputs(inputs: Mapping[str, Any]) -> dict[str, Any]:
+def as_is(point: DesignPoint) -> DesignPoint:
+    """The point as the ladder was given it."""
+    return point
+
+
+def _series_point(point: DesignPoint) -> DesignPoint:
     """The series doubles its harmonics until the study's tolerance."""
-    tolerance = study_tolerance(inputs)
-    return {**inputs, "series_tolerance": SeriesOptions.from_inputs(inputs).series_tolerance or tolerance}
+    tolerance = point.series.series_tolerance or point.tolerances.tolerance
+    return point.with_series(replace(point.series, series_tolerance=tolerance))
 
 
-#: The hierarchies, cheapest first: ladder -> {method name: (solve, how its inputs are made from the point's)}.
-LADDERS: dict[str, dict[str, tuple[Solve, Callable[[Mapping[str, Any]], Mapping[str, Any]]]]] = {
-    "auto": {"free-whirl": (freewhirl.solve, dict), "sliding": (sliding.solve, dict), "reference": (reference.solve, dict)},
-    "periodic": {"fast": (fast.solve, dict), "series": (series.solve, _series_inputs), "damped": (damped.solve, dict)},
+#: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's)}.
+LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint], DesignPoint]]]] = {
+    "auto": {"free-whirl": (freewhirl.run, as_is), "sliding": (sliding.run, as_is), "reference": (reference.run, as_is)},
+    "periodic": {"fast": (fast.run, as_is), "series": (series.run, _series_point), "damped": (damped.run, as_is)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.
-MENDS: dict[str, Callable[[PointResult, Mapping[str, Any]], bool]] = {
+MENDS: dict[str, Callable[[PointResult, DesignPoint], bool]] = {
     "sliding": _not_final,
     "reference": _not_final_nor_sliding,
     "series": _error_only,
@@ -121,20 +128,20 @@ def clear_memo() -> None:
         _memo.clear()
 
 
-def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
-    """``method(inputs)``, or a copy of its answer at inputs that differ only in what the method does not depend on
-    (:data:`MEMO_SIZE`)."""
+def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
+    """``method(point)``, or a copy of its answer at a point whose inputs differ only in what the method does not
+    depend on (:data:`MEMO_SIZE`)."""
     ignored = getattr(sys.modules[method.__module__], "INDEPENDENT_OF", ())
     if not ignored:
-        return method(inputs)
+        return method(point)
     key = (method.__module__, method.__qualname__,
-           tuple(sorted((name, repr(value)) for name, value in inputs.items() if name not in ignored)))
+           tuple(sorted((name, repr(value)) for name, value in point.inputs.items() if name not in ignored)))
     with _memo_lock:
         kept = _memo.get(key)
         if kept is not None:
             _memo.move_to_end(key)
     if kept is None:
-        result = method(inputs)
+        result = method(point)
         with _memo_lock:
             _memo[key] = copy.deepcopy(result)  # as answered, before the gate and the climb add to it
             if len(_memo) > MEMO_SIZE:
@@ -144,16 +151,14 @@ def solve_rung(method: Solve, inputs: Mapping[str, Any]) -> PointResult:
     return result
 
 
-def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
+def climb(ladder: str, point: DesignPoint) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     tried: list[PointResult] = []
-    # what the gate reads of the point, built once where it first judges an ok answer
-    point = functools.cache(lambda: (Scene.from_inputs(inputs), Tolerances.from_inputs(inputs)))
     for name, (method, prepare) in LADDERS[ladder].items():
-        if tried and not MENDS[name](tried[-1], inputs):
+        if tried and not MENDS[name](tried[-1], point):
             continue
-        answer = solve_rung(method, prepare(inputs))
-        tried.append(gate.admit(answer, *point()) if answer.status == "ok" else answer)
+        answer = solve_rung(method, prepare(point))
+        tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
         if tried[-1].status == "ok":
             break
     result = tried[-1]
@@ -174,12 +179,22 @@ def climb(ladder: str, inputs: Mapping[str, Any]) -> PointResult:
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """``auto`` at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The reference model's hierarchy: the free whirl where the pipe stays clear, the sliding state where it lies
     on the wall, else the reference model."""
-    return climb("auto", inputs)
+    return climb("auto", point)
 
 
 def solve_periodic(inputs: Mapping[str, Any]) -> PointResult:
+    """``periodic`` at a point given by its SI inputs (:func:`run_periodic` of its :class:`DesignPoint`)."""
+    return run_periodic(DesignPoint.from_inputs(inputs))
+
+
+def run_periodic(point: DesignPoint) -> PointResult:
     """The paper's periodic solution: ``fast``, then ``series`` where only its error estimate failed, then
     ``damped`` where the dropped drag is not small."""
-    return climb("periodic", inputs)
+    return climb("periodic", point)

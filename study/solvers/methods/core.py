@@ -15,7 +15,8 @@ import numpy as np
 
 from study.physics import hertz, section
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import Scene, make_scene
+from study.solvers.model.point import DesignPoint
+from study.solvers.model.scene import Scene
 
 # Modes reported for the natural frequencies of a given span.
 FREQUENCY_MODES = (1, 3, 5)
@@ -24,7 +25,7 @@ FREQUENCY_MODES = (1, 3, 5)
 def impact(scene: Scene, span_length: float, impact_velocity: float, axial_curvature: float) -> dict[str, float]:
     """Hertz impact of the equivalent mass and Lee's pulse for a span and impact velocity.
 
-    scene: the design point's (:func:`study.solvers.model.scene.make_scene`: section, radii, contact compliance,
+    scene: the design point's (:class:`study.solvers.model.scene.Scene`: section, radii, contact compliance,
     restitution); span_length L [m], impact_velocity V_p [m/s], axial_curvature κ of the pipe at the contact
     [1/m]. Returns the impact quantities (SI). The contact ellipse is evaluated at the pulse's peak
     force (paper §IV C: the ellipse is sized by the maximum force); whether it is a Hertz contact is
@@ -56,6 +57,11 @@ def impact(scene: Scene, span_length: float, impact_velocity: float, axial_curva
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The ``core`` method at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The ``core`` method: the physics core at a given span, or span-independent parts only.
 
     With ``span_length`` given, the span's first natural frequency and, under the prescribed
@@ -64,7 +70,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     contact and missing inputs are statuses.
     """
     result = PointResult(method="core")
-    scene = make_scene(inputs)
+    scene = point.scene
     props = scene.props
     result.values.update(props)
     span = scene.span_length

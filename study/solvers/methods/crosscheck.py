@@ -42,11 +42,13 @@ import numpy as np
 
 from study.physics import beam, contact, hertz
 from study.solvers.kernels import event_driven, orbit, trajectory
-from study.solvers.methods.periodic import fast, impact_model
+from study import solvers
+from study.solvers.methods.periodic import impact_model
 from study.solvers.methods import periodic, timedomain
 from study.solvers.model.options import CrosscheckOptions
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import Scene, make_scene
+from study.solvers.model.scene import Scene
 
 METHOD = "crosscheck"
 DEFAULT_TOLERANCE = CrosscheckOptions.default("check_tolerance")
@@ -68,7 +70,7 @@ def periodic_state(scene: Scene, impact: impact_model.Impact, options: periodic.
     (the load pushes the pipe off the wall, along −y)."""
     L = impact.span_length
     odd = impact_model.odd_modes(modes)
-    omega = impact_model.natural_frequencies(scene, L, odd)
+    omega = scene.natural_frequencies(L, odd)
     g = beam.modal_load_factors(odd, L, impact.contact_half_length, options.load_shape)
     amp = -impact.impulse * g / (0.5 * scene.props["mass_per_length"] * L)
     r = beam.modal_periodic_response(np.array([[t]]), omega, impact.contact_duration, scene.period, scene.pattern)
@@ -252,18 +254,23 @@ def one_mass_peak_force(mass: float, velocity: float, stiffness: float, hysteres
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The ``crosscheck`` method (module docstring)."""
-    result = fast.solve(inputs)
+    """The crosscheck at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
+    """The ``crosscheck`` method (module docstring): the ``fast`` method (through the registry,
+    :func:`study.solvers.method`) at the point, replayed."""
+    result = solvers.method("fast")(point)
     result.method = METHOD
     if result.status != "ok":
         result.message = f"no periodic solution to check: {result.message}"
         return result
-    options = periodic.options_from(inputs)
-    scene = make_scene(inputs)
+    options, scene, inputs = point.periodic, point.scene, point.inputs
     v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
     impact = impact_model.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
                                 half_length=v["contact_half_length"])
-    tolerance = float(CrosscheckOptions.from_inputs(inputs).check_tolerance)
+    tolerance = float(point.check.check_tolerance)
     td, reasons = check(inputs, scene, impact, options, v, tolerance)
     if td is not None:
         v.update(ratios(v, td))

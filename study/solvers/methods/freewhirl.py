@@ -28,7 +28,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import section, well, whirl
-from study.solvers.model.options import ReferenceOptions, study_tolerance
+from study.solvers.model.options import ReferenceOptions
+from study.solvers.model.point import DesignPoint
 from study.solvers.methods.reference import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
                                              mode_wavenumbers, side_loads)
 from study.solvers.model.result import REGIMES, PointResult
@@ -104,12 +105,17 @@ def clearances(scene: Scene, x: np.ndarray, option: ReferenceOptions) -> tuple[n
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The free whirl at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The free steady whirl and sag of the section, or ``out_of_scope`` where it would touch the wall."""
     result = PointResult(method=METHOD)
-    tolerance = study_tolerance(inputs)
-    scene = Scene.from_inputs(inputs)
+    tolerance = point.tolerances.tolerance
+    scene = point.scene
     props = dict(scene.props)
-    option = ReferenceOptions.from_inputs(inputs)
+    option = point.reference
     result.values.update(props)
     L = float(option.section_length)
     # the periodic section's first bending mode has k = 2π/L: the pinned half-length's Euler load

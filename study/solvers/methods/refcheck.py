@@ -24,9 +24,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.solvers.methods.periodic import fast
-from study.solvers.methods import reference
-from study.solvers.model.options import CrosscheckOptions
+from study import solvers
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 METHOD = "reference-check"
@@ -64,10 +63,16 @@ def verdict(periodic_values: Mapping[str, float] | None, reference_values: Mappi
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The ``reference-check`` method (module docstring)."""
-    result = fast.solve(inputs)
+    """The reference check at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
+    """The ``reference-check`` method (module docstring): ``fast`` and ``reference`` at the same point, each through
+    the registry (:func:`study.solvers.method`)."""
+    result = solvers.method("fast")(point)
     result.method = METHOD
-    ref = reference.solve(inputs)
+    ref = solvers.method("reference")(point)
     result.extras["reference"] = dict(status=ref.status, message=ref.message, **ref.values)
     if ref.status != "ok":
         result.status = ref.status
@@ -80,7 +85,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     if not solved and result.status != "no_span":
         result.message = f"no periodic solution to compare: {result.message}"
         return result
-    tolerance = float(CrosscheckOptions.from_inputs(inputs).check_tolerance)
+    tolerance = float(point.check.check_tolerance)
     touches = ref.values.get("contact_fraction", 0.0) > 0 or ref.values.get("peak_contact_force", 0.0) > 0
     status, ratios, reasons = verdict(periodic_values, ref.values, touches, tolerance)
     result.values.update(ratios)

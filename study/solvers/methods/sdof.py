@@ -48,16 +48,15 @@ Floquet multipliers of the period-τ orbit are the squares of R's eigenvalues (b
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
 import numpy as np
 
 from study.physics import hertz, oscillator
-from study.solvers.methods.periodic.impact_model import natural_frequencies
-from study.solvers.model.options import SdofOptions
+from study.solvers.model.equivalent import EquivalentSdof, equivalent_parameters
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import Scene, given_span, make_scene
+from study.solvers.model.scene import given_span
 
 #: Stability verdicts of the screen -> the STATUS flag used until dedicated flags exist.
 VERDICT_STATUS = {
@@ -70,65 +69,6 @@ VERDICT_STATUS = {
     "not_periodic": "not_periodic",
 }
 
-
-
-@dataclass(frozen=True)
-class EquivalentSdof:
-    """The one-degree-of-freedom model of a design point's span (SI; see the module docstring)."""
-
-    span_length: float  #: L [m]
-    mass: float  #: m [kg] (modal M L/2 or momentum 2 M L/π, ``mass_model``)
-    stiffness: float  #: k = m ω₁² [N/m]
-    omega1: float  #: ω₁ [rad/s]
-    clearance: float  #: c [m]
-    rotary_speed: float  #: Ω [rad/s]
-    restitution: float  #: e [-]
-    damping: float  #: linearised mud damping of the first mode [N s/m]
-    drive_amplitude: float  #: F0 [N] of F0 cos Ωt
-    drive_source: str  #: where F0 comes from
-    hertz_stiffness: float  #: K [N m^-3/2] at the assumed-mode curvature
-    axial_curvature: float  #: κ = c (π/L)² [1/m]
-    pattern: str  #: impact pattern
-    mass_model: str
-    damping_model: str
-    side_force: float  #: constant side force towards +c [N]
-    scene: Scene  #: the point's scene (section properties)
-
-
-def equivalent_parameters(inputs: Mapping[str, Any], option: SdofOptions | None = None) -> EquivalentSdof:
-    """The SDOF model of the design point's span (see the module docstring and :class:`EquivalentSdof`).
-
-    Needs the span given (``solver.span_length``). The Hertz stiffness is at the assumed-mode curvature κ = c (π/L)².
-    ``option``: the SDOF options (its mass and damping models), else read from ``inputs``.
-    """
-    scene = make_scene(inputs)
-    span = float(scene.span_length)
-    props = scene.props
-    option = SdofOptions.from_inputs(inputs) if option is None else option
-    mass_model, damping_model = option.sdof_mass, option.sdof_damping
-    m = float(replace(scene, impact_mass=mass_model).equivalent_mass(span))
-    omega1 = float(natural_frequencies(scene, span, [1])[0])
-    c = scene.clearance
-    Om = scene.rotary_speed
-    e = scene.restitution
-    if damping_model == "mud":
-        damping = 8.0 * props["drag_coefficient_per_length"] * Om * c / (3 * np.pi) * 4.0 * span / (3 * np.pi)
-    else:
-        damping = 0.0
-    impacts = scene.impacts_per_revolution
-    if option.drive_amplitude is not None:
-        F0, source = float(option.drive_amplitude), "input drive_amplitude"
-    else:
-        F0 = impacts * m * (1.0 + e) * Om * c / scene.period
-        source = (f"default: mean impact force of the prescribed closure, {impacts} x m (1 + e) Omega c / tau")
-    kappa = c * (np.pi / span) ** 2
-    a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, kappa)
-    K = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
-    return EquivalentSdof(span_length=span, mass=m, stiffness=m * omega1**2, omega1=omega1, clearance=c,
-                          rotary_speed=Om, restitution=e, damping=damping, drive_amplitude=F0, drive_source=source,
-                          hertz_stiffness=K, axial_curvature=kappa, pattern=scene.pattern, mass_model=mass_model,
-                          damping_model=damping_model, side_force=float(option.side_force),
-                          scene=scene)
 
 
 def impact_params(par: EquivalentSdof) -> oscillator.ImpactParams:
@@ -288,6 +228,11 @@ def free_amplitude(p: oscillator.ImpactParams) -> float:
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The sdof screen at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The ``sdof`` method: period-1 impacting orbit of the first-mode oscillator and its stability.
 
     Values (SI): span_length, first_natural_frequency, equivalent_mass (the SDOF mass),
@@ -297,11 +242,10 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     Extras: floquet_multipliers, half_period_multipliers, stability, drive_source, orbit_phase, orbits_found.
     """
     result = PointResult(method="sdof")
-    option = SdofOptions.from_inputs(inputs)
-    if given_span(make_scene(inputs), result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
+    if given_span(point.scene, result, "the sdof screen", "effective tension {tension:.4g} N is at or below the Euler "
                   "load of the {span:.4g} m span: no first mode to reduce to") is None:
         return result
-    par = equivalent_parameters(inputs, option)
+    par = equivalent_parameters(point.scene, point.sdof)
     p = impact_params(par)
     v = result.values
     v.update(span_length=par.span_length, first_natural_frequency=par.omega1 / (2 * np.pi),
@@ -321,7 +265,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         result.status = "incomplete"
         result.message = "a side force breaks the symmetry: no alternating orbit (use impact_pattern one_wall)"
         return result
-    n_scan = int(option.sdof_scan)
+    n_scan = int(point.sdof.sdof_scan)
     orbits = symmetric_orbits(p, n_scan) if par.pattern == "alternating" else one_wall_orbit(p, n_scan)
     result.extras["orbits_found"] = len(orbits)
     stable = [o for o in orbits if o["verdict"] == "stable"]

@@ -45,6 +45,7 @@ from study.physics import contact
 from study.physics import whirl as whirl_physics
 from study.solvers.methods import reference
 from study.solvers.model.options import study_tolerance
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 METHOD = "sliding"
@@ -495,6 +496,12 @@ def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[d
                         regime=float(reference.REGIMES["sliding"]))
             out[i] = vals
     return out
+
+
+def run(point: DesignPoint) -> PointResult:
+    """The sliding state at the typed design point (:data:`study.solvers.METHODS`): :func:`solve` of its inputs, which
+    the reference model's builder it shares (:func:`study.solvers.methods.reference.build_model`) takes whole."""
+    return solve(point.inputs)
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:

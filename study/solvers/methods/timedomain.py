@@ -29,7 +29,7 @@ Model (our choices, stated):
   ``"drag"`` the nonlinear mud drag D |ẏ| ẏ projected on the modes by Gauss–Legendre quadrature
   (``drag_points``, default 8); ``"none"``.
 - **drive** F0 cos Ωt on the first mode, F0 and its default exactly as in
-  :func:`study.solvers.methods.sdof.equivalent_parameters` (``drive_amplitude``).
+  :func:`study.solvers.model.equivalent.equivalent_parameters` (``drive_amplitude``).
 - **initial state** ``time_initial``: ``"prescribed"`` (default) the paper's assumed motion
   y = c sin(πx/L) sin(Ωt) at t = 0 (q_1 = 0, q̇_1 = Ωc), ``"rest"``; or ``initial_state`` =
   (q, q̇) arrays.
@@ -68,14 +68,15 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import contact, hertz, section, whirl
-from study.solvers.kernels import event_driven, orbit, trajectory
-from study.solvers.methods import periodic, sdof
-from study.solvers.model.options import INTEGRATORS, SdofOptions, TimeDomainOptions
+from study.solvers.kernels import event_driven, extremes, orbit, trajectory
+from study.solvers.kernels.periodicity import settled_period
+from study.solvers.model.equivalent import equivalent_parameters
+from study.solvers.model.options import SdofOptions, TimeDomainOptions
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import given_span, make_scene
+from study.solvers.model.scene import Scene, given_span
 
 METHOD = "time-domain"
-MAX_PERIOD = 8
 STEP_FAILURE = "explicit step above the contact stability limit"
 
 
@@ -154,14 +155,17 @@ class ModalModel:
         return f / self.mass - self.omega**2 * q, fc
 
 
-def build_model(inputs: Mapping[str, Any], option: TimeDomainOptions | None = None) -> ModalModel:
-    """The modal model of ``inputs`` (needs ``span_length``); ``option``: the method's options, else read from
+def build_model(inputs: Mapping[str, Any], option: TimeDomainOptions | None = None, scene: Scene | None = None,
+                screen: SdofOptions | None = None) -> ModalModel:
+    """The modal model of ``inputs`` (needs ``span_length``); ``option``, ``scene`` and ``screen`` (the sdof screen's
+    options, whose drive and side force drive this model): the point's (:class:`DesignPoint`), else built from
     ``inputs``."""
     option = TimeDomainOptions.from_inputs(inputs) if option is None else option
+    scene = Scene.from_inputs(inputs) if scene is None else scene
     # the SDOF model's parameters with the modal mass and this method's damping (its drive and side force as set)
-    screen = replace(SdofOptions.from_inputs(inputs), sdof_mass="modal",
+    screen = replace(SdofOptions.from_inputs(inputs) if screen is None else screen, sdof_mass="modal",
                      sdof_damping="none" if option.time_damping == "none" else "mud")
-    par = sdof.equivalent_parameters(inputs, screen)
+    par = equivalent_parameters(scene, screen)
     scene = par.scene
     props = scene.props
     L = par.span_length
@@ -548,7 +552,7 @@ def stresses(inputs: Mapping[str, Any], model: ModalModel, samples: trajectory.S
     props = model.scene.props
     f = trajectory.fields(samples, x, model.modes, model.points, model.span, props["bending_stiffness"],
                           props["effective_tension"])
-    return periodic.stresses_from_fields(model.scene, x, samples.times - samples.times[0],
+    return extremes.stresses_from_fields(model.scene, x, samples.times - samples.times[0],
                                          f["deflection"], f["moment"], mirrored=False)
 
 
@@ -581,25 +585,12 @@ def contact_resolution(model: ModalModel, samples: trajectory.Samples) -> str | 
             f"fields' correction does not hold; the stresses need {need}")
 
 
-def settled_period(states, scale, tol):
-    """Smallest n ≤ 8 such that the last two boundary states equal those n revolutions earlier (``states`` a
-    sequence of boundary states, oldest first; ``scale`` their entries' units; ``tol`` in those units)."""
-    if len(states) < 3:
-        return None
-    S = np.asarray(states[-(MAX_PERIOD + 2):]) / scale  # the last ten are all it reads
-    count = min(MAX_PERIOD, len(S) - 2)
-    # every gap at once: diff[n - 1] = the larger of |S[-1] − S[-1 − n]| and |S[-2] − S[-2 − n]|, n = 1 … count
-    back = np.arange(count)
-    diff = np.maximum(np.max(np.abs(S[-1] - S[-2 - back]), axis=1), np.max(np.abs(S[-2] - S[-3 - back]), axis=1))
-    for n in range(1, count + 1):
-        # a longer period only if no divisor is nearly periodic too: a transient decaying with a
-        # negative Floquet multiplier closes its 2-revolution gap first
-        if diff[n - 1] < tol and all(diff[d - 1] > 10 * diff[n - 1] for d in range(1, n) if n % d == 0):
-            return n
-    return None
-
-
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The time domain at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The ``time-domain`` method (see the module docstring).
 
     Values (SI): span_length, first_natural_frequency, equivalent_mass (modal mass M L/2),
@@ -612,12 +603,12 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     alternating_bending_stress over one more period (:func:`stresses`; t from its start), and for a
     periodic run max_floquet_multiplier of its orbit (:func:`settled_orbit`).
     """
-    option = TimeDomainOptions.from_inputs(inputs)
+    option, inputs = point.time, point.inputs
     result = PointResult(method=METHOD)
-    if given_span(make_scene(inputs), result, "the time-domain method",
+    if given_span(point.scene, result, "the time-domain method",
                   "effective tension {tension:.4g} N buckles the {span:.4g} m span") is None:
         return result
-    run = simulate(inputs, option=option)
+    run = simulate(inputs, build_model(inputs, option, point.scene, point.sdof), option=option)
     model = run["model"]
     vals = result.values
     vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi),

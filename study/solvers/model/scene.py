@@ -3,9 +3,9 @@
 The pipe section and its mud (masses, stiffness, drag, effective tension, clearance, buckling), the
 contact compliance of pipe steel and rock, the rotation and the impact reading — everything about a point
 that does not depend on a method, typed. :meth:`Scene.from_inputs` builds it from a point's SI inputs: the one place
-outside the config that reads them by name (the options are built likewise in :mod:`study.solvers.model.options`). Every
-method builds its scene at its entry (:func:`make_scene`) and passes it down; a method that is given its span rather
-than searching for one takes it with :func:`given_span`.
+outside the config that reads them by name (the options are built likewise in :mod:`study.solvers.model.options`). The
+typed design point (:class:`study.solvers.model.point.DesignPoint`) holds it, built once per point; a method that is
+given its span rather than searching for one takes it with :func:`given_span`.
 """
 
 from __future__ import annotations
@@ -116,6 +116,13 @@ class Scene:
         if self.impact_mass == "modal":
             return 0.5 * mass * np.asarray(span_length, dtype=float)
         return section.equivalent_mass(mass, span_length)
+
+    def natural_frequencies(self, span_length, modes) -> np.ndarray:
+        """ω_n [rad/s] of spans ``span_length`` [m] (last axis: ``modes``), pinned beam-column under the effective
+        tension (:func:`study.physics.section.natural_frequencies`); NaN where a mode buckles."""
+        p = self.props
+        return section.natural_frequencies(span_length, p["bending_stiffness"], p["effective_tension"],
+                                           p["mass_per_length"], modes)
 
     @property
     def outer_diameter(self) -> float:

@@ -37,14 +37,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-import numba
 import numpy as np
 
 from study.physics import beam, section
-from study.solvers.kernels import extremes
-from study.solvers.methods.periodic.impact_model import (PROBLEMS, ROWS, Impact, impacts_of, natural_frequencies,
+from study.solvers.methods.periodic.impact_model import (PROBLEMS, ROWS, Impact, impacts_of,
                                                          odd_modes, refine_root, refined_rows, span_search_too_large)
-from study.solvers.model.options import DEFAULT_TOLERANCE, Options, study_tolerance
+from study.solvers.model.options import Options
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 from study.solvers.model.scene import Scene, make_scene
 from study.solvers.methods.periodic.span_search import (SpanSearch, find_roots, midspan_screen, midspan_weights,
@@ -68,7 +67,7 @@ def truncation_bound(scene: Scene, impact: Impact, options: Options, reach: int 
     if n.size == 0:
         return 0.0
     t = time_grid(scene, impact.contact_duration, options)
-    omega = natural_frequencies(scene, impact.span_length, n)
+    omega = scene.natural_frequencies(impact.span_length, n)
     g = beam.modal_load_factors(n, impact.span_length, impact.contact_half_length, options.load_shape)
     remainder = np.nanmax(np.abs(beam.dynamic_remainder(t, omega, impact.contact_duration, scene.period,
                                                         scene.pattern)), axis=0)
@@ -180,117 +179,6 @@ def _excess(scene: Scene, impact: Impact, options: Options, x, t) -> str | None:
 def options_from(inputs: Mapping[str, Any]) -> Options:
     """Solver settings from the point's inputs (the declared defaults where the config leaves them out)."""
     return Options.from_inputs(inputs)
-
-
-def stresses_from_fields(scene: Scene, x, t, deflection, moment, shear=None, mirrored: bool | None = None, field_at=None,
-                         tolerance: float | None = None) -> dict[str, float]:
-    """Deflection and stress maxima over the span and the period from the fields (docs/model.md §5, paper
-    eq. 37–38) — the same for every method, whatever made the fields.
-
-    x [m], t [s] (the half period for the alternating pattern: the other half mirrors it), deflection
-    y [m], moment M_b = −EI y'' [N m], shear V = −EI y''' [N] (None: no shear outputs), each of shape
-    t × x. ``mirrored``: whether the other half period is the mirror image (default: the alternating
-    pattern of ``scene``). Bending stress σ_b = M_b r_o/I; combined normal stress |T0/A_s| + |σ_b|
-    (the larger of T0/A_s ± σ_b); shear stress 2V/A_s (thin tube); alternating bending stress: half the
-    range of σ_b over the period at the worst section (σ(t + τ/2) = −σ(t) when mirrored).
-
-    With ``field_at(kind, x, t)`` (the fields anywhere, shape t × x) each maximum found on the grid is
-    located to ``tolerance`` (relative) by :mod:`study.solvers.kernels.extremes`, and ``location_residual`` is
-    the largest relative change of the last refinement round — what is left of the sampling error.
-    """
-    p = scene.props
-    mirrored = scene.pattern == "alternating" if mirrored is None else mirrored
-    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
-    r_o, r_i = scene.outer_radius, scene.inner_radius
-    inertia = float(section.second_moment_of_area(r_o, r_i))
-    area = p["steel_area"]
-    deflection, moment = np.asarray(deflection, dtype=float), np.asarray(moment, dtype=float)
-    i_b, largest, smallest = _field_extremes(moment, columns=True)
-    scale = r_o / inertia  # σ_b = M_b r_o/I
-    # over the full period σ(t + τ/2) = −σ(t) when mirrored, so half its range is max |σ| there
-    half_range = np.maximum(largest, -smallest) if mirrored else 0.5 * (largest - smallest)
-    axial = abs(scene.axial_tension) / area
-    i_y = _field_extremes(deflection)[0]
-    out = {
-        "max_deflection": float(np.abs(deflection[i_y])),
-        "max_bending_stress": float(np.abs(moment[i_b]) * scale),
-        "max_normal_stress": float(axial + np.abs(moment[i_b]) * scale),
-        "max_normal_stress_x": float(x[i_b[1]]),
-        "max_normal_stress_t": float(t[i_b[0]]),
-        "alternating_bending_stress": float(np.nanmax(half_range) * scale),
-    }
-    if shear is not None:
-        shear = np.asarray(shear, dtype=float)
-        i_s = _field_extremes(shear)[0]
-        out.update(max_shear_stress=float(2.0 * np.abs(shear[i_s]) / area), max_shear_stress_x=float(x[i_s[1]]),
-                   max_shear_stress_t=float(t[i_s[0]]))
-    if field_at is None:
-        return out
-    tol = 0.1 * (DEFAULT_TOLERANCE if tolerance is None else tolerance)
-    y = extremes.locate(field_at, "deflection", x, t, *i_y, tol)
-    m = extremes.locate(field_at, "moment", x, t, *i_b, tol)
-    out.update(max_deflection=max(out["max_deflection"], abs(y.value)),
-               max_bending_stress=abs(m.value) * scale, max_normal_stress=axial + abs(m.value) * scale,
-               max_normal_stress_x=m.x, max_normal_stress_t=m.t)
-    residuals = [y.residual, m.residual]
-    if mirrored:
-        out["alternating_bending_stress"] = max(out["alternating_bending_stress"], out["max_bending_stress"])
-    else:
-        a = extremes.locate_half_range(field_at, "moment", x, t, moment, tol)
-        out["alternating_bending_stress"] = max(out["alternating_bending_stress"], a.value * scale)
-        residuals.append(a.residual)
-    if shear is not None:
-        v = extremes.locate(field_at, "shear", x, t, *i_s, tol)
-        out.update(max_shear_stress=max(out["max_shear_stress"], 2.0 * abs(v.value) / area),
-                   max_shear_stress_x=v.x, max_shear_stress_t=v.t)
-        residuals.append(v.residual)
-    out["location_residual"] = float(max(residuals))
-    return out
-
-
-#: Relative difference below which two maxima of a field are equal: the first in time (then x) is reported,
-#: so that rounding cannot move the reported (x, t) of a maximum reached twice (a symmetric motion).
-TIE_TOLERANCE = 1e-9
-
-
-def _field_extremes(values, columns: bool = False) -> tuple:
-    """(index of the largest |value| ignoring NaN — the first within :data:`TIE_TOLERANCE` of it, in
-    time, then x — and with ``columns`` the largest and smallest value of
-    each column, NaN in a column with a NaN) of a field of shape t × x; a ValueError when every value is
-    NaN (as np.nanargmax)."""
-    values = np.asarray(values, dtype=float)  # any layout: the fields are views of one product
-    index, largest, smallest = _extremes_kernel(values, columns)
-    if index < 0:
-        raise ValueError("all the field's values are NaN (a resonant or buckled mode)")
-    return np.unravel_index(index, values.shape), largest, smallest
-
-
-@numba.njit(cache=True, nogil=True)
-def _extremes_kernel(values, columns):
-    """Three passes without data-dependent jumps in the first two, so that they run at memory speed:
-    the largest |value| (NaN never compares larger), each column's largest and smallest (a NaN sticks),
-    then the first value within TIE_TOLERANCE of the largest, in time, then x (-1: none)."""
-    rows, cols = values.shape
-    peak = -1.0
-    for i in range(rows):
-        for j in range(cols):
-            size = abs(values[i, j])
-            peak = size if size > peak else peak
-    largest, smallest = np.full(cols, -np.inf), np.full(cols, np.inf)
-    if columns:
-        for i in range(rows):
-            for j in range(cols):
-                v = values[i, j]
-                largest[j] = v if (v > largest[j] or v != v) else largest[j]
-                smallest[j] = v if (v < smallest[j] or v != v) else smallest[j]
-    if peak < 0.0:  # every value NaN
-        return -1, largest, smallest
-    floor = peak * (1.0 - TIE_TOLERANCE)
-    for i in range(rows):
-        for j in range(cols):
-            if abs(values[i, j]) >= floor:
-                return i * cols + j, largest, smallest
-    return -1, largest, smallest
 
 
 @dataclass
@@ -411,14 +299,12 @@ def rejection_kind(problem: str) -> str:
 Finish = Callable[[Scene, Impact, Mapping[str, Any], Options, PointResult], None]
 
 
-def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
-                 options: Options | None = None) -> PointResult:
-    """The design-point pipeline shared by the periodic methods : buckling check,
-    :func:`find_span`, the smallest valid span's impact in ``result.values``; then ``finish(scene,
-    chosen, inputs, options, result)`` adds the method's fields, stresses and error estimate."""
+def design_point(point: DesignPoint, method: str, finish: Finish) -> PointResult:
+    """The design-point pipeline shared by the periodic methods: buckling check, :func:`find_span` with the point's
+    :attr:`~DesignPoint.periodic` options, the smallest valid span's impact in ``result.values``; then
+    ``finish(scene, chosen, inputs, options, result)`` adds the method's fields, stresses and error estimate."""
     result = PointResult(method=method)
-    options = options or options_from(inputs)
-    scene = make_scene(inputs)
+    options, scene, inputs = point.periodic, point.scene, point.inputs
     result.values.update(scene.props)
     max_span = min(options.max_span, scene.props["buckling_length"] * (1 - 1e-9))
     if max_span <= options.min_span:
@@ -444,7 +330,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         result.message = f"{choice.summary}; none satisfies condition 1" + (f" ({detail})" if detail else "")
         return result
     chosen = choice.candidates[0]
-    survives = span_survives_doubling(scene, options, chosen.span_length, study_tolerance(inputs))
+    survives = span_survives_doubling(scene, options, chosen.span_length, point.tolerances.tolerance)
     result.extras["span_converged"] = survives is None
     if survives is not None:
         result.status = "not_converged"
@@ -456,7 +342,7 @@ def design_point(inputs: Mapping[str, Any], method: str, finish: Finish,
         peak_contact_force=chosen.peak_contact_force, contact_half_length=chosen.contact_half_length,
         contact_half_width=chosen.contact_half_width,
     )
-    omega = natural_frequencies(scene, chosen.span_length, [1.0])
+    omega = scene.natural_frequencies(chosen.span_length, [1.0])
     result.values["first_natural_frequency"] = float(omega[0] / (2.0 * np.pi))
     smallest = ("the smallest is reported" if survives is None else
                 f"the smallest, {chosen.span_length:.6g} m, is not converged: {survives}")

@@ -34,11 +34,13 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import beam, damping, fourier, hertz, midspan
+from study.solvers.kernels import extremes
 from study.solvers.methods.periodic import impact_model, span_search
 from study.solvers.methods import periodic
 from study.solvers.model.options import DampedOptions, Options, study_tolerance
 from study.solvers.model.result import PointResult
-from study.solvers.model.scene import Scene, make_scene
+from study.solvers.model.point import DesignPoint
+from study.solvers.model.scene import Scene
 
 METHOD = "damped"
 #: Most secant steps of the damped residual from one undamped root.
@@ -410,7 +412,7 @@ def iterate_damping(scene: Scene, found: DampedImpact, bracket, options: Options
 
 def stresses(scene: Scene, found: DampedImpact, inputs: Mapping[str, Any], options: Options) -> dict[str, float]:
     """Deflection and stress maxima of the damped motion (docs/model.md §5) from its fields on the solver's
-    grids, located to a tenth of the study's tolerance (:func:`periodic.stresses_from_fields`)."""
+    grids, located to a tenth of the study's tolerance (:func:`extremes.stresses_from_fields`)."""
     impact = found.impact
     x = periodic.space_grid(impact.span_length, impact.contact_half_length, options)
     t = periodic.time_grid(scene, impact.contact_duration, options)
@@ -420,7 +422,7 @@ def stresses(scene: Scene, found: DampedImpact, inputs: Mapping[str, Any], optio
     def field_at(kind, xs, ts):
         return fields(scene, impact, found.spec, options, xs, ts, [kind])[kind]
 
-    return periodic.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
+    return extremes.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
                                          field_at=field_at, tolerance=study_tolerance(inputs))
 
 
@@ -433,11 +435,14 @@ def end_moment_history(scene: Scene, found: DampedImpact, points: int = 64) -> t
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The damped solution at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """The damped periodic solution of one design point (module docstring)."""
     result = PointResult(method=METHOD)
-    options = periodic.options_from(inputs)
-    settings = DampedOptions.from_inputs(inputs)
-    scene = make_scene(inputs)
+    options, settings, scene, inputs = point.periodic, point.damped, point.scene, point.inputs
     result.values.update(scene.props)
 
     def done(status: str, message: str) -> PointResult:
@@ -485,7 +490,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     check = refine(scene, impact.span_length, bracket, chosen.spec.damping, finer, settings.damped_harmonics,
                    impact.contact_duration, impact.contact_half_length)
     drift = abs(check.impact.span_length / impact.span_length - 1.0) if not check.impact.problems else math.inf
-    result.extras["span_converged"] = drift <= study_tolerance(inputs)
+    result.extras["span_converged"] = drift <= point.tolerances.tolerance
     if not result.extras["span_converged"] and status == "ok":
         status = "not_converged"
         notes.append(f"the span {impact.span_length:.6g} m moves by {drift:.2g} with the modes doubled to {finer.modes}")
@@ -495,14 +500,14 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         hertz_duration=impact.hertz_duration, hertz_peak_force=impact.hertz_peak_force,
         contact_duration=impact.contact_duration, peak_contact_force=impact.peak_contact_force,
         contact_half_length=impact.contact_half_length, contact_half_width=impact.contact_half_width,
-        first_natural_frequency=float(impact_model.natural_frequencies(scene, impact.span_length, [1.0])[0] / (2 * np.pi)))
+        first_natural_frequency=float(scene.natural_frequencies(impact.span_length, [1.0])[0] / (2 * np.pi)))
     values = stresses(scene, chosen, inputs, options)
     result.values.update(values)
     balance = energy(scene, chosen)
     t, moment = end_moment_history(scene, chosen)
     taken = balance["drag_dissipation"]
     residual = abs(balance["end_moment_work"] - taken) / taken if taken > 0 else abs(balance["end_moment_work"])
-    omega1 = impact_model.natural_frequencies(scene, impact.span_length, [1.0])[0]
+    omega1 = scene.natural_frequencies(impact.span_length, [1.0])[0]
     result.values.update(
         equivalent_damping=chosen.spec.damping,
         damping_ratio=float(chosen.spec.damping / (2.0 * scene.props["mass_per_length"] * omega1)),
@@ -510,7 +515,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         drag_dissipation=balance["drag_dissipation"], energy_residual=float(residual))
     result.extras.update(end_moment_history={"t": t.tolist(), "moment": moment.tolist()},
                          impact_work=balance["impact_work"], damper_dissipation=balance["damper_dissipation"])
-    tolerance = study_tolerance(inputs)
+    tolerance = point.tolerances.tolerance
     if residual > tolerance and status == "ok":
         status = "not_converged"
         notes.append(f"energy balance: the end moments feed {balance['end_moment_work']:.4g} J per period, the drag "

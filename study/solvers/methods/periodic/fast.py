@@ -14,6 +14,7 @@ from typing import Any, Mapping
 
 from study.solvers.methods.periodic import impact_model, series
 from study.solvers.methods import periodic
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 from study.solvers.model.scene import Scene
 
@@ -38,5 +39,10 @@ def finish(scene: Scene, chosen: impact_model.Impact, inputs: Mapping[str, Any],
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The fast method at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """Find the span and solve the periodic impact of one design point (see module docstring)."""
-    return periodic.design_point(inputs, "fast", finish)
+    return periodic.design_point(point, "fast", finish)

@@ -18,7 +18,7 @@ from typing import Any, Mapping
 import numba
 import numpy as np
 
-from study.physics import beam, hertz, midspan, section
+from study.physics import beam, hertz, midspan
 from study.solvers.model.options import Options
 from study.solvers.model.scene import Scene, make_scene
 
@@ -26,13 +26,6 @@ from study.solvers.model.scene import Scene, make_scene
 def odd_modes(n_modes: int) -> np.ndarray:
     """Mode numbers 1, 3, 5, … ≤ n_modes (a symmetric load excites no even mode)."""
     return np.arange(1, int(n_modes) + 1, 2, dtype=float)
-
-
-def natural_frequencies(scene: Scene, span_length, modes) -> np.ndarray:
-    """ω_n [rad/s] for spans ``span_length`` [m] (last axis: ``modes``); NaN where a mode buckles."""
-    p = scene.props
-    return section.natural_frequencies(span_length, p["bending_stiffness"], p["effective_tension"],
-                                       p["mass_per_length"], modes)
 
 
 def resonant_harmonics(scene: Scene, highest: int) -> np.ndarray:
@@ -45,7 +38,7 @@ def resonance_candidates(scene: Scene, modes, min_span: float) -> int:
     mode's ω_n at the shortest span over Ω. Each costs about 16 bytes in the search, so a very slow rotary
     speed or a very short ``min_span`` [m] costs memory without bound."""
     modes = np.asarray(modes, dtype=float)
-    omega_max = float(np.nanmax(natural_frequencies(scene, min_span, modes[-1:])))
+    omega_max = float(np.nanmax(scene.natural_frequencies(min_span, modes[-1:])))
     return int(modes.size * (np.ceil(omega_max / scene.rotary_speed) + 1))
 
 
@@ -79,7 +72,7 @@ def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[n
     p = scene.props
     ei, tension, mass = p["bending_stiffness"], p["effective_tension"], p["mass_per_length"]
     modes = np.asarray(modes, dtype=float)
-    omega_max = float(np.nanmax(natural_frequencies(scene, min_span, modes[-1:])))
+    omega_max = float(np.nanmax(scene.natural_frequencies(min_span, modes[-1:])))
     highest = int(np.ceil(omega_max / scene.rotary_speed)) + 1
     forcing = resonant_harmonics(scene, highest) * scene.rotary_speed
     k_sq = (-tension + np.sqrt(tension**2 + 4.0 * ei * mass * forcing**2)) / (2.0 * ei)

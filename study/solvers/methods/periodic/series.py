@@ -22,10 +22,10 @@ below 1e-6 while the error against the converged series is 2.2e-4 — a near-res
 (n = 219, 0.001 harmonics from resonance) is invisible to a comparison in M, and a near-resonant
 harmonic above M is invisible until M reaches it; hence the second.
 
-Both periodic methods compute stresses from fields the same way (:func:`stresses_from_fields`, the
-contract of ``fast.stresses``), and both can report the paper's §VI term-ratio table
-(:func:`term_ratio_table`, stored in ``extras["term_ratios"]``; status ``terms_not_small`` when the
-verdict of :func:`study.solvers.methods.periodic.checks.dropped_terms_small` fails on an otherwise valid point).
+Both periodic methods compute stresses from fields the same way
+(:func:`study.solvers.kernels.extremes.stresses_from_fields`, the contract of ``fast.stresses``), and both can
+report the paper's §VI term-ratio table (:func:`term_ratio_table`, stored in ``extras["term_ratios"]``; status
+``terms_not_small`` when the verdict of :func:`study.solvers.methods.periodic.checks.dropped_terms_small` fails on an otherwise valid point).
 """
 
 from __future__ import annotations
@@ -37,9 +37,11 @@ from typing import Any
 import numpy as np
 
 from study.physics import beam, fourier
+from study.solvers.kernels import extremes
 from study.solvers.methods.periodic import checks, impact_model
 from study.solvers.methods import periodic
 from study.solvers.model.options import SeriesOptions, study_tolerance
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 from study.solvers.model.scene import Scene
 
@@ -60,9 +62,8 @@ class Truncation:
     cap: int = MAX_HARMONICS
 
 
-def truncation_from(inputs: Mapping[str, Any]) -> Truncation:
-    """``harmonics``, ``series_tolerance``, ``series_max_harmonics`` of the inputs (None → default)."""
-    option = SeriesOptions.from_inputs(inputs)
+def truncation_from(option: SeriesOptions) -> Truncation:
+    """The truncation of the series' options ``harmonics``, ``series_tolerance``, ``series_max_harmonics``."""
     return Truncation(harmonics=int(option.harmonics),
                       tolerance=None if option.series_tolerance is None else float(option.series_tolerance),
                       cap=int(option.series_max_harmonics))
@@ -111,14 +112,14 @@ def stresses(scene: Scene, impact: impact_model.Impact, inputs: Mapping[str, Any
              options: periodic.Options, harmonics: int | None = None) -> dict[str, float]:
     """Stress maxima (docs/model.md §5, paper eq. 37–38) from the fast fields (harmonics None: the ``fast`` method's)
     or from the double series with options.modes × harmonics terms, sampled on :func:`stress_grid` and
-    located to a tenth of the study's tolerance (:func:`periodic.stresses_from_fields`)."""
+    located to a tenth of the study's tolerance (:func:`extremes.stresses_from_fields`)."""
     x, t = stress_grid(scene, impact, options)
     f = fields(scene, impact, options, harmonics, STRESS_KINDS, x, t)
 
     def field_at(kind, xs, ts):
         return fields(scene, impact, options, harmonics, (kind,), xs, ts)[kind]
 
-    return periodic.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
+    return extremes.stresses_from_fields(scene, x, t, f["deflection"], f["moment"], f["shear"],
                                          field_at=field_at, tolerance=study_tolerance(inputs))
 
 
@@ -210,8 +211,13 @@ def add_term_ratios(scene: Scene, impact: impact_model.Impact, inputs: Mapping[s
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
+    """The series at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
     """Find the span (as ``fast``) and evaluate it with the paper's double Fourier series."""
-    truncation = truncation_from(inputs)
+    truncation = truncation_from(point.series)
 
     def finish(scene, chosen, inputs, options, result):
         s = converged_stresses(scene, chosen, inputs, options, truncation)
@@ -227,4 +233,4 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
                                f"(tolerance {truncation.tolerance:.2g}, cap {truncation.cap})")
         add_term_ratios(scene, chosen, inputs, options, result, s.harmonics)
 
-    return periodic.design_point(inputs, "series", finish)
+    return periodic.design_point(point, "series", finish)

@@ -24,7 +24,7 @@ import numpy as np
 from study.physics import beam, midspan
 from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
-from study.solvers.methods.periodic.impact_model import (impacts_at, kernel_args, natural_frequencies, odd_modes,
+from study.solvers.methods.periodic.impact_model import (impacts_at, kernel_args, odd_modes,
                                                          resonances, unit_state)
 from study.solvers.model.options import Options
 from study.solvers.model.scene import Scene
@@ -590,4 +590,4 @@ def midspan_weights(scene: Scene, spans, halves, options: Options) -> tuple[np.n
     modes = odd_modes(options.modes)
     g = beam.modal_load_factors(modes, spans, np.asarray(halves, dtype=float), options.load_shape)
     weight = 2.0 * g / (scene.props["mass_per_length"] * spans[:, None]) * np.where(modes % 4 == 1, 1.0, -1.0)
-    return natural_frequencies(scene, spans, modes), weight
+    return scene.natural_frequencies(spans, modes), weight

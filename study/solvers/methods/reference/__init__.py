@@ -49,7 +49,7 @@ Run: from the string's rest on the wall where a side load lays it there, else it
 (:func:`initial_state`; ``reference_initial = "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
 :mod:`study.solvers.kernels.whirl_kernel`, ``reference_rtol`` default 1e-6, in its Lawson form between contacts:
 ``reference_integrator``) until the state at the revolution
-boundaries repeats (1–8 revolutions, :func:`study.solvers.methods.timedomain.settled_period`), the pipe bounces with
+boundaries repeats (1–8 revolutions, :func:`study.solvers.kernels.periodicity.settled_period`), the pipe bounces with
 stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
 ``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
 (default 6; the period's multiple when periodic) is recorded and the outputs are taken over it. Where the modes
@@ -83,7 +83,7 @@ from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, DAMA
                                                         quasi_static_applies, quasi_static_ratio, settle_ratio,
                                                         settling, standard_error, stationary, stress_equivalent,
                                                         whirl_measure, window_summary)
-from study.solvers.methods.reference.method import (METHOD, doubling_modal_error, modal_part, simulate, solve,
+from study.solvers.methods.reference.method import (METHOD, doubling_modal_error, modal_part, run, simulate, solve,
                                                     solve_with_modes, solve_with_stations)
 from study.solvers.model.result import REGIMES
 
@@ -99,5 +99,5 @@ __all__ = ["mode_wavenumbers", "mode_shapes", "joint_modes", "periodic_point_def
            "cycle_values", "fibre_stress", "fibre_damage", "window_summary", "standard_error", "settle_ratio",
            "settling", "MODAL_FIGURES", "quasi_static_ratio", "quasi_static_applies", "modal_check",
            "NEGLIGIBLE_BENDING", "convergence", "stress_equivalent", "figure_tolerance", "whirl_measure", "METHOD",
-           "simulate", "solve", "modal_part", "doubling_modal_error", "solve_with_modes", "solve_with_stations",
+           "simulate", "run", "solve", "modal_part", "doubling_modal_error", "solve_with_modes", "solve_with_stations",
            "REGIMES"]

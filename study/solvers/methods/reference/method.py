@@ -21,8 +21,9 @@ from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, FIGU
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                         figure_tolerance, modal_check, settle_ratio, settling,
                                                         stationary, whirl_measure, window_summary)
+from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import REGIMES, PointResult
-from study.solvers.methods.timedomain import settled_period
+from study.solvers.kernels.periodicity import settled_period
 
 
 METHOD = "reference"
@@ -198,6 +199,12 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 budget_spent=budget_spent, revolutions_needed=float(needed), needed_by=needed_by, ratio=ratio,
                 failure=None, stationary=bouncing, modal=modal, stats=None if period else stats,
                 replay=replays.get("replay"))
+
+
+def run(point: DesignPoint) -> PointResult:
+    """The ``reference`` method at the typed design point (:data:`study.solvers.METHODS`): :func:`solve` of its inputs,
+    which the reference model's parts (its model, its window's statistics) still take whole."""
+    return solve(point.inputs)
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
