@@ -335,3 +335,22 @@ def test_a_method_imports_another_only_through_the_ladder_or_a_listed_edge():
     assert not stray, f"methods importing another (go through the model, the kernels or physics, or list the edge in " \
         f"METHOD_EDGES with its reason): {stray}"
     assert set(METHOD_EDGES) <= found, f"listed edges no longer taken (drop them): {sorted(set(METHOD_EDGES) - found)}"
+
+
+def test_every_method_of_the_registry_takes_the_typed_point():
+    # issue 35: the registry's functions take the DesignPoint solve_point builds once (a parameter followed from the
+    # TOML to the physics by the signatures); each module keeps a thin solve(inputs) that builds it
+    from study.solvers import METHOD_FUNCTIONS, METHOD_MODULES
+
+    table = {name: (module, "run") for name, module in METHOD_MODULES.items()} | METHOD_FUNCTIONS
+    for name, (module, function) in table.items():
+        path = SOLVERS / "methods" / Path(*module.split("."))
+        path = path / "__init__.py" if path.is_dir() else path.with_suffix(".py")
+        tree = ast.parse(path.read_text())
+        found = [node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == function]
+        if not found and path.name == "__init__.py":  # a package: its method module (reference/method.py)
+            found = [node for sub in path.parent.glob("*.py") for node in ast.parse(sub.read_text()).body
+                     if isinstance(node, ast.FunctionDef) and node.name == function]
+        assert len(found) == 1, (name, path)
+        args = found[0].args.args
+        assert len(args) == 1 and ast.unparse(args[0].annotation) == "DesignPoint", name

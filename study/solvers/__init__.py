@@ -25,8 +25,8 @@ from study.solvers.model.result import OUTPUTS, STATUS, STATUS_CODES, PointResul
 #: nothing lies there). Named here, so that solving another method imports no reference model.
 LIFT_OFF_METHODS = ("sliding", "reference")
 
-#: The module of each method under :mod:`study.solvers.methods` (its ``run`` is the method); imported on first use, so that importing the
-#: package, its options or its result type (as the config does) loads no solver.
+#: The module of each method under :mod:`study.solvers.methods` (its ``run`` is the method); imported on first use, so
+#: that importing the package, its options or its result type (as the config does) loads no solver.
 METHOD_MODULES = {"core": "core", "fast": "periodic.fast", "series": "periodic.series", "auto": "auto",
                   "time-domain": "timedomain", "crosscheck": "crosscheck", "reference": "reference",
                   "reference-check": "refcheck", "free-whirl": "freewhirl", "sliding": "sliding", "sdof": "sdof",
@@ -91,7 +91,7 @@ def solve_point(inputs: Mapping[str, Any], method: str | None = None) -> PointRe
                                 point.tolerances)
     except Exception as exc:  # noqa: BLE001 - recorded as a status, by design
         last = traceback.extract_tb(exc.__traceback__)[-1]
-        result = PointResult(method=name, status="failed",
-                             message=f"{type(exc).__name__}: {exc} (at {last.filename.rsplit('/', 1)[-1]}:{last.lineno})")
+        where = f"{last.filename.rsplit('/', 1)[-1]}:{last.lineno}"
+        result = PointResult(method=name, status="failed", message=f"{type(exc).__name__}: {exc} (at {where})")
     result.wall_time = time.perf_counter() - start  # the one stamp: the method, its limits and the gate
     return result

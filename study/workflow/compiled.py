@@ -9,14 +9,16 @@ this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/perform
 - ``make setup`` runs ``study compile``: every method solved once on the warm-up points (the paper's
   example in two readings and the default study's first point), which leaves every kernel in the cache;
 - ``study point`` and ``study sweep`` check the cache first (:func:`uncached`, milliseconds: the kernels the
-  last compile-ahead cached, :data:`RECORD`) and, when a kernel is missing (a fresh install that skipped ``make setup``, or a kernel's source changed), say that
-  they are compiling, for how long it should take, and how long it took;
+  last compile-ahead cached, :data:`RECORD`) and, when a kernel is missing (a fresh install that skipped ``make setup``,
+  or a kernel's source changed), say that they are compiling, for how long it should take, and how long it took;
 - a sweep compiles in its own process before it starts its workers, which would otherwise each compile the
   same kernels at once.
 
-numba has no public API that tells whether its cache holds a kernel without compiling or loading it (a
-dispatcher's ``stats`` counts cache hits and misses only once a call has loaded or compiled it), so :func:`cached`
-reads the index numba keeps per function through the dispatcher's private cache object, of the pinned numba
+numba has no public API that tells whether its cache holds a kernel without compiling or loading it (numba 0.68.1: a
+dispatcher's public attributes are ``stats`` alone, whose ``cache_hits`` and ``cache_misses`` count only once a call has
+loaded or compiled it; numba's "Notes on Caching" document one pickled ``.nbi`` index per function, but not its file
+name nor how it records the source's stamp that makes an entry stale, so reading the files ourselves would copy the same
+private format), so :func:`cached` reads the index through the dispatcher's private cache object, of the pinned numba
 (pyproject.toml); an unreadable index counts as a missing one. Whether a kernel is cached at all and where its cache
 folder is come from the dispatcher's public ``stats.cache_path`` (None without ``cache=True``).
 """

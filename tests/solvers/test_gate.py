@@ -77,7 +77,7 @@ def test_the_gate_computes_the_ellipse_a_method_does_not_report(default):
 
 def test_every_method_goes_through_the_gate(default, monkeypatch):
     # a method that reports a 107.8-m deflection as ok is not believed, whichever method it is
-    def liar(inputs):
+    def liar(point):
         return PointResult(method="liar", values={"clearance": 0.053975, "max_deflection": 107.8})
 
     monkeypatch.setitem(METHODS, "liar", (liar, "reports an impossible deflection"))

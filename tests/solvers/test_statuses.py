@@ -34,9 +34,10 @@ def _resonant(default):
     return {**undamped, "rotary_speed": equivalent_parameters(point.scene, point.sdof).omega1}
 
 
-def _liar(inputs):
-    """A method that reports a deflection of twice the clearance as ok (registered only in this test)."""
-    clearance = (inputs["hole_diameter"] - inputs["outer_diameter"]) / 2.0
+def _liar(point):
+    """A method that reports a deflection of twice the clearance as ok (registered only in this test; a method of the
+    registry takes the typed design point)."""
+    clearance = point.scene.hole_radius - point.scene.outer_radius
     return PointResult(method="liar", values={"clearance": clearance, "max_deflection": 2.0 * clearance})
 
 

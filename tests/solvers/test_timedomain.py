@@ -11,6 +11,7 @@ from study.physics import contact, hertz
 from study.solvers.methods import sdof
 from study.solvers.methods.periodic import make_scene
 from study.solvers.methods import timedomain as td
+from study.solvers.model.options import INTEGRATORS
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -98,7 +99,7 @@ def test_explicit_step_above_the_contact_limit_fails(point):
     np.testing.assert_allclose(va, vb, rtol=5e-3)
 
 
-@pytest.mark.parametrize("integrator", td.INTEGRATORS)
+@pytest.mark.parametrize("integrator", INTEGRATORS)
 def test_driven_damped_span_settles_to_the_sdof_orbit(point, integrator):
     inputs = _driven(point, time_integrator=integrator)
     r = td.solve(inputs)

@@ -105,8 +105,8 @@ def locate_half_range(field_at: FieldAt, kind: str, x: np.ndarray, t: np.ndarray
     return best
 
 
-def stresses_from_fields(scene: Scene, x, t, deflection, moment, shear=None, mirrored: bool | None = None, field_at=None,
-                         tolerance: float | None = None) -> dict[str, float]:
+def stresses_from_fields(scene: Scene, x, t, deflection, moment, shear=None, mirrored: bool | None = None,
+                         field_at=None, tolerance: float | None = None) -> dict[str, float]:
     """Deflection and stress maxima over the span and the period from the fields (docs/model.md §5, paper
     eq. 37–38) — the same for every method, whatever made the fields.
 

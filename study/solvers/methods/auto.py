@@ -102,7 +102,8 @@ def _series_point(point: DesignPoint) -> DesignPoint:
 
 #: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's)}.
 LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint], DesignPoint]]]] = {
-    "auto": {"free-whirl": (freewhirl.run, as_is), "sliding": (sliding.run, as_is), "reference": (reference.run, as_is)},
+    "auto": {"free-whirl": (freewhirl.run, as_is), "sliding": (sliding.run, as_is),
+             "reference": (reference.run, as_is)},
     "periodic": {"fast": (fast.run, as_is), "series": (series.run, _series_point), "damped": (damped.run, as_is)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.

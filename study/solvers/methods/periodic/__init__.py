@@ -20,8 +20,8 @@ on the curvature of the pipe at the contact, taken from the solution itself: κ 
 iterated to a fixed point at every span evaluated exactly.
 
 The exact model at a span (the span's modes and resonances, the fixed point, the impact) is
-:mod:`study.solvers.methods.periodic.impact_model`; the span search, :mod:`study.solvers.methods.periodic.span_search`; this module checks the
-constraints, picks the span and runs the design-point pipeline shared by the periodic methods.
+:mod:`study.solvers.methods.periodic.impact_model`; the span search, :mod:`study.solvers.methods.periodic.span_search`;
+this module checks the constraints, picks the span and runs the design-point pipeline shared by the periodic methods.
 
 Span search. F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train
 (docs/model.md §4): a sign change across a pole is not a root. The poles are located analytically

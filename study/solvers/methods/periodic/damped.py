@@ -17,8 +17,8 @@ dynamic remainder.
 
 Span search (docs/model.md §7.1): with damping the response has no poles, so every root of the damped
 condition 2 is continued from a root of the undamped one — the undamped search's roots that pass its
-midspan screen (:func:`study.solvers.methods.periodic.span_search.find_roots`), refined by secant steps on the damped residual
-in ascending order until one satisfies condition 1. The first is reported (a root the damping creates away
+midspan screen (:func:`study.solvers.methods.periodic.span_search.find_roots`), refined by secant steps on the damped
+residual in ascending order until one satisfies condition 1. The first is reported (a root the damping creates away
 from every undamped root is not searched). The damping c starts from the paper's assumed motion
 y = c sin(πx/L) sin Ωt and is iterated with the solution's own velocity field at the chosen span, the span
 following it, until c changes by less than ``damping_tolerance`` (status ``not_converged`` otherwise).
@@ -482,7 +482,8 @@ def run(point: DesignPoint) -> PointResult:
                f"are continued with the drag (c0 = {c0:.4g} N s/m²)")
     if chosen is None:
         detail = "; ".join(f"{v} x {k}" for k, v in sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
-        return done("no_span", f"{summary}; none satisfies condition 1 with damping" + (f" ({detail})" if detail else ""))
+        return done("no_span", f"{summary}; none satisfies condition 1 with damping"
+                    + (f" ({detail})" if detail else ""))
     result.extras.update(damping_history=[float(v) for v in history], damping_converged=converged)
     status, notes = ("ok", []) if converged else ("not_converged", [why])
     impact = chosen.impact
@@ -493,7 +494,8 @@ def run(point: DesignPoint) -> PointResult:
     result.extras["span_converged"] = drift <= point.tolerances.tolerance
     if not result.extras["span_converged"] and status == "ok":
         status = "not_converged"
-        notes.append(f"the span {impact.span_length:.6g} m moves by {drift:.2g} with the modes doubled to {finer.modes}")
+        notes.append(f"the span {impact.span_length:.6g} m moves by {drift:.2g} with the modes doubled to "
+                     f"{finer.modes}")
     result.values.update(
         span_length=impact.span_length, equivalent_mass=impact.equivalent_mass, impact_velocity=impact.impact_velocity,
         impulse=impact.impulse, axial_curvature=impact.axial_curvature, max_approach=impact.max_approach,

@@ -1,8 +1,8 @@
 """The exact model of the periodic impact solution at a span: the span's modes and resonances, and the impact.
 
 Shared by the periodic methods through :mod:`study.solvers.methods.periodic` (docs/model.md §3–4). At a given span the
-closure (``prescribed`` or ``self_consistent``, see :mod:`study.solvers.methods.periodic`) and the pulse duration T_L, which
-depends on the Hertz stiffness at the contact's curvature, are iterated to their fixed point
+closure (``prescribed`` or ``self_consistent``, see :mod:`study.solvers.methods.periodic`) and the pulse duration T_L,
+which depends on the Hertz stiffness at the contact's curvature, are iterated to their fixed point
 (:func:`impact_at`; many spans in lockstep in one compiled kernel, :func:`impacts_at`), and a screening root is
 refined to the exact root by secant steps (:func:`refine_roots`, :func:`refined_rows`). The resonant spans, where
 a natural frequency meets a harmonic of the pulse train (:func:`resonances`), bound the span search's intervals

@@ -25,7 +25,8 @@ harmonic above M is invisible until M reaches it; hence the second.
 Both periodic methods compute stresses from fields the same way
 (:func:`study.solvers.kernels.extremes.stresses_from_fields`, the contract of ``fast.stresses``), and both can
 report the paper's §VI term-ratio table (:func:`term_ratio_table`, stored in ``extras["term_ratios"]``; status
-``terms_not_small`` when the verdict of :func:`study.solvers.methods.periodic.checks.dropped_terms_small` fails on an otherwise valid point).
+``terms_not_small`` when the verdict of :func:`study.solvers.methods.periodic.checks.dropped_terms_small` fails on an
+otherwise valid point).
 """
 
 from __future__ import annotations

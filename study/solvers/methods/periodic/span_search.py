@@ -3,13 +3,13 @@ sign changes shrunk inside every interval between wide poles, and the roots scre
 §4.5).
 
 F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train: a sign change across a pole
-is not a root. The poles are located analytically (:func:`study.solvers.methods.periodic.impact_model.resonances`), F times the distances
-to the interval's two poles is sampled inside every interval (:func:`search_intervals`, :func:`roots_between`; its
-values at the poles follow from their residues), and only sign changes inside one interval are bracketed and
-shrunk (regula falsi in lockstep, compiled). The midspan screen (:func:`midspan_screen`) keeps the roots whose
-midspan stays inside the wall over the period; :mod:`study.solvers.methods.periodic.impact_model` refines them with the exact model, and
-:mod:`study.solvers.methods.periodic` checks the constraints. Where the time goes and why it is built so:
-docs/profile_fast.md.
+is not a root. The poles are located analytically (:func:`study.solvers.methods.periodic.impact_model.resonances`), F
+times the distances to the interval's two poles is sampled inside every interval (:func:`search_intervals`,
+:func:`roots_between`; its values at the poles follow from their residues), and only sign changes inside one interval
+are bracketed and shrunk (regula falsi in lockstep, compiled). The midspan screen (:func:`midspan_screen`) keeps the
+roots whose midspan stays inside the wall over the period; :mod:`study.solvers.methods.periodic.impact_model` refines
+them with the exact model, and :mod:`study.solvers.methods.periodic` checks the constraints. Where the time goes and why
+it is built so: docs/profile_fast.md.
 """
 
 from __future__ import annotations
@@ -133,9 +133,9 @@ def _screen_state(span, modes, offset, table, state, closure):
     """(F(L) + 1 − ``offset``, y₁, v₁, y₁'') at one span [m] (compiled): T_L and b interpolated in
     log L from ``table`` (log L, log T_L, b), the midspan state per unit impulse summed over ``modes``
     (:func:`midspan.midspan_state_one` with ``state``), then the closure (``closure`` of
-    :func:`kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent: m_e (1+e) V_p/J with V_p = c v₁/y₁,
-    J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with J = m_e (1 + e) Ω c); y₁, v₁, y₁'' the
-    midspan state per unit impulse of :func:`unit_state`."""
+    :func:`kernel_args`: self-consistent?, m_e/L [kg/m], e, Ω [rad/s], ...): −m_e (1 + e) v₁ (self-consistent:
+    m_e (1+e) V_p/J with V_p = c v₁/y₁, J = −c/y₁) or −m_e (1 + e) Ω y₁ (prescribed: −J y₁/c with
+    J = m_e (1 + e) Ω c); y₁, v₁, y₁'' the midspan state per unit impulse of :func:`unit_state`."""
     duration, half = _pulse_one(span, table)
     ei, tension, mass, period, one_wall, code, tol, consecutive = state
     y1, v1, curv1 = midspan.midspan_state_one(span, duration, half, modes, ei, tension, mass, period, one_wall, code,
@@ -197,7 +197,8 @@ def _screen_batch(spans, durations, halves, n_odd, offset, state, closure):
     and the odd modes 1, 3, …, 2 ``n_odd`` − 1, the modal sums of all spans at once in SIMD instructions
     (:func:`midspan.midspan_states`; equal to :func:`_screen_state` but for rounding)."""
     ei, tension, mass, period, one_wall, code, tol, _ = state
-    y1, v1, curv1 = midspan.midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code, tol)
+    y1, v1, curv1 = midspan.midspan_states(spans, durations, halves, n_odd, ei, tension, mass, period, one_wall, code,
+                                           tol)
     self_consistent, mass_factor, restitution, omega, _, _, _ = closure
     factor = mass_factor * spans * (1.0 + restitution)
     values = -factor * v1 - offset if self_consistent else -factor * omega * y1 - offset
@@ -498,7 +499,8 @@ def _sign_changes(spans, inside_values, lo, hi, residue_lo, residue_hi):
                 k += 1
         for j in range(m - 1):
             if (g[j] > 0.0 and g[j + 1] < 0.0) or (g[j] < 0.0 and g[j + 1] > 0.0):
-                out[0, count], out[1, count], out[2, count], out[3, count] = spans[i, j], spans[i, j + 1], g[j], g[j + 1]
+                out[0, count], out[1, count] = spans[i, j], spans[i, j + 1]
+                out[2, count], out[3, count] = g[j], g[j + 1]
                 out[4, count], out[5, count], out[6, count] = lo[i], hi[i], min(abs(f[j]), abs(f[j + 1]))
                 count += 1
     return out[:, :count].copy()
@@ -568,8 +570,8 @@ def midspan_screen(scene: Scene, options: Options, search: SpanSearch) -> np.nda
     # the verdict of largest_excursion without its library calls where rounding cannot change it, it elsewhere
     p = scene.props
     verdict = midspan.excursion_verdicts(times, spans, duration, half, odd_modes(options.modes).size,
-                                      p["bending_stiffness"], p["effective_tension"], p["mass_per_length"], scene.period,
-                                      scene.pattern, options.load_shape, limit=limit)
+                                         p["bending_stiffness"], p["effective_tension"], p["mass_per_length"],
+                                         scene.period, scene.pattern, options.load_shape, limit=limit)
     within = verdict == 0
     unsure = np.nonzero(verdict < 0)[0]
     if unsure.size:
