@@ -591,7 +591,7 @@ def _cross_checks(inputs: dict, axes: dict, problems: list[str]):
         return [float(value)] if isinstance(value, (int, float)) else []
 
     # the reference model's periodic section holds whole turns of the pipe joints' eccentricity pattern
-    # (study.solvers.methods.reference.eccentricity_phases says it again where a section is built in code)
+    # (study.physics.string_modes.eccentricity_phases says it again where a section is built in code)
     for length in values("section_length"):
         for joint in values("joint_length"):
             joints = length / joint

@@ -253,7 +253,6 @@ METHOD_EDGES = {
     ("crosscheck", "periodic"): "it rebuilds fast's impact at its span (the periodic methods' impact_model, Options)",
     ("crosscheck", "timedomain"): "it replays the periodic solution through the time domain's modal model and "
                                   "integrator (build_model, simulate, stresses), not through the method",
-    ("freewhirl", "reference"): "the free whirl is solved on the reference model's modes and contact layout",
     ("sliding", "reference"): "the sliding rest is the reference model's static equilibrium (its WhirlModel)",
     ("reference", "sliding"): "the reference model's integration starts from the sliding rest in a deviated hole",
 }

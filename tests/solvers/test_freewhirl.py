@@ -10,7 +10,7 @@ from study.solvers.methods import freewhirl
 from study.solvers import solve_point
 from study.solvers.model.options import ReferenceOptions
 from study.solvers.model.scene import Scene
-from study.solvers.methods.reference import mode_shapes
+from study.physics.string_modes import mode_shapes
 
 ROOT = Path(__file__).resolve().parents[2]
 DEG = np.pi / 180

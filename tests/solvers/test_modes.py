@@ -6,6 +6,7 @@ modal part measured between N/2 and N modes."""
 import numpy as np
 import pytest
 
+from study.physics import string_modes
 from study.solvers.methods import reference
 from study.solvers.kernels import whirl_kernel
 
@@ -24,13 +25,13 @@ def direct_sum(s, tension, harmonics=2_000_000):
 def test_the_periodic_point_deflection_in_closed_form_is_its_fourier_series(s, tension):
     # Gradshteyn & Ryzhik 1.445.2 (the hyperbolic form), 1.443.3/1.443.6 (tensionless: Bernoulli polynomials) against
     # the series itself; near T = 0 the closed form's difference cancels to about 1e-9 relative (measured 6e-10)
-    closed = float(reference.periodic_point_deflection(s, L, EI, tension))
+    closed = float(string_modes.periodic_point_deflection(s, L, EI, tension))
     assert closed == pytest.approx(direct_sum(s, tension), rel=2e-9)
 
 
 def test_the_tensionless_point_deflection_is_the_beams_l3_over_720_ei():
     # (2/(L EI)) (L/2π)⁴ ζ(4) = L³/(720 EI) under the load (ζ(4) = π⁴/90)
-    assert float(reference.periodic_point_deflection(0.0, L, EI, 0.0)) == pytest.approx(L**3 / (720 * EI), rel=1e-14)
+    assert float(string_modes.periodic_point_deflection(0.0, L, EI, 0.0)) == pytest.approx(L**3 / (720 * EI), rel=1e-14)
 
 
 @pytest.fixture(scope="module")
@@ -43,8 +44,8 @@ def test_the_residual_flexibility_is_the_left_out_modes_sum(model):
     # the sine of harmonic 8, whose cosine the 16 modes keep), against the closed form less the kept terms
     p = model.props
     big = 400_001
-    k = reference.mode_wavenumbers(model.span, big)[16:]
-    shapes = reference.mode_shapes(model.points, model.span, np.arange(16, big))
+    k = string_modes.mode_wavenumbers(model.span, big)[16:]
+    shapes = string_modes.mode_shapes(model.points, model.span, np.arange(16, big))
     omega2 = (p["bending_stiffness"] * k**4 + p["effective_tension"] * k**2) / p["mass_per_length"]
     direct = (shapes**2) @ (1.0 / (model.mass * omega2))
     np.testing.assert_allclose(model.residual, direct, rtol=1e-9)
@@ -69,7 +70,7 @@ def test_the_series_spring_splits_the_approach_between_hertz_and_the_flexibility
         dh = (F / K) ** (2.0 / 3.0)
         assert dh + f * F == pytest.approx(d, rel=1e-12)
         assert F <= K * d**1.5 * (1 + 1e-14) and (f > 0 or F == pytest.approx(K * d**1.5, rel=1e-14))
-        approach, force = reference.series_contact(np.array([d]), K, f)
+        approach, force = string_modes.series_contact(np.array([d]), K, f)
         assert force[0] == pytest.approx(F, rel=1e-12) and approach[0] == pytest.approx(dh, rel=1e-9)
 
 
@@ -84,7 +85,7 @@ def test_a_held_contact_sees_the_continuous_beams_static_flexibility(paper_input
         flexible = m.wavenumber > 0
         gain[flexible] = 1.0 / (m.mass * m.omega[flexible] ** 2)
         kept = (m.phi**2) @ gain
-        whole = reference.periodic_point_deflection(0.0, m.span, m.props["bending_stiffness"],
+        whole = string_modes.periodic_point_deflection(0.0, m.span, m.props["bending_stiffness"],
                                                      m.props["effective_tension"])
         np.testing.assert_allclose(kept + m.residual, whole, rtol=1e-12)
         # and the deflection the quasi-static correction adds at the point itself is that flexibility's
@@ -126,8 +127,8 @@ def test_a_held_contact_is_at_rest_where_the_continuous_beam_rests(paper_inputs,
             field = reference.periodic_fields(m, z[None, :n], fc[None, :, 0], x)["deflection"][0]
             # the contact at c + δ_H, the string sagging towards the low side away from it by (G(0) − G(s)) F
             ei, tn = m.props["bending_stiffness"], m.props["effective_tension"]
-            sag = (reference.periodic_point_deflection(0.0, m.span, ei, tn)
-                   - reference.periodic_point_deflection(x, m.span, ei, tn)) * F
+            sag = (string_modes.periodic_point_deflection(0.0, m.span, ei, tn)
+                   - string_modes.periodic_point_deflection(x, m.span, ei, tn)) * F
             np.testing.assert_allclose(field, total - f * F + sag, rtol=1e-9)
 
 
@@ -165,11 +166,11 @@ def test_a_held_contacts_fields_are_the_continuous_beams_under_either_recovery(p
         fields[residual, recovery] = reference.periodic_fields(m, window.states[:, :n], window.correction_forces(m, 0),
                                                                x)
         ei, tn = m.props["bending_stiffness"], m.props["effective_tension"]
-        sag = (reference.periodic_point_deflection(0.0, m.span, ei, tn)
-               - reference.periodic_point_deflection(x, m.span, ei, tn)) * F
+        sag = (string_modes.periodic_point_deflection(0.0, m.span, ei, tn)
+               - string_modes.periodic_point_deflection(x, m.span, ei, tn)) * F
         np.testing.assert_allclose(fields[residual, recovery]["deflection"][0], total - f * F + sag, rtol=1e-9)
         np.testing.assert_allclose(fields[residual, recovery]["moment"][0],
-                                   -F * reference.periodic_point_moment(x, m.span, ei, tn),
+                                   -F * string_modes.periodic_point_moment(x, m.span, ei, tn),
                                    rtol=1e-7, atol=1e-9 * F * m.span)
 
 
@@ -270,8 +271,8 @@ def test_the_residual_oscillator_has_the_left_out_modes_receptance_at_low_freque
     assert m.dynamic and np.all(m.residual_mass > 0)
     p = m.props
     big = 400_001
-    k = reference.mode_wavenumbers(m.span, big)[n:]
-    shapes = reference.mode_shapes(m.points, m.span, np.arange(n, big)) ** 2
+    k = string_modes.mode_wavenumbers(m.span, big)[n:]
+    shapes = string_modes.mode_shapes(m.points, m.span, np.arange(n, big)) ** 2
     omega2 = (p["bending_stiffness"] * k**4 + p["effective_tension"] * k**2) / p["mass_per_length"]
     np.testing.assert_allclose(reference.residual_second_moment(m), shapes @ (1.0 / (m.mass * omega2**2)), rtol=1e-9)
     for share in (0.1, 0.3):

@@ -5,6 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from study.physics import string_modes
 from study.benchmarks import reference as reference_bench
 from study.solvers import METHODS, solve_point
 from study.solvers.methods import reference
@@ -32,14 +33,14 @@ def test_nothing_moves_without_a_drive(base):
 def test_contact_layout_of_three_joints():
     # 93-ft periodic section of 31-ft joints: joints at 0, 31 and 62 ft (93 ft is the joint at 0 again), the body
     # halfway between them
-    x, kinds = reference.contact_layout(93 * 0.3048, 31 * 0.3048)
+    x, kinds = string_modes.contact_layout(93 * 0.3048, 31 * 0.3048)
     assert np.allclose(x / 0.3048, [0, 15.5, 31, 46.5, 62, 77.5])
     assert list(kinds) == [1, 0, 1, 0, 1, 0]
 
 
 def test_a_section_of_no_whole_number_of_joints_is_refused_naming_both_fields(base):
     with pytest.raises(ValueError, match="contact.section_length .* pipe.joint_length"):
-        reference.contact_layout(100 * 0.3048, 31 * 0.3048)
+        string_modes.contact_layout(100 * 0.3048, 31 * 0.3048)
 
 
 @pytest.mark.parametrize("field, value", [("tool_joint_diameter", 9.0 * 0.0254), ("tool_joint_diameter", 4.0 * 0.0254)])

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from study import config
-from study.physics import well
+from study.physics import string_modes, well
 from study.physics import whirl as whirl_physics
 from study.solvers.methods import auto, freewhirl, reference, sliding
 from study.solvers.model.options import Tolerances
@@ -44,11 +44,11 @@ def test_the_periodic_basis_repeats_and_has_one_modal_mass():
     L, N = 28.3464, 9
     gx, gw = whirl_physics.gauss_legendre(64)
     x, w = 0.5 * L * (gx + 1), 0.5 * L * gw
-    shapes = reference.mode_shapes(x, L, N)
+    shapes = string_modes.mode_shapes(x, L, N)
     np.testing.assert_allclose(shapes.T @ (shapes * w[:, None]), 0.5 * L * np.eye(N), atol=1e-12 * L)
-    np.testing.assert_allclose(reference.mode_shapes(x + L, L, N), shapes, atol=1e-12)
-    k = reference.mode_wavenumbers(L, N)
-    np.testing.assert_allclose(reference.mode_shapes(x, L, N, 2), -shapes * k**2, atol=1e-12)
+    np.testing.assert_allclose(string_modes.mode_shapes(x + L, L, N), shapes, atol=1e-12)
+    k = string_modes.mode_wavenumbers(L, N)
+    np.testing.assert_allclose(string_modes.mode_shapes(x, L, N, 2), -shapes * k**2, atol=1e-12)
 
 
 @pytest.mark.parametrize("tension", [0.0, 5e3, 1.3e5, -2e3])
@@ -61,7 +61,7 @@ def test_the_static_moment_of_a_point_load_on_the_periodic_beam_column_is_its_se
     j = np.arange(1, 200_001)
     k = 2 * np.pi * j / L
     series = (2 / L) * np.cos(np.outer(s, k)) @ (1.0 / (k**2 + tension / ei))
-    closed = reference.periodic_point_moment(s, L, ei, tension)
+    closed = string_modes.periodic_point_moment(s, L, ei, tension)
     np.testing.assert_allclose(closed, series, rtol=0, atol=L / (2 * np.pi**2 * j[-1]))
 
 
@@ -84,10 +84,10 @@ def test_a_free_rigid_section_under_a_constant_side_load_accelerates_as_w_over_m
 def _joint_system(model, joint_mass):
     """The periodic basis' stiffness (diagonal) and mass matrices with ``joint_mass`` at each tool joint."""
     L, n = model.span, model.modes
-    k = reference.mode_wavenumbers(L, n)
+    k = string_modes.mode_wavenumbers(L, n)
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
-    joints = reference.contact_layout(L, L / 3, 0)[0]
-    shapes = reference.mode_shapes(joints, L, n)
+    joints = string_modes.contact_layout(L, L / 3, 0)[0]
+    shapes = string_modes.mode_shapes(joints, L, n)
     return 0.5 * L * (ei * k**4 + tn * k**2), 0.5 * model.props["mass_per_length"] * L * np.eye(n.size) + \
         joint_mass * shapes.T @ shapes
 
@@ -397,21 +397,21 @@ def test_the_modal_accelerations_are_the_recorded_velocities_rate():
 # --- the eccentricity's phases from pipe joint to pipe joint -----------------------------------------------------
 
 def test_the_turned_eccentric_load_is_its_integral_over_the_pipe_joints():
-    # ∫₀ᴸ e^{iφ(x)} ψ_n(x) dx with φ = j·turn on the j-th pipe joint (reference.eccentric_factors) against Gauss–Legendre
-    # quadrature on each joint (exact to rounding for these smooth pieces at 64 nodes); aligned, L/√2 on the rigid
-    # translation alone (a uniform load); a third of a turn over three joints sums to nothing on it (1 + e^{2πi/3} +
+    # ∫₀ᴸ e^{iφ(x)} ψ_n(x) dx with φ = j·turn on the j-th pipe joint (string_modes.eccentric_factors) against
+    # Gauss–Legendre quadrature on each joint (exact to rounding for these smooth pieces at 64 nodes); aligned, L/√2 on
+    # the rigid translation alone (a uniform load); a third of a turn over three joints sums to nothing on it (1 + e^{2πi/3} +
     # e^{4πi/3} = 0) and drives the Bloch wave of wavenumber 2π/L (cos and sin k_1 x) most
     L, s, N = 3 * 9.4488, 9.4488, 16
-    aligned = reference.eccentric_factors(L, s, N, 0.0)
+    aligned = string_modes.eccentric_factors(L, s, N, 0.0)
     assert not np.iscomplexobj(aligned) and aligned[0] == L / np.sqrt(2.0) and np.all(aligned[1:] == 0.0)
     g, w = np.polynomial.legendre.leggauss(64)
     for turn in (2 * np.pi / 3, 4 * np.pi / 3, 2 * np.pi):
         quad = np.zeros(N, complex)
         for j in range(3):
             x = j * s + 0.5 * s * (g + 1.0)
-            quad += np.exp(1j * j * turn) * (0.5 * s * w) @ reference.mode_shapes(x, L, N)
-        np.testing.assert_allclose(reference.eccentric_factors(L, s, N, turn), quad, atol=1e-12 * L)
-    turned = reference.eccentric_factors(L, s, N, 2 * np.pi / 3)
+            quad += np.exp(1j * j * turn) * (0.5 * s * w) @ string_modes.mode_shapes(x, L, N)
+        np.testing.assert_allclose(string_modes.eccentric_factors(L, s, N, turn), quad, atol=1e-12 * L)
+    turned = string_modes.eccentric_factors(L, s, N, 2 * np.pi / 3)
     assert abs(turned[0]) < 1e-12 * L and int(np.argmax(np.abs(turned))) in (1, 2)
 
 
@@ -488,12 +488,12 @@ def test_the_joints_share_of_the_turning_load_by_the_balance_of_forces():
     # third of a turn from joint to joint, the three joints' loads sum to nothing (1 + e^{2πi/3} + e^{4πi/3} = 0): no
     # speed lifts the string as a whole
     model = reference.build_model(_default(200, 30))
-    w = float(np.hypot(*reference.side_loads(Scene.from_inputs(_default(200, 30)))[:2]))
+    w = float(np.hypot(*Scene.from_inputs(_default(200, 30)).side_loads()[:2]))
     joints = model.kinds == 1
     lift = np.sqrt((w * model.span + np.count_nonzero(joints) * model.joint_weight)
                    / (model.props["pipe_mass"] * model.eccentricity * model.span))
     assert lift * 30 / np.pi == pytest.approx(227.0, abs=0.1)
-    turned = reference.eccentric_factors(model.span, model.span / np.count_nonzero(joints), 4, 2 * np.pi / 3)
+    turned = string_modes.eccentric_factors(model.span, model.span / np.count_nonzero(joints), 4, 2 * np.pi / 3)
     assert abs(turned[0]) < 1e-12 * model.span
 
 
@@ -520,7 +520,7 @@ def test_the_default_reading_lifts_a_joint_by_the_balance_of_its_forces():
     # the balance of a joint's forces: it lifts where share · m_p ε Ω² s beats its rest, w s + W_j sin θ (302.8 N at
     # 9 ppg, docs/reference_model.md §7): at 248.8 rpm for the 90° string, 227.0 rpm aligned (the whole string's
     # balance, as test_the_joints_share_of_the_turning_load_by_the_balance_of_forces computes it)
-    w = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2]))
+    w = float(np.hypot(*Scene.from_inputs(point).side_loads()[:2]))
     rest = w * s + model.joint_weight
     assert rest == pytest.approx(302.77, abs=0.01)
     rpm = lambda share_: float(whirl_physics.lift_off_speed(rest, share_, m_p, model.eccentricity, s)) * 30 / np.pi
@@ -543,7 +543,7 @@ def test_at_200_rpm_and_30_klbf_the_default_string_lies_below_the_eccentricity_t
     assert result.values["contact_fraction"] == 1.0
     model = reference.build_model(point)
     s = model.span / np.count_nonzero(model.kinds == 1)
-    share = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2])) * s + model.joint_weight
+    share = float(np.hypot(*Scene.from_inputs(point).side_loads()[:2])) * s + model.joint_weight
     assert 1.0 < result.values["peak_contact_force"] / share < 2.5  # measured 568.5 N over 302.8 N: 1.88
 
 
@@ -591,7 +591,7 @@ def test_the_lift_off_eccentricity_at_200_rpm_decides_whether_the_reference_mode
     lies = reference.simulate({**point, "eccentricity": 0.9 * lift, **quick})
     window, model = lies["window"], lies["model"]
     joints = model.kinds == 1
-    share = float(np.hypot(*reference.side_loads(Scene.from_inputs(point))[:2])) * model.span / 4 + model.joint_weight
+    share = float(np.hypot(*Scene.from_inputs(point).side_loads()[:2])) * model.span / 4 + model.joint_weight
     assert np.all(window.onsets[joints] <= 1)
     assert np.all(window.contact_time[joints] / (window.end - window.start) > 0.99)
     assert np.all((window.peak[joints] > share) & (window.peak[joints] < 3 * share))

@@ -31,7 +31,7 @@ side load), work of wall friction on the lateral motion, drag dissipation and co
 that the energy balance is checked to the integrator's own accuracy.
 
 Right-hand side (per modal mass m = M L/2, φ_pn = ψ_n(x_p), the periodic basis of
-:func:`study.solvers.methods.reference.mode_shapes`):
+:func:`study.physics.string_modes.mode_shapes`):
 
     q̈ = −ω_n² q − d_n q̇ + Re/Im(ε_n e^{iΩt}) + s_n e_y
          − Σ_g w_g S_gn D |u̇_g| u̇_g / m + Σ_p φ_pn F_p / m
@@ -654,7 +654,7 @@ def kernel_system(sy: tuple) -> tuple:
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy
     SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
     # the eccentric load's modal amplitudes as rows (in phase with cos Ωt; in quadrature, where complex: the joints'
-    # eccentricities turned, reference.eccentric_factors)
+    # eccentricities turned, string_modes.eccentric_factors)
     ecc = (np.stack((ecc.real, ecc.imag)) if np.iscomplexobj(ecc) else np.asarray(ecc, float)[None, :]).astype(float)
     return (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity,
             np.ascontiguousarray(fr, dtype=float))

@@ -2,12 +2,12 @@
 wall, in closed form (docs/reference_model.md; the cheapest rung of the ``auto`` hierarchy).
 
 The scene is the reference model's (:mod:`study.solvers.methods.reference`): a periodic section of the long string
-(its modes :func:`study.solvers.methods.reference.mode_shapes`) in both lateral directions, driven by its mass
+(its modes :func:`study.physics.string_modes.mode_shapes`) in both lateral directions, driven by its mass
 eccentricity ε (the centrifugal load m_p ε Ω² turning with the pipe); mud added mass in M and quadratic drag
 D |u̇| u̇. The pipe joints' eccentricities aligned (``pipe.eccentricity_turn`` 0), a uniform load drives the rigid
 translation ψ_0 alone, so away from the wall the string whirls as a rigid body (Jeffcott's rotor with no stiffness;
 Vance 1988 ch. 2), bent only by its tool joints' mass; turned from joint to joint, the load drives the string's wave of
-the turn (:func:`study.solvers.methods.reference.eccentric_factors`) and it whirls bent in it. Either way every section
+the turn (:func:`study.physics.string_modes.eccentric_factors`) and it whirls bent in it. Either way every section
 whirls forward on a circle, on which its speed |u̇| = Ω |A(x)| is constant, so the drag is exactly a viscous damping
 c(x) = D Ω |A(x)| and the modal equations (K − Ω² M) a + iΩ C a = ε are solved by fixed-point iteration on |A|
 (a few steps).
@@ -28,10 +28,9 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import section, well, whirl
+from study.physics.string_modes import contact_layout, eccentric_factors, joint_modes, mode_shapes, mode_wavenumbers
 from study.solvers.model.options import ReferenceOptions
 from study.solvers.model.point import DesignPoint
-from study.solvers.methods.reference import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
-                                             mode_wavenumbers, side_loads)
 from study.solvers.model.result import REGIMES, PointResult
 from study.solvers.model.scene import Scene
 
@@ -67,10 +66,10 @@ def steady_state(scene: Scene, option: ReferenceOptions, modes: int = MODES, poi
     lift = (lambda a: a) if basis is None else (lambda a: a @ basis)  # the basis' values to the modes'
     mass = 0.5 * M * L
     # ∫ e^{iφ(x)} ψ_n dx: aligned, a uniform load drives the rigid translation of the basis alone; the joints'
-    # eccentricities turned, the Bloch wave of the turn (reference.eccentric_factors, as the reference model's)
+    # eccentricities turned, the Bloch wave of the turn (string_modes.eccentric_factors, as the reference model's)
     factors = eccentric_factors(L, float(option.joint_length), modes, float(option.eccentricity_turn))
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], float(option.eccentricity), Om) * factors) / mass
-    w_side = float(np.hypot(*side_loads(scene)[:2]))  # the weight's and, in a curved hole, the tension's
+    w_side = float(np.hypot(*scene.side_loads()[:2]))  # the weight's and, in a curved hole, the tension's
     sag_modal = np.zeros(modes)  # a side load has no static answer clear of the wall (the rigid translation falls)
     x = np.linspace(0.0, L, points)
     gx, gw = whirl.gauss_legendre(2 * modes + 8)

@@ -15,7 +15,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, section
+from study.physics import hertz, section, well, whirl
 from study.solvers.model.options import IMPACT_MASSES
 from study.solvers.model.result import PointResult
 
@@ -74,7 +74,7 @@ class Scene:
     dogleg_curvature: float = 0.0  #: the hole's curvature κ [1/m] (hole.dogleg_severity)
     dogleg_direction: float = 0.0  #: the direction of the hole's centre of curvature from the low side [rad]
     #: the uniform side load along +y [N/m] set directly (code and tests: the ``side_load`` input), None: the
-    #: buoyed weight's and the tension's in a curved hole (study.solvers.methods.reference.side_loads)
+    #: buoyed weight's and the tension's in a curved hole (:meth:`side_loads`)
     side_load: float | None = None
     #: the span given (solver.span_length) [m], None: a method that needs one searches for it or says it has none
     span_length: float | None = None
@@ -116,6 +116,25 @@ class Scene:
         if self.impact_mass == "modal":
             return 0.5 * mass * np.asarray(span_length, dtype=float)
         return section.equivalent_mass(mass, span_length)
+
+    def side_loads(self) -> tuple[float, float, np.ndarray]:
+        """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
+        hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
+        (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension
+        and, in a curved hole, the scene's ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the
+        low side (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load along
+        +y directly (code and tests). The reference model's and the free whirl's side load."""
+        props = self.props
+        kappa = self.dogleg_curvature
+        phi = self.dogleg_direction
+        curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
+        if self.side_load is not None:
+            return self.side_load, 0.0, curvature
+        r_o = self.outer_radius
+        buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], self.mud_density, r_o,
+                                       0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
+        w_y, w_z = well.side_load_vector(buoyed, self.inclination, props["effective_tension"], kappa, phi)
+        return float(w_y), float(w_z), curvature
 
     def natural_frequencies(self, span_length, modes) -> np.ndarray:
         """ω_n [rad/s] of spans ``span_length`` [m] (last axis: ``modes``), pinned beam-column under the effective

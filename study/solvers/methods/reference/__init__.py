@@ -9,14 +9,14 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   tension T0 − m_i V_m², mass M = m_p + m_i + m_a per unit length
   (:func:`study.solvers.model.scene.section_of`); deflection u(x, t) = (y, z) = Σ_n (q_yn, q_zn) ψ_n(x) over
   the periodic basis ψ_0 = 1/√2 (the rigid translation, ω_0 = 0), ψ_{2j−1} = cos k_j x, ψ_{2j} = sin k_j x,
-  k_j = 2πj/L (:func:`mode_shapes`), n = 0 … N − 1 (``reference_modes``, default 16, modes per direction),
-  modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
+  k_j = 2πj/L (:func:`study.physics.string_modes.mode_shapes`), n = 0 … N − 1 (``reference_modes``, default 16, modes
+  per direction), modal mass M L/2 and ω_n² = (EI k_n⁴ + T k_n²)/M.
 - **drive**: the pipe's mass eccentricity ε (``eccentricity``, config ``pipe.eccentricity``), the same size in every
   pipe joint, whose centrifugal load m_p ε Ω² per unit length turns with the pipe
   (:func:`study.physics.whirl.eccentric_load`), in the same phase in every pipe joint (``eccentricity_turn`` 0, the
-  default) or turned from joint to joint (:func:`eccentric_factors`); and the uniform side load (:func:`side_loads`): in an inclined
-  hole (``inclination``, config ``hole.inclination``, default 0) the buoyed weight's side component, in a curved
-  hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
+  default) or turned from joint to joint (:func:`study.physics.string_modes.eccentric_factors`); and the uniform side
+  load (:meth:`study.solvers.model.scene.Scene.side_loads`): in an inclined hole (``inclination``, config
+  ``hole.inclination``, default 0) the buoyed weight's side component, in a curved hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
   curvature also bends the pipe that follows it (``side_load`` [N/m] sets the load directly in code). A uniform
   load drives the rigid translation ψ_0 alone. Nothing else: with ε = 0 and a centred pipe in a straight vertical
   hole nothing moves.
@@ -27,8 +27,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   ``damping_ratio`` in every mode) and ``"none"``.
 - **contact points**: the tool joints at 0, s, 2s, … (s = ``joint_length``; x = L is the joint at 0 again),
   radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe body halfway between neighbouring
-  joints, radius r_o, clearance R − r_o (:func:`contact_layout`; ``reference_body_stations`` of them, raised by
-  :func:`solve_with_modes` where the body passes its wall between them).
+  joints, radius r_o, clearance R − r_o (:func:`study.physics.string_modes.contact_layout`; ``reference_body_stations``
+  of them, raised by :func:`solve_with_modes` where the body passes its wall between them).
   ``contact_points`` (fractions of L) and ``contact_kinds`` (0 body, 1 joint) replace them in code.
 - **wall**: Hertz normal force K_p δ^{3/2}(1 + χ δ̇)₊ with K_p from
   :func:`study.physics.hertz.hertz_stiffness` for the point's radius in the hole at the curvature of the
@@ -63,13 +63,10 @@ from __future__ import annotations
 
 # The package's public names: ``reference.solve(...)`` and ``from study.solvers.methods.reference import X`` as before the
 # split. A test that patches a name patches it in the submodule whose functions look it up, not here.
-from study.solvers.methods.reference.modes import (contact_layout, eccentric_factors, eccentricity_phases, joint_modes,
-                                                   mode_shapes, mode_wavenumbers, periodic_point_deflection,
-                                                   periodic_point_moment, series_contact, symmetric_points)
 from study.solvers.methods.reference.model import (CONTACT_LAWS, SECOND_MOMENT_HARMONICS, SLIP_VELOCITY, WhirlModel,
                                                    basis_static_gain, build_model, eccentric_parts,
                                                    residual_flexibility, residual_ritz, residual_second_moment,
-                                                   residual_second_moments, side_loads, static_correction)
+                                                   residual_second_moments, static_correction)
 from study.solvers.methods.reference.integrate import (SCHEMES, SCHEME_CODES, STABLE_STEP, Integrator, Window,
                                                        initial_state, merge)
 from study.solvers.methods.reference.fields import (body_wall_excess, contact_spacing, energy_balance,
@@ -87,10 +84,8 @@ from study.solvers.methods.reference.method import (METHOD, doubling_modal_error
                                                     solve_with_modes, solve_with_stations)
 from study.solvers.model.result import REGIMES
 
-__all__ = ["mode_wavenumbers", "mode_shapes", "joint_modes", "periodic_point_deflection", "periodic_point_moment",
-           "series_contact", "contact_layout", "eccentricity_phases", "eccentric_factors", "symmetric_points",
-           "CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility", "SECOND_MOMENT_HARMONICS",
-           "residual_second_moments", "residual_second_moment", "basis_static_gain", "eccentric_parts", "side_loads",
+__all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility", "SECOND_MOMENT_HARMONICS",
+           "residual_second_moments", "residual_second_moment", "basis_static_gain", "eccentric_parts",
            "build_model", "residual_ritz", "static_correction", "SCHEMES", "SCHEME_CODES", "STABLE_STEP", "Window",
            "merge", "Integrator", "initial_state", "periodic_fields", "body_wall_excess", "row_wall_excess",
            "wall_excess_bound", "modal_accelerations", "joint_inertia_forces", "stresses", "contact_spacing",

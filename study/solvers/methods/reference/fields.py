@@ -12,7 +12,7 @@ from study.physics import section
 from study.solvers.kernels import stress_kernel
 from study.solvers.methods.reference.integrate import Window
 from study.solvers.methods.reference.model import WhirlModel, eccentric_parts, static_correction
-from study.solvers.methods.reference.modes import mode_shapes
+from study.physics.string_modes import mode_shapes
 from study.solvers.model.scene import Scene
 
 

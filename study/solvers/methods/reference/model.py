@@ -13,9 +13,9 @@ from study.physics import hertz, well, whirl
 from study.physics.contact import (calibrated_hysteresis, hertz_energy, linear_contact_damping,
                                    linearised_stiffness)
 from study.solvers.model.options import ReferenceOptions
-from study.solvers.methods.reference.modes import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
-                                                   mode_wavenumbers, periodic_point_deflection, periodic_point_moment,
-                                                   series_contact, symmetric_points)
+from study.physics.string_modes import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
+                                        mode_wavenumbers, periodic_point_deflection, periodic_point_moment,
+                                        series_contact, symmetric_points)
 from study.solvers.model.scene import Scene, make_scene
 
 
@@ -306,26 +306,6 @@ def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
     return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
 
 
-def side_loads(scene: Scene) -> tuple[float, float, np.ndarray]:
-    """The uniform side load (w_y, w_z) [N/m] on the string in the hole's frame (y towards the low side) and the
-    hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
-    (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension and,
-    in a curved hole, the scene's ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the low side
-    (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load along +y
-    directly (code and tests)."""
-    props = scene.props
-    kappa = scene.dogleg_curvature
-    phi = scene.dogleg_direction
-    curvature = kappa * np.array([np.cos(phi), np.sin(phi)])
-    if scene.side_load is not None:
-        return scene.side_load, 0.0, curvature
-    r_o = scene.outer_radius
-    buoyed = float(whirl.side_load(props["pipe_mass"], props["internal_mud_mass"], scene.mud_density, r_o,
-                                   0.5 * np.pi))  # the whole buoyed weight per length (sin 90° = 1)
-    w_y, w_z = well.side_load_vector(buoyed, scene.inclination, props["effective_tension"], kappa, phi)
-    return float(w_y), float(w_z), curvature
-
-
 def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     """The reference model of one design point (see the module docstring). Raises ValueError naming the
     field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
@@ -394,7 +374,7 @@ def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
     # the body's, not the joints'; in phases that turn from pipe joint to pipe joint (eccentric_factors)
     eccentric = lift(whirl.eccentric_load(props["pipe_mass"], eps, Om)
                      * eccentric_factors(L, joint, N, float(option.eccentricity_turn))) / mass
-    w_y, w_z, curvature = side_loads(scene)
+    w_y, w_z, curvature = scene.side_loads()
     if joint_side and scene.side_load is None:
         w_y += joint_side * joint_x.size / L  # the joints' weight's mean along the string, in the uniform load
     # the scene is axisymmetric but for the side load, whose direction is constant: the model's frame is the hole's

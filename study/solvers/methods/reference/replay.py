@@ -19,7 +19,7 @@ from study.solvers.model.options import ReferenceOptions
 from study.solvers.methods.reference.fields import stresses
 from study.solvers.methods.reference.integrate import Integrator, merge
 from study.solvers.methods.reference.model import build_model
-from study.solvers.methods.reference.modes import mode_shapes, mode_wavenumbers
+from study.physics.string_modes import mode_shapes, mode_wavenumbers
 from study.solvers.methods.reference.statistics import whirl_measure
 
 #: Impacts replayed per window: the largest half and the rest spread evenly over the others (typical strikes).

@@ -15,7 +15,7 @@ from study.solvers.model.options import (LimitOptions, ReferenceOptions, force_t
 from study.solvers.methods.reference.fields import periodic_fields, stresses
 from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
-from study.solvers.methods.reference.modes import series_contact
+from study.physics.string_modes import series_contact
 from study.solvers.model.result import REGIMES
 from study.solvers.model.scene import Scene
 
