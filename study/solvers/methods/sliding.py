@@ -28,6 +28,10 @@ tolerance — its error estimate is the largest difference, over the revolution,
 on the motion and their linearisation, relative to the peak force, plus the modal truncation's share of the
 largest moment and the drag iteration's last change.
 
+Where that estimate is above the study's tolerance the same periodic state is solved without linearising, by
+harmonic balance on the exact force laws (:func:`refine`, :func:`balance`), and answers where it settles with a
+smaller error (its harmonic truncation and the modes').
+
 Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the
 tangential direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at
 50–150 rpm it had not settled after 120 revolutions, at 1–20 s a point; this state is what it tends to.
