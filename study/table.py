@@ -77,6 +77,8 @@ EXTRA_OUTPUTS = {
     "contact_linearisation": ("1", "relative change of the figures with the Hertz secant stiffness"),
     "drag_linearisation": ("1", "relative change of the figures with the drag made viscous at the mean speed"),
     "truncation_error": ("1", "relative change of the figures with half the modes"),
+    "harmonic_balance": (None, "the sliding state solved exactly by harmonic balance (harmonics, Newton iterations, last "
+                               "correction, the figures' change from half the harmonics, the linear answer's estimate)"),
     "methods_tried": (None, "the models tried by auto, in order, and their verdicts"),
     "convergence": (None, "error of each figure, by its parts"),
     "energy_budget": (None, "energy balance over the window"),

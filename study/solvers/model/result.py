@@ -90,6 +90,9 @@ class PointResult:
     extras: dict[str, Any] = field(default_factory=dict)  # non-scalar outputs (JSON only)
     error_estimate: float | None = None
     wall_time: float = 0.0
+    #: the reference model a run started from on the wall (its sliding rest in its ``cache``), handed to the lift-off
+    #: eccentricity (:func:`study.solvers.methods.sliding.add_lift_off`, which empties it); not an output
+    rest_model: Any = field(default=None, repr=False, compare=False)
 
     def __setattr__(self, name: str, value: Any) -> None:
         # a status given by its name (``result.status = "ok"``) becomes its member; an unknown one is refused here

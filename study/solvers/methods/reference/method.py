@@ -335,6 +335,8 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                           f"{model.span:.4g} m section")
         return result
     run = simulate(inputs, model)
+    # the lift-off eccentricity is computed about the rest the run started from (sliding.add_lift_off)
+    result.rest_model = model if "sliding_rest" in model.cache else None
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
                          reference_modes=model.n_modes,
                          reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
