@@ -180,8 +180,8 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
         else model.span)
     local = fn.copy()  # the recorded forces, a strike's rows replaced by nothing and its local peak put at its onset
     extra = np.zeros(fn.shape[0])
-    taken = np.zeros(fn.shape[0], bool)
-    long_rows = np.zeros(fn.shape[0], bool)
+    taken = np.zeros(fn.shape[0], int)  # strikes taken locally, per onset row
+    long_rows = np.zeros(fn.shape[0], int)
     reflection = np.zeros(fn.shape[0])
     speed_at = np.zeros(fn.shape[0])
     speed_at[rows] = speed
@@ -191,23 +191,23 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
         ratio = float(duration[0] / strike.return_time(duration[0], spacing, rho, ei))
         reflection[row] = ratio
         if ratio >= 1.0:
-            long_rows[row] = True
+            long_rows[row] += 1
             continue
         end = row
         while end < fn.shape[0] and fn[end, p] > 0:
             end += 1
         local[row:end, p] = 0.0
         extra[row] = max(extra[row], float(force[0]))
-        taken[row] = True
+        taken[row] += 1
     out = []
     shares = np.zeros(fn.shape[0])
     shares[rows] = share
     for a, b in segments:
         largest = a + int(np.argmax(extra[a:b])) if b > a else a  # the cycle's strongest strike taken locally
         out.append(dict(peak_contact_force=float(max(np.max(local[a:b], initial=0.0), np.max(extra[a:b], initial=0.0))),
-                        count=int(np.count_nonzero(taken[a:b])), long=int(np.count_nonzero(long_rows[a:b])),
-                        speed=float(np.max(np.where(taken[a:b], speed_at[a:b], 0.0), initial=0.0)),
-                        speed_share=float(shares[largest]) if b > a and taken[largest] else 0.0,
+                        count=int(np.sum(taken[a:b])), long=int(np.sum(long_rows[a:b])),
+                        speed=float(np.max(np.where(taken[a:b] > 0, speed_at[a:b], 0.0), initial=0.0)),
+                        speed_share=float(shares[largest]) if b > a and taken[largest] > 0 else 0.0,
                         reflection=float(np.max(reflection[a:b], initial=0.0))))
     return out
 
