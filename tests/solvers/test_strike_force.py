@@ -19,7 +19,8 @@ def test_the_option_is_validated_naming_the_field():
 def test_the_thrown_strings_strikes_are_found_at_their_speed_and_forced_locally(default_point):
     # the string thrown rigidly at 0.3 m/s onto its three joints (tests/solvers/test_modes.py, 16 modes): every joint
     # strikes once at 0.3 m/s (the throw's speed: the kept modes' normal velocity at the onset row), and the cycle's peak
-    # is the local model's at that speed (study.physics.strike.peak_force), not the 16 modes' own (245 kN measured)
+    # is the local model's at that speed (study.physics.strike.peak_force), not the 16 modes' own with the series law
+    # (24 kN measured in test_modes.py, against 143 kN at 256 modes)
     inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
               "reference_damping": "none", "reference_modes": 16}
     m = reference.build_model(inputs)
@@ -36,4 +37,4 @@ def test_the_thrown_strings_strikes_are_found_at_their_speed_and_forced_locally(
                                  m.props["bending_stiffness"], m.hysteresis)[0][0]
     assert cycle["count"] == 3 and cycle["long"] == 0 and 0.0 < cycle["reflection"] < 0.2
     assert cycle["peak_contact_force"] == pytest.approx(expected, rel=1e-3)
-    assert np.max(window.peak) > 1.5 * cycle["peak_contact_force"]  # the 16 modes' stiff strike
+    assert np.max(window.peak) < 0.25 * cycle["peak_contact_force"]  # the series law's soft strike at 16 modes
