@@ -43,7 +43,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from study.physics.contact import hertz_force
+from study.physics.contact import hertz_force, linearised_stiffness
 from study.physics.restitution import check_range
 
 __all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
@@ -148,7 +148,8 @@ def strike(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hys
             if x > 0.0:
                 bracket = 1.0 + chi * vn
                 fn = float(hertz_force(x, K, vn, chi))
-                dF = (1.5 * K * np.sqrt(x) * bracket + K * x**1.5 * chi * 2.0 / dt) if bracket > 0 else 0.0
+                dF = (float(linearised_stiffness(x, K)) * bracket + float(hertz_force(x, K)) * chi * 2.0 / dt
+                      if bracket > 0 else 0.0)
             else:
                 fn, dF = 0.0, 0.0
             # the joint at t_n: m (v_n − v_{n−1})/Δt = P_n − F_n

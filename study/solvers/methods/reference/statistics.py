@@ -136,11 +136,13 @@ SPEED_EXPONENT = 1.2
 
 
 def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The window's strikes at the tool joints: (rows, points, onset speeds [m/s], upper shares) — each row where a
+    """The window's strikes at the tool joints: (rows, points, onset speeds [m/s], modal parts) — each row where a
     joint's normal force is nil at the row before and not at it (the kernel records the row at the onset it has
-    located), the kept modes' velocity of the joint towards its wall there (the approach rate, ``(u·u̇)/|u|``), and the
-    share of that speed the upper half of the kept modes carry (by frequency), |upper|/|all|: how far the onset speed
-    is from converged in the modes."""
+    located), the kept modes' velocity of the joint towards its wall there (the approach rate, ``(u·u̇)/|u|``), and
+    the onset speed's modal part, relative: the share s_1 of it the last octave of the kept modes carries (the upper
+    half by frequency) and, where it falls from the octave before (s_2, the third quarter) by r = s_1/s_2 < 1/2, the
+    octaves beyond taken as a geometric series, s_1 r/(1 − r) (the replays' rule: a tail no larger than the last
+    change, :func:`study.solvers.methods.reference.replay.stated_part`)."""
     N = model.n_modes
     fn = window.forces[:, :, 2]
     joints = np.flatnonzero(model.kinds == 1)
@@ -151,15 +153,21 @@ def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.nda
         return rows, points, np.zeros(0), np.zeros(0)
     q = window.states[rows]
     phi = model.phi[points]  # (S, N)
-    upper = (model.omega > np.median(model.omega)).astype(float)
+    rank = np.argsort(np.argsort(model.omega, kind="stable"), kind="stable")  # each mode's place by frequency
     y, w = np.sum(phi * q[:, :N], axis=1), np.sum(phi * q[:, N:2 * N], axis=1)
     norm = np.maximum(np.hypot(y, w), 1e-300)
 
     def rate(mask):
         return (y * np.sum(phi * mask * q[:, 2 * N:3 * N], axis=1) + w * np.sum(phi * mask * q[:, 3 * N:4 * N], axis=1)) / norm
 
-    speed, high = rate(1.0), rate(upper)
-    return rows, points, speed, np.abs(high) / np.maximum(np.abs(speed), 1e-300)
+    speed = rate(1.0)
+    size = np.maximum(np.abs(speed), 1e-300)
+    upper = np.abs(rate((rank >= N // 2).astype(float))) / size  # the last octave of the kept modes
+    lower = np.abs(rate(((rank >= N // 4) & (rank < N // 2)).astype(float))) / size  # the one before
+    # the octaves to come, geometric at the ratio r of the last two, no more than the last: upper × min(1, r/(1 − r))
+    ratio = upper / np.maximum(lower, 1e-300)
+    tail = upper * np.minimum(1.0, ratio / np.maximum(1.0 - ratio, 1e-300))
+    return rows, points, speed, np.where(ratio < 0.5, tail, upper)
 
 
 def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dict[str, Any]]:
