@@ -193,10 +193,13 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
     reflection = np.zeros(fn.shape[0])
     speed_at = np.zeros(fn.shape[0])
     speed_at[rows] = speed
-    for row, p, v in zip(rows, points, speed):
-        force, duration = strike.peak_force([max(v, 1e-3)], model.joint_mass, model.stiffness[p], rho, ei,
-                                            model.hysteresis)
-        ratio = float(duration[0] / strike.return_time(duration[0], spacing, rho, ei))
+    forces, durations = np.zeros(rows.size), np.zeros(rows.size)
+    for p in np.unique(points):  # one interpolation per joint (its wall's K)
+        at = points == p
+        forces[at], durations[at] = strike.peak_force(speed[at], model.joint_mass, model.stiffness[p], rho, ei,
+                                                      model.hysteresis)
+    ratios = durations / strike.return_time(durations, spacing, rho, ei)
+    for row, p, force, ratio in zip(rows, points, forces, ratios):
         reflection[row] = ratio
         if ratio >= 1.0:
             long_rows[row] += 1
@@ -205,7 +208,7 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
         while end < fn.shape[0] and fn[end, p] > 0:
             end += 1
         local[row:end, p] = 0.0
-        extra[row] = max(extra[row], float(force[0]))
+        extra[row] = max(extra[row], float(force))
         taken[row] += 1
     out = []
     shares = np.zeros(fn.shape[0])
