@@ -326,6 +326,10 @@ class ReferenceOptions(MethodOptions):
     #: on 24 reference points of the default study 3.4 times the CPU for one point fewer not_converged,
     #: docs/reference_model.md §3.1)
     reference_window_growth: str = option("point", ("point", "figure"))
+    #: the peak contact force of a strike at a tool joint: the modes' own ("modes"), or the strike's local model from
+    #: its onset speed ("local": the joint's mass on an infinite beam against the Hertz wall, study.physics.strike;
+    #: docs/reference_model.md §2.3), where its contact ends before the waves of the neighbouring joints come back
+    reference_strike_force: str = option("modes", ("modes", "local"))
     #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and
     #: their kinds (1: a tool joint, 0: the body; default all body)
     contact_points: tuple | None = None

@@ -1,0 +1,78 @@
+"""The local model of a strike (study.physics.strike; docs/reference_model.md §2.3)."""
+
+import numpy as np
+import pytest
+
+from study.physics import hertz, strike
+from study.physics.contact import calibrated_hysteresis, hertz_wall_impact
+
+# the default study's pipe and joint (configs/default.toml at 250 rpm, 5 000 lbf, 9 ppg, its three-joint section as
+# reference.build_model makes it): m_j, the joints' Hertz K, the string's mass per length (mud and added mass in it), EI
+JOINT, K, RHO, EI = 45.117, 6.289e11, 49.346, 827410.0
+
+
+def test_the_impulse_response_is_a_long_simply_supported_beams_at_short_times():
+    # a 200-m simply supported beam struck at its middle: g(t) = Σ_n (2/(ρA ℓ)) sin²(nπ/2) sin(ω_n t)/ω_n,
+    # ω_n = (nπ/ℓ)² a (any vibration text's modal sum); at 2-10 ms no wave has come back from 100 m away
+    length, n = 200.0, np.arange(1, 400_001, 2, dtype=float)
+    a = np.sqrt(EI / RHO)
+    omega = (n * np.pi / length) ** 2 * a
+    for t in (2e-3, 5e-3, 1e-2):
+        modal = np.sum(2.0 / (RHO * length) * np.sin(omega * t) / omega)
+        assert strike.beam_impulse_response(t, RHO, EI) == pytest.approx(modal, rel=2e-3), t
+    assert strike.beam_impulse_response(-1e-3, RHO, EI) == 0.0
+
+
+def test_the_impulse_response_has_the_beams_point_receptance():
+    # ∫₀^∞ g(t) e^{−st} dt = c Γ(3/2) s^{-3/2}: on the imaginary axis −(1 + i)/(4 ρA √a ω^{3/2}), the point receptance
+    # of the infinite beam whose driving-point impedance is 2 ρA c_B (1 + i), c_B = √(ω a) (Cremer, Heckl & Petersson
+    # 2005, §5.4): receptance = 1/(iω Z)
+    a, omega = np.sqrt(EI / RHO), 2 * np.pi * 700.0
+    c = float(strike.beam_impulse_response(1.0, RHO, EI))
+    laplace = c * 0.5 * np.sqrt(np.pi) * (1j * omega) ** -1.5
+    impedance = 2 * RHO * np.sqrt(omega * a) * (1 + 1j)
+    assert laplace == pytest.approx(1.0 / (1j * omega * impedance), rel=1e-12)
+
+
+def test_without_the_beam_the_strike_is_hertzs_mass_on_a_spring():
+    # ρA → 0: F_max = K^{2/5} (5/4 m v0²)^{3/5} (Johnson 1985 §11.4; hertz.hertz_impact), and with the Hunt–Crossley
+    # damping the integrated single impact (contact.hertz_wall_impact)
+    h = calibrated_hysteresis(0.7)
+
+    def peak(v, hysteresis):  # the Richardson extrapolation of two steps, as strike_peak_table takes it
+        coarse, fine = (strike.strike(JOINT, K, 1e-6, EI, v, hysteresis, n).peak_force for n in (100, 200))
+        return 2 * fine - coarse
+
+    for v in (0.01, 0.3, 3.0):
+        assert peak(v, 0.0) == pytest.approx(float(hertz.hertz_impact(JOINT, v, K).max_force), rel=2e-3), v
+    assert peak(0.3, h) == pytest.approx(hertz_wall_impact(JOINT, K, 0.3, h / 0.3).max_force, rel=2e-3)
+
+
+@pytest.mark.parametrize("h", [0.0, calibrated_hysteresis(0.7)])
+def test_a_massless_joint_on_the_beam_alone_scales_as_v0_to_the_nine_eighths(h):
+    # m_j = 0: δ ~ v0 t and K δ^{3/2} t^{3/2}/(ρA √a) ~ δ give t ∝ v0^{-1/4}, F ∝ v0^{9/8} (module docstring; with
+    # χ = h/v0 the damping term χ δ̇ is scale-free too)
+    slow, fast = (strike.strike(0.0, K, RHO, EI, v, h, 100).peak_force for v in (0.1, 1.0))
+    assert np.log10(fast / slow) == pytest.approx(9 / 8, abs=1e-6)
+
+
+def test_the_scheme_is_first_order_and_its_extrapolation_second():
+    # halving the step halves the peak's error (first order); the Richardson extrapolation of two steps
+    # (strike_peak_table) moves by far less than either step's error
+    h = calibrated_hysteresis(0.7)
+    peaks = [strike.strike(JOINT, K, RHO, EI, 0.3, h, n).peak_force for n in (50, 100, 200, 400)]
+    d = np.diff(peaks)
+    assert np.all(d[1:] / d[:-1] == pytest.approx(0.5, abs=0.05)), d
+    extrapolated = [2 * f - c for c, f in zip(peaks[:-1], peaks[1:])]
+    assert abs(extrapolated[-1] - extrapolated[-2]) < 0.05 * abs(d[-1])
+
+
+def test_the_thrown_string_strikes_as_its_256_mode_run():
+    # the string thrown at 0.3 m/s onto its three joints (tests/solvers/test_modes.py): 143.2 kN at 256 modes (the
+    # residual vectors; 143.5 kN the kept modes alone), 146-245 kN at 16-128 modes. The local model from v0, m_j, ρA,
+    # EI, K and the calibrated χ of e = 0.7: 141.1 kN, 1.5 % low (the joint's mass as a point, the section's
+    # tension and its 0.5-m length left out)
+    force, duration = strike.peak_force([0.3], JOINT, K, RHO, EI, calibrated_hysteresis(0.7))
+    assert force[0] == pytest.approx(143.2e3, rel=0.025)
+    # the contact (0.48 ms) ends long before the waves of the neighbouring joints' strikes (9.45 m) arrive
+    assert duration[0] < 0.2 * strike.return_time(duration[0], 9.45, RHO, EI)

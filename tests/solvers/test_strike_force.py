@@ -1,0 +1,40 @@
+"""The strikes' peak force from their local model in the reference run (``reference_strike_force = "local"``;
+docs/reference_model.md §2.3)."""
+
+import numpy as np
+import pytest
+
+from study.physics import strike
+from study.solvers.methods import reference
+from study.solvers.methods.reference.statistics import local_strike_forces, strike_speeds
+from study.solvers.model import options
+
+
+def test_the_option_is_validated_naming_the_field():
+    assert options.ReferenceOptions().reference_strike_force == "modes"
+    with pytest.raises(ValueError, match="reference_strike_force = 'hertz'; allowed: modes, local"):
+        options.ReferenceOptions.from_inputs({"reference_strike_force": "hertz"})
+
+
+def test_the_thrown_strings_strikes_are_found_at_their_speed_and_forced_locally(default_point):
+    # the string thrown rigidly at 0.3 m/s onto its three joints (tests/solvers/test_modes.py, 16 modes): every joint
+    # strikes once at 0.3 m/s (the throw's speed: the kept modes' normal velocity at the onset row), and the cycle's peak
+    # is the local model's at that speed (study.physics.strike.peak_force), not the 16 modes' own with the series law
+    # (24 kN measured in test_modes.py, against 143 kN at 256 modes)
+    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
+              "reference_damping": "none", "reference_modes": 16}
+    m = reference.build_model(inputs)
+    z = np.zeros(4 * 16 + 4)
+    z[0] = (float(np.min(m.clearance)) - 1e-5) / m.phi[0, 0]
+    z[2 * 16] = 0.3 / m.phi[0, 0]
+    window = reference.Integrator(m, 1e-8, z).run(0.01, record=True)
+    rows, points, speed, share = strike_speeds(m, window)
+    assert sorted(points) == sorted(np.flatnonzero(m.kinds == 1))
+    np.testing.assert_allclose(speed, 0.3, rtol=1e-3)
+    assert np.all(share < 1e-3)  # the rigid throw: the upper modes carry next to nothing of it (2e-4 measured)
+    (cycle,) = local_strike_forces(m, window, [(0, window.times.size)])
+    expected = strike.peak_force([0.3], m.joint_mass, m.stiffness[points[0]], m.props["mass_per_length"],
+                                 m.props["bending_stiffness"], m.hysteresis)[0][0]
+    assert cycle["count"] == 3 and cycle["long"] == 0 and 0.0 < cycle["reflection"] < 0.2
+    assert cycle["peak_contact_force"] == pytest.approx(expected, rel=1e-3)
+    assert np.max(window.peak) < 0.25 * cycle["peak_contact_force"]  # the series law's soft strike at 16 modes
