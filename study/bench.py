@@ -438,6 +438,15 @@ def bench_reference_modes(point=None, modes=(16, 32, 64), residuals=("series", "
     return rows, lines
 
 
+
+def bench_reference_contact_step(point=None, **kwargs) -> tuple[list[dict], list[str]]:
+    """The reference model's step in contact at a bouncing point of the default study, per scheme and mode count
+    (:func:`study.benchmarks.reference.contact_step`, its keywords; the point :data:`CONTACT_STEP_POINT` on
+    configs/default.toml unless given). Returns the rows and the report's lines."""
+    if point is None:
+        point = {**load(STUDY_CONFIG).point(), **reference_bench.CONTACT_STEP_POINT}
+    return reference_bench.contact_step(point, **kwargs)
+
 def bench_hierarchy(count: int = 12) -> list[str]:
     """The default study's hierarchy (``auto``) against the reference model at every point, on the held-back
     sample of :func:`study.validate.hierarchy_sample` (the reference run where a cheaper model answered)."""
@@ -755,8 +764,10 @@ def section_reference_rk45(ctx: Context) -> list[str]:
 def section_reference_modes(ctx: Context) -> list[str]:
     if ctx.quick:
         rows, lines = bench_reference_modes(modes=(4,), residuals=("series", "dynamic"), converged=8, revolutions=0.05)
+        step_lines = bench_reference_contact_step(modes=(4,), startup=0.5, revolutions=0.2)[1]
     else:
         rows, lines = bench_reference_modes()
+        step_lines = bench_reference_contact_step()[1]
     if ctx.out:
         from study.charts.precision import work_precision_chart
 
@@ -766,7 +777,7 @@ def section_reference_modes(ctx: Context) -> list[str]:
                              time_label="time per revolution [ms]",
                              labels=("max normal stress", "peak contact force")).savefig(chart, dpi=150)
         lines += [f"Chart: `{chart.name}` beside this file.", ""]
-    return lines
+    return lines + step_lines
 
 
 def section_hierarchy(ctx: Context) -> list[str]:
@@ -834,7 +845,7 @@ SECTIONS = {s.name: s for s in (
     Section("reference-rk45", "the reference model's compiled integrator against scipy's RK45 on the same equations",
             section_reference_rk45),
     Section("reference-modes", "the reference model's work and precision in its modes and residual laws against "
-            "256 modes", section_reference_modes),
+            "256 modes, and the step in contact at a bouncing point", section_reference_modes),
     Section("hierarchy", "the default study's model hierarchy against the reference model everywhere", section_hierarchy),
     Section("sweeps", "sweeps in process against 1 and 2 local dask workers", section_sweeps),
     Section("sweep-default", "the default study's sweep in process against 1 and 2 local dask workers, on its grid "

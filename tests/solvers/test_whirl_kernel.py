@@ -114,6 +114,51 @@ def _one_mode_hertz(base, **extra):
                       "reference_damping": "none", "restitution": 0.5, **extra})
 
 
+
+@pytest.mark.parametrize("scheme", reference.SCHEMES)
+def test_a_mass_on_a_hertz_spring_is_hertzs_closed_form_impact(paper_inputs, scheme):
+    # the kernel's one-mode case: the rigid translation alone (ω = 0) thrown at v0 onto its wall, Hertz contact without
+    # damping (e = 1) and without the modes left out (residual law "none": the spring K δ^{3/2} alone), nothing else
+    # acting; the point's mass m/φ². Hertz's impact in closed form (Johnson, Contact Mechanics, 1985, §11.4):
+    # δ_max = (5 m v0² / 4K)^{2/5}, F_max = K δ_max^{3/2} = K^{2/5} (5/4 m v0²)^{3/5}, contact time
+    # 2 δ_max/v0 ∫_0^1 (1 − x^{5/2})^{-1/2} dx = 2.9432 δ_max/v0, rebound at −v0. Held in contact by the same step as a
+    # bouncing point's (DOPRI5 in contact for "lawson-flight" and "dopri5", the Lawson form for "lawson")
+    import dataclasses
+
+    inputs = {**paper_inputs, "contact_points": [0.0], "contact_kinds": [0], "friction": 0.0, "eccentricity": 0.0,
+              "reference_damping": "none", "restitution": 1.0, "reference_residual": "none"}
+    model = reference.build_model({**inputs, "reference_modes": 2, "tool_joint_length": 0.0})
+    keep = [0]
+    model = dataclasses.replace(model, modes=model.modes[keep], omega=model.omega[keep], phi=model.phi[:, keep],
+                                eccentric=model.eccentric[keep], side=model.side[keep], damping=model.damping[keep],
+                                drag_shapes=model.drag_shapes[:, keep], cache={})
+    sy = model.system()
+    K, fr, inv_m, hyst = sy[9][0], sy[13][0], sy[12][4], sy[12][6]
+    assert model.omega[0] == 0.0 and fr == 0.0 and hyst == 0.0 and np.all(model.side == 0.0)
+    phi, c = model.phi[0, 0], model.clearance[0]
+    mass = 1.0 / (inv_m * phi**2)
+    v0 = 0.3  # [m/s], the thrown string's speed of tests/solvers/test_modes.py
+    delta = (5.0 * mass * v0**2 / (4.0 * K)) ** 0.4
+    from scipy.integrate import quad
+
+    shape = quad(lambda x: 1.0 / np.sqrt(1.0 - x**2.5), 0.0, 1.0, limit=200)[0]
+    assert shape == pytest.approx(1.4716, abs=1e-4)  # Johnson's 2.94 = 2 x 1.47
+    gap = 1e-5  # [m] off the wall
+    z0 = np.zeros(8)
+    z0[0], z0[2] = (c - gap) / phi, v0 / phi
+    run = reference.Integrator(model, 1e-6, z0, scheme)
+    contact = 2.0 * shape * delta / v0
+    window = run.run(2.0 * gap / v0 + contact)
+    assert run.outcome == whirl_kernel.OK and int(window.onsets[0]) == 1 and not run.active[0]
+    # the largest force at a step's end: within the steps' spacing near the crest (0.4-0.42 % below, 13-14 steps)
+    assert window.peak[0] == pytest.approx(K ** 0.4 * (1.25 * mass * v0**2) ** 0.6, rel=1e-2)
+    assert window.contact_time[0] == pytest.approx(contact, rel=1e-4)  # both ends located (9e-7, 1.5e-5 Lawson)
+    # the rebound at −v0 (no energy lost) and back where it started, to 1e-5 of Ωc and c as the impact on a linear wall
+    # above (the steps' error scale: rtol 1e-6 of Ωc and c a step)
+    om = model.rotary_speed
+    assert abs(run.z[2] * phi + v0) / (om * c) < 1e-5
+    assert abs(run.z[0] * phi - (c - gap)) / c < 1e-5
+
 def test_hunt_crossley_damping_is_set_from_the_approach_speed(paper_inputs):
     # χ = h(e)/v1 (Hunt & Crossley 1975, doi:10.1115/1.3423596, with the calibrated h(e)) at the closed-form
     # approach speed v1 = √(v0² − ω²c²) of the free flight (as in _closed_form_cycle)
