@@ -447,8 +447,9 @@ def _stage_propagators(omega2, damp, h, ex, N):
 def _relative_stage(kv, k, s, omega2, N):
     """Stage s of a Lawson step (:func:`_lawson_step`) relative to its first force, into kv[s] before its image: on the
     dynamic entries of the modes with stiffness k[s] − k[0] (0 for s = 0), whose static deflection under k[0] the step
-    is taken about; elsewhere (the energy integrals, the modes with ω = 0) k[s]. By direction and mode: an index's mode
-    as i % N in one loop over the entries cost an integer division an entry, 2-4 µs an evaluation at 64-128 modes."""
+    is taken about; elsewhere (the energy integrals, the modes with ω = 0) k[s]. By direction and mode: one loop over
+    the entries with each one's mode as i % N (an integer division an entry) made a Lawson evaluation 1.50 and 1.34
+    times a Dormand–Prince one at 64 and 128 modes, against 1.23 and 1.21 this way (docs/reference_model.md §6)."""
     for j in range(4):
         for m in range(N):
             i = j * N + m
