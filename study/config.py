@@ -281,6 +281,11 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("reference_max_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
           default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),
+    Field("solver.reference_strike_force", "reference_strike_force", "the peak contact force of the reference model's "
+          "strikes at the tool joints: the modes' own, or each strike's local model from its onset speed (the joint's "
+          "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3)", None,
+          default=ReferenceOptions.default("reference_strike_force"),
+          choices=ReferenceOptions.choices("reference_strike_force")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "

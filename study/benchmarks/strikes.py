@@ -6,7 +6,10 @@
         local model's peak from the run's onset speed, the replays' peaks and onset speeds
     python -m study.benchmarks.strikes sample 12 modes,local out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
         bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the sweep's
-        order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s)
+        order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s; a
+        capped run is reported failed, solve_point catching the alarm)
+    python -m study.benchmarks.strikes sample-at 274,515,687,201 modes,local out.jsonl RESULTS '{"reference_modes": 128, "reference_max_modes": 128}'
+        the same at the points of those flat indices of the results (cap 1200 s)
 
 One JSON line a strike or a point; the CPU seconds are the process's own.
 """
@@ -94,7 +97,7 @@ def replays(names, counts, top, out):
                 print(json.dumps(record), file=out, flush=True)
 
 
-def sample(count, options, out, results, extra=None):
+def sample(count, options, out, results, extra=None, indices=None, cap=300):
     import xarray as xr
 
     from study import config
@@ -106,7 +109,7 @@ def sample(count, options, out, results, extra=None):
     dims = list(ds["method"].dims)
     bouncing = (ds["method"].values.reshape(-1) == "reference") & (ds["regime"].values.reshape(-1) == REGIMES["bouncing"])
     found = np.flatnonzero(bouncing)
-    picks = found[np.linspace(0, found.size - 1, count).round().astype(int)]
+    picks = found[np.linspace(0, found.size - 1, count).round().astype(int)] if indices is None else np.asarray(indices)
     grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
 
     def stop(*_):
@@ -117,7 +120,7 @@ def sample(count, options, out, results, extra=None):
         coords = {d: float(v) for d, v in zip(dims, grid[i])}
         for option in options:
             clock = time.process_time()
-            signal.alarm(300)
+            signal.alarm(cap)
             try:
                 r = solve_point({**study.point(**coords), "reference_strike_force": option, **(extra or {})},
                                 "reference")
@@ -148,5 +151,9 @@ if __name__ == "__main__":
         with open(sys.argv[4], "a") as handle:
             sample(int(sys.argv[2]), sys.argv[3].split(","), handle, sys.argv[5],
                    json.loads(sys.argv[6]) if len(sys.argv) > 6 else None)
+    elif kind == "sample-at":  # the points of the results at these flat indices, each run capped at 1200 s
+        with open(sys.argv[4], "a") as handle:
+            sample(0, sys.argv[3].split(","), handle, sys.argv[5], json.loads(sys.argv[6]) if len(sys.argv) > 6 else None,
+                   indices=[int(i) for i in sys.argv[2].split(",")], cap=1200)
     else:
-        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample")
+        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at")

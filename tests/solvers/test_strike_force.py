@@ -1,12 +1,15 @@
 """The strikes' peak force from their local model in the reference run (``reference_strike_force = "local"``;
 docs/reference_model.md §2.3)."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from study.physics import strike
 from study.solvers.methods import reference
 from study.solvers.methods.reference.statistics import local_strike_forces, strike_speeds
+from study import config
 from study.solvers.model import options
 
 
@@ -14,6 +17,9 @@ def test_the_option_is_validated_naming_the_field():
     assert options.ReferenceOptions().reference_strike_force == "modes"
     with pytest.raises(ValueError, match="reference_strike_force = 'hertz'; allowed: modes, local"):
         options.ReferenceOptions.from_inputs({"reference_strike_force": "hertz"})
+    with pytest.raises(config.ConfigError, match="solver.reference_strike_force = 'hertz': must be one of 'modes', 'local'"):
+        config.load(Path(__file__).resolve().parents[2] / "configs" / "default.toml",
+                    {"solver.reference_strike_force": "hertz"})
 
 
 def test_the_thrown_strings_strikes_are_found_at_their_speed_and_forced_locally(default_point):

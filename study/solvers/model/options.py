@@ -328,7 +328,9 @@ class ReferenceOptions(MethodOptions):
     reference_window_growth: str = option("point", ("point", "figure"))
     #: the peak contact force of a strike at a tool joint: the modes' own ("modes"), or the strike's local model from
     #: its onset speed ("local": the joint's mass on an infinite beam against the Hertz wall, study.physics.strike;
-    #: docs/reference_model.md §2.3), where its contact ends before the waves of the neighbouring joints come back
+    #: docs/reference_model.md §2.3), where its contact ends before the waves of the neighbouring joints come back.
+    #: Opt-in: on 12 bouncing points of the default study it took the force's stated error from a median 318 % to 36 %
+    #: at the same cost and decided none (the stresses' modal parts stay over the tolerance)
     reference_strike_force: str = option("modes", ("modes", "local"))
     #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and
     #: their kinds (1: a tool joint, 0: the body; default all body)
