@@ -455,8 +455,7 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
     B = np.zeros((2 * held.size, 2 * N))
     B[:held.size, :N], B[held.size:, N:] = model.phi[held], model.phi[held]
     K = 2 * held.size
-    solved_load, receptance = np.empty((H + 1, 2 * N, 2 * N + 0), complex)[:, :, :0], []
-    inverse = []
+    receptance, inverse = [], []  # per harmonic: R_h at the touching points, Z_h factorised
     for k in range(H + 1):
         matrix = _dynamic_matrix(model, whirled["stiffness"], whirled["damping"], held, k)
         if k and C is not None:
@@ -464,7 +463,6 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         factor = linalg.lu_factor(matrix, check_finite=False)
         inverse.append(factor)
         receptance.append(B @ linalg.lu_solve(factor, B.T.astype(complex) / model.mass, check_finite=False))
-    del solved_load
     # the real Fourier basis over the samples: a0, then (Re, Im) of each harmonic: x(θ) = a0 + Σ Re c_h cos hθ − Im c_h sin hθ
     theta = 2 * np.pi * np.arange(M) / M
     E, Ed = np.zeros((M, 2 * H + 1)), np.zeros((M, 2 * H + 1))
@@ -549,7 +547,7 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         return out
 
     q, v = modal(Q)
-    U = to_real(Q @ B.T)  # (2H+1, K)
+    U = to_real(Q @ B.T)  # (2H+1, K) the touching points' displacement harmonics
     if start is None:
         # the start on the wall's arc: the linear motion's swing along the tangent turned into an angle about the hole's
         # axis, its normal part kept (the tangent's straight line takes a stiff Hertz contact deep into the wall)
