@@ -150,6 +150,8 @@ def test_reference_schemes_bench_compares_the_schemes_on_a_sweeps_bouncing_point
     table = [line for line in lines if line.startswith("| ")]
     assert table[1].startswith("| dopri5 |") and table[2].startswith("| lawson-flight |")
     assert "1.00 (1.00–1.00)" in table[1] and "1 of 1" in table[2]
+    columns = [line.count("|") for line in lines if line.startswith("|")]  # header, rule and rows alike
+    assert len(set(columns)) == 1, columns
     ds.attrs["config_hash"] = "another study"
     ds.to_netcdf(tmp_path / "other.nc")
     with pytest.raises(ValueError, match="config_hash"):

@@ -34,7 +34,8 @@ from typing import Any, Callable, Iterable, Mapping
 from study.atomic import atomic_path
 
 #: Modules holding numba kernels compiled with ``cache=True``.
-KERNEL_MODULES = ("study.physics.beam", "study.physics.contact", "study.physics.hertz", "study.physics.interpolation",
+KERNEL_MODULES = ("study.physics.beam", "study.physics.contact", "study.physics.fatigue", "study.physics.hertz",
+                  "study.physics.interpolation",
                   "study.physics.midspan", "study.physics.roots", "study.solvers.kernels.event_driven",
                   "study.solvers.kernels.extremes", "study.solvers.kernels.stress_kernel",
                   "study.solvers.kernels.whirl_kernel", "study.solvers.methods.periodic.impact_model",
