@@ -562,20 +562,6 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         radius = r0[None] + np.einsum("mpi,pi->mp", ut, n0)
         arc = np.concatenate((radius * np.cos(angle), radius * np.sin(angle)), axis=1)  # (M, K)
         U = W[:, None] * (E.T @ arc)
-    if start is None:
-        # the start on the wall's arc: the linear motion's swing along the tangent turned into an angle about the hole's
-        # axis, its normal part kept (the tangent's straight line takes a stiff Hertz contact deep into the wall)
-        u0 = rested["u"][held]
-        r0 = np.hypot(u0[:, 0], u0[:, 1])
-        n0 = u0 / r0[:, None]
-        t0 = np.stack((-n0[:, 1], n0[:, 0]), axis=-1)
-        a = B @ whirled["amplitudes"]  # the synchronous motion at the touching points (K,) complex
-        first = np.concatenate((u0[:, 0], u0[:, 1]))[None] + E[:, 1:3] @ np.stack((a.real, a.imag))
-        ut = np.stack((first[:, :held.size], first[:, held.size:]), axis=-1) - u0[None]  # (M, H_p, 2)
-        angle = np.arctan2(n0[:, 1], n0[:, 0])[None] + np.einsum("mpi,pi->mp", ut, t0) / r0[None]
-        radius = r0[None] + np.einsum("mpi,pi->mp", ut, n0)
-        arc = np.concatenate((radius * np.cos(angle), radius * np.sin(angle)), axis=1)  # (M, K)
-        U = W[:, None] * (E.T @ arc)
     dynamic = lambda X: max(float(np.max(np.abs(X[1:]))), 1e-300)
     change, settled, iteration = np.inf, False, 0
     for iteration in range(1, BALANCE_ITERATIONS + 1):
