@@ -374,23 +374,6 @@ SAMPLES_PER_HARMONIC = 4
 BALANCE_ITERATIONS, BALANCE_SETTLED = 30, 1e-8
 
 
-def _generalised_forces(model: reference.WhirlModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """The contact forces (the exact law, :func:`contact_forces`) and the quadratic drag −D|u̇|u̇ as generalised forces
-    per modal mass (..., 2N) [m/s²] at modal displacements q and velocities v (..., 2N) [m, m/s], the y-modes then
-    the z-modes: the reference model's nonlinear terms (its kernel's ``rhs``)."""
-    N = model.n_modes
-    u = np.stack((q[..., :N] @ model.phi.T, q[..., N:] @ model.phi.T), axis=-1)
-    ud = np.stack((v[..., :N] @ model.phi.T, v[..., N:] @ model.phi.T), axis=-1)
-    f, _ = contact_forces(model, u, ud)
-    out = np.concatenate((f[..., 0] @ model.phi, f[..., 1] @ model.phi), axis=-1)
-    if model.drag > 0:
-        S = model.drag_shapes
-        vy, vz = v[..., :N] @ S.T, v[..., N:] @ S.T
-        c = model.drag * np.hypot(vy, vz) * model.drag_weights
-        out -= np.concatenate(((c * vy) @ S, (c * vz) @ S), axis=-1)
-    return out / model.mass
-
-
 def _force_jacobians(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """∂F/∂u and ∂F/∂u̇ (..., P, 2, 2) [N/m, N s/m] of the contact forces (:func:`contact_forces`) at displacements u
     and velocities v (..., P, 2), by central differences (the steps of :func:`_linearised`)."""
@@ -417,7 +400,7 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         (ω² − (hΩ)² + ihΩ d) Q_h = L_h + F_h(Q),   h = 0 … H,
 
     L_0 the side load, L_1 the eccentric load, F_h the harmonics of the exact contact forces (Hertz, sliding
-    friction) and quadratic drag on the motion (:func:`_generalised_forces`), taken from
+    friction, :func:`contact_forces`) and quadratic drag on the motion, taken from
     :data:`SAMPLES_PER_HARMONIC` × H samples of a revolution (alternating frequency–time; Cameron & Griffin 1989).
 
     The contacts' nonlinearity is local: the equations are condensed onto the touching points' displacements U
@@ -580,6 +563,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
             if float(np.linalg.norm(trial)) <= (1 - 1e-4 * alpha) * size or size == 0.0:
                 break
             alpha *= 0.5
+        else:  # no step lowered it: the smallest, with its own forces (the last tried were twice its step's)
+            G_try = contact_part(U + alpha * step, jacobian=False)
         U = U + alpha * step
         G = G_try
         new = base + respond(to_complex(G) @ B / model.mass)
@@ -741,30 +726,23 @@ def add_lift_off(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
         # on the run's model where it has at least this method's modes (its lift-off at least as accurate: at 16 and
         # 32 modes it was 1.2-3.8 % and 0.1-0.35 % off the 48 modes' at two points of the default study, at 64 modes
         # 0.03-0.09 %, docs/reference_model.md §10); else from the inputs, on MODES modes
-        state = on_rest(given) if given is not None and given.n_modes >= MODES else None
-        result.values["lift_off_eccentricity"] = (lift_off_eccentricity(inputs, state) if state is not None
-                                                  and state.get("window") is not None
-                                                  else float("nan") if state is not None
-                                                  else lift_off_eccentricity(inputs))
+        state = on_rest(inputs, given) if given is not None and given.n_modes >= MODES else None
+        result.values["lift_off_eccentricity"] = lift_off_eccentricity(inputs, state)
     return result
 
 
-def on_rest(model: reference.WhirlModel) -> dict[str, Any] | None:
-    """The state on the wall of :func:`steady_state` (model, rest, linearisation, whirl, window; ``why`` None) on
-    ``model`` about the rest its cache holds (:func:`rest`, solved as a run started from it): what
-    :func:`lift_off_eccentricity` needs, without building the model or solving the rest again. ``window`` is None where
-    nothing touches at rest or no rest was found; None where the cache holds no rest or the point's eccentricity is
-    nil (the lift-off is then sought from the inputs: :func:`lift_off_eccentricity` builds a model with a trial one)."""
+def on_rest(inputs: Mapping[str, Any], model: reference.WhirlModel) -> dict[str, Any] | None:
+    """The state on the wall of :func:`steady_state` on ``model`` about the rest its cache holds (:func:`rest`, solved
+    as a run started from it): what :func:`lift_off_eccentricity` needs, without building the model or solving the
+    rest again. Without a window where nothing touches at rest or no rest was found (the lift-off is then NaN); None
+    where the cache holds no rest or the point's eccentricity is nil (the lift-off is then sought from the inputs:
+    :func:`lift_off_eccentricity` builds a model with a trial one)."""
     rested = model.cache.get("sliding_rest")
     if rested is None or not model.eccentricity > 0:
         return None
-    state = dict(model=model, rest=rested, why=None, window=None)
     if not rested["found"] or not np.any(rested["touching"]):
-        return state
-    state["linear"] = _linearised(model, rested["u"])
-    state["whirl"] = whirl(model, rested, linear=state["linear"])
-    state["window"], state["sizes"] = revolution(model, rested, state["whirl"])
-    return state
+        return dict(model=model, rest=rested, why=None)
+    return steady_state(inputs, like=dict(model=model, rest=rested, linear=_linearised(model, rested["u"])))
 
 
 def values(inputs: Mapping[str, Any], states: list[Mapping[str, Any]]) -> list[dict[str, float]]:
