@@ -21,8 +21,9 @@ from study.solvers.model.scene import Scene
 @dataclass(frozen=True)
 class DesignPoint:
     """One design point, typed: its scene, its tolerances and design limits, and each method's options (each field
-    built once by :meth:`from_inputs`); ``inputs``, the SI inputs it was built from (read-only), go to the parts of
-    the reference and time-domain methods that still take them whole."""
+    built once by :meth:`from_inputs`); ``inputs``, the SI inputs it was built from (read-only), go to the parts that
+    still take them whole: the sliding state's (:mod:`study.solvers.methods.sliding`, its solve and lift-off), the
+    ladder's cache key (``auto``) and the periodic methods' study tolerance."""
 
     inputs: Mapping[str, Any]  #: the point's SI inputs, keyed as :data:`study.config.FIELDS` names (read-only)
     scene: Scene  #: the pipe, hole, rock, mud, load and impact
@@ -46,6 +47,26 @@ class DesignPoint:
                    series=SeriesOptions.from_inputs(inputs), damped=DampedOptions.from_inputs(inputs),
                    time=TimeDomainOptions.from_inputs(inputs), sdof=SdofOptions.from_inputs(inputs),
                    check=CrosscheckOptions.from_inputs(inputs), reference=ReferenceOptions.from_inputs(inputs))
+
+    @classmethod
+    def of(cls, point: "DesignPoint | Mapping[str, Any]") -> "DesignPoint":
+        """``point`` itself, or the typed point of SI inputs (:meth:`from_inputs`): for the functions of a method that
+        scripts, tests and the sliding state's parts still call with a point's inputs (the reference model's
+        ``build_model``, ``simulate``, ``stresses`` ...; the time domain's ``build_model`` and ``simulate``)."""
+        return point if isinstance(point, cls) else cls.from_inputs(point)
+
+    def changed(self, **parts: Mapping[str, Any]) -> "DesignPoint":
+        """This point with fields of its parts changed, part name -> {field: value}: ``changed(scene=dict(span_length=
+        9.0), time=dict(time_modes=5))`` (a method's variants of the point: the reference model's mode counts, the
+        crosscheck's replay at fast's span); its inputs too, for the parts that read them."""
+        flat = {name: value for changes in parts.values() for name, value in changes.items()}
+        return replace(self, inputs=MappingProxyType({**self.inputs, **flat}),
+                       **{part: replace(getattr(self, part), **changes) for part, changes in parts.items()})
+
+    def with_reference(self, **changes) -> "DesignPoint":
+        """This point with the reference model's options ``changes`` (:class:`ReferenceOptions` fields: the mode and
+        body-station counts the method tries; :meth:`changed`)."""
+        return self.changed(reference=changes)
 
     def with_series(self, series: SeriesOptions) -> "DesignPoint":
         """This point with the series' options ``series`` (its inputs too, for the parts that read them)."""
