@@ -13,7 +13,7 @@ from study.solvers.kernels import stress_kernel
 from study.solvers.methods.reference.integrate import Window
 from study.solvers.methods.reference.model import WhirlModel, eccentric_parts, static_correction
 from study.physics.string_modes import mode_shapes
-from study.solvers.model.scene import Scene
+from study.solvers.model.point import DesignPoint
 
 
 def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
@@ -136,7 +136,7 @@ def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     return out
 
 
-def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
+def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
              fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
     docs/reference_model.md §3).
@@ -170,7 +170,7 @@ def stresses(inputs: Mapping[str, Any], model: WhirlModel, window: Window, space
         if inertia is not None:
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
-    scene = Scene.from_inputs(inputs)
+    scene = DesignPoint.of(point).scene  # its inputs typed where the sliding state's parts pass them
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]

@@ -13,10 +13,11 @@ from study.physics import hertz, well, whirl
 from study.physics.contact import (calibrated_hysteresis, hertz_energy, linear_contact_damping,
                                    linearised_stiffness)
 from study.solvers.model.options import ReferenceOptions
+from study.solvers.model.point import DesignPoint
 from study.physics.string_modes import (contact_layout, eccentric_factors, joint_modes, mode_shapes,
                                         mode_wavenumbers, periodic_point_deflection, periodic_point_moment,
                                         series_contact, symmetric_points)
-from study.solvers.model.scene import Scene, make_scene
+from study.solvers.model.scene import Scene
 
 
 CONTACT_LAWS = ReferenceOptions.choices("contact_law")
@@ -306,11 +307,13 @@ def eccentric_parts(model: "WhirlModel") -> tuple[np.ndarray, np.ndarray]:
     return e.real.astype(float), (e.imag.astype(float) if np.iscomplexobj(e) else np.zeros(e.size))
 
 
-def build_model(inputs: Mapping[str, Any]) -> WhirlModel:
-    """The reference model of one design point (see the module docstring). Raises ValueError naming the
-    field for inputs that make no scene (a tool joint wider than the hole, thinner than the pipe)."""
-    option = ReferenceOptions.from_inputs(inputs)
-    scene = make_scene(inputs)
+def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
+    """The reference model of one design point (see the module docstring): its ``reference`` options and its scene
+    (SI inputs are typed first, :meth:`DesignPoint.of`). Raises ValueError naming the field for inputs that make no
+    scene (a tool joint wider than the hole, thinner than the pipe)."""
+    point = DesignPoint.of(point)
+    option = point.reference
+    scene = point.scene
     props = dict(scene.props)
     r_o, hole_r = scene.outer_radius, scene.hole_radius
     if r_o >= hole_r:
