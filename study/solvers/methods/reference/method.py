@@ -11,8 +11,6 @@ import numpy as np
 
 from study.physics import fatigue
 from study.solvers.kernels import whirl_kernel
-from study.solvers.model.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
-                                         study_tolerance)
 from study.solvers.methods.reference.fields import contact_spacing, energy_balance
 from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.methods.reference.model import WhirlModel, build_model
@@ -30,7 +28,7 @@ from study.solvers.kernels.periodicity import settled_period
 METHOD = "reference"
 
 
-def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
+def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
     """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
     recorded window, extended while its
     figures have not converged (docs/reference_model.md §3.1).
@@ -55,18 +53,19 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
     (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
     window), stats (:func:`settling` of the window as the last look took it; None when periodic).
     """
-    option = ReferenceOptions.from_inputs(inputs)
-    model = model or build_model(inputs)
+    point = DesignPoint.of(point)
+    option = point.reference
+    model = model or build_model(point)
     start = initial_state(model, option.reference_initial)
     run = Integrator(model, float(option.reference_rtol), start, option.reference_integrator)
     tau = model.period
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
-    tolerance = statistical_tolerance(inputs)  # the window grows only where the motion does not repeat: means
-    force = force_tolerance(inputs)  # the peak contact force's own (solver.force_tolerance)
+    tolerance = point.tolerances.statistical  # the window grows only where the motion does not repeat: means
+    force = point.tolerances.force  # the peak contact force's own (solver.force_tolerance)
     per_figure = option.reference_window_growth == "figure"
-    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
+    exponent = fatigue.damage_exponent(point.limits.sn_curve or "B1")
     tol = float(option.reference_tolerance)
     scale = model.state_scale()
     states = [run.modal_state()]
@@ -111,15 +110,15 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
             blocks.append(run.run(run.t + period * tau, record=True))
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
-        window_cycles, preceding, window = list(zip(blocks, cycle_values(inputs, model, blocks))), [], merge(blocks)
+        window_cycles, preceding, window = list(zip(blocks, cycle_values(point, model, blocks))), [], merge(blocks)
         modal = strike_modal_part([v for _, v in window_cycles],
-                                  impact_modal_error(inputs, model, window, [v for _, v in window_cycles], replays,
+                                  impact_modal_error(point, model, window, [v for _, v in window_cycles], replays,
                                                      modal_check))
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
         kept = kept if bouncing else kept[-n_window:]
-        record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(inputs, model, kept)))
+        record: list[tuple[Window | None, dict[str, Any]]] = list(zip(kept, cycle_values(point, model, kept)))
         first = 0  # the record's first revolution
         step = 0 if bouncing else n_window  # revolutions to add before the next look
         while True:
@@ -130,10 +129,10 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                     return failed("in the output window")
                 states.append(run.modal_state())
             if added:
-                record += zip(added, cycle_values(inputs, model, added))
+                record += zip(added, cycle_values(point, model, added))
                 live = record[first:]  # the cycles still recorded: one decision on the correction for them all
                 if len({values["correction"] for _, values in live}) > 1:
-                    record[first:] = zip([c for c, _ in live], cycle_values(inputs, model, [c for c, _ in live]))
+                    record[first:] = zip([c for c, _ in live], cycle_values(point, model, [c for c, _ in live]))
             half = (len(record) - first) // 2
             preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
             window_cycles = record[len(record) - half:]
@@ -148,8 +147,8 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 window_cycles, preceding = record[len(record) - 2 * half:], []
             window = merge([c for c, _ in window_cycles])
             cycles = [v for _, v in window_cycles]
-            modal = strike_modal_part(cycles, impact_modal_error(inputs, model, window, cycles, replays, modal_check))
-            errors = convergence(inputs, model, window, window_summary(cycles, stats), stats, periodic=False,
+            modal = strike_modal_part(cycles, impact_modal_error(point, model, window, cycles, replays, modal_check))
+            errors = convergence(point, model, window, window_summary(cycles, stats), stats, periodic=False,
                                  modal=modal)
             used = len(states) - 1
             # per figure over its tolerance, the revolutions more its window part is foreseen to need (inf: its modes
@@ -204,26 +203,26 @@ def simulate(inputs: Mapping[str, Any], model: WhirlModel | None = None) -> dict
                 replay=replays.get("replay"))
 
 
-def run(point: DesignPoint) -> PointResult:
-    """The ``reference`` method at the typed design point (:data:`study.solvers.METHODS`): :func:`solve` of its inputs,
-    which the reference model's parts (its model, its window's statistics) still take whole."""
-    return solve(point.inputs)
-
-
 def solve(inputs: Mapping[str, Any]) -> PointResult:
-    """The ``reference`` method (module docstring). Values (SI) are listed in ``docs/reference_model.md``.
+    """The ``reference`` method at a point given by its SI inputs (:func:`run` of its :class:`DesignPoint`)."""
+    return run(DesignPoint.from_inputs(inputs))
+
+
+def run(point: DesignPoint) -> PointResult:
+    """The ``reference`` method (module docstring) at the typed design point (:data:`study.solvers.METHODS`). Values
+    (SI) are listed in ``docs/reference_model.md``.
 
     The mode count is chosen per point: from ``reference_modes`` it doubles (or grows by the power of two that the
     residual flexibility's N⁻³ foresees) while the modal part of a design figure's error (:func:`modal_check`) is over
     half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
     figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
-    option = ReferenceOptions.from_inputs(inputs)
+    option = point.reference
     dynamic = option.reference_residual == "dynamic"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
     previous = None
     while True:
-        result = solve_with_modes({**inputs, "reference_modes": count}, previous if dynamic else None)
+        result = solve_with_modes(point.with_reference(reference_modes=count), previous if dynamic else None)
         parts = result.extras.get("convergence") or {}
         modal = modal_part(result)
         tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
@@ -232,8 +231,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
         # the gate's tolerance of the point: the statistical one where its figures are means over a motion that does
         # not repeat (with the residual vectors; the static law keeps the study's)
         replayed = result.extras.get("replay")
-        tolerance = (statistical_tolerance(inputs) if (dynamic or replayed) and result.values.get("statistical_figures")
-                     else study_tolerance(inputs))
+        tolerance = (point.tolerances.statistical if (dynamic or replayed) and result.values.get("statistical_figures")
+                     else point.tolerances.tolerance)
         if result.status != "ok" or modal <= 0.5 * tolerance or 2 * count > top:
             break
         if replayed:
@@ -284,7 +283,7 @@ def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> di
     return out
 
 
-def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+def solve_with_modes(point: DesignPoint | Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
     """The ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count): one run
     (:func:`solve_with_stations`), run again with the body's contact stations raised k -> 2k + 1 (the stations kept, one
     more between each pair) while the body passes its wall between them (``max_wall_excess``, a bound along the whole
@@ -294,14 +293,15 @@ def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = N
     ``extras["body_stations_tried"]``. Contact points given in code (``contact_points``) are kept. With the residual
     vectors and the run at half the modes (``previous``) the modal part of the errors is measured between the two
     (:func:`doubling_modal_error`) where the motion does not repeat."""
-    option = ReferenceOptions.from_inputs(inputs)
+    point = DesignPoint.of(point)
+    option = point.reference
     count = int(option.reference_body_stations)
     top = max(count, int(option.reference_max_body_stations))
-    tolerance = study_tolerance(inputs)
+    tolerance = point.tolerances.tolerance
     more_modes = 2 * int(option.reference_modes) <= int(option.reference_max_modes)
     tried = []
     while True:
-        result = solve_with_stations({**inputs, "reference_body_stations": count}, previous)
+        result = solve_with_stations(point.with_reference(reference_body_stations=count), previous)
         excess, clearance = result.values.get("max_wall_excess"), result.values.get("clearance")
         passed = (excess is not None and clearance is not None and np.isfinite(excess)
                   and excess > tolerance * clearance)
@@ -322,12 +322,12 @@ def solve_with_modes(inputs: Mapping[str, Any], previous: PointResult | None = N
     return result
 
 
-def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
+def solve_with_stations(point: DesignPoint, previous: PointResult | None = None) -> PointResult:
     """One run of the ``reference`` method with the inputs' ``reference_modes`` and ``reference_body_stations``; with
     the residual vectors and the run at half the modes (``previous``) the modal part of the errors is measured between
     the two (:func:`doubling_modal_error`)."""
     result = PointResult(method=METHOD)
-    model = build_model(inputs)
+    model = build_model(point)
     vals = result.values
     vals.update(model.props)  # the section's properties, as every method of the hierarchy reports them
     vals.update(span_length=model.span, first_natural_frequency=model.omega[0] / (2 * np.pi)
@@ -337,7 +337,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
         result.message = (f"effective tension {model.props['effective_tension']:.4g} N buckles the "
                           f"{model.span:.4g} m section")
         return result
-    run = simulate(inputs, model)
+    run = simulate(point, model)
     # the lift-off eccentricity is computed about the rest the run started from (sliding.add_lift_off)
     result.rest_model = model if "sliding_rest" in model.cache else None
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
@@ -379,7 +379,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
     if (model.dynamic and previous is not None and not periodic and previous.status == "ok" and replayed is None
             and previous.extras.get("reference_modes") == model.n_modes // 2):
         modal = doubling_modal_error(previous, summary)
-    errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
+    errors = convergence(point, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
     correction = summary.pop("correction")
     quarter = summary.pop("modal_quarter_fraction")
     damage = summary.pop(DAMAGE)  # the worst fibre's mean damage per cycle
@@ -397,7 +397,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                          replay=None if replayed is None else replay_summary(replayed),
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
                                       for name, e in errors.items()})
-    option = ReferenceOptions.from_inputs(inputs)
+    option = point.reference
     cycle = f"{run['period']} revolution(s)" if periodic else "revolution"
     needed = run.get("revolutions_needed", np.nan)
     names = {**{name: label for name, (_, label) in FIGURES.items()}, DAMAGE: "fatigue damage rate"}
@@ -429,10 +429,10 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                 + (f"; modal parts from {len(replayed['impacts'])} strike(s) replayed at "
                    + ", ".join(str(n) for n in replayed["counts"]) + " modes" if replayed else ""),
                 f"error of each figure (its largest part): {figures}",
-                (f"held to solver.statistical_tolerance {statistical_tolerance(inputs):.3g} (means over the revolutions"
+                (f"held to solver.statistical_tolerance {point.tolerances.statistical:.3g} (means over the revolutions"
                  f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
-                 f"held to solver.tolerance {study_tolerance(inputs):.3g}")
-                + f", the peak force to solver.force_tolerance {force_tolerance(inputs):.3g}"]
+                 f"held to solver.tolerance {point.tolerances.tolerance:.3g}")
+                + f", the peak force to solver.force_tolerance {point.tolerances.force:.3g}"]
     # clear of the wall is an answer too (the free whirl), so it is ok: the regime says which; an error above the
     # study's tolerance makes the gate call it not_converged
     result.status = "ok"

@@ -15,7 +15,7 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from study.solvers.model.options import ReferenceOptions
+from study.solvers.model.point import DesignPoint
 from study.solvers.methods.reference.fields import stresses
 from study.solvers.methods.reference.integrate import Integrator, merge
 from study.solvers.methods.reference.model import build_model
@@ -97,14 +97,16 @@ def lift_state(model, big, z, forces=None) -> np.ndarray:
     return out
 
 
-def replay(inputs: Mapping[str, Any], model, state, start: float, duration: float, point: int,
+def replay(design: DesignPoint | Mapping[str, Any], model, state, start: float, duration: float, point: int,
            rtol: float) -> dict[str, float]:
     """One impact integrated again (:class:`reference.Integrator`, the point's scheme) from ``state`` at ``start`` [s]
     for ``duration`` [s] and longer while ``point``'s contact is still open (up to 4 times): the largest normal force
     at the point [N], the event's stresses (:func:`reference.stresses`, the quasi-static correction on), the
-    integrator's steps and the point's time in contact [s]."""
+    integrator's steps and the point's time in contact [s]; ``design``: the design point (SI inputs are typed
+    first)."""
 
-    option = ReferenceOptions.from_inputs(inputs)
+    design = DesignPoint.of(design)
+    option = design.reference
     run = Integrator(model, rtol, state, option.reference_integrator)
     run.t = float(start)
     pieces = [run.run(start + duration, record=True)]
@@ -115,20 +117,20 @@ def replay(inputs: Mapping[str, Any], model, state, start: float, duration: floa
     window = merge(pieces)
     if run.outcome != 0 or window.times.size == 0:
         return {}
-    values = stresses(inputs, model, window, correction=True)
+    values = stresses(design, model, window, correction=True)
     return dict(peak_contact_force=float(np.max(window.forces[:, point, 2])),
                 **{name: float(values[name]) for name in REPLAY_FIGURES[1:]}, steps=float(run.steps),
                 contact_time=float(window.contact_time[point]))
 
 
-def replayed(inputs: Mapping[str, Any], model, window, cycles, counts) -> dict[str, Any]:
+def replayed(point: DesignPoint, model, window, cycles, counts) -> dict[str, Any]:
     """The window's strikes (:func:`impacts`, none longer than :data:`REPLAY_LONGEST` periods of the first mode left
     out) replayed with each mode count of ``counts`` (ascending, doubling, the run's own first), each from the run's
     recorded state just before its strike lifted onto that count (:func:`lift_state`). Returns ``counts``,
     ``impacts`` (each strike's start [s], point and figures per count) and ``stated``: for each count n but the last,
     each figure's modal part at n (:func:`stated_part`) over the counts from n on, the mean over the strikes."""
 
-    option = ReferenceOptions.from_inputs(inputs)
+    option = point.reference
     rtol = float(option.reference_rtol)
     counts = [int(n) for n in counts]
     longest = REPLAY_LONGEST * 2.0 * np.pi / model.first_left_out()
@@ -144,9 +146,10 @@ def replayed(inputs: Mapping[str, Any], model, window, cycles, counts) -> dict[s
         figures = {}
         for n in counts:
             if n not in models:
-                models[n] = build_model({**inputs, "reference_modes": n})
+                models[n] = build_model(point.with_reference(reference_modes=n))
             z = state if n == model.n_modes else lift_state(model, models[n], state, forces)
-            figures[n] = replay({**inputs, "reference_modes": n}, models[n], z, window.times[onset], duration, p, rtol)
+            figures[n] = replay(point.with_reference(reference_modes=n), models[n], z, window.times[onset], duration,
+                                p, rtol)
         if all(figures.values()):
             events.append(dict(start=float(window.times[onset]), point=p, figures=figures))
     stated = {}
@@ -169,7 +172,7 @@ def stated_part(name: str, figures: list[Mapping[str, float]]) -> float:
     return float((abs(last[name] - first[name]) + abs(last[name] - before[name])) / size)
 
 
-def impact_modal_error(inputs: Mapping[str, Any], model, window, cycles, cache: dict,
+def impact_modal_error(point: DesignPoint, model, window, cycles, cache: dict,
                        measure: Callable[..., dict[str, float]]) -> dict[str, float]:
     """The modal part of each figure's error (relative) at a run's N modes (docs/reference_model.md §3.1): where the
     window holds strikes (contact onsets, the Hertz law, the pipe not lying on the wall) from its strikes replayed at N,
@@ -178,17 +181,17 @@ def impact_modal_error(inputs: Mapping[str, Any], model, window, cycles, cache: 
     ``measure`` (:func:`reference.modal_check`), as before; and everywhere unless ``reference_modal_measure`` is
     ``"replay"``."""
 
-    if (ReferenceOptions.from_inputs(inputs).reference_modal_measure != "replay" or model.law != 0
+    if (point.reference.reference_modal_measure != "replay" or model.law != 0
             or not np.any(window.onsets > 0) or whirl_measure(model, window)["whirl"] == "sliding"):
-        return measure(inputs, model, window, cycles)
+        return measure(point, model, window, cycles)
     if "replay" not in cache:
         counts = [model.n_modes, 2 * model.n_modes]
-        while counts[-1] < int(ReferenceOptions.from_inputs(inputs).reference_max_modes):
+        while counts[-1] < int(point.reference.reference_max_modes):
             counts.append(2 * counts[-1])
-        cache["replay"] = replayed(inputs, model, window, cycles, counts)
+        cache["replay"] = replayed(point, model, window, cycles, counts)
     found = cache["replay"]
     if not found["impacts"]:
-        return measure(inputs, model, window, cycles)
+        return measure(point, model, window, cycles)
     return dict(found["stated"][model.n_modes])
 
 

@@ -10,14 +10,12 @@ import numpy as np
 
 from study.physics import fatigue, limits, section, strike
 from study.physics.contact import hertz_force
-from study.solvers.model.options import (LimitOptions, ReferenceOptions, force_tolerance, statistical_tolerance,
-                                         study_tolerance)
+from study.solvers.model.point import DesignPoint
 from study.solvers.methods.reference.fields import periodic_fields, stresses
 from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
 from study.physics.string_modes import series_contact
 from study.solvers.model.result import REGIMES
-from study.solvers.model.scene import Scene
 
 
 #: The regime of the study's charts (study.solvers.model.result.REGIMES) each whirl verdict is.
@@ -100,23 +98,25 @@ def stationary(peaks, impacts, states, scale, n: int) -> bool:
     return not np.isfinite(settle_ratio(states, scale))
 
 
-def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Window]) -> list[dict[str, Any]]:
+def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
+                 cycles: list[Window]) -> list[dict[str, Any]]:
     """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
     :func:`stresses` (with the quasi-static correction of the modes left out wherever a contact force acts,
     :func:`quasi_static_applies`; the fields computed once) and the peak contact force, exact at every step of the
     integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]; :data:`DAMAGE` the Miner's
     damage of each of :data:`DAMAGE_FIBRES` fibres in the cycle (F,), counted by rainflow over the cycles' joined
     history at the section of their largest alternating stress (:func:`fibre_damage`)."""
+    point = DesignPoint.of(point)
     joined = merge(cycles)
     correction = quasi_static_applies(model, joined)
     ends = np.cumsum([c.times.size for c in cycles])
     segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
-    values = stresses(inputs, model, joined, correction=correction, segments=segments)
+    values = stresses(point, model, joined, correction=correction, segments=segments)
     station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
-    damage = fibre_damage(inputs, model, joined, station, [first for first, _ in segments], correction)
+    damage = fibre_damage(point, model, joined, station, [first for first, _ in segments], correction)
     peaks = [float(np.max(c.peak)) for c in cycles]
     local = [None] * len(cycles)
-    if ReferenceOptions.from_inputs(inputs).reference_strike_force == "local" and model.law == 0:
+    if point.reference.reference_strike_force == "local" and model.law == 0:
         local = local_strike_forces(model, joined, segments)
         peaks = [v["peak_contact_force"] for v in local]
     return [dict(v, peak_contact_force=f, correction=correction, start=c.start, **{DAMAGE: d},
@@ -225,7 +225,7 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
     return out
 
 
-def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float,
+def fibre_stress(point: DesignPoint, model: WhirlModel, window: Window, station: float,
                  correction: bool = True, fibres: int = DAMAGE_FIBRES) -> np.ndarray:
     """(R, F) the normal stress [Pa] of ``fibres`` fibres of the turning pipe, at ψ = 2πk/F from the fibre that
     faces +y at t = 0, at the section x = ``station`` [m] over the window's rows: T0/A_s plus
@@ -236,7 +236,7 @@ def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     x = np.array([float(station)])
     moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.correction_forces(model, j)
                                if correction else None, x, j)["moment"][:, 0] for j in range(2)]
-    scene = Scene.from_inputs(inputs)
+    scene = point.scene
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     angle = model.rotary_speed * window.times[:, None] + 2.0 * np.pi * np.arange(fibres)[None, :] / fibres
@@ -244,7 +244,7 @@ def fibre_stress(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     return scene.axial_tension / model.props["steel_area"] + scale * bending
 
 
-def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, station: float, starts,
+def fibre_damage(point: DesignPoint, model: WhirlModel, window: Window, station: float, starts,
                  correction: bool = True) -> np.ndarray:
     """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
     each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
@@ -252,8 +252,8 @@ def fibre_damage(inputs: Mapping[str, Any], model: WhirlModel, window: Window, s
     concentration, S-N curve and mean-stress correction), each cycle's damage spread over the stretches the time
     between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
     periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
-    stress = fibre_stress(inputs, model, window, station, correction)
-    options = LimitOptions.from_inputs(inputs).keywords()
+    stress = fibre_stress(point, model, window, station, correction)
+    options = point.limits.keywords()
     return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
                             for k in range(stress.shape[1])])
 
@@ -390,7 +390,7 @@ def quasi_static_applies(model: WhirlModel, window: Window) -> bool:
     return bool(np.any(window.contact_time > 0) or np.any(window.onsets > 0) or model.joint_points is not None)
 
 
-def modal_check(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
+def modal_check(point: DesignPoint, model: WhirlModel, window: Window,
                 cycles: list[Mapping[str, Any]]) -> dict[str, float]:
     """The modal part of each figure's error (relative), measured on the run (docs/reference_model.md §3.1): the size
     of what the modes left out were given — the quasi-static correction of the fields and the residual flexibility in
@@ -408,7 +408,7 @@ def modal_check(inputs: Mapping[str, Any], model: WhirlModel, window: Window,
         return out
     first = np.searchsorted(window.times, [c["start"] for c in cycles])
     segments = list(zip(first, list(first[1:]) + [window.times.size]))
-    plain = stresses(inputs, model, window, correction=False, segments=segments)
+    plain = stresses(point, model, window, correction=False, segments=segments)
     for name in ("max_normal_stress", "alternating_bending_stress", "max_bending_stress"):
         mean = float(np.mean([c[name] for c in cycles]))
         if name == "alternating_bending_stress":  # relative to the bending it alternates within (convergence)
@@ -460,7 +460,7 @@ def strike_modal_part(cycles: list[Mapping[str, Any]], modal: Mapping[str, float
 NEGLIGIBLE_BENDING = 1e-9
 
 
-def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, values: Mapping[str, Any],
+def convergence(point: DesignPoint, model: WhirlModel, window: Window, values: Mapping[str, Any],
                 stats: Mapping[str, Mapping[str, Any]], periodic: bool, residual: float | None = None,
                 modal: Mapping[str, float] | None = None) -> dict:
     """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
@@ -471,7 +471,7 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     sum; ``equivalent`` the total as the stress error the point's ``error_estimate`` counts (:func:`stress_equivalent`:
     the damage's through the S-N exponent, the peak force's as its share of ``solver.force_tolerance``). The
     alternating stress's error is relative to the larger of it and the max bending stress."""
-    option = ReferenceOptions.from_inputs(inputs)
+    option = point.reference
     # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
     whole = residual is not None and option.reference_damping != "viscous"
     integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
@@ -487,9 +487,9 @@ def convergence(inputs: Mapping[str, Any], model: WhirlModel, window: Window, va
     scale = {"alternating_bending_stress": max(values["alternating_bending_stress"], values["max_bending_stress"],
                                                floor)}
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
-    exponent = fatigue.damage_exponent(LimitOptions.from_inputs(inputs).sn_curve or "B1")
+    exponent = fatigue.damage_exponent(point.limits.sn_curve or "B1")
     # the peak force is held to its own tolerance: its error counts in the point's as its share of it (stress_equivalent)
-    force_share = (study_tolerance(inputs) if periodic else statistical_tolerance(inputs)) / force_tolerance(inputs)
+    force_share = (point.tolerances.tolerance if periodic else point.tolerances.statistical) / point.tolerances.force
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
     # the damage rate goes as the alternating stress to the power m: its window part, as the stress error that makes
     # it, is counted relative to the bending the stress alternates within, as the alternating stress's is (a
