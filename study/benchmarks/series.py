@@ -12,7 +12,8 @@ import numpy as np
 
 from study.physics import fourier
 from study.solvers.kernels import extremes
-from study.solvers.methods.periodic import impact_model, series
+from study.solvers.kernels import impact as impact_model
+from study.solvers.methods.periodic import series
 from study.solvers.methods import periodic
 from study.solvers.model.scene import Scene
 

@@ -13,6 +13,7 @@ import numpy as np
 from study.physics import contact
 from study.solvers.methods import timedomain
 from study.solvers.model.options import TimeDomainOptions
+from study.solvers.model.point import DesignPoint
 
 
 def modal_penalty_reference(inputs: Mapping[str, Any], revolutions: float | None = None, *, rtol: float = 1e-6,
@@ -29,7 +30,7 @@ def modal_penalty_reference(inputs: Mapping[str, Any], revolutions: float | None
     from scipy.integrate import solve_ivp
 
     model = timedomain.build_model(inputs)
-    q0, v0 = timedomain.initial_state(model, inputs)
+    q0, v0 = timedomain.initial_state(model, DesignPoint.of(inputs).time)
     v_scale = max(model.rotary_speed * model.clearance, float(np.max(np.abs(model.phi @ v0))))
     lim = timedomain.stability_limit(model, v_scale)
     kp = lim["linear_contact_stiffness"]

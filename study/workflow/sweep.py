@@ -17,7 +17,8 @@ import numpy as np
 
 from study.config import Study
 from study.solvers import OUTPUTS
-from study.solvers.methods.periodic import impact_model
+from study.solvers.kernels import impact as impact_model
+from study.solvers.model.point import DesignPoint
 from study.workflow.dataset import previous_history, write_dataset
 from study.workflow.chunks import ChunkDamaged
 from study.workflow.compiled import ensure_compiled
@@ -76,8 +77,8 @@ def check_span_search(study: Study) -> None:
         return
     axes = {name: (np.min(v), np.max(v)) for name, v in study.axes.items() if np.asarray(v).dtype.kind == "f"}
     for corner in itertools.product(*axes.values()):
-        point = {**study.inputs, **dict(zip(axes, corner))}
-        problem = impact_model.span_search_problem(point)
+        point = DesignPoint.from_inputs({**study.inputs, **dict(zip(axes, corner))})
+        problem = impact_model.span_search_too_large(point.scene, point.periodic)
         if problem is not None:
             raise SweepError(f"{problem}; nothing was computed")
 

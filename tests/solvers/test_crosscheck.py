@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 from study.solvers.methods import crosscheck, periodic
-from study.solvers.methods.periodic import impact_model
+from study.solvers.kernels import impact as impact_model
 from study.solvers import solve_point
+from study.solvers.model.point import DesignPoint
 
 
 @pytest.fixture(scope="module")
@@ -123,8 +124,8 @@ def elastic_orbit(paper_one_wall):
     scene, options = periodic.make_scene(inputs), periodic.options_from(inputs)
     impact = impact_model.impact_at(scene, r.values["span_length"], options, duration=r.values["contact_duration"],
                                 half_length=r.values["contact_half_length"])
-    run = crosscheck.replay(inputs, scene, impact, options)
-    return r, run, crosscheck.real_orbit(inputs, run, scene, r.values)
+    run = crosscheck.replay(DesignPoint.from_inputs(inputs), scene, impact, options)
+    return r, run, crosscheck.real_orbit(run, scene, r.values)
 
 
 def test_at_e_1_the_real_contact_has_an_unstable_orbit_near_the_periodic_solution(elastic_orbit):
@@ -141,9 +142,9 @@ def test_at_e_1_the_real_contact_has_an_unstable_orbit_near_the_periodic_solutio
     assert "periodic orbit nearest the periodic solution" in r.message and "is unstable" in r.message
     assert found["status"] == "converged" and found["largest_multiplier"] == r.values["max_floquet_multiplier"]
     model = run["model"]
-    check = timedomain.simulate({**run["inputs"], "initial_state": np.split(found["state"], 2),
-                                 "time_integrator": "implicit", "time_revolutions": 1, "time_check_periodic": False},
-                                model)
+    check = timedomain.simulate(run["point"].changed(time=dict(
+        initial_state=np.split(found["state"], 2), time_integrator="implicit", time_revolutions=1,
+        time_check_periodic=False)), model)
     scale = model.state_scale()
     assert np.max(np.abs(check["states"][-1] - found["state"]) / scale) < 1e-4
     assert r.values["periodicity_defect"] > 1e-2  # the periodic solution's own state is not the orbit
@@ -165,8 +166,9 @@ def test_the_orbits_instability_is_what_a_perturbation_does_in_time(elastic_orbi
     model = run["model"]
     scale = model.state_scale()
     start = found["state"] + 1e-4 * scale * direction
-    out = timedomain.simulate({**run["inputs"], "initial_state": np.split(start, 2), "time_integrator": "implicit",
-                               "time_revolutions": 2, "time_check_periodic": False}, model)
+    out = timedomain.simulate(run["point"].changed(time=dict(
+        initial_state=np.split(start, 2), time_integrator="implicit", time_revolutions=2,
+        time_check_periodic=False)), model)
     along = np.array([((state - found["state"]) / scale) @ direction for state in out["states"]])
     assert along[1:] / along[:-1] == pytest.approx(np.full(2, found["largest_multiplier"]), rel=0.02)
     assert out["states"].shape[0] == 3

@@ -199,10 +199,13 @@ def test_the_points_own_max_poles_bounds_the_span_search(default):
     # solver.max_poles travels in the periodic methods' options (options.Options.max_poles), to the solver and to
     # the sweep's check before any work alike: a budget of one candidate refuses the default point's search, which
     # the default budget (options.MAX_POLES) holds
-    from study.solvers.methods.periodic import impact_model
+    from study.solvers.kernels import impact as impact_model
+    from study.solvers.model.point import DesignPoint
 
     point = {**default, "span_length": None, "max_poles": 1}
     result = solve_point(point, "fast")
     assert result.status == "failed" and "solver.max_poles = 1:" in result.message
-    assert "solver.max_poles = 1:" in impact_model.span_search_problem(point)
-    assert impact_model.span_search_problem({**point, "max_poles": None}) is None
+    typed = DesignPoint.from_inputs(point)
+    assert "solver.max_poles = 1:" in impact_model.span_search_too_large(typed.scene, typed.periodic)
+    typed = DesignPoint.from_inputs({**point, "max_poles": None})
+    assert impact_model.span_search_too_large(typed.scene, typed.periodic) is None

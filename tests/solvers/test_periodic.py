@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from study.solvers.kernels import extremes
-from study.solvers.methods.periodic import impact_model, span_search
+from study.solvers.kernels import impact as impact_model
+from study.solvers.methods.periodic import span_search
 from study.solvers.methods import periodic
 
 ROOT = Path(__file__).resolve().parents[2]

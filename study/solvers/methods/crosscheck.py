@@ -7,8 +7,8 @@ periodic solution's own motion into the time domain and lets the real contact ac
 1. ``fast`` solves the point (span search included); its smallest valid span, impact and stresses.
 2. The periodic solution's modal state (odd modes 1 … N, N = ``solver.modes``; even modes at rest) a
    little before the impact, at t = −P/50 (P the time between impacts), starts the time domain
-   (:mod:`study.solvers.methods.timedomain`) on the same span with the same modes, the same scene as the
-   periodic model (no mud damping, no drive: the periodic solution has neither), a Hertz contact at
+   (:mod:`study.solvers.kernels.modal_span`, the ``time-domain`` method's) on the same span with the same modes, the
+   same scene as the periodic model (no mud damping, no drive: the periodic solution has neither), a Hertz contact at
    midspan with the stiffness at the periodic solution's own contact curvature κ, and restitution e.
 3. One revolution is integrated (event-driven) and sampled (:mod:`study.solvers.kernels.trajectory`), and
    compared with the periodic solution: the impulse and the peak force of the first contact, the
@@ -41,11 +41,10 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import beam, contact, hertz
-from study.solvers.kernels import event_driven, orbit, trajectory
+from study.solvers.kernels import event_driven, modal_span, orbit, trajectory
 from study import solvers
-from study.solvers.methods.periodic import impact_model
-from study.solvers.methods import periodic, timedomain
-from study.solvers.model.options import CrosscheckOptions
+from study.solvers.kernels import impact as impact_model
+from study.solvers.model.options import CrosscheckOptions, Options
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 from study.solvers.model.scene import Scene
@@ -61,7 +60,7 @@ COMPARED = {
 }
 
 
-def periodic_state(scene: Scene, impact: impact_model.Impact, options: periodic.Options, modes: int,
+def periodic_state(scene: Scene, impact: impact_model.Impact, options: Options, modes: int,
                    t: float) -> tuple[np.ndarray, np.ndarray]:
     """Modal coordinates q_n [m] and velocities q̇_n [m/s] of modes n = 1 … ``modes`` at time t [s] of the
     periodic solution (t = 0: a pulse starts at the wall y = +c); even modes are at rest (symmetric load).
@@ -80,29 +79,30 @@ def periodic_state(scene: Scene, impact: impact_model.Impact, options: periodic.
     return q, v
 
 
-def replay(inputs: Mapping[str, Any], scene: Scene, impact: impact_model.Impact,
-           options: periodic.Options) -> dict[str, Any]:
+def replay(point: DesignPoint, scene: Scene, impact: impact_model.Impact,
+           options: Options) -> dict[str, Any]:
     """The periodic solution's state run through one revolution of the real contact (module docstring,
-    step 2–3). Returns the time-domain model, its inputs and event system, the samples (or None with
-    ``failure``), the start time [s] relative to the periodic pulse start and the start state."""
+    step 2–3). Returns the time-domain model, its design point (``point`` at the impact's span with the replay's
+    time-domain settings) and event system, the samples (or None with ``failure``), the start time [s] relative to
+    the periodic pulse start and the start state."""
     n_modes = int(options.modes)
     start = -scene.impact_interval / 50.0
     q0, v0 = periodic_state(scene, impact, options, n_modes, start)
-    td_inputs = {**inputs, "span_length": impact.span_length, "time_modes": n_modes, "time_damping": "none",
-                 "drive_amplitude": 0.0, "contact_points": (0.5,), "time_integrator": "event",
-                 "time_revolutions": 0, "initial_state": (q0, v0)}
-    model = timedomain.build_model(td_inputs)
+    td_point = point.changed(scene=dict(span_length=impact.span_length), sdof=dict(drive_amplitude=0.0),
+                             time=dict(time_modes=n_modes, time_damping="none", contact_points=(0.5,),
+                                       time_integrator="event", time_revolutions=0, initial_state=(q0, v0)))
+    model = modal_span.build_model(td_point)
     a_sum, b_sum = hertz.curvature_sums(scene.outer_radius, scene.hole_radius, impact.axial_curvature)
     model.stiffness = float(hertz.hertz_stiffness(a_sum, b_sum, scene.compliance_sum))
-    run = timedomain.simulate(td_inputs, model)
+    run = modal_span.simulate(td_point, model)
     out = dict(model=model, start=start, state=np.concatenate((q0, v0)), samples=None, failure=run["failure"],
-               system=run.get("system"), inputs=td_inputs)
+               system=run.get("system"), point=td_point)
     if run["failure"] is None:
-        out["samples"] = timedomain.sample_after(run, revolutions=1)
+        out["samples"] = modal_span.sample_after(run, revolutions=1)
     return out
 
 
-def compare(inputs: Mapping[str, Any], run: Mapping[str, Any]) -> dict[str, Any]:
+def compare(run: Mapping[str, Any]) -> dict[str, Any]:
     """Time-domain values of :data:`COMPARED` and the periodicity defect from the replay ``run``, with
     the number of contacts, the duration and achieved restitution (midspan rebound/approach speed) of the
     first contact, and the relative change of the span's mechanical energy over the revolution."""
@@ -111,7 +111,7 @@ def compare(inputs: Mapping[str, Any], run: Mapping[str, Any]) -> dict[str, Any]
     inside = (s.times >= first[1]) & (s.times <= first[2])
     force = np.abs(s.forces[inside, first[0]])
     mid = model.phi[0]
-    td = timedomain.stresses(inputs, model, s)
+    td = modal_span.stresses(model, s)
     scale = model.state_scale()
     end_state = np.concatenate((s.q[-1], s.v[-1]))
     i_on, i_off = np.flatnonzero(inside)[[0, -1]]
@@ -149,7 +149,8 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
                        f"{td['periodicity_defect']:.3g} in units of c and Omega c)")
     if reasons:
         if abs(ratio_of["impulse_ratio"] - 1.0) > tolerance:
-            reasons.append(f"why: the closure's impulse J = m_e (1 + e) V_p takes m_e = {impact.equivalent_mass:.4g} kg "
+            reasons.append(f"why: the closure's impulse J = m_e (1 + e) V_p takes m_e = {impact.equivalent_mass:.4g} "
+                           "kg "
                            f"({scene.impact_mass} mass); the span's modes take {ratio_of['impulse_ratio']:.3g} "
                            "J from the Hertz contact")
         if abs(ratio_of["peak_force_ratio"] - 1.0) > tolerance:
@@ -173,37 +174,37 @@ def verdict(periodic_values: Mapping[str, float], td: Mapping[str, Any], scene: 
         elif found:
             reasons.append(f"no periodic orbit of the real contact near the periodic solution: {found['message']}")
         if td["energy_change"] < -tolerance:
-            reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per revolution "
+            reasons.append(f"why: the contact dissipates {-td['energy_change']:.3g} of the span's energy per "
+                           "revolution "
                            f"(e = {scene.restitution:g}), which the undamped, undriven periodic solution never loses: "
                            "Lee's pulse does no net work over a period of the undamped periodic response; the "
                            "paper's energy input (end moments, docs/model.md §7) balances the mud's damping only")
     return reasons
 
 
-def check(inputs: Mapping[str, Any], scene: Scene, impact: impact_model.Impact, options: periodic.Options,
+def check(point: DesignPoint, scene: Scene, impact: impact_model.Impact, options: Options,
           periodic_values: Mapping[str, float], tolerance: float = DEFAULT_TOLERANCE) -> tuple[dict | None, list[str]]:
     """Replay and compare one periodic solution (``impact`` at a root of condition 2, with its
     ``periodic_values``: impulse, peak_contact_force, max_normal_stress, max_deflection). Returns the
     time-domain values of :func:`compare` (None when the replay failed or never reached the wall) and
     the reasons for disagreement (empty: agreement within ``tolerance``)."""
-    run = replay(inputs, scene, impact, options)
+    run = replay(point, scene, impact, options)
     samples = run["samples"]
     if samples is None or samples.outcome != event_driven.OK:
         return None, ["the time-domain replay failed: " + str(run["failure"] or "integration stopped")]
     if not samples.contacts:
         return None, ["the periodic solution's motion does not reach the wall in the time domain"]
-    td = compare(inputs, run)
+    td = compare(run)
     model, velocity = run["model"], impact.impact_velocity
     td["one_mass_peak_force"] = one_mass_peak_force(impact.equivalent_mass, velocity, model.stiffness,
                                                     model.hysteresis(velocity))
     td["midspan_at_lee_peak"], td["approach_at_lee_peak"] = lee_peak_kinematics(
         scene, impact, options, model.stiffness, periodic_values["peak_contact_force"])
-    td["orbit"] = real_orbit(inputs, run, scene, periodic_values)
+    td["orbit"] = real_orbit(run, scene, periodic_values)
     return td, verdict(periodic_values, td, scene, impact, tolerance)
 
 
-def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: Scene,
-               periodic_values: Mapping[str, float]) -> dict[str, Any]:
+def real_orbit(run: Mapping[str, Any], scene: Scene, periodic_values: Mapping[str, float]) -> dict[str, Any]:
     """The real contact's periodic orbit nearest the periodic solution (:func:`study.solvers.kernels.orbit.find_orbit`
     from the replay's start state, section at that time, one time between impacts, mirrored for the
     alternating pattern) and its stability, peak force and stresses over one revolution against the
@@ -224,7 +225,7 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: Scene,
     active, chi, peak = np.zeros(points, bool), np.zeros(points), np.zeros(points)
     samples = trajectory.sample_revolution(run["system"], model.contact_forces, 0.0, model.period, found.state,
                                            active, chi, peak)
-    stresses = timedomain.stresses(inputs, model, samples)
+    stresses = modal_span.stresses(model, samples)
     out.update(state=found.state, jacobian=found.jacobian, peak_force=found.peak_force,
                largest_multiplier=found.largest_multiplier,
                stable=found.stable, distance=float(np.max(np.abs(found.state - run["state"]) / scale)),
@@ -233,7 +234,7 @@ def real_orbit(inputs: Mapping[str, Any], run: Mapping[str, Any], scene: Scene,
     return out
 
 
-def lee_peak_kinematics(scene: Scene, impact: impact_model.Impact, options: periodic.Options,
+def lee_peak_kinematics(scene: Scene, impact: impact_model.Impact, options: Options,
                         stiffness: float, peak_force: float) -> tuple[float, float]:
     """(y − c, (F̂/K)^{2/3}) [m] at the peak of Lee's pulse, t = T_L/2: how far the periodic solution's
     midspan (the same ``options.modes`` modes as the replay, :func:`periodic_state`) is into the wall
@@ -266,12 +267,12 @@ def run(point: DesignPoint) -> PointResult:
     if result.status != "ok":
         result.message = f"no periodic solution to check: {result.message}"
         return result
-    options, scene, inputs = point.periodic, point.scene, point.inputs
+    options, scene = point.periodic, point.scene
     v = result.values  # the impact again, from fast's own fixed point of T_L and the contact length
     impact = impact_model.impact_at(scene, v["span_length"], options, duration=v["contact_duration"],
                                 half_length=v["contact_half_length"])
     tolerance = float(point.check.check_tolerance)
-    td, reasons = check(inputs, scene, impact, options, v, tolerance)
+    td, reasons = check(point, scene, impact, options, v, tolerance)
     if td is not None:
         v.update(ratios(v, td))
         v["periodicity_defect"] = td["periodicity_defect"]

@@ -3,7 +3,7 @@
 Its mass, stiffness, mud damping, drive and Hertz stiffness from the point's :class:`~study.solvers.model.scene.Scene`
 and the screen's :class:`~study.solvers.model.options.SdofOptions`: the model the ``sdof`` screen solves
 (:mod:`study.solvers.methods.sdof`, whose module docstring states the choices) and whose drive and damping drive the
-``time-domain`` method's modal model (:func:`study.solvers.methods.timedomain.build_model`).
+``time-domain`` method's modal model (:func:`study.solvers.kernels.modal_span.build_model`).
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ on the curvature of the pipe at the contact, taken from the solution itself: κ 
 iterated to a fixed point at every span evaluated exactly.
 
 The exact model at a span (the span's modes and resonances, the fixed point, the impact) is
-:mod:`study.solvers.methods.periodic.impact_model`; the span search, :mod:`study.solvers.methods.periodic.span_search`;
+:mod:`study.solvers.kernels.impact`; the span search, :mod:`study.solvers.methods.periodic.span_search`;
 this module checks the constraints, picks the span and runs the design-point pipeline shared by the periodic methods.
 
 Span search. F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train
@@ -40,7 +40,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.physics import beam, section
-from study.solvers.methods.periodic.impact_model import (PROBLEMS, ROWS, Impact, impacts_of,
+from study.solvers.kernels.impact import (PROBLEMS, ROWS, Impact, impacts_of,
                                                          odd_modes, refine_root, refined_rows, span_search_too_large)
 from study.solvers.model.options import Options
 from study.solvers.model.point import DesignPoint

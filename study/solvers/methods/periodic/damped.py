@@ -35,7 +35,8 @@ import numpy as np
 
 from study.physics import beam, damping, fourier, hertz, midspan
 from study.solvers.kernels import extremes
-from study.solvers.methods.periodic import impact_model, span_search
+from study.solvers.kernels import impact as impact_model
+from study.solvers.methods.periodic import span_search
 from study.solvers.methods import periodic
 from study.solvers.model.options import DampedOptions, Options, study_tolerance
 from study.solvers.model.result import PointResult

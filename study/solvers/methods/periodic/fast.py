@@ -12,7 +12,8 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 
-from study.solvers.methods.periodic import impact_model, series
+from study.solvers.kernels import impact as impact_model
+from study.solvers.methods.periodic import series
 from study.solvers.methods import periodic
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult

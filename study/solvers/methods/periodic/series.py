@@ -39,7 +39,8 @@ import numpy as np
 
 from study.physics import beam, fourier
 from study.solvers.kernels import extremes
-from study.solvers.methods.periodic import checks, impact_model
+from study.solvers.kernels import impact as impact_model
+from study.solvers.methods.periodic import checks
 from study.solvers.methods import periodic
 from study.solvers.model.options import SeriesOptions, study_tolerance
 from study.solvers.model.point import DesignPoint

@@ -3,11 +3,11 @@ sign changes shrunk inside every interval between wide poles, and the roots scre
 §4.5).
 
 F(L) has a pole wherever a natural frequency ω_n(L) meets a harmonic of the pulse train: a sign change across a pole
-is not a root. The poles are located analytically (:func:`study.solvers.methods.periodic.impact_model.resonances`), F
+is not a root. The poles are located analytically (:func:`study.solvers.kernels.impact.resonances`), F
 times the distances to the interval's two poles is sampled inside every interval (:func:`search_intervals`,
 :func:`roots_between`; its values at the poles follow from their residues), and only sign changes inside one interval
 are bracketed and shrunk (regula falsi in lockstep, compiled). The midspan screen (:func:`midspan_screen`) keeps the
-roots whose midspan stays inside the wall over the period; :mod:`study.solvers.methods.periodic.impact_model` refines
+roots whose midspan stays inside the wall over the period; :mod:`study.solvers.kernels.impact` refines
 them with the exact model, and :mod:`study.solvers.methods.periodic` checks the constraints. Where the time goes and why
 it is built so: docs/profile_fast.md.
 """
@@ -24,7 +24,7 @@ import numpy as np
 from study.physics import beam, midspan
 from study.physics.interpolation import interp_one
 from study.physics.roots import bracket_done, closer_end, falsi_point, keep_sign_change
-from study.solvers.methods.periodic.impact_model import (impacts_at, kernel_args, odd_modes,
+from study.solvers.kernels.impact import (impacts_at, kernel_args, odd_modes,
                                                          resonances, unit_state)
 from study.solvers.model.options import Options
 from study.solvers.model.scene import Scene

@@ -1,26 +1,25 @@
 """The exact model of the periodic impact solution at a span: the span's modes and resonances, and the impact.
 
-Shared by the periodic methods through :mod:`study.solvers.methods.periodic` (docs/model.md §3–4). At a given span the
-closure (``prescribed`` or ``self_consistent``, see :mod:`study.solvers.methods.periodic`) and the pulse duration T_L,
-which depends on the Hertz stiffness at the contact's curvature, are iterated to their fixed point
-(:func:`impact_at`; many spans in lockstep in one compiled kernel, :func:`impacts_at`), and a screening root is
-refined to the exact root by secant steps (:func:`refine_roots`, :func:`refined_rows`). The resonant spans, where
-a natural frequency meets a harmonic of the pulse train (:func:`resonances`), bound the span search's intervals
-(:mod:`study.solvers.methods.periodic.span_search`).
+Shared by the periodic methods (:mod:`study.solvers.methods.periodic`) and the crosscheck, which rebuilds fast's
+impact at its span (docs/model.md §3–4). At a given span the closure (``prescribed`` or ``self_consistent``, see
+:mod:`study.solvers.methods.periodic`) and the pulse duration T_L, which depends on the Hertz stiffness at the contact's
+curvature, are iterated to their fixed point (:func:`impact_at`; many spans in lockstep in one compiled kernel,
+:func:`impacts_at`), and a screening root is refined to the exact root by secant steps (:func:`refine_roots`,
+:func:`refined_rows`). The resonant spans, where a natural frequency meets a harmonic of the pulse train
+(:func:`resonances`), bound the span search's intervals (:mod:`study.solvers.methods.periodic.span_search`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Mapping
 
 import numba
 import numpy as np
 
 from study.physics import beam, hertz, midspan
 from study.solvers.model.options import Options
-from study.solvers.model.scene import Scene, make_scene
+from study.solvers.model.scene import Scene
 
 
 def odd_modes(n_modes: int) -> np.ndarray:
@@ -54,12 +53,6 @@ def span_search_too_large(scene: Scene, options: Options) -> str | None:
             f"at {scene.rotary_speed * 30 / np.pi:.4g} rpm down to a {options.min_span:.4g}-m span, above "
             f"solver.max_poles = {budget:.3g}: raise the rotary speed or solver.min_span, or solver.max_poles on a "
             "larger machine")
-
-
-def span_search_problem(inputs: Mapping[str, Any]) -> str | None:
-    """:func:`span_search_too_large` for a point given by its SI inputs: its scene and the periodic methods'
-    options built here, at the solvers' edge, for a caller that holds only the point (the sweep's check)."""
-    return span_search_too_large(make_scene(inputs), Options.from_inputs(inputs))
 
 
 def resonances(scene: Scene, modes, min_span: float, max_span: float) -> tuple[np.ndarray, np.ndarray]:
