@@ -261,7 +261,8 @@ def bench_reference(point, revolutions: float = 3.0, repeat: int = 3, compiled_r
 
 def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("default.toml"),
                             results: str | Path = "outputs/default/results.nc", count: int = 20, rounds: int = 3,
-                            schemes=("dopri5", "lawson-flight", "lawson", "dopri5@7e-7")) -> tuple[list[dict], list[str]]:
+                            schemes=("dopri5", "lawson-flight", "lawson", "dopri5@7e-7"),
+                            ) -> tuple[list[dict], list[str]]:
     """The reference model's integrator schemes (``reference_integrator``; a scheme ``name@rtol`` at another
     ``reference_rtol``) on ``count`` bouncing points of a study (the points of ``config`` that its sweep's dataset
     ``results`` says ``reference`` answered with a bouncing whirl, spread evenly over them), each point solved
@@ -300,7 +301,8 @@ def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("defau
         name, _, rtol = scheme.partition("@")
         timer.update(run=0.0, work=None)
         start = time.perf_counter()
-        result = reference.solve({**point, "reference_integrator": name, **({"reference_rtol": float(rtol)} if rtol else {})})
+        result = reference.solve({**point, "reference_integrator": name,
+                                  **({"reference_rtol": float(rtol)} if rtol else {})})
         wall = time.perf_counter() - start
         conv = result.extras.get("convergence", {})
         return dict(wall=wall, integrator=timer["run"], work=timer["work"], whirl=result.extras.get("whirl"),
@@ -328,13 +330,13 @@ def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("defau
 
     first = schemes[0]
     lines = ["### Reference model: integrator schemes at bouncing points", "",
-             f"{len(rows)} of the {found.size} bouncing points `reference` answered in `{results}`, {rounds} solves of each by "
-             f"each scheme, alternating, in one process after a warm-up (`study.bench.bench_reference_schemes`); the "
-             "fastest solve. Figures: the difference from the first scheme's over the two stated errors combined "
-             "(root sum of squares).", "",
-             "| scheme | point [ms] median | speed-up median (range) | integrator [ms] median | speed-up median (range) "
-             "| evaluations median | fewer median (range) | peak force: diff median, max; within 1x, 2x | max normal "
-             "stress | alternating stress | max deflection | energy residual max |",
+             f"{len(rows)} of the {found.size} bouncing points `reference` answered in `{results}`, {rounds} solves "
+             "of each by each scheme, alternating, in one process after a warm-up "
+             "(`study.bench.bench_reference_schemes`); the fastest solve. Figures: the difference from the first "
+             "scheme's over the two stated errors combined (root sum of squares).", "",
+             "| scheme | point [ms] median | speed-up median (range) | integrator [ms] median | speed-up median "
+             "(range) | evaluations median | fewer median (range) | peak force: diff median, max; within 1x, 2x | max "
+             "normal stress | alternating stress | max deflection | energy residual max |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]  # a figure column per reference.FIGURES
     for scheme in schemes:
         wall = np.array([best(r, scheme, "wall") for r in rows])
@@ -354,8 +356,10 @@ def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("defau
             cells.append(f"{np.median(rel):.1%}, {np.max(rel):.0%}; {np.sum(z <= 1)}, {np.sum(z <= 2)} of {z.size}")
         residual = max(abs(r["runs"][scheme][0]["residual"]) for r in rows)
         speed, ispeed, fewer = base_wall / wall, base_integ / integ, base_rhs / rhs
-        lines.append(f"| {scheme} | {np.median(wall) * 1e3:.1f} | {np.median(speed):.2f} ({speed.min():.2f}–{speed.max():.2f}) "
-                     f"| {np.median(integ) * 1e3:.1f} | {np.median(ispeed):.2f} ({ispeed.min():.2f}–{ispeed.max():.2f}) "
+        lines.append(f"| {scheme} | {np.median(wall) * 1e3:.1f} | {np.median(speed):.2f} "
+                     f"({speed.min():.2f}–{speed.max():.2f}) "
+                     f"| {np.median(integ) * 1e3:.1f} | {np.median(ispeed):.2f} "
+                     f"({ispeed.min():.2f}–{ispeed.max():.2f}) "
                      f"| {np.median(rhs):.0f} | {np.median(fewer):.2f} ({fewer.min():.2f}–{fewer.max():.2f}) | "
                      + " | ".join(cells) + f" | {residual:.1e} |")
     lines.append("")
@@ -424,12 +428,12 @@ def bench_reference_modes(point=None, modes=(16, 32, 64), residuals=("series", "
              "count, no transient, window growth or mode doubling. Time per revolution of the compiled integrator "
              f"(the stresses computed after it, not timed) and each figure over the window as a ratio to {converged} "
              f"modes with the kept modes alone (residual law `none`: {best['wall_time'] * 1e3:.3g} ms a revolution, "
-             f"{best['onsets']} contact onsets; peak force {best['peak_contact_force'] / 1e3:.4g} kN, max normal stress "
-             f"{best['max_normal_stress'] * mpa:.4g} MPa, alternating {best['alternating_bending_stress'] * mpa:.4g} MPa)."
-             " The time is the median of "
-             f"{repeat} runs ({converged} modes: one). Residual laws (`solver.reference_residual`): `series`, the modes left out as a static flexibility in "
-             "series with each contact (the default); `none`, the kept modes alone; `dynamic`, one residual vector a "
-             "contact point in the integrated modes.", "",
+             f"{best['onsets']} contact onsets; peak force {best['peak_contact_force'] / 1e3:.4g} kN, max normal "
+             f"stress {best['max_normal_stress'] * mpa:.4g} MPa, alternating "
+             f"{best['alternating_bending_stress'] * mpa:.4g} MPa). The time is the median of "
+             f"{repeat} runs ({converged} modes: one). Residual laws (`solver.reference_residual`): `series`, the "
+             "modes left out as a static flexibility in series with each contact (the default); `none`, the kept "
+             "modes alone; `dynamic`, one residual vector a contact point in the integrated modes.", "",
              "| residual law | modes | time per revolution [ms] | speed-up to " + f"{converged} modes | onsets | "
              + " | ".join(f"{label}, ratio to {converged} modes" for label in REFERENCE_MODES_FIGURES.values()) + " |",
              "|---|---|---|---|---|" + "---|" * len(REFERENCE_MODES_FIGURES)]
@@ -459,7 +463,8 @@ def bench_hierarchy(count: int = 12) -> list[str]:
              f"{len(rows)} points spread over `configs/default.toml`'s grid (the sample of docs/validation.md), each "
              "solved by `auto` and by the reference model (`study.bench.bench_hierarchy`): by the model that answered, "
              "the points' time in each and the speed-up of the hierarchy.", "",
-             "| model that answered | points | hierarchy [s] | reference model [s] | speed-up |", "|---|---|---|---|---|"]
+             "| model that answered | points | hierarchy [s] | reference model [s] | speed-up |",
+             "|---|---|---|---|---|"]
     for method in dict.fromkeys(r["method"] for r in rows):
         mine = [r for r in rows if r["method"] == method]
         a, b = sum(r["auto_time"] for r in mine), sum(r["ref_time"] for r in mine)
@@ -565,7 +570,8 @@ def bench_compile(repeat: int = 3) -> list[str]:
             "cache filled.", "",
             "| step | time [s] | ratio to the first row |", "|---|---|---|",
             f"| `study compile`, empty cache | {cold:.3g} | 1x |",
-            f"| `study point configs/default.toml` after it (median of {repeat} processes) | {statistics.median(times):.3g} "
+            f"| `study point configs/default.toml` after it (median of {repeat} processes) | "
+            f"{statistics.median(times):.3g} "
             f"| {statistics.median(times) / cold:.3g}x |",
             f"| of which starting Python and importing the command | {imports:.3g} | {imports / cold:.3g}x |", ""]
 
@@ -625,8 +631,8 @@ def bench_sweep(study, points: int = 10_000, repeat: int = 3) -> tuple[list[tupl
                      f"runs {', '.join(f'{w:.3g}' for w, _ in runs)} s; in the median run points were solved in "
                      f"{solve:.3g} s of worker time, scheduling and storage overhead "
                      f"{1 - solve / (workers * wall):.0%} of {workers} x {wall:.3g} s")
-    notes.append("the points' methods and statuses: " + ", ".join(f"{method} {status} {count}" for (method, status), count
-                                                                 in sorted(mix.items())))
+    notes.append("the points' methods and statuses: "
+                 + ", ".join(f"{method} {status} {count}" for (method, status), count in sorted(mix.items())))
     return rows, notes
 
 
@@ -693,7 +699,8 @@ def section_periodic(ctx: Context) -> list[str]:
                          f"{ratio} | {r['error']:.2e} | {r['shear_error']:.2e} |")
         cheapest = {}
         for r in rows:
-            if r["error"] <= 1e-4 and (r["method"] not in cheapest or r["wall_time"] < cheapest[r["method"]]["wall_time"]):
+            if r["error"] <= 1e-4 and (r["method"] not in cheapest
+                                       or r["wall_time"] < cheapest[r["method"]]["wall_time"]):
                 cheapest[r["method"]] = r
         if len(cheapest) == 2:
             ratio = cheapest["series"]["wall_time"] / cheapest["fast"]["wall_time"]
@@ -721,15 +728,16 @@ def section_time_domain(ctx: Context) -> list[str]:
         stability = time_domain_bench.step_stability(case)
     lines = ["### Time domain against a penalty spring in scipy's RK45, at equal accuracy", "",
              f"Case: the paper's example at a 10 m span, first mode only, {10 if not ctx.quick else 1} revolutions, no "
-             "early stop (`study.benchmarks.time_domain.benchmark`). Error: largest difference of the final modal state "
-             "(q in units of c, q' in units of Omega c) from a converged run of the same model (LSODA at "
+             "early stop (`study.benchmarks.time_domain.benchmark`). Error: largest difference of the final modal "
+             "state (q in units of c, q' in units of Omega c) from a converged run of the same model (LSODA at "
              "rtol 1e-12 for the Hertz contact; DOP853 at rtol 1e-12 for the linear penalty contact, a "
              "different model, so only errors, not states, are compared across the two); speed-up relative to the "
              "first row.", "",
              "| integrator | setting | time [ms] | speed-up to the first row | error | impacts | "
              "last impact velocity [m/s] |", "|---|---|---|---|---|---|---|"]
     for row, ratio in zip(rows, _speedups([r["wall_time"] for r in rows])):
-        lines.append(f"| {row['name']} | {row['setting']} | {row['wall_time'] * 1e3:.3g} | {ratio} | {row['error']:.2g} | "
+        lines.append(f"| {row['name']} | {row['setting']} | {row['wall_time'] * 1e3:.3g} | {ratio} | "
+                     f"{row['error']:.2g} | "
                      f"{row['impacts']} | {row['impact_velocity']:.4g} |")
     lines.append("")
     for ref, best, ratio in time_domain_bench.equal_accuracy_speedups(rows):
@@ -847,7 +855,8 @@ SECTIONS = {s.name: s for s in (
             section_reference_rk45),
     Section("reference-modes", "the reference model's work and precision in its modes and residual laws against "
             "256 modes, and the step in contact at a bouncing point", section_reference_modes),
-    Section("hierarchy", "the default study's model hierarchy against the reference model everywhere", section_hierarchy),
+    Section("hierarchy", "the default study's model hierarchy against the reference model everywhere",
+            section_hierarchy),
     Section("sweeps", "sweeps in process against 1 and 2 local dask workers", section_sweeps),
     Section("sweep-default", "the default study's sweep in process against 1 and 2 local dask workers, on its grid "
             "thinned to about 100 points (minutes: its points in contact take about a second each; `make sweep` "
@@ -963,12 +972,13 @@ def bench_large_sweep(config: str | Path = LARGE_CONFIG, workers: int = 2, out: 
     not_converged = int(np.sum(status == "not_converged"))
     lines = ["# A sweep of 10^5 points, measured" if points is None else
              f"# The large sweep's command on its grid thinned to {size} points (a smoke test, not the record)", "",
-             (f"Generated by `study bench --large --out docs/large_sweep.md` (`make bench-large`)" if points is None else
+             ("Generated by `study bench --large --out docs/large_sweep.md` (`make bench-large`)" if points is None else
               f"Generated by `study bench --large --points {points}` (`make bench-large POINTS={points}`: a smoke test "
               "of the command, the grid thinned evenly, each axis's ends kept while it has two values or more)")
              + f", study {__version__}, "
              f"on {os.cpu_count()} cores, Python {platform.python_version()}: `{Path(config).name}` swept as "
-             f"`study sweep` does, on {workers} local dask workers, into a fresh folder (the kernels compiled ahead).", "",
+             f"`study sweep` does, on {workers} local dask workers, into a fresh folder (the kernels compiled "
+             "ahead).", "",
              f"**Grid:** {size} points, " + " × ".join(f"{len(v)} {name}" for name, v in study.axes.items()) + ".", "",
              f"**Time:** the sweep (every point solved and the dataset written) **{int(sweep // 60)} min "
              f"{int(sweep % 60)} s**; the report's charts {charts:.0f} s more. The points' own times sum to "

@@ -138,10 +138,10 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("eccentricity"),
           display_unit="in", **_NON_NEGATIVE),
     Field("pipe.eccentricity_turn", "eccentricity_turn", "turn of each pipe joint's mass eccentricity from the "
-          "previous joint's along the string (method reference; default 'aligned', 0: all alike, the worst case turning "
-          "slowly; '90 deg', the default study's in a four-joint section: a string made up at random has that turn's "
-          "joint loads in the mean square; a turn drives the string's lateral wave of that wavenumber; the periodic "
-          "section must hold whole turns of the pattern; see docs/reference_model.md)", "rad",
+          "previous joint's along the string (method reference; default 'aligned', 0: all alike, the worst case "
+          "turning slowly; '90 deg', the default study's in a four-joint section: a string made up at random has that "
+          "turn's joint loads in the mean square; a turn drives the string's lateral wave of that wavenumber; the "
+          "periodic section must hold whole turns of the pattern; see docs/reference_model.md)", "rad",
           default=ReferenceOptions.default("eccentricity_turn"), display_unit="deg", lower=0.0, upper=2 * math.pi,
           parser=_eccentricity_turn, rule_note="0 to 360 deg"),
     Field("pipe.tool_joint_diameter", "tool_joint_diameter", "tool-joint outer diameter (method reference)", "m",
@@ -195,8 +195,8 @@ FIELDS: tuple[Field, ...] = (
           "0.3: water-base mud, 0.25-0.40 in Johancsik, Friesen & Dawson 1984)", "",
           default=ReferenceOptions.default("friction"), **_NON_NEGATIVE),
     Field("contact.section_length", "section_length", "length of the reference model's periodic section of the "
-          "string, a whole number of joints (default three 31-ft joints)", "m", default=ReferenceOptions.default("section_length"), display_unit="ft",
-          **_POSITIVE),
+          "string, a whole number of joints (default three 31-ft joints)", "m",
+          default=ReferenceOptions.default("section_length"), display_unit="ft", **_POSITIVE),
     Field("solver.method", "solver_method", "solution method", None, default="core",
           choices=tuple(METHOD_DESCRIPTIONS)),
     Field("solver.span_length", "span_length", "span length (given; otherwise found by the periodic solver)",

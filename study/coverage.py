@@ -478,7 +478,8 @@ def coverage_section(path: str | Path | None = None) -> list[str]:
               "integrator + modes; `*` not covered), and the cost of each run (wall time on the machine the command "
               "ran on, its cores shared).", "",
               "| " + " | ".join(label for _, label, _ in SHOWN.values()) + " | default: status, modes, revolutions, "
-              "time | reference: modes, revolutions, its own error estimate, time | " + " | ".join(FIGURES.values()) + " |",
+              "time | reference: modes, revolutions, its own error estimate, time | "
+              + " | ".join(FIGURES.values()) + " |",
               "| " + " | ".join(["---"] * (len(SHOWN) + 2 + len(FIGURES))) + " |"]
     for p in points:
         rows = point_rows(p)
@@ -498,7 +499,8 @@ def coverage_section(path: str | Path | None = None) -> list[str]:
     cost_r = [p["reference"]["wall_time"] for p in points]
     if points:
         lines += ["", f"Cost: the default answers {np.median(cost_d):.1f} s median ({sum(cost_d):.0f} s in all), the "
-                  f"reference answers {np.median(cost_r):.1f} s median ({sum(cost_r):.0f} s in all); the command's last "
+                  f"reference answers {np.median(cost_r):.1f} s median ({sum(cost_r):.0f} s in all); the command's "
+                  "last "
                   f"invocation took {results['seconds']:.0f} s on its workers (runs it found in its cache cost it "
                   "nothing)."]
     return lines + [""]

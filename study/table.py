@@ -77,8 +77,9 @@ EXTRA_OUTPUTS = {
     "contact_linearisation": ("1", "relative change of the figures with the Hertz secant stiffness"),
     "drag_linearisation": ("1", "relative change of the figures with the drag made viscous at the mean speed"),
     "truncation_error": ("1", "relative change of the figures with half the modes"),
-    "harmonic_balance": (None, "the sliding state solved exactly by harmonic balance (harmonics, Newton iterations, last "
-                               "correction, the figures' change from half the harmonics, the linear answer's estimate)"),
+    "harmonic_balance": (None, "the sliding state solved exactly by harmonic balance (harmonics, Newton iterations, "
+                               "last correction, the figures' change from half the harmonics, the linear answer's "
+                               "estimate)"),
     "methods_tried": (None, "the models tried by auto, in order, and their verdicts"),
     "convergence": (None, "error of each figure, by its parts"),
     "energy_budget": (None, "energy balance over the window"),
@@ -98,7 +99,8 @@ _MESSAGE_UNITS = {"mm": ("mm", "in", "in"), "m": ("m", "ft", "ft"), "kN": ("kN",
                   "N": ("N", "lbf", "lbf"), "N m": ("N*m", "lbf*ft", "lbf·ft"), "MPa": ("MPa", "psi", "psi"),
                   "kPa": ("kPa", "psi", "psi"), "Pa": ("Pa", "psi", "psi"), "m/s": ("m/s", "ft/s", "ft/s"),
                   "kg/m": ("kg/m", "lb/ft", "lb/ft"), "N s/m²": ("N*s/m**2", "lbf*s/ft**2", "lbf·s/ft²")}
-_MESSAGE_QUANTITY = re.compile(rf"(?<![\w.])({_NUMBER}) ({'|'.join(sorted(map(re.escape, _MESSAGE_UNITS), key=len, reverse=True))})"
+_MESSAGE_QUANTITY = re.compile(rf"(?<![\w.])({_NUMBER}) "
+                               rf"({'|'.join(sorted(map(re.escape, _MESSAGE_UNITS), key=len, reverse=True))})"
                                r"(?![\w/²·])")
 
 

@@ -148,7 +148,8 @@ def textbook_section() -> list[str]:
     return [
         "## Textbook impact examples (Harrison & Nettleton, chapter 8)", "",
         _row("case", "printed / closed form", "computed", "source"), _row(*["---"] * 4),
-        _row("Problem 8.1: e from 2 m drop, 1.5 m rebound", "√0.75 = 0.8660 (closed form)", f"{e:.4f}", "book, Problem 8.1"),
+        _row("Problem 8.1: e from 2 m drop, 1.5 m rebound", "√0.75 = 0.8660 (closed form)", f"{e:.4f}",
+             "book, Problem 8.1"),
         _row("Problem 8.1: rebound from 3 m", "2.25 m (closed form)", f"{rebound:.4f} m", "book, Problem 8.1"),
         _row("Example 8.2: velocity ratio at a roller", "6/7 = 0.8571", f"{float(ratio):.4f}", "book, Example 8.2"),
         _row("Example 8.2: steady mean velocity", "2.187 m/s", f"{float(cycle.mean):.4f} m/s", "book, Example 8.2"),
@@ -194,8 +195,8 @@ def paper_example_section() -> list[str]:
         "Note the scale: with V_p = Ω c and the assumed-mode curvature κ = c(π/L)², the equivalent "
         "mass of a 345-ft span strikes with a Lee peak force of "
         f"{convert(v['peak_contact_force'], 'N', 'lbf'):.3g} lbf spread over a contact "
-        f"{convert(2 * v['contact_half_length'], 'm', 'ft'):.3g} ft long. Whether the paper's stresses of order 10⁴ psi follow from this closure is "
-        "the question of the periodic-solution issue.", "",
+        f"{convert(2 * v['contact_half_length'], 'm', 'ft'):.3g} ft long. Whether the paper's stresses of order 10⁴ "
+        "psi follow from this closure is the question of the periodic-solution issue.", "",
     ]
 
 
@@ -207,7 +208,8 @@ def periodic_solution_section(modes: int = 21) -> list[str]:
         for closure in ("prescribed", "self_consistent"):
             result = solve_point({**point, "impact_pattern": pattern, "closure": closure, "modes": modes}, "fast")
             v = result.values
-            spans = ", ".join(f"{convert(L, 'm', 'ft'):.1f}" for L in result.extras.get("candidate_spans", [])) or "none"
+            spans = (", ".join(f"{convert(L, 'm', 'ft'):.1f}" for L in result.extras.get("candidate_spans", []))
+                     or "none")
             rows.append(_row(pattern, closure, int(v["root_count"]), int(v["pole_count"]),
                              int(v["pole_count"] - v["narrow_count"]), spans,
                              f"`{result.status}`: {result.message.split('; ', 1)[-1]}"))
@@ -542,12 +544,14 @@ def damped_section() -> list[str]:
     change = f"{100 * min(changes):+.0f} to {100 * max(changes):+.0f} %" if changes else "-"
     ratio = f"{min(stress_ratios):.3g}-{max(stress_ratios):.3g}" if stress_ratios else "-"
     lines += ["",
-              Uncertain(f"Where both strike the wall ({compared} points) the damped solution is nearer the reference model "
+              Uncertain(f"Where both strike the wall ({compared} points) the damped solution is nearer the reference "
+                        "model "
               f"than the undamped one at {closer} (by the larger |log ratio| of force and stress); its max normal "
               f"stress is {ratio} times the reference's there. Keeping the drag moves the max normal stress of the "
-              f"undamped solution by {change} on these points. At {untouched} points the damped solution strikes the wall where the reference model "
-              "whirls clear of it. The end moments' work equals the drag's dissipation to the energy residual shown "
-              "(tests/solvers/test_damped.py asserts < 1e-3 at the paper's point).", max(tolerances, default=0.0)), "",
+              f"undamped solution by {change} on these points. At {untouched} points the damped solution strikes the "
+              "wall where the reference model whirls clear of it. The end moments' work equals the drag's dissipation "
+              "to the energy residual shown (tests/solvers/test_damped.py asserts < 1e-3 at the paper's "
+              "point).", max(tolerances, default=0.0)), "",
               "Near the paper's span: every root of the damped condition 2 between "
               f"{PAPER_SPAN_WINDOW[0]:.0f} and {PAPER_SPAN_WINDOW[1]:.0f} ft, found directly (201 spans sampled, "
               "sign changes refined; `damped.scan`) with the paper's assumed-mode damping, at the paper's point "
@@ -608,8 +612,8 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
         "`auto` (the free whirl where the pipe stays clear of the wall, the sliding state where it lies on its tool "
         "joints, else the reference model); where a cheaper model answered, the reference model was run too, held "
         "back. Stresses in psi.", "",
-        "| dogleg [°/100 ft] | rpm | tension [lbf] | e | mud [ppg] | flow [ft/s] | auto's model | max normal stress: auto / reference "
-        "| alternating: auto / reference | max deflection: auto / reference [in] |",
+        "| dogleg [°/100 ft] | rpm | tension [lbf] | e | mud [ppg] | flow [ft/s] | auto's model | max normal stress: "
+        "auto / reference | alternating: auto / reference | max deflection: auto / reference [in] |",
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     errors = {"max_normal_stress": [], "max_deflection": []}

@@ -191,18 +191,21 @@ def contact_step(point, modes=(32, 64, 128), startup: float = 3.0, revolutions: 
     lines = ["**The step in contact at a bouncing point.**", "",
              f"`configs/default.toml` at {scene.rotary_speed * 30 / np.pi:.4g} rpm, "
              f"{scene.axial_tension / 4.4482216152605:.5g} lbf, e = {scene.restitution:g}, "
-             f"{scene.mud_density / 119.826427:.3g} ppg (a bouncing point of the default study): {startup:g} revolutions "
+             f"{scene.mud_density / 119.826427:.3g} ppg (a bouncing point of the default study): {startup:g} "
+             "revolutions "
              f"from its initial state, then {revolutions:g} recorded from that one state by each scheme "
-             f"(`solver.reference_integrator`; the step in contact: `lawson-flight` Dormand–Prince, `lawson` the Lawson "
-             f"form, `dopri5` Dormand–Prince in flight too) at rtol {rtol:g} (`study.bench.bench_reference_contact_step`). "
-             f"The last row of each count: `{schemes[0]}` with its error test on the first {low_modes} modes alone, the "
-             "bound of what a step exact on the higher modes saves at the same tolerance. CPU per revolution: the "
-             "integrator's and the window's figures' (`reference.cycle_values`). Steps in contact against the stability "
-             "bound 2.5/ω_N of the fastest kept mode. Figures over the window: the difference from "
+             "(`solver.reference_integrator`; the step in contact: `lawson-flight` Dormand–Prince, `lawson` the "
+             "Lawson "
+             f"form, `dopri5` Dormand–Prince in flight too) at rtol {rtol:g} "
+             "(`study.bench.bench_reference_contact_step`). "
+             f"The last row of each count: `{schemes[0]}` with its error test on the first {low_modes} modes alone, "
+             "the bound of what a step exact on the higher modes saves at the same tolerance. CPU per revolution: the "
+             "integrator's and the window's figures' (`reference.cycle_values`). Steps in contact against the "
+             "stability bound 2.5/ω_N of the fastest kept mode. Figures over the window: the difference from "
              f"`{schemes[0]}` at rtol {tight:g} from the same state.", "",
-             "| modes | step in contact | integrator CPU per revolution [ms] | speed-up | figures CPU per revolution [ms] "
-             "| steps per revolution in contact / in flight | mean step in contact / 2.5/ω_N [µs] | evaluations per "
-             "revolution | per evaluation [µs] | onsets | "
+             "| modes | step in contact | integrator CPU per revolution [ms] | speed-up | figures CPU per revolution "
+             "[ms] | steps per revolution in contact / in flight | mean step in contact / 2.5/ω_N [µs] | evaluations "
+             "per revolution | per evaluation [µs] | onsets | "
              + " | ".join(f"{label} diff" for label in CONTACT_STEP_FIGURES.values()) + " |",
              "|---|---|---|---|---|---|---|---|---|---|" + "---|" * len(CONTACT_STEP_FIGURES)]
     for r in rows:

@@ -107,7 +107,8 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
     ds = xr.open_dataset(results)
     study = config.load(ROOT / "configs" / "default.toml")
     dims = list(ds["method"].dims)
-    bouncing = (ds["method"].values.reshape(-1) == "reference") & (ds["regime"].values.reshape(-1) == REGIMES["bouncing"])
+    bouncing = ((ds["method"].values.reshape(-1) == "reference")
+                & (ds["regime"].values.reshape(-1) == REGIMES["bouncing"]))
     found = np.flatnonzero(bouncing)
     picks = found[np.linspace(0, found.size - 1, count).round().astype(int)] if indices is None else np.asarray(indices)
     grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
@@ -153,7 +154,8 @@ if __name__ == "__main__":
                    json.loads(sys.argv[6]) if len(sys.argv) > 6 else None)
     elif kind == "sample-at":  # the points of the results at these flat indices, each run capped at 1200 s
         with open(sys.argv[4], "a") as handle:
-            sample(0, sys.argv[3].split(","), handle, sys.argv[5], json.loads(sys.argv[6]) if len(sys.argv) > 6 else None,
+            sample(0, sys.argv[3].split(","), handle, sys.argv[5],
+                   json.loads(sys.argv[6]) if len(sys.argv) > 6 else None,
                    indices=[int(i) for i in sys.argv[2].split(",")], cap=1200)
     else:
         raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at")

@@ -1,9 +1,10 @@
 """Which charts a results dataset gets, in the order a reader needs them, and drawing them to files.
 
 Decision charts first (the safe envelope, stresses against their limits, fatigue life, contact force, the regime
-of the motion, the rotary speeds to avoid, the validity of the points, what each answer cost and how sure it is), then the solution's own charts (span,
-contact, the span's natural frequencies) and the method crosschecks. Each chart function takes the dataset and
-returns a list of :class:`~study.charts.design.Chart`, empty when the variables or dimensions it needs are absent.
+of the motion, the rotary speeds to avoid, the validity of the points, what each answer cost and how sure it is), then
+the solution's own charts (span, contact, the span's natural frequencies) and the method crosschecks. Each chart
+function takes the dataset and returns a list of :class:`~study.charts.design.Chart`, empty when the variables or
+dimensions it needs are absent.
 """
 
 from __future__ import annotations
@@ -23,9 +24,9 @@ from study.charts.regimes import lift_off_map, regime_map
 from study.charts.validity import validity_map
 
 #: Every chart, in the order :func:`draw` draws them.
-CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, drivers_chart, regime_map, lift_off_map,
-          campbell_chart, validity_map, cost_accuracy_chart, span_length_vs_rpm, contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm,
-          crosscheck_maps, orbit_maps, reference_maps)
+CHARTS = (envelope_chart, stress_limit_maps, fatigue_life_map, contact_force_map, drivers_chart, regime_map,
+          lift_off_map, campbell_chart, validity_map, cost_accuracy_chart, span_length_vs_rpm,
+          contact_force_and_duration_vs_rpm, natural_frequencies_vs_rpm, crosscheck_maps, orbit_maps, reference_maps)
 #: Charts that take the fatigue target (target_hours [h]) and, for the envelope, the fatigue criterion.
 _TAKE_TARGET = {envelope_chart: ("target_hours", "criterion"), fatigue_life_map: ("target_hours",)}
 

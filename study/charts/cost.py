@@ -55,7 +55,8 @@ def cost_accuracy_chart(ds: xr.Dataset) -> list[Chart]:
         share = 100.0 * times[mine].sum() / total
         label = (f"{method}: {mine.sum()} points, median {np.median(times[mine]):.3g} ms, "
                  f"{share:.3g} % of the compute")
-        for subset, y, marker in ((mine & estimated, errors, "o"), (mine & ~estimated, np.full(times.shape, floor), "v")):
+        for subset, y, marker in ((mine & estimated, errors, "o"),
+                                  (mine & ~estimated, np.full(times.shape, floor), "v")):
             if subset.any():
                 ax.scatter(times[subset], y[subset], s=14, color=colour, marker=marker, alpha=0.75, label=label)
                 label = None  # one legend entry per method

@@ -210,8 +210,8 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
         handles.append(Patch(color="#fff7bc", label="swept rotary speeds"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False,
                title=quantity(ds[series]).short_name if series else None, title_fontsize=8)
-    joint = quantity(ds["joint_length"]).value_text(ds["joint_length"].values.ravel()[0]) if ds["joint_length"].size == 1 \
-        else "the swept joint lengths"
+    joint = (quantity(ds["joint_length"]).value_text(ds["joint_length"].values.ravel()[0])
+             if ds["joint_length"].size == 1 else "the swept joint lengths")
     context = [f"span = joint length {joint}, with the effective tension and the mud's mass at each point"]
     context += [quantity(ds[d]).describe(ds[d].values[0]) for d in fixed]
     if others:
@@ -220,7 +220,8 @@ def campbell_chart(ds: xr.Dataset) -> list[Chart]:
     context.append("critical speeds (the bands on every map and the envelope's): " + "; ".join(
         f"{k}× " + ", ".join(f"mode {m} {_range_text(every.sel(order=k, mode=m).values)}" for m in MODES)
         for k in ORDERS))
-    figure_title(fig, "Rotary speeds to avoid: natural frequencies of the joint against rotary speed (Campbell diagram)",
+    figure_title(fig, "Rotary speeds to avoid: natural frequencies of the joint against rotary speed (Campbell "
+                      "diagram)",
            context, 8.5)
     caption = ("Where a 1× or 2× excitation line crosses a natural frequency of the joint between tool joints the pipe "
                "whirls in resonance: the marked crossings are the critical speeds, the same ones the shaded bands on "

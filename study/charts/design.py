@@ -660,8 +660,8 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
 
     With the rotation harmonics f = k N / 60 (k = 1, 2, 3; N in rpm) and where the span's first mode meets the 1x
     line, N = 60 f1, as a dotted vertical line per axial load with a circle: a low mode of the whole span, not a
-    critical speed (the joint's, which the envelope and the bands use, are :mod:`study.charts.critical`'s). Both axes turn logarithmic when
-    the frequencies or speeds span more than a decade or so, as they do when the span is long.
+    critical speed (the joint's, which the envelope and the bands use, are :mod:`study.charts.critical`'s). Both axes
+    turn logarithmic when the frequencies or speeds span more than a decade or so, as they do when the span is long.
     """
     names = _mode_names(ds)
     if not names or RPM not in ds.sizes or ds.sizes[RPM] == 0:
@@ -736,9 +736,9 @@ def natural_frequencies_vs_rpm(ds: xr.Dataset) -> list[Chart]:
                         x_quantity=xq, y_quantities=fq, decorate=decorate, extra_handles=handles,
                         scales=(scale, scale),
                         xlim=xlim, ylim=ylim, extra_context=extra_context,
-                        caption="Natural frequencies of the span the method answers on (the periodic solution's span, or "
-                                "the reference model's section), against the rotation harmonics; where its first mode "
-                                "meets the 1× line is marked, a low mode of the whole span rather than a critical "
+                        caption="Natural frequencies of the span the method answers on (the periodic solution's span, "
+                                "or the reference model's section), against the rotation harmonics; where its first "
+                                "mode meets the 1× line is marked, a low mode of the whole span rather than a critical "
                                 "speed: the joint's critical speeds, which the envelope and the bands use, are the "
                                 "Campbell chart's.")
 

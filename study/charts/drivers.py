@@ -107,7 +107,8 @@ def drivers_chart(ds: xr.Dataset) -> list[Chart]:
     figure_title(fig, "Which input drives the design: main effects over the full-factorial grid",
            ["cell: the share of the figure's variance its input's levels explain (first-order index), and below it "
             "how far the mean figure moves across the input's levels",
-            "answered points only (ok and not converged); the fatigue life as log₁₀ of hours"], 2.5 + 1.45 * len(columns))
+            "answered points only (ok and not converged); the fatigue life as log₁₀ of hours"],
+           2.5 + 1.45 * len(columns))
     caption = ("How much each swept input moves each design figure: main effects from the full-factorial grid (the "
                "variance of the figure's mean at each level of the input, over the figure's variance: a first-order "
                "Sobol index on the grid), the range of those means in the figure's unit, and what every interaction "

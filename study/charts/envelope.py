@@ -2,7 +2,8 @@
 
 A cell is safe when every point in it (over every other swept input) is
 
-- solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to be safe) — or ``not_converged`` to the
+- solved: status ``ok`` or ``yields`` (which then fails the yield limit; a point without a valid answer is not known to
+be safe) — or ``not_converged`` to the
   study's tolerance but decided all the same: every limit below holds, or one fails, with its figure off by
   :data:`MARGIN` times its error — the figure's own where the point states it (the max normal stress's for yield,
   the fatigue life's, the alternating stress's for endurance: :func:`study.charts.plane.figure_errors`), else the

@@ -115,10 +115,10 @@ LIFT_STYLE = {"colors": "k", "linewidths": 2.2}
 
 def lift_off_map(ds: xr.Dataset) -> list[Chart]:
     """The lift-off eccentricity (output ``lift_off_eccentricity``: the pipe's mass eccentricity at which its tool
-    joints lift off the wall they lie on, :func:`study.solvers.methods.sliding.lift_off_eccentricity`) over rotary speed ×
-    axial load, in inches on a log colour scale, the lowest over the other swept inputs (the first to bounce; every
-    point where it is defined, whatever its answer's status, as it depends on none). The configured eccentricity (the
-    output ``eccentricity``) is marked on the colour bar, and the cells where it is above the lift-off (the joints
+    joints lift off the wall they lie on, :func:`study.solvers.methods.sliding.lift_off_eccentricity`) over rotary
+    speed × axial load, in inches on a log colour scale, the lowest over the other swept inputs (the first to bounce;
+    every point where it is defined, whatever its answer's status, as it depends on none). The configured eccentricity
+    (the output ``eccentricity``) is marked on the colour bar, and the cells where it is above the lift-off (the joints
     bounce) are outlined; each cell's value is written in it."""
     p = plane(ds)
     if p is None or "lift_off_eccentricity" not in ds.data_vars:

@@ -234,7 +234,8 @@ def _cell_table(rows: list[dict], criterion: str) -> str:
     unit = "[h]" if criterion == "life" else "[-]"
     head = [load_key, speed_key, "verdict", "limited by / undecided because", f"{figure} {unit}",
             "its error estimate", f"{figure} at {MARGIN:g}x error {unit}", "max yield utilisation [-]",
-            f"max yield utilisation at {MARGIN:g}x error [-]", "points (ok, decided within error, undecided, no answer)"]
+            f"max yield utilisation at {MARGIN:g}x error [-]", "points (ok, decided within error, undecided, no "
+                                                               "answer)"]
     out = ['<table id="envelope-cells"><thead><tr>' + "".join(f"<th>{_e(h)}</th>" for h in head)
            + "</tr></thead><tbody>"]
     for r in rows:

@@ -100,7 +100,8 @@ def run_record(ds: xr.Dataset, seconds: float | None = None, target_hours: float
                    else np.full(statuses.shape, "?"))
         rough = statuses == "not_converged"
         lines += ["## Points not converged to the study's tolerance (answered, with their error stated)", "",
-                  "| method | points | error estimate: median | 10th–90th percentile | largest |", "|---|---|---|---|---|"]
+                  "| method | points | error estimate: median | 10th–90th percentile | largest |",
+                  "|---|---|---|---|---|"]
         for method in sorted(set(methods[rough])):
             e = errors[rough & (methods == method) & np.isfinite(errors)]
             if e.size:
@@ -116,7 +117,8 @@ def run_record(ds: xr.Dataset, seconds: float | None = None, target_hours: float
         speed_key, load_key = list(rows[0])[:2]
         life = "min fatigue life [h]"
         lines += ["## The envelope's cells that are not safe", "",
-                  f"| {load_key} | {speed_key} | verdict | why | {life} | its error estimate |", "|---|---|---|---|---|---|"]
+                  f"| {load_key} | {speed_key} | verdict | why | {life} | its error estimate |",
+                  "|---|---|---|---|---|---|"]
         for r in rows:
             if r["verdict"] != "safe":
                 error = r.get(f"{life[:-4]}: its error estimate [-]", float("nan"))

@@ -116,7 +116,8 @@ def validity_map(ds: xr.Dataset) -> list[Chart]:
         ax.axvline(edge, color="white", lw=0.8)
     for edge in yedges:
         ax.axhline(edge, color="white", lw=0.8)
-    counts = (full_array(ds, "status").isel({d: 0 for d in fixed}) if fixed else full_array(ds, "status")).values.ravel()
+    counts = (full_array(ds, "status").isel({d: 0 for d in fixed}) if fixed
+              else full_array(ds, "status")).values.ravel()
     code_of = {n: c for c, n in flags(ds["status"]).items()}
     handles = [Patch(facecolor=colours[i], edgecolor="0.5", lw=0.5,
                      label=f"{n} ({100.0 * np.mean(counts == code_of.get(n, -1)):.0f} % of the points)")

@@ -272,7 +272,8 @@ def _run_distributed(grid, keys, code, tasks, store_chunk, scheduler, workers) -
             except Exception as exc:  # noqa: BLE001 - raised on the worker (solve_point records a point's own faults)
                 raise SweepError(f"chunk {task[1].name} failed on a worker of {scheduler or 'the local cluster'} "
                                  f"({type(exc).__name__}: {str(exc)[:200]}); a cluster started before the code "
-                                 "changed runs the old code: restart its workers and run the same command again") from None
+                                 "changed runs the old code: restart its workers and run the same command "
+                                 "again") from None
             finally:
                 future.release()
             check_code(ran, code, f"a worker of {scheduler or 'the local cluster'}")

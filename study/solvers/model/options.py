@@ -86,7 +86,8 @@ def statistical_tolerance(inputs: Mapping[str, Any]) -> float:
     return relative_tolerance(inputs, "statistical_tolerance", DEFAULT_STATISTICAL_TOLERANCE, "a relative error")
 
 
-#: Relative accuracy asked of the peak contact force (config ``solver.force_tolerance``): 15 %. What a Hertz impact's peak
+#: Relative accuracy asked of the peak contact force (config ``solver.force_tolerance``): 15 %. What a Hertz impact's
+#: peak
 #: force is known to from its inputs bounds the accuracy worth asking of it: the peak goes as the contact modulus to the
 #: power 2/5 (Johnson, *Contact Mechanics* §11.4), and a rock modulus known to ±50 % (the default grid's 5e6 psi
 #: against the pipe's steel) moves it by −22/+15 %; a restitution known to ±0.1 of 0.3-0.7 moves the impulse by

@@ -126,7 +126,8 @@ OUTPUTS = {
     "buckling_length": ("m", "shortest simply supported span that buckles"),
     "span_length": ("m", "length of the sample span between nodes"),
     "first_natural_frequency": ("Hz", "first natural frequency of the span"),
-    "equivalent_mass": ("kg", "mass of the impact closure (impact.mass: 2ML/pi momentum or ML/2 modal; sdof and time domain: the modal mass)"),
+    "equivalent_mass": ("kg", "mass of the impact closure (impact.mass: 2ML/pi momentum or ML/2 modal; sdof and time "
+                              "domain: the modal mass)"),
     "impact_velocity": ("m s-1", "lateral velocity of midspan just before impact"),
     "impulse": ("N s", "impulse of one impact m_e (1 + e) V_p"),
     "axial_curvature": ("m-1", "curvature of the bent pipe at the contact"),

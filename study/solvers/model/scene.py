@@ -122,7 +122,8 @@ class Scene:
         hole's curvature vector κ⃗ (2,) [1/m]: :func:`study.physics.well.side_load_vector` of the buoyed weight
         (:func:`study.physics.whirl.side_load`'s, as every method reads it), the inclination, the effective tension
         and, in a curved hole, the scene's ``dogleg_curvature`` κ [1/m] towards ``dogleg_direction`` φ [rad] from the
-        low side (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load along
+        low side (the tension's T κ towards the centre of curvature). The scene's ``side_load`` [N/m] sets the load
+        along
         +y directly (code and tests). The reference model's and the free whirl's side load."""
         props = self.props
         kappa = self.dogleg_curvature
