@@ -213,13 +213,15 @@ DRAG_RULES = ("dissipation", "mean_speed")
 
 
 def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: float = 1.0,
-          drag_rule: str = "dissipation", linear: tuple[np.ndarray, np.ndarray] | None = None) -> dict[str, Any]:
+          drag_rule: str = "dissipation", linear: tuple[np.ndarray, np.ndarray] | None = None,
+          start: np.ndarray | None = None, settled: float = SETTLED) -> dict[str, Any]:
     """The synchronous response about the rest (module docstring): complex modal amplitudes A (2N,) of
     Re(A e^{iΩt}) [m], the second-order motion on the wall's arc (modal amplitudes at 0 and 2Ω, and the inward
     shift of each point), the drag iteration's count and last change; ``contact_scale`` multiplies the contacts'
     linearised stiffness and ``drag_rule`` (:data:`DRAG_RULES`) says how the drag is made viscous (the
     linearisation's error is measured by changing them); ``linear``: the contacts' linearisation about this rest
-    (:func:`_linearised`) where already made."""
+    (:func:`_linearised`) where already made; ``start``: amplitudes A to start the drag's iteration from (else the
+    drag-free answer) and ``settled`` the relative change that ends it."""
     N, Om = model.n_modes, model.rotary_speed
     stiff, damp = linear if linear is not None else _linearised(model, rested["u"])
     stiff = stiff * contact_scale
@@ -229,7 +231,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)  # (cos, sin) Ωt
     S, w = model.drag_shapes, model.drag_weights
     phase = PHASES
-    A = np.linalg.solve(base, load)
+    A = np.linalg.solve(base, load) if start is None else start
     change, iteration, C = 0.0, 0, None
     if model.drag > 0:
         for iteration in range(1, ITERATIONS + 1):
@@ -244,7 +246,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
             new = np.linalg.solve(_with_drag(base, Om, C), load)
             change = float(np.max(np.abs(new - A)) / max(np.max(np.abs(new)), 1e-300))
             A = new
-            if change < SETTLED:
+            if change < settled:
                 break
     # second order: a touching point moves on its wall's arc, inside the straight tangent of the linear motion by
     # r Δφ²/2 = r (|Φ|²/2 + Re(Φ² e^{2iΩt}/2))/2; the contact pulls it there, a load at 0 and 2Ω on the section
@@ -372,6 +374,9 @@ HARMONICS, COARSE_HARMONICS = 8, 4
 SAMPLES_PER_HARMONIC = 4
 #: Chord iterations of the harmonic balance at most, and the relative size of the last correction that ends them.
 BALANCE_ITERATIONS, BALANCE_SETTLED = 30, 1e-8
+#: The Cartesian balance gives up where its line search cut the step below this fraction in so many iterations
+#: running (at the default study's points where it stalled, 1/256-1/512 from the first iteration to the 30th).
+BALANCE_STALLED, BALANCE_STALLS = 1 / 64, 3
 
 
 def _force_jacobians(model: reference.WhirlModel, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -559,7 +564,7 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         return _balance_on_the_wall(model, held, E, Ed, W, Rr, n, K0, D0, load, drag_load, respond, to_real,
                                     to_complex, modal, B, Q, W[:, None] * (E.T @ np.concatenate(
                                         (angle, radius - model.clearance[held][None]), axis=1)), dynamic)
-    change, settled, iteration = np.inf, False, 0
+    change, settled, iteration, stalled = np.inf, False, 0, 0
     for iteration in range(1, BALANCE_ITERATIONS + 1):
         extra = load + drag_load(v)
         base = respond(extra)
@@ -580,6 +585,9 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
             G_try = contact_part(U + alpha * step, jacobian=False)
         U = U + alpha * step
         G = G_try
+        # stalled: the line search cut the step below BALANCE_STALLED in BALANCE_STALLS iterations running (a
+        # joint's swing along the wall too far for the tangent step; the wall's coordinates take it, :func:`refine`)
+        stalled = stalled + 1 if alpha < BALANCE_STALLED else 0
         new = base + respond(to_complex(G) @ B / model.mass)
         change = float(np.max(np.abs(new - Q)) / dynamic(new))
         Q = new
@@ -588,6 +596,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
             break
         if change < BALANCE_SETTLED:
             settled = True
+            break
+        if stalled >= BALANCE_STALLS:
             break
     return dict(harmonics=Q, iterations=iteration, change=change, settled=settled)
 
@@ -753,6 +763,9 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
 #: The lift-off eccentricity's secant iteration (:func:`lift_off_eccentricity`): states solved at most, and the
 #: relative change of the eccentricity that ends it.
 LIFT_ITERATIONS, LIFT_SETTLED = 8, 1e-3
+#: The relative change of the drag's iteration that ends it in each state of the lift-off's search: its figure moves
+#: by far less than the search's :data:`LIFT_SETTLED` (the answer's own whirl settles to :data:`SETTLED`).
+LIFT_DRAG_SETTLED = 1e-7
 #: The eccentricity [m] the lift-off is first sought at where the point's own is nil (0.1 in).
 LIFT_TRIAL = 0.1 * 0.0254
 
@@ -792,26 +805,57 @@ def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | 
         model = reference.build_model({**inputs, "reference_modes": model.n_modes, "eccentricity": LIFT_TRIAL})
         base = model.eccentricity
 
+    # the whirl at the last ε solved, whose amplitudes scaled to the next ε start its drag iteration there (the
+    # motion is linear in ε but for the drag's and the arc's growth)
+    last = {"eps": base, "amplitudes": state["whirl"]["amplitudes"] if state["model"].eccentricity > 0 else None}
+
     def least(eps: float) -> float:
         scaled = dataclasses.replace(model, eccentric=model.eccentric * (eps / base), eccentricity=eps)
-        whirled = whirl(scaled, rested, linear=linear)
+        start = None if last["amplitudes"] is None else last["amplitudes"] * (eps / last["eps"])
+        whirled = whirl(scaled, rested, linear=linear, start=start, settled=LIFT_DRAG_SETTLED)
+        last.update(eps=eps, amplitudes=whirled["amplitudes"])
         window, _ = revolution(scaled, rested, whirled)
         return _least_force(dict(rest=rested, window=window))
 
-    # the secant on the least force h(ε), from h(0) = 1 (the rest) and the point's own ε (or the trial's)
+    # the least force h(ε) from h(0) = 1 (the rest) and the point's own ε (or the trial's); the root of the parabola
+    # through the last three values (h is linear in ε but for the drag's growth and the arc's second order, whose
+    # share grows as ε²), the secant where it has none
     e0, h0 = 0.0, 1.0
     e1 = base
     h1 = _least_force(state) if state["model"].eccentricity > 0 else least(e1)
     if not h1 < h0:  # the turning load does not lower the force
         return float("inf")
+    known = [(e0, h0), (e1, h1)]
     for _ in range(LIFT_ITERATIONS):
+        (e0, h0), (e1, h1) = known[-2:]
         e2 = e1 + h1 * (e1 - e0) / (h0 - h1) if h0 != h1 else e1
+        if len(known) >= 3:
+            curve = _parabola_root(known[-3:], e2)
+            e2 = curve if curve is not None else e2
         if not (np.isfinite(e2) and e2 > 0):
             break
         if abs(e2 - e1) <= LIFT_SETTLED * e2:
             return float(e2)
-        e0, h0, e1, h1 = e1, h1, e2, least(e2)
-    return float(e1)
+        known.append((e2, least(e2)))
+    return float(known[-1][0])
+
+
+def _parabola_root(points: list[tuple[float, float]], near: float) -> float | None:
+    """The root nearest ``near`` of the parabola through three (ε, h) ``points`` (Newton's divided differences), None
+    where it has no real root."""
+    (x0, y0), (x1, y1), (x2, y2) = points
+    if len({x0, x1, x2}) < 3:
+        return None
+    d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
+    a = (d12 - d01) / (x2 - x0)  # h = y2 + b (ε − x2) + a (ε − x2)²
+    b = d12 + a * (x2 - x1)
+    if a == 0.0:
+        return x2 - y2 / b if b != 0.0 else None
+    disc = b * b - 4 * a * y2
+    if disc < 0:
+        return None
+    roots = x2 + (-b + np.array([1.0, -1.0]) * np.sqrt(disc)) / (2 * a)
+    return float(roots[np.argmin(np.abs(roots - near))])
 
 
 def add_lift_off(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
