@@ -942,6 +942,11 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
 #: swing's angle and the Hertz approach take more than the Cartesian motion's (at default grid points 40 and 505 the
 #: figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 0.003 %, with 12 and 16 within 4e-5).
 POLAR_HARMONICS = (16, 12)
+#: The largest angle [rad] a joint may swing along the wall from its rest in a motion solved in the wall's coordinates:
+#: the reference model started on such a motion with its velocities 1 % off came back to it within 40 revolutions
+#: where the joints swung 0.10-0.25 rad (default grid points 32, 40, 322, 354, 394, 472) and left it to bounce where
+#: they swung 0.37 and 0.59 rad (points 54 and 392): beyond, the periodic motion the balance finds may be unstable.
+STABLE_SWING = 0.3
 
 
 def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: str, harmonics: int,
@@ -972,6 +977,16 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
                                f"in the wall's coordinates ({harmonics} harmonics)"))
     if not coarse["settled"]:
         return None
+    if coordinates == "polar":
+        u = np.stack((windows[0].states[:, :N] @ model.phi.T, windows[0].states[:, N:2 * N] @ model.phi.T),
+                     axis=-1)[:, held]
+        at_rest = rested["u"][held]
+        turned = np.unwrap(np.arctan2(u[..., 1], u[..., 0]), axis=0) - np.arctan2(at_rest[:, 1], at_rest[:, 0])[None]
+        swing = float(np.max(np.abs(turned)))
+        if swing > STABLE_SWING:
+            return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
+                              f"coordinates, beyond the {STABLE_SWING:.2g} rad up to which such a motion was found "
+                              f"stable (the pipe may leave it and bounce)")
     mine, other = values(inputs, [{**state, "window": w} for w in windows])
     harmonic = max(abs(other[k] - mine[k]) / max(abs(mine[k]), 1e-300) for k in FIGURES)
     return dict(values=mine, window=windows[0], error=float(harmonic + fine["change"]), harmonic_error=float(harmonic),
