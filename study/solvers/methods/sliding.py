@@ -30,7 +30,9 @@ largest moment and the drag iteration's last change.
 
 Where that estimate is above the study's tolerance the same periodic state is solved without linearising, by
 harmonic balance on the exact force laws (:func:`refine`, :func:`balance`), and answers where it settles with a
-smaller error (its harmonic truncation and the modes').
+smaller error (its harmonic truncation and the modes'); where the joints swing far along the wall, in the wall's own
+coordinates (each touching joint's angle along it and radial approach, :func:`_balance_on_the_wall`), not answered
+where they swing beyond :data:`STABLE_SWING` (the motion found there was unstable).
 
 Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the
 tangential direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at
