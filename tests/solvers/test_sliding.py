@@ -321,6 +321,16 @@ def test_where_the_joints_swing_far_along_the_wall_the_balance_in_the_wall_s_coo
     assert work_in == pytest.approx(dissipated, rel=1e-6)
 
 
+def test_where_the_joints_swing_beyond_the_stable_angle_it_does_not_answer():
+    # default grid point 54 (75 rpm, 20 000 lbf, 12 ppg, no flow, straight hole): the balance in the wall's
+    # coordinates settles with the joints swinging 0.37 rad along the wall, but that motion is unstable: the reference
+    # model started on it with its velocities 1 % off bounced within 40 revolutions (peak 7.7 kN), and from the sliding
+    # rest it bounces after 20 (docs/reference_model.md §10); beyond sliding.STABLE_SWING the reference model answers
+    result = sliding.solve(_study_point(54))
+    assert result.status == "out_of_scope" and "swing 0.37 rad along the wall" in result.message, result.message
+    assert result.error_estimate is None and result.values["peak_contact_force"] > 0
+
+
 def test_the_lift_off_holds_its_precision_with_fewer_sliding_solves(monkeypatch):
     # default grid point 0 (50 rpm, 5 000 lbf, 9 ppg, no flow, straight hole): the least normal force over the
     # revolution h(ε) falls to nil at the lift-off eccentricity; its root to 1e-12 by Brent's method on the same

@@ -30,7 +30,9 @@ largest moment and the drag iteration's last change.
 
 Where that estimate is above the study's tolerance the same periodic state is solved without linearising, by
 harmonic balance on the exact force laws (:func:`refine`, :func:`balance`), and answers where it settles with a
-smaller error (its harmonic truncation and the modes').
+smaller error (its harmonic truncation and the modes'); where the joints swing far along the wall, in the wall's own
+coordinates (each touching joint's angle along it and radial approach, :func:`balance`), not answered
+where they swing beyond :data:`STABLE_SWING` (the motion found there was unstable).
 
 Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the
 tangential direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at
@@ -220,8 +222,7 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
     shift of each point), the drag iteration's count and last change; ``contact_scale`` multiplies the contacts'
     linearised stiffness and ``drag_rule`` (:data:`DRAG_RULES`) says how the drag is made viscous (the
     linearisation's error is measured by changing them); ``linear``: the contacts' linearisation about this rest
-    (:func:`_linearised`) where already made; ``start``: amplitudes A to start the drag's iteration from (else the
-    drag-free answer) and ``settled`` the relative change that ends it."""
+    (:func:`_linearised`) where already made; ``start``: A to start the drag's iteration from, ``settled`` its end."""
     N, Om = model.n_modes, model.rotary_speed
     stiff, damp = linear if linear is not None else _linearised(model, rested["u"])
     stiff = stiff * contact_scale
@@ -374,8 +375,7 @@ HARMONICS, COARSE_HARMONICS = 8, 4
 SAMPLES_PER_HARMONIC = 4
 #: Chord iterations of the harmonic balance at most, and the relative size of the last correction that ends them.
 BALANCE_ITERATIONS, BALANCE_SETTLED = 30, 1e-8
-#: The Cartesian balance gives up where its line search cut the step below this fraction in so many iterations
-#: running (at the default study's points where it stalled, 1/256-1/512 from the first iteration to the 30th).
+#: The balance gives up where its line search cut the step below this in so many iterations running (1/256-1/512).
 BALANCE_STALLED, BALANCE_STALLS = 1 / 64, 3
 
 
@@ -421,8 +421,9 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
     periodic solution is the harmonics above H. ``start``: harmonics Q to start from instead (cut or padded).
 
     ``coordinates`` (:data:`BALANCE_COORDINATES`): the touching points' unknowns, their Cartesian displacement
-    harmonics, or the harmonics of each one's angle on its wall and radial approach (:func:`_balance_on_the_wall`:
-    a joint swinging far along the wall moves through a large angle, not a large nonlinearity).
+    harmonics, or the harmonics of each one's angle φ along its wall and radial approach ρ, u = (c + ρ)(cos φ, sin φ)
+    at the samples (a joint swinging 0.1-0.7 rad along the wall is a large angle, on which the Hertz law does not act;
+    in y and z Newton's tangent step leaves the wall's circle into the stiff contact and its line search stalls).
 
     Returns the harmonics Q, the iterations, the last correction's relative size and whether it settled."""
     from scipy import linalg
@@ -501,37 +502,49 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
             exact += np.concatenate((v[:, :N] @ C.T, v[:, N:] @ C.T), axis=-1)
         return to_complex((W[:, None] * (E.T @ exact)))
 
-    def contact_part(U, jacobian=True):  # G(U) (2H+1, K) and its Jacobian (n, n): the forces less their linearisation
-        u_t, v_t = E @ U, Ed @ U  # (M, K)
-        u = np.stack((u_t[:, :held.size], u_t[:, held.size:]), axis=-1)  # (M, H_p, 2)
-        v = np.stack((v_t[:, :held.size], v_t[:, held.size:]), axis=-1)
+    count, wall = held.size, model.clearance[held]
+
+    def assemble(stiff, damp):  # (n, n): per-sample, per-point 2×2 maps (M, P_t, 2, 2) of (E x, Ed x) on the harmonics
+        out = np.zeros((2 * H + 1, K, 2 * H + 1, K))
+        WE = (W * E).T
+        for p in range(count):
+            for i in range(2):
+                for j in range(2):
+                    term = stiff[:, p, i, j, None] * E
+                    if damp is not None:
+                        term = term + damp[:, p, i, j, None] * Ed
+                    out[:, i * count + p, :, j * count + p] = WE @ term
+        return out.reshape(n, n)
+
+    def parts(X, jacobian=True):  # U(X) and G(X) (2H+1, K), G the forces less their linearisation; their Jacobians
+        if coordinates == "polar":  # X: each point's angle φ then radial approach ρ; u = (c + ρ) n̂(φ)
+            x_t, xd_t = E @ X, Ed @ X
+            phi, rho, phid, rhod = x_t[:, :count], x_t[:, count:], xd_t[:, :count], xd_t[:, count:]
+            r = wall[None] + rho
+            nn = np.stack((np.cos(phi), np.sin(phi)), axis=-1)
+            tt = np.stack((-nn[..., 1], nn[..., 0]), axis=-1)
+            u, v = r[..., None] * nn, rhod[..., None] * nn + (r * phid)[..., None] * tt
+            U = W[:, None] * (E.T @ np.concatenate((u[..., 0], u[..., 1]), axis=1))
+        else:  # X: the Cartesian displacement harmonics
+            u_t, v_t = E @ X, Ed @ X  # (M, K)
+            u = np.stack((u_t[:, :count], u_t[:, count:]), axis=-1)  # (M, H_p, 2)
+            v = np.stack((v_t[:, :count], v_t[:, count:]), axis=-1)
+            U = X
         full_u = np.zeros((M, model.points.size, 2))
         full_v = np.zeros_like(full_u)
         full_u[:, held], full_v[:, held] = u, v
         f, _ = contact_forces(model, full_u, full_v)
-        f = f[:, held]
-        g = f + np.einsum("pij,mpj->mpi", K0, u) + np.einsum("pij,mpj->mpi", D0, v)
-        g_t = np.concatenate((g[..., 0], g[..., 1]), axis=1)  # (M, K)
-        G = W[:, None] * (E.T @ g_t)
+        g = f[:, held] + np.einsum("pij,mpj->mpi", K0, u) + np.einsum("pij,mpj->mpi", D0, v)
+        G = W[:, None] * (E.T @ np.concatenate((g[..., 0], g[..., 1]), axis=1))
         if not jacobian:
-            return G
+            return U, G
         ku, kv = _force_jacobians(model, full_u, full_v)
         ku, kv = ku[:, held] + K0[None], kv[:, held] + D0[None]
-        # dG[c, k, d, l] = W_c Σ_t E_tc (ku_t[k, l] E_td + kv_t[k, l] Ed_td), k, l (direction, point)
-        stiff = np.zeros((M, K, K))
-        damp = np.zeros((M, K, K))
-        p = np.arange(held.size)
-        for i in range(2):
-            for j in range(2):
-                stiff[:, i * held.size + p, j * held.size + p] = ku[:, :, i, j]
-                damp[:, i * held.size + p, j * held.size + p] = kv[:, :, i, j]
-        dG = np.zeros((2 * H + 1, K, 2 * H + 1, K))
-        WE = (W * E).T
-        for a in range(K):
-            for b in range(K):
-                if a % held.size == b % held.size:  # the same point
-                    dG[:, a, :, b] = WE @ (stiff[:, a, b, None] * E + damp[:, a, b, None] * Ed)
-        return G, dG.reshape(n, n)
+        if coordinates != "polar":  # dG[c, k, d, l] = W_c Σ_t E_tc (ku_t[k, l] E_td + kv_t[k, l] Ed_td)
+            return U, G, np.eye(n), assemble(ku, kv)
+        Ju = np.stack((r[..., None] * tt, nn), axis=-1)  # ∂u/∂(φ, ρ) = ∂u̇/∂(φ̇, ρ̇)
+        Jv = np.stack((rhod[..., None] * tt - (r * phid)[..., None] * nn, phid[..., None] * tt), axis=-1)  # ∂u̇/∂(φ, ρ)
+        return U, G, assemble(Ju, None), assemble(ku @ Ju + kv @ Jv, kv @ Ju)
 
     def respond(loads):  # modal harmonics (H+1, 2N) for modal loads' harmonics
         out = np.empty_like(loads)
@@ -556,37 +569,35 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         arc = np.concatenate((radius * np.cos(angle), radius * np.sin(angle)), axis=1)  # (M, K)
         U = W[:, None] * (E.T @ arc)
     dynamic = lambda X: max(float(np.max(np.abs(X[1:]))), 1e-300)
-    if coordinates == "polar":
-        if start is not None:  # the start's motion at the touching points in the wall's coordinates
+    X = U
+    if coordinates == "polar":  # the start in the wall's coordinates
+        if start is not None:
             u_s = E @ U
-            angle = np.unwrap(np.arctan2(u_s[:, held.size:], u_s[:, :held.size]), axis=0)
-            radius = np.hypot(u_s[:, :held.size], u_s[:, held.size:])
-        return _balance_on_the_wall(model, held, E, Ed, W, Rr, n, K0, D0, load, drag_load, respond, to_real,
-                                    to_complex, modal, B, Q, W[:, None] * (E.T @ np.concatenate(
-                                        (angle, radius - model.clearance[held][None]), axis=1)), dynamic)
+            angle = np.unwrap(np.arctan2(u_s[:, count:], u_s[:, :count]), axis=0)
+            radius = np.hypot(u_s[:, :count], u_s[:, count:])
+        X = W[:, None] * (E.T @ np.concatenate((angle, radius - wall[None]), axis=1))
     change, settled, iteration, stalled = np.inf, False, 0, 0
     for iteration in range(1, BALANCE_ITERATIONS + 1):
         extra = load + drag_load(v)
         base = respond(extra)
         U_lin = to_real(base @ B.T)
-        G, dG = contact_part(U)
+        U, G, dU, dG = parts(X)
         residual = (U - U_lin).ravel() - Rr @ G.ravel()
-        step = np.linalg.solve(np.eye(n) - Rr @ dG, -residual).reshape(U.shape)
+        step = np.linalg.solve(dU - Rr @ dG, -residual).reshape(X.shape)
         # damped: the step halved while it does not lower the residual (a swing large beside the wall's curvature
         # takes the full step off the wall circle)
         size, alpha = float(np.linalg.norm(residual)), 1.0
         while alpha > 1e-3:
-            G_try = contact_part(U + alpha * step, jacobian=False)
-            trial = (U + alpha * step - U_lin).ravel() - Rr @ G_try.ravel()
+            U_try, G_try = parts(X + alpha * step, jacobian=False)
+            trial = (U_try - U_lin).ravel() - Rr @ G_try.ravel()
             if float(np.linalg.norm(trial)) <= (1 - 1e-4 * alpha) * size or size == 0.0:
                 break
             alpha *= 0.5
         else:  # no step lowered it: the smallest, with its own forces (the last tried were twice its step's)
-            G_try = contact_part(U + alpha * step, jacobian=False)
-        U = U + alpha * step
+            _, G_try = parts(X + alpha * step, jacobian=False)
+        X = X + alpha * step
         G = G_try
-        # stalled: the line search cut the step below BALANCE_STALLED in BALANCE_STALLS iterations running (a
-        # joint's swing along the wall too far for the tangent step; the wall's coordinates take it, :func:`refine`)
+        # stalled: the step cut below BALANCE_STALLED in BALANCE_STALLS iterations running (:func:`refine`)
         stalled = stalled + 1 if alpha < BALANCE_STALLED else 0
         new = base + respond(to_complex(G) @ B / model.mass)
         change = float(np.max(np.abs(new - Q)) / dynamic(new))
@@ -602,91 +613,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
     return dict(harmonics=Q, iterations=iteration, change=change, settled=settled)
 
 
-#: The unknowns of :func:`balance` at the touching points: their displacement harmonics in y and z, or in the wall's
-#: own coordinates, the angle along it and the radial approach.
+#: The unknowns of :func:`balance` at the touching points: displacements in y and z, or angle along the wall and approach.
 BALANCE_COORDINATES = ("cartesian", "polar")
-
-
-def _balance_on_the_wall(model, held, E, Ed, W, Rr, n, K0, D0, load, drag_load, respond, to_real, to_complex, modal,
-                         B, Q, X, dynamic) -> dict[str, Any]:
-    """Newton's method of :func:`balance` (its condensed equations U − U_L − R G = 0, its bases E, Ed, weights W,
-    receptance Rr and loads) with the touching points' motion in the wall's coordinates: per point the harmonics of
-    its angle φ(t) about the hole's axis and of its radial approach ρ(t), u = (c + ρ)(cos φ, sin φ) and
-    u̇ = ρ̇ n̂ + (c + ρ) φ̇ t̂ at the samples, U their harmonics. A joint swinging 0.1-0.7 rad along the wall is a large
-    angle, on which the Hertz law does not act, where in y and z it is a large curve the stiff contact holds to
-    micrometres (Newton's tangent step off the circle into the wall: its line search stalled at steps of 1e-3 with the
-    Jacobian's condition number 4e9). ``X`` (2H+1, 2P_t): the start's angle then approach harmonics."""
-    H = (E.shape[1] - 1) // 2
-    M, count = E.shape[0], held.size
-    wall = model.clearance[held]
-    points = model.points.size
-
-    def samples(X):  # displacements and velocities (M, P_t, 2) at the samples, and what their derivatives take
-        s, sd = E @ X, Ed @ X
-        phi, rho, phid, rhod = s[:, :count], s[:, count:], sd[:, :count], sd[:, count:]
-        r = wall[None] + rho
-        nn = np.stack((np.cos(phi), np.sin(phi)), axis=-1)
-        tt = np.stack((-nn[..., 1], nn[..., 0]), axis=-1)
-        u = r[..., None] * nn
-        v = rhod[..., None] * nn + (r * phid)[..., None] * tt
-        return u, v, (nn, tt, r, phid, rhod)
-
-    def assemble(stiff, damp):  # (n, n) of per-sample, per-point 2×2 maps of (E x, Ed x) onto the harmonics
-        out = np.zeros((2 * H + 1, 2 * count, 2 * H + 1, 2 * count))
-        WE = (W * E).T
-        for p in range(count):
-            for i in range(2):
-                for j in range(2):
-                    term = stiff[:, p, i, j, None] * E
-                    if damp is not None:
-                        term = term + damp[:, p, i, j, None] * Ed
-                    out[:, i * count + p, :, j * count + p] = WE @ term
-        return out.reshape(n, n)
-
-    def parts(X, jacobian=True):  # U(X), G(X) (2H+1, 2P_t) and their Jacobians
-        u, v, (nn, tt, r, phid, rhod) = samples(X)
-        full_u, full_v = np.zeros((M, points, 2)), np.zeros((M, points, 2))
-        full_u[:, held], full_v[:, held] = u, v
-        f, _ = contact_forces(model, full_u, full_v)
-        g = f[:, held] + np.einsum("pij,mpj->mpi", K0, u) + np.einsum("pij,mpj->mpi", D0, v)
-        U = W[:, None] * (E.T @ np.concatenate((u[..., 0], u[..., 1]), axis=1))
-        G = W[:, None] * (E.T @ np.concatenate((g[..., 0], g[..., 1]), axis=1))
-        if not jacobian:
-            return U, G
-        ku, kv = _force_jacobians(model, full_u, full_v)
-        ku, kv = ku[:, held] + K0[None], kv[:, held] + D0[None]
-        Ju = np.stack((r[..., None] * tt, nn), axis=-1)  # ∂u/∂(φ, ρ) = ∂u̇/∂(φ̇, ρ̇), (M, P_t, 2, 2)
-        Jv = np.stack((rhod[..., None] * tt - (r * phid)[..., None] * nn, phid[..., None] * tt), axis=-1)  # ∂u̇/∂(φ, ρ)
-        return U, G, assemble(Ju, None), assemble(ku @ Ju + kv @ Jv, kv @ Ju)
-
-    q, v = modal(Q)
-    change, settled, iteration = np.inf, False, 0
-    for iteration in range(1, BALANCE_ITERATIONS + 1):
-        base = respond(load + drag_load(v))
-        U_lin = to_real(base @ B.T)
-        U, G, dU, dG = parts(X)
-        residual = (U - U_lin).ravel() - Rr @ G.ravel()
-        step = np.linalg.solve(dU - Rr @ dG, -residual).reshape(X.shape)
-        size, alpha = float(np.linalg.norm(residual)), 1.0
-        while alpha > 1e-3:
-            U_try, G_try = parts(X + alpha * step, jacobian=False)
-            trial = (U_try - U_lin).ravel() - Rr @ G_try.ravel()
-            if float(np.linalg.norm(trial)) <= (1 - 1e-4 * alpha) * size or size == 0.0:
-                break
-            alpha *= 0.5
-        else:
-            U_try, G_try = parts(X + alpha * step, jacobian=False)
-        X = X + alpha * step
-        new = base + respond(to_complex(G_try) @ B / model.mass)
-        change = float(np.max(np.abs(new - Q)) / dynamic(new))
-        Q = new
-        q, v = modal(Q)
-        if not np.isfinite(change):
-            break
-        if change < BALANCE_SETTLED:
-            settled = True
-            break
-    return dict(harmonics=Q, iterations=iteration, change=change, settled=settled)
 
 
 def balanced_revolution(model: reference.WhirlModel, balanced: dict[str, Any],
@@ -763,8 +691,7 @@ def steady_state(inputs: Mapping[str, Any], modes: int = MODES, contact_scale: f
 #: The lift-off eccentricity's secant iteration (:func:`lift_off_eccentricity`): states solved at most, and the
 #: relative change of the eccentricity that ends it.
 LIFT_ITERATIONS, LIFT_SETTLED = 8, 1e-3
-#: The relative change of the drag's iteration that ends it in each state of the lift-off's search: its figure moves
-#: by far less than the search's :data:`LIFT_SETTLED` (the answer's own whirl settles to :data:`SETTLED`).
+#: The drag iteration's relative change that ends it in the lift-off's states (far below :data:`LIFT_SETTLED`).
 LIFT_DRAG_SETTLED = 1e-7
 #: The eccentricity [m] the lift-off is first sought at where the point's own is nil (0.1 in).
 LIFT_TRIAL = 0.1 * 0.0254
@@ -849,11 +776,9 @@ def _parabola_root(points: list[tuple[float, float]], near: float) -> float | No
     d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
     a = (d12 - d01) / (x2 - x0)  # h = y2 + b (ε − x2) + a (ε − x2)²
     b = d12 + a * (x2 - x1)
-    if a == 0.0:
-        return x2 - y2 / b if b != 0.0 else None
     disc = b * b - 4 * a * y2
-    if disc < 0:
-        return None
+    if a == 0.0 or disc < 0:
+        return x2 - y2 / b if a == 0.0 and b != 0.0 else None
     roots = x2 + (-b + np.array([1.0, -1.0]) * np.sqrt(disc)) / (2 * a)
     return float(roots[np.argmin(np.abs(roots - near))])
 
@@ -927,8 +852,7 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
     relative change from :data:`COARSE_HARMONICS` harmonics (``harmonic_error``) plus the last Newton correction.
     Where that does not settle or states more than the study's tolerance, the balance in the wall's coordinates
     (:data:`BALANCE_COORDINATES`, :data:`POLAR_HARMONICS` against the coarser count) where it states less.
-    None where the balance does not settle at either count; ``opens`` (the text why) where the settled motion is not
-    this method's (the contact opens, a point off the wall reaches it)."""
+    None where the balance does not settle at either count; ``opens`` (why) where the motion is not this method's."""
     found = _refined(inputs, state, "cartesian", HARMONICS, COARSE_HARMONICS)
     if found is None or "opens" in found or found["error"] > study_tolerance(inputs):
         polar = _refined(inputs, state, "polar", *POLAR_HARMONICS)
@@ -938,10 +862,13 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
     return found
 
 
-#: Harmonics of the balance in the wall's coordinates (:func:`_balance_on_the_wall`) and of its coarser solution: the
-#: swing's angle and the Hertz approach take more than the Cartesian motion's (at default grid points 40 and 505 the
-#: figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 0.003 %, with 12 and 16 within 4e-5).
+#: Harmonics of the balance in the wall's coordinates (:func:`balance`) and of its coarser solution (at default grid
+#: points 40 and 505 the figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 3e-5, with 12 and 16 4e-5).
 POLAR_HARMONICS = (16, 12)
+#: The largest angle [rad] a joint may swing from its rest in a motion solved in the wall's coordinates: the reference
+#: model started on it with its velocities 1 % off came back to it where the joints swung 0.10-0.25 rad (default grid
+#: points 32, 40, 322, 354, 394, 472) and bounced within 40 revolutions at 0.37 and 0.59 rad (points 54 and 392).
+STABLE_SWING = 0.3
 
 
 def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: str, harmonics: int,
@@ -965,13 +892,18 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
             if k or coordinates == "cartesian":  # the coarser motion's, or the Cartesian one's (as before): no answer
                 return None
             where = ", ".join(f"{x:.3g} m" for x in model.points[opens | strikes])
-            return dict(opens=(f"the contact opens during the revolution at {where} by harmonic balance in the wall's "
-                               f"coordinates ({harmonics} harmonics, the exact contact and drag): the pipe bounces"
-                               if np.any(opens) else
-                               f"a point off the wall reaches it during the revolution at {where} by harmonic balance "
-                               f"in the wall's coordinates ({harmonics} harmonics)"))
+            how = f"during the revolution at {where} by harmonic balance in the wall's coordinates ({harmonics} harmonics)"
+            return dict(opens=f"the contact opens {how}: the pipe bounces" if np.any(opens) else
+                        f"a point off the wall reaches it {how}")
     if not coarse["settled"]:
         return None
+    if coordinates == "polar":  # the joints' largest angle along the wall from their rest
+        u, at_rest = windows[0].states[:, :2 * N].reshape(-1, 2, N) @ model.phi[held].T, rested["u"][held]
+        turned = np.unwrap(np.arctan2(u[:, 1], u[:, 0]), axis=0) - np.arctan2(at_rest[:, 1], at_rest[:, 0])[None]
+        if (swing := float(np.max(np.abs(turned)))) > STABLE_SWING:
+            return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
+                              f"coordinates, beyond the {STABLE_SWING:.2g} rad up to which such a motion was found "
+                              f"stable (the pipe may leave it and bounce)")
     mine, other = values(inputs, [{**state, "window": w} for w in windows])
     harmonic = max(abs(other[k] - mine[k]) / max(abs(mine[k]), 1e-300) for k in FIGURES)
     return dict(values=mine, window=windows[0], error=float(harmonic + fine["change"]), harmonic_error=float(harmonic),
