@@ -281,10 +281,10 @@ def modal_moment_step(t, omega, gains):
 
 
 class StrikeMoment(NamedTuple):
-    correction: float  #: the correction's value at its largest magnitude [N m], the moment along the strike's force
-    time: float  #: its time less the local force's peak's [s]
-    local: float  #: the local model's moment at the station at its largest magnitude [N m]
-    kept: float  #: the kept modes' moment under the local wall force at the same time as ``correction`` [N m]
+    correction: float  #: local − kept at the local moment's largest magnitude [N m], along the strike's force
+    time: float  #: that time less the local force's peak's [s]
+    local: float  #: the local model's moment there [N m]
+    kept: float  #: the kept modes' moment under the local wall force there [N m]
 
 
 def strike_moment(result: "Strike", joint_mass: float, speed: float, distance: float, mass_per_length: float,
@@ -307,22 +307,35 @@ def strike_moment(result: "Strike", joint_mass: float, speed: float, distance: f
 MOMENT_STEPS = 100
 
 
-def strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, distance,
-                       omega, gains, steps_per_rise: int = MOMENT_STEPS) -> StrikeMoment:
-    """The correction of a strike's bending moment at ``distance`` [m] from the joint for the modes left out
-    (:class:`StrikeMoment`): local − kept (:func:`strike_moment`), at its largest magnitude over the contact, the
-    Richardson extrapolation of ``steps_per_rise`` and twice that (the strike's scheme is first order). Arguments as
-    :func:`strike`'s; ``omega``, ``gains`` the kept modes' (:func:`modal_moment_step`)."""
+@functools.lru_cache(maxsize=256)
+def _strike_pair(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, steps_per_rise):
+    return tuple(strike(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, n)
+                 for n in (steps_per_rise, 2 * steps_per_rise))
+
+
+def strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, distances,
+                       omega, gains, steps_per_rise: int = MOMENT_STEPS) -> list[StrikeMoment]:
+    """Per station at ``distances`` (S,) [m] from the joint, with the kept modes' ``gains`` (S, N) there and their
+    ``omega`` (N,) (:func:`modal_moment_step`): the correction of a strike's bending moment for the modes left out
+    (:class:`StrikeMoment`), local − kept (:func:`strike_moment`) at the local moment's largest magnitude over the
+    contact — added to the run's modal moment at the matching instant it gives the local moment there, and it
+    vanishes as the kept modes come to carry it —, the Richardson extrapolation of ``steps_per_rise`` and twice that
+    (the strike's scheme is first order). Other arguments as :func:`strike`'s."""
+    runs = _strike_pair(float(joint_mass), float(stiffness), float(mass_per_length), float(bending_stiffness),
+                        float(speed), float(hysteresis), int(steps_per_rise))
+    gains = np.atleast_2d(np.asarray(gains, float))
     out = []
-    for n in (steps_per_rise, 2 * steps_per_rise):
-        r = strike(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, n)
-        local, kept = strike_moment(r, joint_mass, speed, distance, mass_per_length, bending_stiffness, omega, gains)
-        c = local - kept
-        k = int(np.argmax(np.abs(c)))
-        out.append(StrikeMoment(float(c[k]), float(r.times[k] - r.times[int(np.argmax(r.force))]),
-                                float(local[int(np.argmax(np.abs(local)))]), float(kept[k])))
-    coarse, fine = out
-    return StrikeMoment(*(2.0 * f - c for f, c in zip(fine, coarse)))
+    for distance, gain in zip(np.atleast_1d(distances), gains):
+        pair = []
+        for r in runs:
+            local, kept = strike_moment(r, joint_mass, speed, float(distance), mass_per_length, bending_stiffness,
+                                        omega, gain)
+            k = int(np.argmax(np.abs(local)))
+            pair.append(StrikeMoment(float(local[k] - kept[k]), float(r.times[k] - r.times[int(np.argmax(r.force))]),
+                                     float(local[k]), float(kept[k])))
+        coarse, fine = pair
+        out.append(StrikeMoment(*(2.0 * f - c for f, c in zip(fine, coarse))))
+    return out
 
 
 #: The onset speeds of :func:`strike_moment_table`: every other speed of :data:`TABLE_SPEEDS` (the correction goes as
@@ -330,20 +343,27 @@ def strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness
 MOMENT_SPEEDS = TABLE_SPEEDS[::2]
 
 
-def strike_moment_table(joint_mass, stiffness, mass_per_length, bending_stiffness, hysteresis, distance, omega,
+def strike_moment_table(joint_mass, stiffness, mass_per_length, bending_stiffness, hysteresis, distances, omega,
                         gains) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(speeds [m/s], corrections [N m], times [s]) of :func:`strike_moment_peak` over :data:`MOMENT_SPEEDS`: per
-    joint and station, like :func:`strike_peak_table` for the force."""
-    rows = [strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, distance,
+    """(speeds (V,) [m/s], corrections (V, S) [N m], times (V, S) [s]) of :func:`strike_moment_peak` over
+    :data:`MOMENT_SPEEDS` at the stations ``distances`` (S,): per joint, like :func:`strike_peak_table` for the force."""
+    rows = [strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, distances,
                                omega, gains) for v in MOMENT_SPEEDS]
-    return MOMENT_SPEEDS.copy(), np.array([r.correction for r in rows]), np.array([r.time for r in rows])
+    return (MOMENT_SPEEDS.copy(), np.array([[r.correction for r in row] for row in rows]),
+            np.array([[r.time for r in row] for row in rows]))
 
 
 def moment_correction(speed, table) -> np.ndarray:
-    """The correction [N m] at each onset ``speed`` [m/s] (array), interpolated on :func:`strike_moment_table`'s
-    ``table``: its magnitude in log-log, its sign the nearest speed's; speeds outside the table clipped to it."""
+    """(n, S) the correction [N m] at each onset ``speed`` (n,) [m/s], interpolated on :func:`strike_moment_table`'s
+    ``table`` per station: its magnitude in log-log where the sign holds,
+    linearly otherwise; speeds outside the table clipped to it."""
     speeds, corrections, _ = table
-    x = np.log(np.clip(np.asarray(speed, float), speeds[0], speeds[-1]))
-    size = np.exp(np.interp(x, np.log(speeds), np.log(np.maximum(np.abs(corrections), 1e-300))))
-    sign = np.sign(corrections)[np.clip(np.searchsorted(np.log(speeds), x), 0, speeds.size - 1)]
-    return sign * size
+    x = np.log(np.clip(np.atleast_1d(np.asarray(speed, float)), speeds[0], speeds[-1]))
+    out = np.zeros((x.size, corrections.shape[1]))
+    for s in range(corrections.shape[1]):
+        c = corrections[:, s]
+        if np.all(c > 0) or np.all(c < 0):
+            out[:, s] = np.sign(c[0]) * np.exp(np.interp(x, np.log(speeds), np.log(np.abs(c))))
+        else:
+            out[:, s] = np.interp(x, np.log(speeds), c)
+    return out
