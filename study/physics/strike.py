@@ -282,7 +282,7 @@ def modal_moment_step(t, omega, gains):
 
 class StrikeMoment(NamedTuple):
     correction: float  #: local − kept at the local moment's largest magnitude [N m], along the strike's force
-    time: float  #: that time less the local force's peak's [s]
+    time: float  #: that time from the strike's onset [s]
     local: float  #: the local model's moment there [N m]
     kept: float  #: the kept modes' moment under the local wall force there [N m]
 
@@ -331,8 +331,7 @@ def strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness
             local, kept = strike_moment(r, joint_mass, speed, float(distance), mass_per_length, bending_stiffness,
                                         omega, gain)
             k = int(np.argmax(np.abs(local)))
-            pair.append(StrikeMoment(float(local[k] - kept[k]), float(r.times[k] - r.times[int(np.argmax(r.force))]),
-                                     float(local[k]), float(kept[k])))
+            pair.append(StrikeMoment(float(local[k] - kept[k]), float(r.times[k]), float(local[k]), float(kept[k])))
         coarse, fine = pair
         out.append(StrikeMoment(*(2.0 * f - c for f, c in zip(fine, coarse))))
     return out

@@ -297,10 +297,10 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
 def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: Window, segments):
     """:func:`stresses` per segment with the strikes' local bending (``reference_strike_stress = "local"``;
     docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their
-    strikes (their contact and inertia forces, ``masked``), and at the run's largest force of each strike the
-    correction of :func:`strike_moment_tables` (the infinite beam's moment under the local model's force less the
+    strikes (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite beam's moment under the local model's force less the
     kept modes' share, at the strike's onset speed) is added along the wall's force to the moment at each of
-    :func:`strike_stations`: the max bending and normal stress of a segment are the larger of the fields' and the
+    :func:`strike_stations`, at the row nearest the time after the onset at which the local moment there peaks
+    (the table's: the run's kept modes then carry what the table's kept modes do, as N grows): the max bending and normal stress of a segment are the larger of the fields' and the
     struck stations' so corrected, the alternating stress the larger of the fields' and the struck stations' fibre
     histories with the correction added at the strike's row. Each segment's ``strike_modal``: the stress figures'
     modal part, absolute — the correction's change when the kept modes are N/2 (``change``) and the quasi-static
@@ -320,11 +320,20 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     ratio = quasi_static_ratio(model, window)
     offsets = strike_stations(inputs)
     full, half = strike_moment_tables(inputs, model), strike_moment_tables(inputs, model, kept=max(1, N // 2))
-    corrections, halves = np.zeros((struck["rows"].size, offsets.size)), np.zeros((struck["rows"].size, offsets.size))
+    S = struck["rows"].size
+    corrections, halves = np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
+    at_rows = np.zeros((S, offsets.size), int)  # the rows nearest each station's local peak after the onset
     for p in np.unique(struck["points"]):
         at = struck["points"] == p
         corrections[at] = strike.moment_correction(struck["speeds"][at], full[int(p)])
         halves[at] = strike.moment_correction(struck["speeds"][at], half[int(p)])
+        speeds, _, times = full[int(p)]
+        v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
+        for s in range(offsets.size):
+            when = window.times[struck["rows"][at]] + np.interp(v, np.log(speeds), times[:, s])
+            after = np.clip(np.searchsorted(window.times, when), 1, R - 1)
+            nearer = np.abs(window.times[after - 1] - when) < np.abs(window.times[after] - when)
+            at_rows[at, s] = np.maximum(np.where(nearer, after - 1, after), struck["rows"][at])
     scene = Scene.from_inputs(inputs)
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
@@ -352,7 +361,7 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     def pulses(i, table):
         out = np.zeros((R, 2))
         for k, s in stations[xs[i]]:
-            out[struck["peaks"][k]] += table[k, s] * struck["directions"][k]
+            out[at_rows[k, s]] += table[k, s] * struck["directions"][k]
         return out
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
