@@ -343,24 +343,25 @@ MOMENT_SPEEDS = TABLE_SPEEDS[::2]
 
 
 def strike_moment_table(joint_mass, stiffness, mass_per_length, bending_stiffness, hysteresis, distances, omega,
-                        gains) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(speeds (V,) [m/s], corrections (V, S) [N m], times (V, S) [s]) of :func:`strike_moment_peak` over
-    :data:`MOMENT_SPEEDS` at the stations ``distances`` (S,): per joint, like :func:`strike_peak_table` for the force."""
+                        gains) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(speeds (V,) [m/s], corrections (V, S) [N m], times (V, S) [s], kept (V, S) [N m]) of
+    :func:`strike_moment_peak` over :data:`MOMENT_SPEEDS` at the stations ``distances`` (S,): per joint, like
+    :func:`strike_peak_table` for the force."""
     rows = [strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, distances,
                                omega, gains) for v in MOMENT_SPEEDS]
     return (MOMENT_SPEEDS.copy(), np.array([[r.correction for r in row] for row in rows]),
-            np.array([[r.time for r in row] for row in rows]))
+            np.array([[r.time for r in row] for row in rows]), np.array([[r.kept for r in row] for row in rows]))
 
 
-def moment_correction(speed, table) -> np.ndarray:
+def moment_correction(speed, table, column: int = 1) -> np.ndarray:
     """(n, S) the correction [N m] at each onset ``speed`` (n,) [m/s], interpolated on :func:`strike_moment_table`'s
-    ``table`` per station: its magnitude in log-log where the sign holds,
-    linearly otherwise; speeds outside the table clipped to it."""
-    speeds, corrections, _ = table
+    ``table`` per station (or its ``column``: 2 the times [s], 3 the kept modes' moment [N m]): in log-log where
+    the values keep one sign, linearly in log v0 otherwise; speeds outside the table clipped to it."""
+    speeds, values = table[0], table[column]
     x = np.log(np.clip(np.atleast_1d(np.asarray(speed, float)), speeds[0], speeds[-1]))
-    out = np.zeros((x.size, corrections.shape[1]))
-    for s in range(corrections.shape[1]):
-        c = corrections[:, s]
+    out = np.zeros((x.size, values.shape[1]))
+    for s in range(values.shape[1]):
+        c = values[:, s]
         if np.all(c > 0) or np.all(c < 0):
             out[:, s] = np.sign(c[0]) * np.exp(np.interp(x, np.log(speeds), np.log(np.abs(c))))
         else:

@@ -303,8 +303,11 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     (the table's: the run's kept modes then carry what the table's kept modes do, as N grows): the max bending and normal stress of a segment are the larger of the fields' and the
     struck stations' so corrected, the alternating stress the larger of the fields' and the struck stations' fibre
     histories with the correction added at the strike's row. Each segment's ``strike_modal``: the stress figures'
-    modal part, absolute — the correction's change when the kept modes are N/2 (``change``) and the quasi-static
-    correction of the loads not masked times :func:`quasi_static_ratio` (``rest``). Returns (values, (masked,
+    modal part, absolute — where a struck station's corrected value is the figure, its strike's (``change``): the
+    kept modes' share of the local moment times the run's own strike force's relative difference from the local
+    model's peak (the run's kept modes carry their share under their own force), plus :data:`LOCAL_STRIKE_ERROR` of
+    the local moment; and the quasi-static correction of the loads not masked times :func:`quasi_static_ratio`
+    (``rest``). Returns (values, (masked,
     pulses_at)), ``pulses_at(station)`` the (R, 2) moments the correction adds at a station for
     :func:`fibre_damage`."""
     N = model.n_modes
@@ -319,15 +322,24 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     plain = stresses(inputs, model, window, correction=False, segments=segments)
     ratio = quasi_static_ratio(model, window)
     offsets = strike_stations(inputs)
-    full, half = strike_moment_tables(inputs, model), strike_moment_tables(inputs, model, kept=max(1, N // 2))
+    full = strike_moment_tables(inputs, model)
     S = struck["rows"].size
-    corrections, halves = np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
+    corrections, errors = np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
     at_rows = np.zeros((S, offsets.size), int)  # the rows nearest each station's local peak after the onset
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     for p in np.unique(struck["points"]):
         at = struck["points"] == p
         corrections[at] = strike.moment_correction(struck["speeds"][at], full[int(p)])
-        halves[at] = strike.moment_correction(struck["speeds"][at], half[int(p)])
-        speeds, _, times = full[int(p)]
+        kept = strike.moment_correction(struck["speeds"][at], full[int(p)], column=3)
+        local = strike.peak_force(struck["speeds"][at], model.joint_mass, model.stiffness[p], rho, ei,
+                                  model.hysteresis)[0]
+        own = np.array([np.max(window.forces[r:max(e, r + 1), p, 2]) for r, e in
+                        zip(struck["rows"][at], struck["ends"][at])])
+        # the run's kept modes carry their share of the strike under the run's own force, not the local one's; and
+        # the local model's own error on what it gives
+        errors[at] = (np.abs(kept) * np.abs(own / local - 1.0)[:, None]
+                      + LOCAL_STRIKE_ERROR * np.abs(corrections[at] + kept))
+        speeds, times = full[int(p)][0], full[int(p)][2]
         v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
         for s in range(offsets.size):
             when = window.times[struck["rows"][at]] + np.interp(v, np.log(speeds), times[:, s])
@@ -365,39 +377,39 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
         return out
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
-    pulse_half = [pulses(i, halves) for i in range(xs.size)]
+    station_error = np.zeros(xs.size)  # the largest error of a correction at each station
+    for i in range(xs.size):
+        for k, s in stations[xs[i]]:
+            station_error[i] = max(station_error[i], errors[k, s])
     figures = ("max_bending_stress", "max_normal_stress", "alternating_bending_stress")
     out = []
     for (a, b), v, bare in zip(segments, values, plain):
         fields_only = v
-        half_values = {}
-        for name, pulse in (("full", pulse_full), ("half", pulse_half)):
-            bend, where, when, alt, alt_x = -1.0, 0.0, 0.0, -1.0, 0.0
-            for i in range(xs.size):
-                if not np.any(pulse[i][a:b]):
-                    continue
-                my, mz = moments[0][a:b, i] + pulse[i][a:b, 0], moments[1][a:b, i] + pulse[i][a:b, 1]
-                size = np.hypot(my, mz)
-                k = int(np.argmax(size))
-                if size[k] > bend:
-                    bend, where, when = float(size[k]), float(xs[i]), float(window.times[a + k] - window.times[a])
-                angle = turn[a:b, None] + fibre[None, :]
-                stress = my[:, None] * np.cos(angle) + mz[:, None] * np.sin(angle)
-                h = float(np.max(0.5 * (np.max(stress, axis=0) - np.min(stress, axis=0))))
-                if h > alt:
-                    alt, alt_x = h, float(xs[i])
-            corrected = dict(v)
-            if bend * scale > v["max_bending_stress"]:
-                corrected.update(max_bending_stress=bend * scale, max_normal_stress=axial + bend * scale,
-                                 max_normal_stress_x=where, max_normal_stress_t=when)
-            if alt * scale > v["alternating_bending_stress"]:
-                corrected.update(alternating_bending_stress=alt * scale, alternating_bending_stress_x=alt_x)
-            if name == "full":
-                v = corrected
-            else:
-                half_values = corrected
-        v["strike_modal"] = {f: dict(change=abs(v[f] - half_values.get(f, v[f])),
-                                     rest=ratio * abs(fields_only[f] - bare[f])) for f in figures}
+        bend, where, when, alt, alt_x, bend_error, alt_error = -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0
+        for i in range(xs.size):
+            if not np.any(pulse_full[i][a:b]):
+                continue
+            my, mz = moments[0][a:b, i] + pulse_full[i][a:b, 0], moments[1][a:b, i] + pulse_full[i][a:b, 1]
+            size = np.hypot(my, mz)
+            k = int(np.argmax(size))
+            if size[k] > bend:
+                bend, where, when = float(size[k]), float(xs[i]), float(window.times[a + k] - window.times[a])
+                bend_error = station_error[i]
+            angle = turn[a:b, None] + fibre[None, :]
+            stress = my[:, None] * np.cos(angle) + mz[:, None] * np.sin(angle)
+            h = float(np.max(0.5 * (np.max(stress, axis=0) - np.min(stress, axis=0))))
+            if h > alt:
+                alt, alt_x, alt_error = h, float(xs[i]), station_error[i]
+        v = dict(fields_only)
+        change = dict.fromkeys(figures, 0.0)
+        if bend * scale > v["max_bending_stress"]:
+            v.update(max_bending_stress=bend * scale, max_normal_stress=axial + bend * scale,
+                     max_normal_stress_x=where, max_normal_stress_t=when)
+            change.update(max_bending_stress=bend_error * scale, max_normal_stress=bend_error * scale)
+        if alt * scale > v["alternating_bending_stress"]:
+            v.update(alternating_bending_stress=alt * scale, alternating_bending_stress_x=alt_x)
+            change["alternating_bending_stress"] = alt_error * scale
+        v["strike_modal"] = {f: dict(change=change[f], rest=ratio * abs(fields_only[f] - bare[f])) for f in figures}
         out.append(v)
     return out, (masked, lambda station: next((pulse_full[i] for i in range(xs.size)
                                               if abs(xs[i] - station) < 1e-9), None))
@@ -649,8 +661,8 @@ def strike_stress_modal_part(cycles: list[Mapping[str, Any]], modal: Mapping[str
                              ) -> dict[str, float] | None:
     """The stresses' modal part with the strikes' local bending (``reference_strike_stress = "local"``, cycles of
     :func:`cycle_values` carrying ``strike_modal``; docs/reference_model.md §2.3): per stress figure, the mean over
-    the cycles of the correction's change from N/2 to N kept modes plus the quasi-static correction of the loads
-    that are not strikes times :func:`quasi_static_ratio`, over the figure's mean (the alternating stress's over the
+    the cycles of the struck stations' error (:func:`strike_stress_values`) plus the quasi-static correction of the
+    loads that are not strikes times :func:`quasi_static_ratio`, over the figure's mean (the alternating stress's over the
     larger of it and the max bending stress, as :func:`modal_check`'s). The other figures as ``modal`` states them;
     ``modal`` unchanged where no cycle carries a struck joint's correction."""
     taken = [c for c in cycles if "strike_modal" in c]
