@@ -7,7 +7,8 @@
     python -m study.benchmarks.strikes sample 12 modes,local out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
         bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the sweep's
         order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s; a
-        capped run is reported failed, solve_point catching the alarm)
+        capped run is reported failed, solve_point catching the alarm); an option "local/local" sets
+        ``reference_strike_stress`` after the slash
     python -m study.benchmarks.strikes sample-at 274,515,687,201 modes,local out.jsonl RESULTS '{"reference_modes": 128, "reference_max_modes": 128}'
         the same at the points of those flat indices of the results (cap 1200 s)
 
@@ -122,7 +123,9 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
             clock = time.process_time()
             signal.alarm(cap)
             try:
-                r = solve_point({**study.point(**coords), "reference_strike_force": option, **(extra or {})},
+                force, _, stress = option.partition("/")  # "local/local": the force's option, then the stresses'
+                r = solve_point({**study.point(**coords), "reference_strike_force": force,
+                                 **({"reference_strike_stress": stress} if stress else {}), **(extra or {})},
                                 "reference")
             except TimeoutError:
                 print(json.dumps(dict(index=int(i), coords=coords, option=option, status="timeout")), file=out,
@@ -137,6 +140,7 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
                 cpu=time.process_time() - clock,
                 values={k: float(r.values.get(k, np.nan)) for k in ("peak_contact_force", "max_normal_stress",
                                                                     "alternating_bending_stress", "damage_rate",
+                                                                    "max_bending_stress",
                                                                     "window_revolutions", "impacts_per_revolution")},
                 convergence={k: {p: float(v) for p, v in e.items() if isinstance(v, (int, float))}
                              for k, e in conv.items()})), file=out, flush=True)
