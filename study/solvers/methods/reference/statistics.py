@@ -111,7 +111,7 @@ def cycle_values(inputs: Mapping[str, Any], model: WhirlModel, cycles: list[Wind
     correction = quasi_static_applies(model, joined)
     ends = np.cumsum([c.times.size for c in cycles])
     segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
-    if ReferenceOptions.from_inputs(inputs).reference_strike_stress == "local" and model.law == 0 and correction:
+    if ReferenceOptions.from_inputs(inputs).reference_strike_stress != "modes" and model.law == 0 and correction:
         values, (masked, pulses_at) = strike_stress_values(inputs, model, joined, segments)
     else:
         values, masked, pulses_at = stresses(inputs, model, joined, correction=correction, segments=segments), None, None
@@ -324,7 +324,8 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     offsets = strike_stations(inputs)
     full = strike_moment_tables(inputs, model)
     S = struck["rows"].size
-    corrections, errors = np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
+    corrections, errors, locals_ = np.zeros((S, offsets.size)), np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
+    superposed = ReferenceOptions.from_inputs(inputs).reference_strike_stress == "superposed"
     at_rows = np.zeros((S, offsets.size), int)  # the rows nearest each station's local peak after the onset
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     for p in np.unique(struck["points"]):
@@ -339,6 +340,7 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
         # the local model's own error on what it gives
         errors[at] = (np.abs(kept) * np.abs(own / local - 1.0)[:, None]
                       + LOCAL_STRIKE_ERROR * np.abs(corrections[at] + kept))
+        locals_[at] = corrections[at] + kept
         speeds, times = full[int(p)][0], full[int(p)][2]
         v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
         for s in range(offsets.size):
@@ -373,7 +375,18 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     def pulses(i, table):
         out = np.zeros((R, 2))
         for k, s in stations[xs[i]]:
-            out[at_rows[k, s]] += table[k, s] * struck["directions"][k]
+            row = at_rows[k, s]
+            if superposed:  # the moment at the onset plus the local one: the run's own strike response replaced
+                onset = struck["rows"][k]
+                out[row] += locals_[k, s] * struck["directions"][k] - np.array(
+                    [moments[j][row, i] - moments[j][onset, i] for j in range(2)])
+                before = max(onset - 1, 0)
+                span = float(window.times[onset] - window.times[before])
+                drift = (float(np.hypot(*[moments[j][onset, i] - moments[j][before, i] for j in range(2)]))
+                         * float(window.times[row] - window.times[onset]) / span if span > 0 else 0.0)
+                errors[k, s] = LOCAL_STRIKE_ERROR * abs(locals_[k, s]) + drift
+            else:
+                out[row] += table[k, s] * struck["directions"][k]
         return out
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
