@@ -14,7 +14,7 @@
 
     python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
         the thrown string's bending under a joint from the modes, with the strike's correction and by default
-        (docs/reference_model.md §2.4)
+        (docs/reference_model.md §2.3.1)
 
 One JSON line a strike or a point; the CPU seconds are the process's own.
 """

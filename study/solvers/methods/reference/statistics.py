@@ -306,7 +306,7 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
     modal part, absolute — where a struck station's corrected value is the figure, its strike's (``change``): the
     kept modes' share of the local moment times the run's own strike force's relative difference from the local
     model's peak (the run's kept modes carry their share under their own force), plus :data:`LOCAL_STRIKE_ERROR` of
-    the local moment; and the quasi-static correction of the loads not masked times :func:`quasi_static_ratio`
+    the local moment (half of it on the alternating stress, a half range of which it moves one extreme); and the quasi-static correction of the loads not masked times :func:`quasi_static_ratio`
     (``rest``). Returns (values, (masked,
     pulses_at)), ``pulses_at(station)`` the (R, 2) moments the correction adds at a station for
     :func:`fibre_damage`."""
@@ -421,7 +421,7 @@ def strike_stress_values(inputs: Mapping[str, Any], model: WhirlModel, window: W
             change.update(max_bending_stress=bend_error * scale, max_normal_stress=bend_error * scale)
         if alt * scale > v["alternating_bending_stress"]:
             v.update(alternating_bending_stress=alt * scale, alternating_bending_stress_x=alt_x)
-            change["alternating_bending_stress"] = alt_error * scale
+            change["alternating_bending_stress"] = 0.5 * alt_error * scale  # one extreme of the half range moves
         v["strike_modal"] = {f: dict(change=change[f], rest=ratio * abs(fields_only[f] - bare[f])) for f in figures}
         out.append(v)
     return out, (masked, lambda station: next((pulse_full[i] for i in range(xs.size)
