@@ -34,6 +34,12 @@ order (tested by halving the step). Limits:
 ρA → 0 (the beam gives nothing) is the mass on a Hertz spring, F_max = K^{2/5} (5/4 m_j v0²)^{3/5} (Johnson,
 *Contact Mechanics*, 1985, §11.4); m_j = 0 (the beam alone on the wall) scales as F_max ∝ v0^{9/8} (δ ~ v0 t and
 K δ^{3/2} t^{3/2}/(ρA √a) ~ δ give t ∝ v0^{-1/4}, F ∝ v0^{9/8}; with χ = h/v0 the damping is scale-free too).
+
+The strike's bending moment (docs/reference_model.md §2.3.1): the infinite beam's moment at a distance x from a unit
+impulse, m(x, t) = √(a/(4π t)) sin(π/4 − x²/(4at)) (:func:`beam_moment_response`; √(a/(8π t)) under the load), its
+step response in closed form by the Fresnel integrals (:func:`beam_moment_step`), the strike's moment by product
+integration of the beam's reaction on the joint (:func:`strike_moment`), and the correction for the modes left out,
+the local moment less the N kept modes' share of it under the same strike (:func:`strike_moment_table`).
 """
 
 from __future__ import annotations
