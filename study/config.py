@@ -286,6 +286,11 @@ FIELDS: tuple[Field, ...] = (
           "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3)", None,
           default=ReferenceOptions.default("reference_strike_force"),
           choices=ReferenceOptions.choices("reference_strike_force")),
+    Field("solver.reference_strike_stress", "reference_strike_stress", "the bending of the reference model's strikes "
+          "at the tool joints: the modes' own with their quasi-static correction, or the modes plus the strike's local "
+          "bending that the modes left out miss (docs/reference_model.md §2.3)", None,
+          default=ReferenceOptions.default("reference_strike_stress"),
+          choices=ReferenceOptions.choices("reference_strike_stress")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "

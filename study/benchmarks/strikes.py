@@ -7,9 +7,14 @@
     python -m study.benchmarks.strikes sample 12 modes,local out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
         bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the sweep's
         order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s; a
-        capped run is reported failed, solve_point catching the alarm)
+        capped run is reported failed, solve_point catching the alarm); an option "local/local" sets
+        ``reference_strike_stress`` after the slash
     python -m study.benchmarks.strikes sample-at 274,515,687,201 modes,local out.jsonl RESULTS '{"reference_modes": 128, "reference_max_modes": 128}'
         the same at the points of those flat indices of the results (cap 1200 s)
+
+    python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
+        the thrown string's bending under a joint from the modes, with the strike's correction and by default
+        (docs/reference_model.md §2.3.1)
 
 One JSON line a strike or a point; the CPU seconds are the process's own.
 """
@@ -123,7 +128,9 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
             clock = time.process_time()
             signal.alarm(cap)
             try:
-                r = solve_point({**study.point(**coords), "reference_strike_force": option, **(extra or {})},
+                force, _, stress = option.partition("/")  # "local/local": the force's option, then the stresses'
+                r = solve_point({**study.point(**coords), "reference_strike_force": force,
+                                 **({"reference_strike_stress": stress} if stress else {}), **(extra or {})},
                                 "reference")
             except TimeoutError:
                 print(json.dumps(dict(index=int(i), coords=coords, option=option, status="timeout")), file=out,
@@ -138,9 +145,61 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
                 cpu=time.process_time() - clock,
                 values={k: float(r.values.get(k, np.nan)) for k in ("peak_contact_force", "max_normal_stress",
                                                                     "alternating_bending_stress", "damage_rate",
+                                                                    "max_bending_stress",
                                                                     "window_revolutions", "impacts_per_revolution")},
                 convergence={k: {p: float(v) for p, v in e.items() if isinstance(v, (int, float))}
                              for k, e in conv.items()})), file=out, flush=True)
+
+
+def thrown(residuals, counts, out):
+    """The string of tests/solvers/test_modes.py thrown at 0.3 m/s onto its three joints (the default study's pipe at
+    250 rpm, 5 klbf, 9 ppg, e 0.7, straight vertical hole, no damping; 4 ms recorded at 16 384 rows a revolution): the
+    bending stress [MPa] under the first joint and on the body half the tool joint's length either side at the instant
+    the local moment peaks after the onset, from the modes alone, with the strike's correction
+    (``reference_strike_stress = "local"``'s, :func:`study.solvers.methods.reference.statistics.strike_moment_tables`),
+    and the default fields' largest over the window (the quasi-static correction); the correction itself and with
+    N/2 kept modes."""
+    from study import config
+    from study.physics import section, strike
+    from study.solvers.methods import reference
+    from study.solvers.methods.reference.fields import periodic_fields
+    from study.solvers.methods.reference.statistics import strike_moment_tables, strike_stations
+    from study.solvers.model.point import DesignPoint
+    from study.solvers.model.scene import Scene
+
+    study = config.load(ROOT / "configs" / "default.toml",
+                        {"pipe.eccentricity_turn": "aligned", "contact.section_length": "93 ft"})
+    inputs = {**point_inputs(study, 250, 5, 0.7, 9, 0.0, 0.0), "inclination": 0.0, "eccentricity": 0.0,
+              "reference_damping": "none"}
+    scene = Scene.from_inputs(inputs)
+    scale = scene.outer_radius / float(section.second_moment_of_area(scene.outer_radius, scene.inner_radius)) / 1e6
+    point = DesignPoint.from_inputs(inputs)
+    speed, offsets = 0.3, strike_stations(point)
+    for residual in residuals:
+        for n in counts:
+            clock = time.process_time()
+            m = reference.build_model({**inputs, "reference_modes": n, "reference_residual": residual})
+            z = np.zeros(4 * n + 4)
+            z[0] = (float(np.min(m.clearance)) - 1e-5) / m.phi[0, 0]
+            z[2 * n] = speed / m.phi[0, 0]
+            w = reference.Integrator(m, 1e-8, z).run(0.004, record=True, rows_per_revolution=256 * 64)
+            p = int(np.flatnonzero(m.kinds == 1)[0])
+            xs = np.mod(m.points[p] + offsets, m.span)
+            N = m.n_modes
+            modes = periodic_fields(m, w.states[:, :N], None, xs, 0)["moment"]
+            default = periodic_fields(m, w.states[:, :N], w.correction_forces(m, 0), xs, 0)["moment"]
+            table, half = strike_moment_tables(point, m)[p], strike_moment_tables(point, m, kept=n // 2)[p]
+            c, ch = strike.moment_correction([speed], table)[0], strike.moment_correction([speed], half)[0]
+            onset = int(np.flatnonzero(w.forces[:, p, 2] > 0)[0])
+            peaks = strike.moment_correction([speed], table, column=2)[0]
+            rows = [int(np.argmin(np.abs(w.times - (w.times[onset] + t)))) for t in peaks]
+            print(json.dumps(dict(
+                residual=residual, N=n, peak_force=float(np.max(w.forces[:, p, 2])), t_peak=[float(t) for t in peaks],
+                modes=[abs(float(modes[r, i])) * scale for i, r in enumerate(rows)],
+                corrected=[abs(float(modes[r, i] - c[i])) * scale for i, r in enumerate(rows)],
+                default=[float(np.max(np.abs(default[:, i]))) * scale for i in range(offsets.size)],
+                correction=[float(x) * scale for x in c], correction_half=[float(x) * scale for x in ch],
+                cpu=time.process_time() - clock)), file=out, flush=True)
 
 
 if __name__ == "__main__":
@@ -157,5 +216,8 @@ if __name__ == "__main__":
             sample(0, sys.argv[3].split(","), handle, sys.argv[5],
                    json.loads(sys.argv[6]) if len(sys.argv) > 6 else None,
                    indices=[int(i) for i in sys.argv[2].split(",")], cap=1200)
+    elif kind == "thrown":  # python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
+        with open(sys.argv[4], "a") as handle:
+            thrown(sys.argv[2].split(","), [int(x) for x in sys.argv[3].split(",")], handle)
     else:
-        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at")
+        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at, thrown")

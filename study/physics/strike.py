@@ -34,6 +34,12 @@ order (tested by halving the step). Limits:
 ρA → 0 (the beam gives nothing) is the mass on a Hertz spring, F_max = K^{2/5} (5/4 m_j v0²)^{3/5} (Johnson,
 *Contact Mechanics*, 1985, §11.4); m_j = 0 (the beam alone on the wall) scales as F_max ∝ v0^{9/8} (δ ~ v0 t and
 K δ^{3/2} t^{3/2}/(ρA √a) ~ δ give t ∝ v0^{-1/4}, F ∝ v0^{9/8}; with χ = h/v0 the damping is scale-free too).
+
+The strike's bending moment (docs/reference_model.md §2.3.1): the infinite beam's moment at a distance x from a unit
+impulse, m(x, t) = √(a/(4π t)) sin(π/4 − x²/(4at)) (:func:`beam_moment_response`; √(a/(8π t)) under the load), its
+step response in closed form by the Fresnel integrals (:func:`beam_moment_step`), the strike's moment by product
+integration of the beam's reaction on the joint (:func:`strike_moment`), and the correction for the modes left out,
+the local moment less the N kept modes' share of it under the same strike (:func:`strike_moment_table`).
 """
 
 from __future__ import annotations
@@ -47,7 +53,9 @@ from study.physics.contact import hertz_force, linearised_stiffness
 from study.physics.restitution import check_range
 
 __all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
-           "return_time"]
+           "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
+           "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
+           "moment_correction"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):
@@ -201,3 +209,167 @@ def peak_force(speed, joint_mass, stiffness, mass_per_length, bending_stiffness,
     x = np.log(np.clip(np.asarray(speed, float), speeds[0], speeds[-1]))
     return (np.exp(np.interp(x, np.log(speeds), np.log(peaks))),
             np.exp(np.interp(x, np.log(speeds), np.log(durations))))
+
+
+# --- the strike's bending moment (docs/reference_model.md §2.3, "The stresses at a strike") ---------------------------
+
+def beam_moment_response(t, x, mass_per_length, bending_stiffness):
+    """m(x, t) = √(a/(4π t)) sin(π/4 − x²/(4 a t)) [N m/(N s)], a = √(EI/ρA): the bending moment −EI w'' at a
+    distance x [m] from a unit impulse on an infinite Euler–Bernoulli beam at t = 0 (along the force: a sagging moment
+    under the load is positive); 0 for t ≤ 0. From w(x, t) = (1/ρA) ∫ e^{ikx} sin(a k² t)/(a k²) dk/2π (Graff 1975,
+    §3.1; Timoshenko 1913): −EI w'' = (a/2π) ∫ e^{ikx} sin(a k² t) dk, and ∫ e^{ikx + i a t k²} dk =
+    √(π/(a t)) e^{i(π/4 − x²/(4at))} (the Fresnel integral). Under the load (x = 0) √(a/(8π t)). Arrays broadcast."""
+    t = np.asarray(t, float)
+    a = _wave_parameter(mass_per_length, bending_stiffness)
+    s = np.where(t > 0, t, 1.0)
+    return np.where(t > 0, np.sqrt(a / (4.0 * np.pi * s)) * np.sin(0.25 * np.pi - np.asarray(x, float) ** 2
+                                                                      / (4.0 * a * s)), 0.0)
+
+
+def beam_moment_step(t, x, mass_per_length, bending_stiffness):
+    """S(x, t) = ∫₀ᵗ m(x, s) ds [N m/N] of :func:`beam_moment_response`: the moment at x [m] under a unit force held
+    from t = 0 on, in closed form by the Fresnel integrals (scipy.special.fresnel). With s = u², b = x²/(4a):
+    S = √(a/π) [U sin(π/4 − b/U²) − 2b ∫_{1/U}^∞ cos(π/4 − b v²) dv], U = √t, the last
+    (1/√2) √(π/(2b)) (1 − C(z) − S(z)), z = √(2b/(π t)); under the load √(a t/(2π)). 0 for t ≤ 0."""
+    from scipy.special import fresnel
+
+    t = np.maximum(np.asarray(t, float), 0.0)
+    a = _wave_parameter(mass_per_length, bending_stiffness)
+    b = np.asarray(x, float) ** 2 / (4.0 * a)
+    u = np.sqrt(t)
+    phase = np.where(u > 0, 0.25 * np.pi - b / np.where(u > 0, u, 1.0) ** 2, 0.25 * np.pi)
+    z = np.sqrt(2.0 * b / np.pi) / np.where(u > 0, u, 1.0)
+    fs, fc = fresnel(z)
+    tail = np.where(u > 0, np.sqrt(np.pi * b) * (1.0 - fc - fs), 0.0)  # 2b (1/√2) √(π/(2b)) (1 − C − S)
+    return np.sqrt(a / np.pi) * np.where(u > 0, u * np.sin(phase) - tail, 0.0)
+
+
+def step_convolution(force, step_response):
+    """M_k = Σ_{j<k} f̄_j [S(t_k − t_j) − S(t_k − t_{j+1})] on a uniform grid t_k = k h: the response to the force
+    ``force`` (n,) [N] taken constant at its trapezoidal mean f̄_j on each step, from the step response
+    ``step_response`` (n,) = S(t_k) (S(0) = 0; exact for the piecewise constant force: product integration, which
+    keeps a kernel's t^{-1/2} singularity out of the sum)."""
+    f = np.asarray(force, float)
+    s = np.asarray(step_response, float)
+    mean = 0.5 * (f[1:] + f[:-1])
+    w = np.diff(s)  # w_i = S((i + 1) h) − S(i h)
+    out = np.zeros(f.size)
+    out[1:] = np.convolve(mean, w)[:f.size - 1]
+    return out
+
+
+def beam_reaction(result: "Strike", joint_mass: float, speed: float) -> np.ndarray:
+    """(n,) P [N], the beam's reaction on the joint (the force the joint puts on the beam) over a :func:`strike`
+    ``result``: the joint's momentum, m_j (v_n − v_{n−1})/Δt = P_n − F_n, with the scheme's own velocities from its
+    approach by the trapezoidal rule (v_0 = ``speed``)."""
+    t, d, F = result.times, result.approach, result.force
+    dt = float(t[1] - t[0]) if t.size > 1 else 1.0
+    v = np.empty(t.size)
+    v[0] = speed
+    for n in range(1, t.size):
+        v[n] = 2.0 * (d[n] - d[n - 1]) / dt - v[n - 1]
+    P = np.array(F, float)
+    P[1:] += joint_mass * np.diff(v) / dt
+    P[0] = 0.0
+    return P
+
+
+def modal_moment_step(t, omega, gains):
+    """S_N(t) = Σ_n g_n (1 − cos ω_n t)/ω_n² [N m/N] (g_n t²/2 where ω_n = 0): the moment of N modes of frequencies
+    ``omega`` (N,) [rad/s] under a unit force held from t = 0 on, ``gains`` (N,) g_n = ψ_n(x_p) M_n(x)/m [N m/(N s²)]
+    (the mode's shape at the force's point, its moment per unit coordinate at the station, over its modal mass).
+    t (n,) [s]."""
+    t = np.asarray(t, float)[:, None]
+    w = np.asarray(omega, float)[None, :]
+    safe = np.where(w > 0, w, 1.0)
+    terms = np.where(w > 0, (1.0 - np.cos(safe * t)) / safe**2, 0.5 * t**2)
+    return terms @ np.asarray(gains, float)
+
+
+class StrikeMoment(NamedTuple):
+    correction: float  #: local − kept at the local moment's largest magnitude [N m], along the strike's force
+    time: float  #: that time from the strike's onset [s]
+    local: float  #: the local model's moment there [N m]
+    kept: float  #: the kept modes' moment under the local wall force there [N m]
+
+
+def strike_moment(result: "Strike", joint_mass: float, speed: float, distance: float, mass_per_length: float,
+                  bending_stiffness: float, omega=None, gains=None) -> tuple[np.ndarray, np.ndarray]:
+    """(local, kept) (n,) [N m] over a :func:`strike` ``result``: the local model's bending moment at ``distance``
+    [m] from the struck joint (the beam's reaction P, :func:`beam_reaction`, convolved with
+    :func:`beam_moment_response` by :func:`step_convolution` on the closed-form :func:`beam_moment_step`), and the
+    moment the N modes ``omega``, ``gains`` (:func:`modal_moment_step`) carry under the same strike's wall force F
+    (the modes hold the joint's mass, so F and not P drives them; as N grows they tend to the local moment while the
+    waves have not come back). ``kept`` zeros without modes."""
+    t = result.times
+    P = beam_reaction(result, joint_mass, speed)
+    local = step_convolution(P, beam_moment_step(t, distance, mass_per_length, bending_stiffness))
+    kept = (step_convolution(result.force, modal_moment_step(t, omega, gains)) if omega is not None
+            else np.zeros(t.size))
+    return local, kept
+
+
+#: Steps a rise of :func:`strike_moment_peak`'s coarser run (the finer twice that).
+MOMENT_STEPS = 100
+
+
+@functools.lru_cache(maxsize=256)
+def _strike_pair(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, steps_per_rise):
+    return tuple(strike(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, n)
+                 for n in (steps_per_rise, 2 * steps_per_rise))
+
+
+def strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, distances,
+                       omega, gains, steps_per_rise: int = MOMENT_STEPS) -> list[StrikeMoment]:
+    """Per station at ``distances`` (S,) [m] from the joint, with the kept modes' ``gains`` (S, N) there and their
+    ``omega`` (N,) (:func:`modal_moment_step`): the correction of a strike's bending moment for the modes left out
+    (:class:`StrikeMoment`), local − kept (:func:`strike_moment`) at the local moment's largest magnitude over the
+    contact — added to the run's modal moment at the matching instant it gives the local moment there, and it
+    vanishes as the kept modes come to carry it —, the Richardson extrapolation of ``steps_per_rise`` and twice that
+    (the strike's scheme is first order). Other arguments as :func:`strike`'s."""
+    runs = _strike_pair(float(joint_mass), float(stiffness), float(mass_per_length), float(bending_stiffness),
+                        float(speed), float(hysteresis), int(steps_per_rise))
+    gains = np.atleast_2d(np.asarray(gains, float))
+    out = []
+    for distance, gain in zip(np.atleast_1d(distances), gains):
+        pair = []
+        for r in runs:
+            local, kept = strike_moment(r, joint_mass, speed, float(distance), mass_per_length, bending_stiffness,
+                                        omega, gain)
+            k = int(np.argmax(np.abs(local)))
+            pair.append(StrikeMoment(float(local[k] - kept[k]), float(r.times[k]), float(local[k]), float(kept[k])))
+        coarse, fine = pair
+        out.append(StrikeMoment(*(2.0 * f - c for f, c in zip(fine, coarse))))
+    return out
+
+
+#: The onset speeds of :func:`strike_moment_table`: every other speed of :data:`TABLE_SPEEDS` (the correction goes as
+#: a power of v0 near the force's, 9/8 to 6/5, so log-log interpolation between them holds as the force's does).
+MOMENT_SPEEDS = TABLE_SPEEDS[::2]
+
+
+def strike_moment_table(joint_mass, stiffness, mass_per_length, bending_stiffness, hysteresis, distances, omega,
+                        gains) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(speeds (V,) [m/s], corrections (V, S) [N m], times (V, S) [s], kept (V, S) [N m]) of
+    :func:`strike_moment_peak` over :data:`MOMENT_SPEEDS` at the stations ``distances`` (S,): per joint, like
+    :func:`strike_peak_table` for the force."""
+    rows = [strike_moment_peak(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, distances,
+                               omega, gains) for v in MOMENT_SPEEDS]
+    return (MOMENT_SPEEDS.copy(), np.array([[r.correction for r in row] for row in rows]),
+            np.array([[r.time for r in row] for row in rows]), np.array([[r.kept for r in row] for row in rows]))
+
+
+def moment_correction(speed, table, column: int = 1) -> np.ndarray:
+    """(n, S) the correction [N m] at each onset ``speed`` (n,) [m/s], interpolated on :func:`strike_moment_table`'s
+    ``table`` per station (or its ``column``: 2 the times [s], 3 the kept modes' moment [N m]): in log-log where
+    the values keep one sign, linearly in log v0 otherwise; speeds outside the table clipped to it."""
+    speeds, values = table[0], table[column]
+    x = np.log(np.clip(np.atleast_1d(np.asarray(speed, float)), speeds[0], speeds[-1]))
+    out = np.zeros((x.size, values.shape[1]))
+    for s in range(values.shape[1]):
+        c = values[:, s]
+        if np.all(c > 0) or np.all(c < 0):
+            out[:, s] = np.sign(c[0]) * np.exp(np.interp(x, np.log(speeds), np.log(np.abs(c))))
+        else:
+            out[:, s] = np.interp(x, np.log(speeds), c)
+    return out

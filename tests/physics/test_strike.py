@@ -76,3 +76,44 @@ def test_the_thrown_string_strikes_as_its_256_mode_run():
     assert force[0] == pytest.approx(143.2e3, rel=0.025)
     # the contact (0.48 ms) ends long before the waves of the neighbouring joints' strikes (9.45 m) arrive
     assert duration[0] < 0.2 * strike.return_time(duration[0], 9.45, RHO, EI)
+
+
+def test_the_moment_kernel_is_its_fourier_integral():
+    # −EI w'' under a unit force held from t = 0 (from w = (1/ρA) ∫ e^{ikx} sin(a k² t)/(a k²) dk/2π, integrated in
+    # t): S(x, t) = (1/π) ∫₀^∞ cos(kx) (1 − cos(a k² t))/k² dk, with u = k √(at) √(at)/π ∫₀^∞ cos(u x/√(at))
+    # (1 − cos u²)/u² du: scipy's quad to U = √(2000π), beyond it ∫_U^∞ cos(cu)/u² du by its Fourier weight (QAWF)
+    # and the rest, of order U⁻³, left out; at x = 0 √(a t/(2π))
+    from scipy.integrate import quad
+    a = np.sqrt(EI / RHO)
+    edges = np.sqrt(np.pi * np.arange(0, 2001, 50))  # between zeros of cos u²
+    for x in (0.0, 0.25):
+        for t in (2e-4, 1e-3):
+            c = x / np.sqrt(a * t)
+            whole = sum(quad(lambda u: np.cos(c * u) * (1 - np.cos(u * u)) / (u * u) if u > 0 else 0.0,
+                             lo, hi, limit=200)[0] for lo, hi in zip(edges[:-1], edges[1:]))
+            whole += (quad(lambda u: 1.0 / (u * u), edges[-1], np.inf, weight="cos", wvar=c)[0] if c > 0
+                      else 1.0 / edges[-1])
+            assert strike.beam_moment_step(t, x, RHO, EI) == pytest.approx(np.sqrt(a * t) / np.pi * whole,
+                                                                           rel=2e-3), (x, t)
+    assert strike.beam_moment_step(1e-3, 0.0, RHO, EI) == pytest.approx(np.sqrt(a * 1e-3 / (2 * np.pi)), rel=1e-12)
+    # the kernel is the step's derivative: −√(a/(8π t)) as EI w'' under the load, the brief's constant
+    t, h = 4e-4, 1e-9
+    for x in (0.0, 0.25):
+        slope = (strike.beam_moment_step(t + h, x, RHO, EI) - strike.beam_moment_step(t - h, x, RHO, EI)) / (2 * h)
+        assert float(strike.beam_moment_response(t, x, RHO, EI)) == pytest.approx(float(slope), rel=1e-5)
+    assert float(strike.beam_moment_response(t, 0.0, RHO, EI)) == pytest.approx(np.sqrt(a / (8 * np.pi * t)))
+
+
+def test_the_moment_kernel_is_a_long_simply_supported_beams_at_short_times():
+    # a 200-m simply supported beam under a unit force held at its middle from t = 0: the moment at x from the middle
+    # is the static (ℓ/2 − |x|)/2 less Σ_n (2/ℓ) sin(nπ/2) sin(k_n (ℓ/2 + x)) cos(ω_n t)/k_n², k_n = nπ/ℓ,
+    # ω_n = a k_n² (the modal sum of any vibration text: EI k² ψ ψ/(ρA ℓ/2 ω²) = (2/ℓ) ψ ψ/k²); at 2-10 ms no wave has
+    # come back from 100 m away
+    length, n = 200.0, np.arange(1, 400_001, 2, dtype=float)
+    a = np.sqrt(EI / RHO)
+    k = n * np.pi / length
+    for x in (0.0, 0.25):
+        shape = np.sin(n * np.pi / 2) * np.sin(k * (length / 2 + x))
+        for t in (2e-3, 1e-2):
+            modal = (length / 2 - abs(x)) / 2 - np.sum(2.0 / length * shape * np.cos(a * k * k * t) / (k * k))
+            assert strike.beam_moment_step(t, x, RHO, EI) == pytest.approx(modal, rel=2e-3), (x, t)

@@ -333,6 +333,13 @@ class ReferenceOptions(MethodOptions):
     #: Opt-in: on 12 bouncing points of the default study it took the force's stated error from a median 318 % to 36 %
     #: at the same cost and decided none (the stresses' modal parts stay over the tolerance)
     reference_strike_force: str = option("modes", ("modes", "local"))
+    #: the bending of a strike at a tool joint: the modes' own with the quasi-static correction ("modes"), or the
+    #: run's modes plus the strike's local bending that the modes left out miss ("local": the infinite beam's moment
+    #: under the local model's force less the kept modes' share of it, study.physics.strike.strike_moment_table, in
+    #: place of the strike's quasi-static correction; docs/reference_model.md §2.3, the stresses at a strike), or
+    #: ("superposed") the run's moment at the strike's onset plus the local model's moment, the run's own response to
+    #: its strike replaced
+    reference_strike_stress: str = option("modes", ("modes", "local", "superposed"))
     #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and
     #: their kinds (1: a tool joint, 0: the body; default all body)
     contact_points: tuple | None = None

@@ -137,7 +137,8 @@ def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
 
 
 def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: Window, space_points: int = 97,
-             fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None):
+             fibres: int = 16, correction: bool = True, segments: list[tuple[int, int]] | None = None,
+             masked: np.ndarray | None = None):
     """Bending, normal and shear stresses over the window (the paper's §5 stresses in two directions;
     docs/reference_model.md §3).
 
@@ -152,6 +153,8 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
     With ``segments`` (row ranges [start, stop) of the recording), a list of those values per segment, times
     from each segment's first row (the fields computed once for all). ``modal_quarter_fraction``: the share of
     the modes N/4 … N/2 in the largest moment, beside ``modal_tail_fraction``'s of N/2 … N (truncation indicators).
+    ``masked`` (R, P) the rows and points whose loads (contact and joint inertia forces) the quasi-static correction
+    leaves out: the strikes whose local bending is added instead (statistics.strike_stress_values).
     """
     N = model.n_modes
     L = model.span
@@ -169,6 +172,8 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
         forces = window.correction_forces(model, j) if correction else None  # without it, the modes alone
         if inertia is not None:
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
+        if masked is not None and forces is not None:
+            forces = np.where(masked, 0.0, forces)
         fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
     scene = DesignPoint.of(point).scene  # its inputs typed where the sliding state's parts pass them
     r_o, r_i = scene.outer_radius, scene.inner_radius

@@ -18,7 +18,8 @@ from study.solvers.methods.reference.replay import impact_modal_error, replay_su
 from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                         figure_tolerance, modal_check, settle_ratio, settling,
-                                                        stationary, strike_modal_part, whirl_measure,
+                                                        stationary, strike_modal_part, strike_stress_modal_part,
+                                                        whirl_measure,
                                                         window_summary)
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import REGIMES, PointResult
@@ -111,9 +112,9 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
         window_cycles, preceding, window = list(zip(blocks, cycle_values(point, model, blocks))), [], merge(blocks)
-        modal = strike_modal_part([v for _, v in window_cycles],
-                                  impact_modal_error(point, model, window, [v for _, v in window_cycles], replays,
-                                                     modal_check))
+        modal = strike_stress_modal_part([v for _, v in window_cycles], strike_modal_part(
+            [v for _, v in window_cycles], impact_modal_error(point, model, window, [v for _, v in window_cycles],
+                                                              replays, modal_check)))
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
@@ -147,7 +148,8 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                 window_cycles, preceding = record[len(record) - 2 * half:], []
             window = merge([c for c, _ in window_cycles])
             cycles = [v for _, v in window_cycles]
-            modal = strike_modal_part(cycles, impact_modal_error(point, model, window, cycles, replays, modal_check))
+            modal = strike_stress_modal_part(cycles, strike_modal_part(
+                cycles, impact_modal_error(point, model, window, cycles, replays, modal_check)))
             errors = convergence(point, model, window, window_summary(cycles, stats), stats, periodic=False,
                                  modal=modal)
             used = len(states) - 1

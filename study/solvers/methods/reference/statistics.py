@@ -11,7 +11,7 @@ import numpy as np
 from study.physics import fatigue, limits, section, strike
 from study.physics.contact import hertz_force
 from study.solvers.model.point import DesignPoint
-from study.solvers.methods.reference.fields import periodic_fields, stresses
+from study.solvers.methods.reference.fields import joint_inertia_forces, periodic_fields, stresses
 from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
 from study.physics.string_modes import series_contact
@@ -111,9 +111,13 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
     correction = quasi_static_applies(model, joined)
     ends = np.cumsum([c.times.size for c in cycles])
     segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
-    values = stresses(point, model, joined, correction=correction, segments=segments)
+    if point.reference.reference_strike_stress != "modes" and model.law == 0 and correction:
+        values, (masked, pulses_at) = strike_stress_values(point, model, joined, segments)
+    else:
+        values, masked, pulses_at = stresses(point, model, joined, correction=correction, segments=segments), None, None
     station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
-    damage = fibre_damage(point, model, joined, station, [first for first, _ in segments], correction)
+    damage = fibre_damage(point, model, joined, station, [first for first, _ in segments], correction, masked=masked,
+                          pulses=pulses_at(station) if pulses_at is not None else None)
     peaks = [float(np.max(c.peak)) for c in cycles]
     local = [None] * len(cycles)
     if point.reference.reference_strike_force == "local" and model.law == 0:
@@ -225,17 +229,227 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
     return out
 
 
+def strike_stations(point: DesignPoint) -> np.ndarray:
+    """(3,) the distances [m] from a struck tool joint of the stations its strike's bending is corrected at: the joint
+    itself and the pipe body either side of it, half the tool joint's length away (``pipe.tool_joint_length``), where
+    the section is the body's (docs/reference_model.md §2.3)."""
+    half = 0.5 * float(point.reference.tool_joint_length)
+    return np.array([0.0, half, -half])
+
+
+def strike_moment_tables(point: DesignPoint, model: WhirlModel, kept: int | None = None) -> dict:
+    """Per tool-joint contact point p: :func:`study.physics.strike.strike_moment_table` at :func:`strike_stations`,
+    the correction of a strike's bending for the modes left out against its onset speed, with the model's kept modes
+    (the ``kept`` slowest only where given: the change from N/2 to N is the correction's modal part). Cached on the
+    model."""
+    key = ("strike_moment", kept)
+    if key in model.cache:
+        return model.cache[key]
+    N = model.n_modes
+    omega = np.nan_to_num(np.asarray(model.omega[:N], float))
+    use = np.ones(N, bool)
+    if kept is not None:
+        use = np.argsort(np.argsort(omega, kind="stable"), kind="stable") < kept
+    offsets = strike_stations(point)
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    out = {}
+    for p in np.flatnonzero(model.kinds == 1):
+        x = np.mod(model.points[p] + offsets, model.span)
+        gains = model.phi[p][None, :] * model.moment_shapes(x) / model.mass * use[None, :]
+        out[int(p)] = strike.strike_moment_table(model.joint_mass, model.stiffness[p], rho, ei, model.hysteresis,
+                                                 offsets, omega, gains)
+    model.cache[key] = out
+    return out
+
+
+def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
+    """The window's strikes at the tool joints taken by their local model (:func:`strike_speeds`; those whose contact
+    ends before the neighbouring joints' waves come back, as :func:`local_strike_forces` takes them): ``rows`` the
+    onsets, ``points``, ``speeds`` [m/s], ``ends`` the first row after the run's contact, ``peaks`` the row of the
+    run's largest force in it, ``directions`` (S, 2) the unit direction of the wall's force on the pipe (towards the
+    hole's axis from the joint)."""
+    N = model.n_modes
+    fn = window.forces[:, :, 2]
+    rows, points, speed, _ = strike_speeds(model, window)
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    spacing = float(np.min(np.diff(np.sort(model.joint_x)))) if model.joint_x.size > 1 else (
+        float(np.min(np.diff(np.sort(model.points[model.kinds == 1])))) if np.count_nonzero(model.kinds == 1) > 1
+        else model.span)
+    keep = np.zeros(rows.size, bool)
+    for p in np.unique(points):
+        at = points == p
+        _, durations = strike.peak_force(speed[at], model.joint_mass, model.stiffness[p], rho, ei, model.hysteresis)
+        keep[at] = durations < strike.return_time(durations, spacing, rho, ei)
+    rows, points, speed = rows[keep], points[keep], speed[keep]
+    ends, peaks = np.zeros(rows.size, int), np.zeros(rows.size, int)
+    for k, (row, p) in enumerate(zip(rows, points)):
+        end = row
+        while end < fn.shape[0] and fn[end, p] > 0:
+            end += 1
+        ends[k], peaks[k] = end, row + int(np.argmax(fn[row:max(end, row + 1), p]))
+    q = window.states[rows]
+    y, w = np.sum(model.phi[points] * q[:, :N], axis=1), np.sum(model.phi[points] * q[:, N:2 * N], axis=1)
+    norm = np.maximum(np.hypot(y, w), 1e-300)
+    return dict(rows=rows, points=points, speeds=speed, ends=ends, peaks=peaks,
+                directions=-np.column_stack([y / norm, w / norm]))
+
+
+def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, segments):
+    """:func:`stresses` per segment with the strikes' local bending (``reference_strike_stress = "local"``;
+    docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their
+    strikes (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite beam's moment under the local model's force less the
+    kept modes' share, at the strike's onset speed) is added along the wall's force to the moment at each of
+    :func:`strike_stations`, at the row nearest the time after the onset at which the local moment there peaks
+    (the table's: the run's kept modes then carry what the table's kept modes do, as N grows): the max bending and normal stress of a segment are the larger of the fields' and the
+    struck stations' so corrected, the alternating stress the larger of the fields' and the struck stations' fibre
+    histories with the correction added at the strike's row. Each segment's ``strike_modal``: the stress figures'
+    modal part, absolute — where a struck station's corrected value is the figure, its strike's (``change``): the
+    kept modes' share of the local moment times the run's own strike force's relative difference from the local
+    model's peak (the run's kept modes carry their share under their own force), plus :data:`LOCAL_STRIKE_ERROR` of
+    the local moment (half of it on the alternating stress, a half range of which it moves one extreme); and the quasi-static correction of the loads not masked times :func:`quasi_static_ratio`
+    (``rest``). Returns (values, (masked,
+    pulses_at)), ``pulses_at(station)`` the (R, 2) moments the correction adds at a station for
+    :func:`fibre_damage`."""
+    N = model.n_modes
+    struck = local_strikes(model, window)
+    R, P = window.forces.shape[:2]
+    masked = np.zeros((R, P), bool)
+    for row, end, p in zip(struck["rows"], struck["ends"], struck["points"]):
+        masked[row:end, p] = True
+    values = stresses(point, model, window, correction=True, segments=segments, masked=masked)
+    if struck["rows"].size == 0:
+        return values, (masked, None)
+    plain = stresses(point, model, window, correction=False, segments=segments)
+    ratio = quasi_static_ratio(model, window)
+    offsets = strike_stations(point)
+    full = strike_moment_tables(point, model)
+    S = struck["rows"].size
+    corrections, errors, locals_ = np.zeros((S, offsets.size)), np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
+    superposed = point.reference.reference_strike_stress == "superposed"
+    at_rows = np.zeros((S, offsets.size), int)  # the rows nearest each station's local peak after the onset
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    for p in np.unique(struck["points"]):
+        at = struck["points"] == p
+        corrections[at] = strike.moment_correction(struck["speeds"][at], full[int(p)])
+        kept = strike.moment_correction(struck["speeds"][at], full[int(p)], column=3)
+        local = strike.peak_force(struck["speeds"][at], model.joint_mass, model.stiffness[p], rho, ei,
+                                  model.hysteresis)[0]
+        own = np.array([np.max(window.forces[r:max(e, r + 1), p, 2]) for r, e in
+                        zip(struck["rows"][at], struck["ends"][at])])
+        # the run's kept modes carry their share of the strike under the run's own force, not the local one's; and
+        # the local model's own error on what it gives
+        errors[at] = (np.abs(kept) * np.abs(own / local - 1.0)[:, None]
+                      + LOCAL_STRIKE_ERROR * np.abs(corrections[at] + kept))
+        locals_[at] = corrections[at] + kept
+        speeds, times = full[int(p)][0], full[int(p)][2]
+        v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
+        for s in range(offsets.size):
+            when = window.times[struck["rows"][at]] + np.interp(v, np.log(speeds), times[:, s])
+            after = np.clip(np.searchsorted(window.times, when), 1, R - 1)
+            nearer = np.abs(window.times[after - 1] - when) < np.abs(window.times[after] - when)
+            at_rows[at, s] = np.maximum(np.where(nearer, after - 1, after), struck["rows"][at])
+    scene = point.scene
+    r_o, r_i = scene.outer_radius, scene.inner_radius
+    scale = r_o / float(section.second_moment_of_area(r_o, r_i))
+    axial = abs(scene.axial_tension) / model.props["steel_area"]
+    inertia = (joint_inertia_forces(model, window) if model.joint_points is not None
+               and (not model.dynamic or model.recovery == "force") else None)
+
+    def loads(j):
+        forces = window.correction_forces(model, j)
+        if inertia is not None:
+            forces = forces + inertia[:, :, j]
+        return np.where(masked, 0.0, forces)
+
+    stations = {}  # station x -> (strike indices, offset index)
+    for k, p in enumerate(struck["points"]):
+        for s, off in enumerate(offsets):
+            x = float(np.mod(model.points[p] + off, model.span))
+            stations.setdefault(round(x, 9), []).append((k, s))
+    xs = np.array(sorted(stations))
+    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], loads(j), xs, j)["moment"]
+               for j in range(2)]  # (R, X) each
+    fibre = np.linspace(0.0, np.pi, 16, endpoint=False)
+    turn = model.rotary_speed * window.times
+
+    def pulses(i, table):
+        out = np.zeros((R, 2))
+        for k, s in stations[xs[i]]:
+            row = at_rows[k, s]
+            if superposed:  # the moment at the onset plus the local one: the run's own strike response replaced
+                onset = struck["rows"][k]
+                out[row] += locals_[k, s] * struck["directions"][k] - np.array(
+                    [moments[j][row, i] - moments[j][onset, i] for j in range(2)])
+                before = max(onset - 1, 0)
+                span = float(window.times[onset] - window.times[before])
+                drift = (float(np.hypot(*[moments[j][onset, i] - moments[j][before, i] for j in range(2)]))
+                         * float(window.times[row] - window.times[onset]) / span if span > 0 else 0.0)
+                errors[k, s] = LOCAL_STRIKE_ERROR * abs(locals_[k, s]) + drift
+            else:
+                out[row] += table[k, s] * struck["directions"][k]
+        return out
+
+    pulse_full = [pulses(i, corrections) for i in range(xs.size)]
+    station_error = np.zeros(xs.size)  # the largest error of a correction at each station
+    for i in range(xs.size):
+        for k, s in stations[xs[i]]:
+            station_error[i] = max(station_error[i], errors[k, s])
+    figures = ("max_bending_stress", "max_normal_stress", "alternating_bending_stress")
+    out = []
+    for (a, b), v, bare in zip(segments, values, plain):
+        fields_only = v
+        bend, where, when, alt, alt_x, bend_error, alt_error = -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0
+        for i in range(xs.size):
+            if not np.any(pulse_full[i][a:b]):
+                continue
+            my, mz = moments[0][a:b, i] + pulse_full[i][a:b, 0], moments[1][a:b, i] + pulse_full[i][a:b, 1]
+            size = np.hypot(my, mz)
+            k = int(np.argmax(size))
+            if size[k] > bend:
+                bend, where, when = float(size[k]), float(xs[i]), float(window.times[a + k] - window.times[a])
+                bend_error = station_error[i]
+            angle = turn[a:b, None] + fibre[None, :]
+            stress = my[:, None] * np.cos(angle) + mz[:, None] * np.sin(angle)
+            h = float(np.max(0.5 * (np.max(stress, axis=0) - np.min(stress, axis=0))))
+            if h > alt:
+                alt, alt_x, alt_error = h, float(xs[i]), station_error[i]
+        v = dict(fields_only)
+        change = dict.fromkeys(figures, 0.0)
+        if bend * scale > v["max_bending_stress"]:
+            v.update(max_bending_stress=bend * scale, max_normal_stress=axial + bend * scale,
+                     max_normal_stress_x=where, max_normal_stress_t=when)
+            change.update(max_bending_stress=bend_error * scale, max_normal_stress=bend_error * scale)
+        if alt * scale > v["alternating_bending_stress"]:
+            v.update(alternating_bending_stress=alt * scale, alternating_bending_stress_x=alt_x)
+            change["alternating_bending_stress"] = 0.5 * alt_error * scale  # one extreme of the half range moves
+        v["strike_modal"] = {f: dict(change=change[f], rest=ratio * abs(fields_only[f] - bare[f])) for f in figures}
+        out.append(v)
+    return out, (masked, lambda station: next((pulse_full[i] for i in range(xs.size)
+                                              if abs(xs[i] - station) < 1e-9), None))
+
+
 def fibre_stress(point: DesignPoint, model: WhirlModel, window: Window, station: float,
-                 correction: bool = True, fibres: int = DAMAGE_FIBRES) -> np.ndarray:
+                 correction: bool = True, fibres: int = DAMAGE_FIBRES, masked: np.ndarray | None = None,
+                 pulses: np.ndarray | None = None) -> np.ndarray:
     """(R, F) the normal stress [Pa] of ``fibres`` fibres of the turning pipe, at ψ = 2πk/F from the fibre that
     faces +y at t = 0, at the section x = ``station`` [m] over the window's rows: T0/A_s plus
     (M_y cos(Ωt + ψ) + M_z sin(Ωt + ψ)) r_o/I (the moments of :func:`periodic_fields`, with the quasi-static
     correction where ``correction``; the fibre stress whose half range over a cycle is the alternating stress of
-    :func:`stresses`)."""
+    :func:`stresses`). ``masked`` (R, P) the loads the correction leaves out and ``pulses`` (R, 2) moments [N m] added
+    at the station: the strikes' local bending (:func:`strike_stress_values`)."""
     N = model.n_modes
     x = np.array([float(station)])
-    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], window.correction_forces(model, j)
-                               if correction else None, x, j)["moment"][:, 0] for j in range(2)]
+
+    def loads(j):
+        if not correction:
+            return None
+        forces = window.correction_forces(model, j)
+        return forces if masked is None else np.where(masked, 0.0, forces)
+
+    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], loads(j), x, j)["moment"][:, 0]
+               for j in range(2)]
+    if pulses is not None:
+        moments = [moments[j] + pulses[:, j] for j in range(2)]
     scene = point.scene
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
@@ -245,14 +459,15 @@ def fibre_stress(point: DesignPoint, model: WhirlModel, window: Window, station:
 
 
 def fibre_damage(point: DesignPoint, model: WhirlModel, window: Window, station: float, starts,
-                 correction: bool = True) -> np.ndarray:
+                 correction: bool = True, masked: np.ndarray | None = None,
+                 pulses: np.ndarray | None = None) -> np.ndarray:
     """(S, F) Miner's damage [-] in each of the stretches that begin at the window's rows ``starts`` (its cycles), of
     each fibre of :func:`fibre_stress` at x = ``station`` [m]: the fibre's stress history over the whole window
     counted by rainflow (ASTM E1049, :func:`study.physics.limits.history_damage` with the point's strengths, stress
     concentration, S-N curve and mean-stress correction), each cycle's damage spread over the stretches the time
     between its two reversals spans, so that several cycles a revolution (impacts ringing the pipe) count each, a
     periodic motion's revolutions get the same damage, and the stretches' damages sum to the window's."""
-    stress = fibre_stress(point, model, window, station, correction)
+    stress = fibre_stress(point, model, window, station, correction, masked=masked, pulses=pulses)
     options = point.limits.keywords()
     return np.column_stack([limits.history_damage(stress[:, k], starts, at=window.times, **options)
                             for k in range(stress.shape[1])])
@@ -452,6 +667,28 @@ def strike_modal_part(cycles: list[Mapping[str, Any]], modal: Mapping[str, float
     out = dict(modal or {})
     out["peak_contact_force"] = SPEED_EXPONENT * float(np.mean([t["speed_share"] for t in taken]))
     out["peak_contact_force_local"] = LOCAL_STRIKE_ERROR
+    return out
+
+
+def strike_stress_modal_part(cycles: list[Mapping[str, Any]], modal: Mapping[str, float] | None
+                             ) -> dict[str, float] | None:
+    """The stresses' modal part with the strikes' local bending (``reference_strike_stress = "local"``, cycles of
+    :func:`cycle_values` carrying ``strike_modal``; docs/reference_model.md §2.3): per stress figure, the mean over
+    the cycles of the struck stations' error (:func:`strike_stress_values`) plus the quasi-static correction of the
+    loads that are not strikes times :func:`quasi_static_ratio`, over the figure's mean (the alternating stress's over the
+    larger of it and the max bending stress, as :func:`modal_check`'s). The other figures as ``modal`` states them;
+    ``modal`` unchanged where no cycle carries a struck joint's correction."""
+    taken = [c for c in cycles if "strike_modal" in c]
+    if not taken:
+        return modal
+    out = dict(modal or {})
+    for name in ("max_normal_stress", "alternating_bending_stress", "max_bending_stress"):
+        mean = float(np.mean([c[name] for c in cycles]))
+        if name == "alternating_bending_stress":
+            mean = max(mean, float(np.mean([c["max_bending_stress"] for c in cycles])))
+        if mean > 0:
+            out[name] = float(np.sum([c["strike_modal"][name]["change"] + c["strike_modal"][name]["rest"]
+                                      for c in taken]) / len(cycles) / mean)
     return out
 
 
