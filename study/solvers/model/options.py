@@ -330,8 +330,10 @@ class ReferenceOptions(MethodOptions):
     #: its onset speed ("local": the joint's mass on an infinite beam against the Hertz wall, study.physics.strike;
     #: docs/reference_model.md §2.3), where its contact ends before the waves of the neighbouring joints come back.
     #: Opt-in: on 12 bouncing points of the default study it took the force's stated error from a median 318 % to 36 %
-    #: at the same cost and decided none (the stresses' modal parts stay over the tolerance)
-    reference_strike_force: str = option("modes", ("modes", "local"))
+    #: at the same cost and decided none (the stresses' modal parts stay over the tolerance). "pulse": each such strike
+    #: applies its local model's force history to the modes in the run itself, in place of the contact law (the motion
+    #: between strikes then follows the strikes' own impulse; docs/reference_model.md §2.4)
+    reference_strike_force: str = option("modes", ("modes", "local", "pulse"))
     #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and
     #: their kinds (1: a tool joint, 0: the body; default all body)
     contact_points: tuple | None = None

@@ -218,7 +218,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
     figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
     option = ReferenceOptions.from_inputs(inputs)
-    dynamic = option.reference_residual == "dynamic"
+    # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from half the modes
+    dynamic = option.reference_residual == "dynamic" or option.reference_strike_force == "pulse"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
     previous = None
@@ -376,7 +377,7 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
     budget = energy_balance(model, window)
     modal = run["modal"]
     replayed = run.get("replay") if (run.get("replay") or {}).get("impacts") else None
-    if (model.dynamic and previous is not None and not periodic and previous.status == "ok" and replayed is None
+    if ((model.dynamic or model.pulse is not None) and previous is not None and not periodic and previous.status == "ok" and replayed is None
             and previous.extras.get("reference_modes") == model.n_modes // 2):
         modal = doubling_modal_error(previous, summary)
     errors = convergence(inputs, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
