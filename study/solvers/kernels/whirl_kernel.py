@@ -85,10 +85,10 @@ N_STATS = 9
 #: the largest wall shift over the Hertz approach at its pulse's peak (F_peak/K)^(2/3) [-], and the wall's shift [m]:
 #: where a pulse ends with the kept modes' point inside the wall (their local compliance is not the strike's), the
 #: point's wall is put where the point is (its clearance in the kernel's tuple raised by it), and follows it back as it
-#: leaves, down to its place (docs/reference_model.md §2.4).
-P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT = range(9)
+#: leaves, down to its place (docs/reference_model.md §2.4); and the largest shift [m].
+P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT, P_SHIFT_MAX = range(10)
 P_LAW, P_PULSE = 0.0, 1.0
-N_PULSE_STATE = 9
+N_PULSE_STATE = 10
 #: Schemes of :func:`advance`: Dormand–Prince on the whole right-hand side; its Lawson form at every step; the
 #: Lawson form between contacts and Dormand–Prince while one is open.
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
@@ -981,6 +981,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                     ratio = pst[p, P_SHIFT] / (pst[p, P_PEAK] / K[p]) ** (2.0 / 3.0)
                     if ratio > pst[p, P_OVERLAP]:
                         pst[p, P_OVERLAP] = ratio
+                    if pst[p, P_SHIFT] > pst[p, P_SHIFT_MAX]:
+                        pst[p, P_SHIFT_MAX] = pst[p, P_SHIFT]
                 if rate > 0.0 and pen_end[p, 0] >= 0.0:
                     # still towards the wall: the strike is over and what pushes on is the string's motion, a contact
                     # the contact law holds (from the wall where the point is, its force from nil)

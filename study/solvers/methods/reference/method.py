@@ -261,6 +261,21 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     return result
 
 
+def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
+    """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses applied,
+    restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the steps in
+    contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over the Hertz
+    approach at its pulse's peak."""
+    state, work = integrator.pulse, integrator.work
+    joints = model.kinds == 1
+    return dict(pulses=float(work[whirl_kernel.S_PULSES]), restrikes=float(work[whirl_kernel.S_RESTRIKES]),
+                contact_steps=float(work[whirl_kernel.S_CONTACT_STEPS]), steps=float(work[whirl_kernel.S_ACCEPTED]),
+                largest_shift=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX], initial=0.0)),
+                largest_shift_clearance=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX]
+                                                     / model.clearance[joints], initial=0.0)),
+                largest_shift_approach=float(np.max(state[joints, whirl_kernel.P_OVERLAP], initial=0.0)))
+
+
 def modal_part(result: PointResult) -> float:
     """The largest modal part of a run's figures' errors (``extras["convergence"]``; 0 where none is stated): what
     decides whether the point goes on to more modes (:func:`solve`, :func:`solve_with_modes`)."""
@@ -391,7 +406,8 @@ def solve_with_stations(inputs: Mapping[str, Any], previous: PointResult | None 
                 **{f"{name}_error": errors[name]["total"] for name in FIGURES})
     result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
-                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
+                         energy_budget=budget, steps=run["integrator"].steps,
+                         **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None else {}), quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
                          revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
                          modal_error={name: float(v) for name, v in (modal or {}).items()},

@@ -458,10 +458,11 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
     """The strikes' pulses at the model's tool joints (docs/reference_model.md §2.4): each joint's local strike
     (:func:`study.physics.strike.strike_pulse_table`: its mass m_j on an infinite beam of the string's ρA and EI, the
     wall's K and the calibrated Hunt–Crossley damping) at the table's speeds, and per point the floor speed [m/s] from
-    which every strike is a pulse — at least :data:`PULSE_SPEED_FLOOR`, and where from there on up the local strike
-    ends, and ends before the bending waves of the neighbouring joints (the joints' spacing away) come back
-    (:func:`study.physics.strike.return_time`); inf at the body's points and where there is no joint's mass (the beam
-    alone never lets go of the wall). None without tool joints."""
+    which every strike is a pulse — at least :data:`PULSE_SPEED_FLOOR`, and where from there on up the local strike's
+    history (to its end, or where the wall's damping holds the joint on it, to :data:`study.physics.strike.PAST_PEAK`
+    times its rise: the rest of its force is the contact law's) is over before the bending waves of the neighbouring
+    joints (the joints' spacing away) come back (:func:`study.physics.strike.return_time`); inf at the body's points.
+    None without tool joints or without the joints' mass (the beam alone never lets go of the wall)."""
     from study.physics import strike
 
     joints = np.flatnonzero(model.kinds == 1)
@@ -478,7 +479,7 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
     for p in joints:
         table = strike.strike_pulse_table(float(model.joint_mass), float(model.stiffness[p]), float(rho), float(ei),
                                           float(model.hysteresis))
-        holds = table["ended"] & (table["duration"] < strike.return_time(table["duration"], spacing, rho, ei))
+        holds = table["duration"] < strike.return_time(table["duration"], spacing, rho, ei)
         bad = np.flatnonzero(~holds)
         first = int(bad[-1]) + 1 if bad.size else 0  # every speed from here on holds
         if first < S:
