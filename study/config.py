@@ -283,7 +283,8 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),
     Field("solver.reference_strike_force", "reference_strike_force", "the peak contact force of the reference model's "
           "strikes at the tool joints: the modes' own, or each strike's local model from its onset speed (the joint's "
-          "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3)", None,
+          "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3), after the run ('local') or "
+          "its force history applied to the modes in the run ('pulse', §2.4)", None,
           default=ReferenceOptions.default("reference_strike_force"),
           choices=ReferenceOptions.choices("reference_strike_force")),
     Field("solver.reference_strike_stress", "reference_strike_stress", "the bending of the reference model's strikes "

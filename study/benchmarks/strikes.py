@@ -4,7 +4,7 @@
         strikes of bouncing points of configs/default.toml (their runs at each count), each replayed from the run's
         recorded state at every count up to the last (:func:`study.solvers.methods.reference.replay.lift_state`): the
         local model's peak from the run's onset speed, the replays' peaks and onset speeds
-    python -m study.benchmarks.strikes sample 12 modes,local out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
+    python -m study.benchmarks.strikes sample 12 modes,local,pulse out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
         bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the sweep's
         order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s; a
         capped run is reported failed, solve_point catching the alarm); an option "local/local" sets
@@ -142,7 +142,8 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
             print(json.dumps(dict(
                 index=int(i), coords=coords, option=option, extra=extra or {}, status=r.status,
                 error_estimate=r.error_estimate, modes=r.extras.get("reference_modes"), whirl=r.extras.get("whirl"),
-                cpu=time.process_time() - clock,
+                cpu=time.process_time() - clock, strike_pulses=r.extras.get("strike_pulses"),
+                steps=r.extras.get("steps"),
                 values={k: float(r.values.get(k, np.nan)) for k in ("peak_contact_force", "max_normal_stress",
                                                                     "alternating_bending_stress", "damage_rate",
                                                                     "max_bending_stress",

@@ -55,7 +55,7 @@ from study.physics.restitution import check_range
 __all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
            "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
            "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
-           "moment_correction"]
+           "moment_correction", "strike_pulse_table", "pulse_force"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):
@@ -373,3 +373,62 @@ def moment_correction(speed, table, column: int = 1) -> np.ndarray:
         else:
             out[:, s] = np.interp(x, np.log(speeds), c)
     return out
+
+
+#: Points of the grid of t/T_c on which :func:`strike_pulse_table` tabulates a strike's force shape F/F_peak.
+PULSE_GRID = 65
+
+
+@functools.lru_cache(maxsize=32)
+def strike_pulse_table(joint_mass: float, stiffness: float, mass_per_length: float, bending_stiffness: float,
+                       hysteresis: float, steps_per_rise: int = 100, grid: int = PULSE_GRID) -> dict[str, np.ndarray]:
+    """The local strike's force history at each of :data:`TABLE_SPEEDS` (docs/reference_model.md §2.4), for the
+    reference run to apply it to its modes in place of the contact law: ``speeds`` (S,) [m/s], ``peak`` (S,) F_peak
+    [N] and ``duration`` (S,) T_c [s] (the Richardson extrapolations of ``steps_per_rise`` and twice that, as
+    :func:`strike_peak_table`), ``impulse`` (S,) ∫F dt [N s] (the finer run's, trapezoidal), ``ended`` (S,) whether the
+    force ended within the run (where the wall's damping eats the rebound the joint does not let go: the run stops at
+    :data:`PAST_PEAK` times its rise, 13-18 % of the peak left at e = 0.3, and the history is taken to there), and the
+    force's shape F/F_peak on ``grid`` points
+    of s = t/T_c ∈ [0, 1], ``shape`` (S, grid) (the finer run's, linear between its steps), with ``coefficients`` (S,
+    4, grid − 1) of its natural cubic spline in s (value at s_i + x: ((c0 x + c1) x + c2) x + c3), which is smooth to
+    its second derivative for an explicit integrator. Arguments as :func:`strike`; cached per joint, wall and beam."""
+    from scipy.interpolate import CubicSpline
+
+    s = np.linspace(0.0, 1.0, grid)
+    peaks, durations, impulses, ended, shapes, coefficients = [], [], [], [], [], []
+    for v in TABLE_SPEEDS:
+        coarse, fine = (strike(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, n)
+                        for n in (steps_per_rise, 2 * steps_per_rise))
+        peaks.append(2.0 * fine.peak_force - coarse.peak_force)
+        durations.append(2.0 * fine.duration - coarse.duration)
+        impulses.append(float(np.trapezoid(fine.force, fine.times)))
+        ended.append(fine.ended and coarse.ended)
+        shape = np.interp(s * fine.duration, fine.times, fine.force) / fine.peak_force
+        shape[0] = 0.0
+        shapes.append(shape)
+        coefficients.append(CubicSpline(s, shape, bc_type="natural").c)
+    return dict(speeds=TABLE_SPEEDS.copy(), peak=np.array(peaks), duration=np.array(durations),
+                impulse=np.array(impulses), ended=np.array(ended), shape=np.array(shapes), grid=s,
+                coefficients=np.array(coefficients))
+
+
+def pulse_force(time, speed, table: dict[str, np.ndarray]) -> np.ndarray:
+    """The local strike's force F(t) [N] at ``time`` t [s] after its onset (array; 0 outside [0, T_c]) at approach
+    ``speed`` v0 [m/s], from :func:`strike_pulse_table`'s ``table`` as the reference run's kernel interpolates it:
+    F_peak and T_c in log-log between the table's speeds, the shape linearly in log v0 between theirs, each by its
+    cubic spline in t/T_c (``study.solvers.kernels.whirl_kernel.pulse_force`` the same, compiled)."""
+    speeds = table["speeds"]
+    x = np.log(np.clip(float(speed), speeds[0], speeds[-1]))
+    i = min(int(np.searchsorted(np.log(speeds), x, side="right")) - 1, speeds.size - 2)
+    w = (x - np.log(speeds[i])) / (np.log(speeds[i + 1]) - np.log(speeds[i]))
+    peak = np.exp((1 - w) * np.log(table["peak"][i]) + w * np.log(table["peak"][i + 1]))
+    duration = np.exp((1 - w) * np.log(table["duration"][i]) + w * np.log(table["duration"][i + 1]))
+    s = np.asarray(time, float) / duration
+    g = table["grid"].size - 1
+    j = np.clip(np.floor(s * g).astype(int), 0, g - 1)
+    dx = s - j / g
+    shape = 0.0
+    for k, weight in ((i, 1 - w), (i + 1, w)):
+        c = table["coefficients"][k]
+        shape = shape + weight * (((c[0, j] * dx + c[1, j]) * dx + c[2, j]) * dx + c[3, j])
+    return np.where((s >= 0.0) & (s <= 1.0), peak * shape, 0.0)

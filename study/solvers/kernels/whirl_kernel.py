@@ -75,7 +75,20 @@ OUTCOMES = {OK: "ok", BLOWN_UP: "non-finite state or deflection above 100 cleara
 #: onset or end of a contact force, right-hand-side evaluations, steps shortened to the predicted time of an onset,
 #: accepted steps with a contact open.
 S_CONTACT_TIME, S_ACCEPTED, S_ERROR_REJECTED, S_SWITCH_REDONE, S_RHS, S_CAPPED, S_CONTACT_STEPS = range(7)
-N_STATS = 7
+#: ... and with the strikes' pulses (``reference_strike_force = "pulse"``, :func:`pulse_force`): pulses applied, and
+#: pulses that ended with the joint still moving towards its wall (the contact law then takes it on).
+S_PULSES, S_RESTRIKES = 7, 8
+N_STATS = 9
+#: Columns of the per-point pulse state (the last entry of :func:`kernel_system`'s tuple, updated by :func:`advance`):
+#: the point's mode (P_LAW: the contact law; P_PULSE: a strike's force prescribed), the pulse's onset time [s], peak
+#: force [N], duration [s], the table's speed index and weight (log v0 between it and the next), its onset speed [m/s],
+#: the largest wall shift over the Hertz approach at its pulse's peak (F_peak/K)^(2/3) [-], and the wall's shift [m]:
+#: where a pulse ends with the kept modes' point inside the wall (their local compliance is not the strike's), the
+#: point's wall is put where the point is (its clearance in the kernel's tuple raised by it), and follows it back as it
+#: leaves, down to its place (docs/reference_model.md §2.4); and the largest shift [m].
+P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT, P_SHIFT_MAX = range(10)
+P_LAW, P_PULSE = 0.0, 1.0
+N_PULSE_STATE = 10
 #: Schemes of :func:`advance`: Dormand–Prince on the whole right-hand side; its Lawson form at every step; the
 #: Lawson form between contacts and Dormand–Prince while one is open.
 DOPRI5, LAWSON, LAWSON_FLIGHT = 0, 1, 2
@@ -174,7 +187,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     mode's drag the sum over the pairs of its shape times the pair's forces added (symmetric) or subtracted —
     half the multiplications of the sums over all G points (:func:`drag_halves`).
     """
-    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy[:15]
+    pcoef, pst = sy[19], sy[20]
     N = omega2.size
     G = wts.size
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
@@ -282,12 +296,26 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
         fc[p, 0] = 0.0
         fc[p, 1] = 0.0
         fc[p, 2] = 0.0
-        if d > 0.0:
+        mode = pst[p, P_MODE]
+        shifted = pst[p, P_SHIFT] > 0.0
+        if (d > 0.0 or mode == P_PULSE or shifted) and r > 0.0:
             ny = y / r
             nz = w / r
             dd = yd * ny + wd * nz  # δ̇
             vt = -yd * nz + wd * ny  # u̇·t̂, t̂ = (−n_z, n_y)
-            if law == 0:
+            if mode == P_PULSE or shifted:
+                # a strike's force prescribed (its local model's history, pulse_force), or the contact law on a wall
+                # shifted after one: the force's whole work on the modes here; the stored energy the kernel's energy
+                # counts (the series spring's at the unshifted wall) is taken out of it at each step's end, exactly
+                # (:func:`_stored_energy`), so that the rest is the contact's loss (docs/reference_model.md §2.4)
+                elastic = 0.0
+                if mode == P_PULSE:
+                    fn = pulse_force(t, pst, pcoef, p)
+                elif d > 0.0:
+                    fn = max(series_hertz(d, K[p], fr[p]) * (1.0 + chi[p] * dd), 0.0)
+                else:
+                    fn = 0.0
+            elif law == 0:
                 elastic = series_hertz(d, K[p], fr[p])
                 fn = max(elastic * (1.0 + chi[p] * dd), 0.0)
             else:
@@ -307,6 +335,64 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
                 out[3 * N + n] += phi[p, n] * fz * inv_m
     out[4 * N + 1] = p_fric
     out[4 * N + 3] = p_loss
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def pulse_force(t, pst, pcoef, p):
+    """The normal force [N] at time t [s] of the strike whose pulse point p is under (its state ``pst[p]``, the
+    :data:`P_MODE` … columns): the local model's history at its onset speed (study.physics.strike.strike_pulse_table),
+    F_peak times its shape at s = (t − t0)/T_c, each speed's natural cubic spline in s (``pcoef`` (P, S, 4, G − 1))
+    weighed linearly in log v0 between the two table speeds about v0 (as study.physics.strike.pulse_force); 0
+    outside 0 < s < 1 and where the spline dips below 0."""
+    s = (t - pst[p, P_T0]) / pst[p, P_DURATION]
+    if s <= 0.0 or s >= 1.0:
+        return 0.0
+    g = pcoef.shape[3]
+    j = int(s * g)
+    if j > g - 1:
+        j = g - 1
+    x = s - j / g
+    i = int(pst[p, P_INDEX])
+    w = pst[p, P_WEIGHT]
+    a = ((pcoef[p, i, 0, j] * x + pcoef[p, i, 1, j]) * x + pcoef[p, i, 2, j]) * x + pcoef[p, i, 3, j]
+    b = ((pcoef[p, i + 1, 0, j] * x + pcoef[p, i + 1, 1, j]) * x + pcoef[p, i + 1, 2, j]) * x + pcoef[p, i + 1, 3, j]
+    return pst[p, P_PEAK] * max((1.0 - w) * a + w * b, 0.0)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _stored_energy(d, K, f):
+    """The series contact's stored energy [J] at the total approach d [m] (0 for d ≤ 0): the Hertz spring's
+    2/5 K δ_H^{5/2} = 2/5 F δ_H plus the flexibility's f F²/2, F = :func:`series_hertz` (as the model's energy)."""
+    if d <= 0.0:
+        return 0.0
+    F = series_hertz(d, K, f)
+    dh = (F / K) ** (2.0 / 3.0)
+    return 0.4 * F * dh + 0.5 * f * F * F
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _start_strike(p, t, speed, pst, floor, logv, lpeak, ldur, K):
+    """Point p's strike at time t [s] at approach ``speed`` [m/s] as a pulse (:func:`pulse_force`) where the speed is
+    at least the point's ``floor`` (the local model holds: its strike ends before the neighbours' waves return);
+    returns whether it did (else the contact law takes it)."""
+    if not speed >= floor[p]:
+        return False
+    x = np.log(speed)
+    S = logv.size
+    i = 0
+    while i < S - 2 and x >= logv[i + 1]:
+        i += 1
+    w = (x - logv[i]) / (logv[i + 1] - logv[i])
+    if w > 1.0:
+        w = 1.0
+    pst[p, P_MODE] = P_PULSE
+    pst[p, P_T0] = t
+    pst[p, P_PEAK] = np.exp((1.0 - w) * lpeak[p, i] + w * lpeak[p, i + 1])
+    pst[p, P_DURATION] = np.exp((1.0 - w) * ldur[p, i] + w * ldur[p, i + 1])
+    pst[p, P_INDEX] = i
+    pst[p, P_WEIGHT] = w
+    pst[p, P_SPEED] = speed
+    return True
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -651,6 +737,15 @@ def _any_open(active):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def _any_held(active, pst):
+    """Whether any contact point is in contact under the contact law (not a strike's pulse: :func:`_any_open`)."""
+    for p in range(active.size):
+        if active[p] and pst[p, P_MODE] == P_LAW:
+            return True
+    return False
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def _record(rec_t, rec_z, rec_f, row, t, z, fc):
     """Row ``row`` of the recording: the time, the state and the contact forces (loops: no slice assignment, whose
     shape check would link a compiled helper into :func:`advance`)."""
@@ -666,13 +761,26 @@ def kernel_system(sy: tuple) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`) before
     the residual flexibility per point."""
-    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy
+    omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
+    cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
+    P = cl.size
+    # the strikes' pulses (reference_strike_force = "pulse"; WhirlModel.system): per point the floor speed [m/s] (inf:
+    # none), the table's log speeds, log peaks and log durations and the shapes' spline coefficients; none: one
+    # dummy speed pair no point reaches
+    if len(sy) > 14:
+        pfloor, speeds, peaks, durations, coef = sy[14:19]
+    else:
+        pfloor, speeds = np.full(P, np.inf), np.array([1e-3, 1e1])
+        peaks, durations, coef = np.ones((P, 2)), np.ones((P, 2)), np.zeros((P, 2, 4, 1))
     SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
     # the eccentric load's modal amplitudes as rows (in phase with cos Ωt; in quadrature, where complex: the joints'
     # eccentricities turned, string_modes.eccentric_factors)
     ecc = (np.stack((ecc.real, ecc.imag)) if np.iscomplexobj(ecc) else np.asarray(ecc, float)[None, :]).astype(float)
     return (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity,
-            np.ascontiguousarray(fr, dtype=float))
+            np.ascontiguousarray(fr, dtype=float), np.asarray(pfloor, float), np.log(np.asarray(speeds, float)),
+            np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
+            np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)))
+
 
 
 def workspace(n_modes: int, n_points: int, n_drag: int) -> tuple:
@@ -706,7 +814,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     remains. ``sy`` as for :func:`rhs` (:func:`kernel_system`), ``work`` its room (:func:`workspace`): advance
     allocates nothing and calls no compiled function (everything it calls is inlined: :data:`FASTMATH`).
     """
-    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy
+    omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy[:15]
+    pfloor, logv, lpeak, ldur, pst = sy[15], sy[16], sy[17], sy[18], sy[20]
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])
@@ -715,7 +824,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     P = phi.shape[0]
     n = z.size
     # the form of the first stage k[0]: the whole ż (Dormand–Prince) or its nonlinear part N (Lawson)
-    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not _any_open(active))
+    nonlinear = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not _any_held(active, pst))
     rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sy, not nonlinear)
     stats[S_RHS] += 1
     last_rec = -1e300
@@ -736,7 +845,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
         steps += 1
         if steps > max_steps:
             return t, h, TOO_MANY_STEPS, n_rec, steps
-        lawson = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not any_open)
+        # a strike's pulse is a smooth force of time, no stiffness: the Lawson form takes it as a flight
+        lawson = scheme == LAWSON or (scheme == LAWSON_FLIGHT and not _any_held(active, pst))
         if lawson != nonlinear:  # k[0] into this step's form: f = Lz + N
             sign = -1.0 if lawson else 1.0
             for m in range(N):
@@ -746,9 +856,13 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                     k[0, (2 + j) * N + m] += sign * (-omega2[m] * q - damp[m] * v)
             nonlinear = lawson
         h = min(h, h_max if lawson else min(h_max, h_stable), t_end - t)
-        # cap at the predicted onset of a point moving towards the wall
+        # cap at the predicted onset of a point moving towards the wall, and a step lands on a pulse's end
         for p in range(P):
-            if not active[p]:
+            if pst[p, P_MODE] == P_PULSE:
+                left = pst[p, P_T0] + pst[p, P_DURATION] - t
+                if left < h:
+                    h = max(left, h_floor)
+            elif not active[p] and pst[p, P_MODE] == P_LAW:
                 d, rate = pen_end[p, 0], pen_end[p, 1]
                 if rate > 0.0 and d < 0.0:
                     cap = max(-d / rate * 1.05, 1e-4 * h_max)
@@ -780,6 +894,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
             # the step is cut where the continuous extension puts it at half the tolerance past the switch
             cut = 2.0
             for p in range(P):
+                if pst[p, P_MODE] != P_LAW:
+                    continue  # a pulse ends at its time (the step lands on it), a free overlap has no force
                 if active[p]:
                     y, w, yd, wd = point_state(z, phi, p, N)
                     if _contact_function(y, w, yd, wd, cl[p], law, chi[p], kp[p], cpen[p], True) <= 0.0:
@@ -834,6 +950,11 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 last_rec = tr
                 tr += rec_dt[0]
         t = t + h if h < t_end - t else t_end
+        for p in range(P):  # the stored energy's change at a pulse's or a shifted wall's point (rhs), exactly
+            if pst[p, P_MODE] == P_PULSE or pst[p, P_SHIFT] > 0.0:
+                base = pst[p, P_SHIFT]
+                znew[4 * N + 3] -= (_stored_energy(pen[p, 0] + base, K[p], fr[p])
+                                    - _stored_energy(pen_end[p, 0] + base, K[p], fr[p]))
         for i in range(n):
             z[i] = znew[i]
             k[0, i] = k[6, i]  # FSAL: the last stage is the next step's first
@@ -845,14 +966,52 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
         opened = False
         for p in range(P):
             d, rate = pen_end[p, 0], pen_end[p, 1]
+            if pst[p, P_MODE] == P_PULSE:
+                if t < pst[p, P_T0] + pst[p, P_DURATION] - 2.0 * h_floor:
+                    continue
+                # the pulse's end: the wall put where the kept modes' point is, if inside it
+                opened = True
+                pst[p, P_MODE] = P_LAW
+                active[p] = False
+                chi[p] = 0.0
+                if d > 0.0:
+                    pst[p, P_SHIFT] += d
+                    cl[p] += d
+                    pen_end[p, 0] = 0.0
+                    ratio = pst[p, P_SHIFT] / (pst[p, P_PEAK] / K[p]) ** (2.0 / 3.0)
+                    if ratio > pst[p, P_OVERLAP]:
+                        pst[p, P_OVERLAP] = ratio
+                    if pst[p, P_SHIFT] > pst[p, P_SHIFT_MAX]:
+                        pst[p, P_SHIFT_MAX] = pst[p, P_SHIFT]
+                if rate > 0.0 and pen_end[p, 0] >= 0.0:
+                    # still towards the wall: the strike is over and what pushes on is the string's motion, a contact
+                    # the contact law holds (from the wall where the point is, its force from nil)
+                    active[p] = True
+                    chi[p] = hyst / max(rate, ONSET_SPEED_FLOOR)
+                    stats[S_RESTRIKES] += 1
+                continue
+            if pst[p, P_SHIFT] > 0.0 and not active[p]:
+                # a shifted wall follows the point back as it leaves (to ONSET_TOLERANCE of the clearance behind it, so
+                # that its next onset is located), down to its place
+                back = min(pst[p, P_SHIFT], max(-d - ONSET_TOLERANCE * (cl[p] - pst[p, P_SHIFT]), 0.0))
+                if back > 0.0:
+                    pst[p, P_SHIFT] -= back
+                    cl[p] -= back
+                    d += back
+                    pen_end[p, 0] = d
             if active[p] and d <= 0.0:
                 active[p] = False  # no force at d <= 0 whatever chi: the last stage stands
                 chi[p] = 0.0
             elif not active[p] and d > 0.0:
                 active[p] = True
-                chi[p] = hyst / max(rate, ONSET_SPEED_FLOOR)
                 onsets[p] += 1
                 opened = True
+                if _start_strike(p, t, rate, pst, pfloor, logv, lpeak, ldur, K):
+                    stats[S_PULSES] += 1
+                    if pst[p, P_PEAK] > peak[p]:
+                        peak[p] = pst[p, P_PEAK]
+                else:
+                    chi[p] = hyst / max(rate, ONSET_SPEED_FLOOR)
         if opened:  # the new chi changes the force at the step's end
             rhs(t, z, chi, k[0], fc_end, pen_end, scratch, sy, not nonlinear)
             stats[S_RHS] += 1

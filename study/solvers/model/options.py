@@ -331,8 +331,10 @@ class ReferenceOptions(MethodOptions):
     #: its onset speed ("local": the joint's mass on an infinite beam against the Hertz wall, study.physics.strike;
     #: docs/reference_model.md §2.3), where its contact ends before the waves of the neighbouring joints come back.
     #: Opt-in: on 12 bouncing points of the default study it took the force's stated error from a median 318 % to 36 %
-    #: at the same cost and decided none (the stresses' modal parts stay over the tolerance)
-    reference_strike_force: str = option("modes", ("modes", "local"))
+    #: at the same cost and decided none (the stresses' modal parts stay over the tolerance). "pulse": each such strike
+    #: applies its local model's force history to the modes in the run itself, in place of the contact law (the motion
+    #: between strikes then follows the strikes' own impulse; docs/reference_model.md §2.4)
+    reference_strike_force: str = option("modes", ("modes", "local", "pulse"))
     #: the bending of a strike at a tool joint: the modes' own with the quasi-static correction ("modes"), or the
     #: run's modes plus the strike's local bending that the modes left out miss ("local": the infinite beam's moment
     #: under the local model's force less the kept modes' share of it, study.physics.strike.strike_moment_table, in

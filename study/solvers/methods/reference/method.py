@@ -219,7 +219,8 @@ def run(point: DesignPoint) -> PointResult:
     half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
     figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
     option = point.reference
-    dynamic = option.reference_residual == "dynamic"
+    # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from half the modes
+    dynamic = option.reference_residual == "dynamic" or option.reference_strike_force == "pulse"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
     previous = None
@@ -259,6 +260,21 @@ def run(point: DesignPoint) -> PointResult:
         result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
                            + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
     return result
+
+
+def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
+    """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses applied,
+    restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the steps in
+    contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over the Hertz
+    approach at its pulse's peak."""
+    state, work = integrator.pulse, integrator.work
+    joints = model.kinds == 1
+    return dict(pulses=float(work[whirl_kernel.S_PULSES]), restrikes=float(work[whirl_kernel.S_RESTRIKES]),
+                contact_steps=float(work[whirl_kernel.S_CONTACT_STEPS]), steps=float(work[whirl_kernel.S_ACCEPTED]),
+                largest_shift=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX], initial=0.0)),
+                largest_shift_clearance=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX]
+                                                     / model.clearance[joints], initial=0.0)),
+                largest_shift_approach=float(np.max(state[joints, whirl_kernel.P_OVERLAP], initial=0.0)))
 
 
 def modal_part(result: PointResult) -> float:
@@ -378,7 +394,7 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     budget = energy_balance(model, window)
     modal = run["modal"]
     replayed = run.get("replay") if (run.get("replay") or {}).get("impacts") else None
-    if (model.dynamic and previous is not None and not periodic and previous.status == "ok" and replayed is None
+    if ((model.dynamic or model.pulse is not None) and previous is not None and not periodic and previous.status == "ok" and replayed is None
             and previous.extras.get("reference_modes") == model.n_modes // 2):
         modal = doubling_modal_error(previous, summary)
     errors = convergence(point, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
@@ -392,7 +408,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                 **{f"{name}_error": errors[name]["total"] for name in FIGURES})
     result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
-                         energy_budget=budget, steps=run["integrator"].steps, quasi_static_correction=correction,
+                         energy_budget=budget, steps=run["integrator"].steps,
+                         **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None else {}), quasi_static_correction=correction,
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
                          revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
                          modal_error={name: float(v) for name, v in (modal or {}).items()},

@@ -85,6 +85,9 @@ class WhirlModel:
     #: with the residual vectors, what the fields take for the modes left out (``reference_recovery``): the contact
     #: forces' static field ("force", the mode-acceleration method) or the vectors' coordinates s_p ("vectors")
     recovery: str = "force"
+    #: the strikes' pulses at the tool joints (``reference_strike_force = "pulse"``: :func:`strike_pulses`; None: the
+    #: contact law at every strike)
+    pulse: dict | None = None
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -140,11 +143,19 @@ class WhirlModel:
         if not self.dynamic:
             return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
                     self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
-                    self.penalty_damping, fpar, self.flexibility)
+                    self.penalty_damping, fpar, self.flexibility) + self.pulse_arrays()
         r = self.ritz
         return (r["omega2"], r["damping"], r["eccentric"], r["side"], r["drag_shapes"], self.drag_weights,
                 r["phi"], self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
-                fpar, np.zeros(self.points.size))
+                fpar, np.zeros(self.points.size)) + self.pulse_arrays()
+
+    def pulse_arrays(self) -> tuple:
+        """The strikes' pulse tables for the kernel (:func:`strike_pulses`; ``whirl_kernel.kernel_system``): per point
+        the floor speed [m/s], the table's speeds [m/s], peaks [N], durations [s] and shape coefficients; () without."""
+        if self.pulse is None:
+            return ()
+        q = self.pulse
+        return q["floor"], q["speeds"], q["peak"], q["duration"], q["coefficients"]
 
     @property
     def dynamic(self) -> bool:
@@ -436,7 +447,49 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
         model.residual = residual_flexibility(model)
         model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
+    if option.reference_strike_force == "pulse" and law == 0:
+        model.pulse = strike_pulses(model)
     return model
+
+
+#: The slowest approach [m/s] at which a strike at a tool joint is a pulse (``reference_strike_force = "pulse"``): below
+#: it the contact law takes it (a joint settling onto its wall, rolling or sliding is no strike).
+PULSE_SPEED_FLOOR = 1e-2
+
+
+def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
+    """The strikes' pulses at the model's tool joints (docs/reference_model.md §2.4): each joint's local strike
+    (:func:`study.physics.strike.strike_pulse_table`: its mass m_j on an infinite beam of the string's ρA and EI, the
+    wall's K and the calibrated Hunt–Crossley damping) at the table's speeds, and per point the floor speed [m/s] from
+    which every strike is a pulse — at least :data:`PULSE_SPEED_FLOOR`, and where from there on up the local strike's
+    history (to its end, or where the wall's damping holds the joint on it, to :data:`study.physics.strike.PAST_PEAK`
+    times its rise: the rest of its force is the contact law's) is over before the bending waves of the neighbouring
+    joints (the joints' spacing away) come back (:func:`study.physics.strike.return_time`); inf at the body's points.
+    None without tool joints or without the joints' mass (the beam alone never lets go of the wall)."""
+    from study.physics import strike
+
+    joints = np.flatnonzero(model.kinds == 1)
+    if joints.size == 0 or model.joint_mass <= 0.0:
+        return None
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    spacing = (float(np.min(np.diff(np.sort(model.joint_x)))) if model.joint_x.size > 1 else
+               float(np.min(np.diff(np.sort(model.points[joints])))) if joints.size > 1 else model.span)
+    P = model.points.size
+    S, G = strike.TABLE_SPEEDS.size, strike.PULSE_GRID
+    floor = np.full(P, np.inf)
+    peak, duration = np.ones((P, S)), np.ones((P, S))
+    coefficients = np.zeros((P, S, 4, G - 1))
+    for p in joints:
+        table = strike.strike_pulse_table(float(model.joint_mass), float(model.stiffness[p]), float(rho), float(ei),
+                                          float(model.hysteresis))
+        holds = table["duration"] < strike.return_time(table["duration"], spacing, rho, ei)
+        bad = np.flatnonzero(~holds)
+        first = int(bad[-1]) + 1 if bad.size else 0  # every speed from here on holds
+        if first < S:
+            floor[p] = max(PULSE_SPEED_FLOOR, float(table["speeds"][first]))
+        peak[p], duration[p], coefficients[p] = table["peak"], table["duration"], table["coefficients"]
+    return dict(floor=floor, speeds=strike.TABLE_SPEEDS.copy(), peak=peak, duration=duration,
+                coefficients=coefficients)
 
 
 def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0) -> dict:
