@@ -4,12 +4,14 @@
         strikes of bouncing points of configs/default.toml (their runs at each count), each replayed from the run's
         recorded state at every count up to the last (:func:`study.solvers.methods.reference.replay.lift_state`): the
         local model's peak from the run's onset speed, the replays' peaks and onset speeds
-    python -m study.benchmarks.strikes sample 12 modes,local,pulse out.jsonl outputs/default/results.nc ['{"reference_modes": 128}']
-        bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the sweep's
-        order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force`` (cap 300 s; a
-        capped run is reported failed, solve_point catching the alarm); an option "local/local" sets
+    python -m study.benchmarks.strikes sample 12 modes,local,pulse out.jsonl outputs/default/results.nc
+            ['{"reference_modes": 128}']
+        bouncing reference points of the default study's last sweep (its results.nc, `make sweep`), evenly in the
+        sweep's order, each solved with ``solve_point(..., "reference")`` for each ``reference_strike_force``
+        (cap 300 s; a capped run is reported failed, solve_point catching the alarm); an option "local/local" sets
         ``reference_strike_stress`` after the slash
-    python -m study.benchmarks.strikes sample-at 274,515,687,201 modes,local out.jsonl RESULTS '{"reference_modes": 128, "reference_max_modes": 128}'
+    python -m study.benchmarks.strikes sample-at 274,515,687,201 modes,local out.jsonl RESULTS
+            '{"reference_modes": 128, "reference_max_modes": 128}'
         the same at the points of those flat indices of the results (cap 1200 s)
 
     python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl

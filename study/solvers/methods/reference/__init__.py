@@ -16,10 +16,10 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   (:func:`study.physics.whirl.eccentric_load`), in the same phase in every pipe joint (``eccentricity_turn`` 0, the
   default) or turned from joint to joint (:func:`study.physics.string_modes.eccentric_factors`); and the uniform side
   load (:meth:`study.solvers.model.scene.Scene.side_loads`): in an inclined hole (``inclination``, config
-  ``hole.inclination``, default 0) the buoyed weight's side component, in a curved hole (``dogleg_curvature``, ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose
-  curvature also bends the pipe that follows it (``side_load`` [N/m] sets the load directly in code). A uniform
-  load drives the rigid translation ψ_0 alone. Nothing else: with ε = 0 and a centred pipe in a straight vertical
-  hole nothing moves.
+  ``hole.inclination``, default 0) the buoyed weight's side component, in a curved hole (``dogleg_curvature``,
+  ``dogleg_direction``) the tension's T κ towards the centre of curvature, whose curvature also bends the pipe that
+  follows it (``side_load`` [N/m] sets the load directly in code). A uniform load drives the rigid translation ψ_0
+  alone. Nothing else: with ε = 0 and a centred pipe in a straight vertical hole nothing moves.
 - **mud**: added mass in M; quadratic drag −D |u̇| u̇ per unit length with the velocity's magnitude in
   both directions (``reference_damping = "drag"``, default; D from
   :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
@@ -46,23 +46,23 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   gyroscopic terms (a pipe's polar inertia per length is negligible at these speeds).
 
 Run: from the string's rest on the wall where a side load lays it there, else its synchronous whirl without walls
-(:func:`initial_state`; ``reference_initial = "rest"``: the centred pipe at rest), revolution by revolution (the compiled Dormand–Prince integrator of
-:mod:`study.solvers.kernels.whirl_kernel`, ``reference_rtol`` default 1e-6, in its Lawson form between contacts:
-``reference_integrator``) until the state at the revolution
-boundaries repeats (1–8 revolutions, :func:`study.solvers.kernels.periodicity.settled_period`), the pipe bounces with
-stationary statistics (:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
-``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions
-(default 6; the period's multiple when periodic) is recorded and the outputs are taken over it. Where the modes
-left out take a figure's error over half the study's tolerance (where the pipe strikes the wall, from a few of the
-window's strikes replayed at N, 2N and more modes, :mod:`study.solvers.methods.reference.replay`, docs/reference_model.md §2.2;
-elsewhere :func:`modal_check`, measured on the run) the point is run again with more modes, up to
-``reference_max_modes`` (default 64; :func:`solve`).
+(:func:`initial_state`; ``reference_initial = "rest"``: the centred pipe at rest), revolution by revolution (the
+compiled Dormand–Prince integrator of :mod:`study.solvers.kernels.whirl_kernel`, ``reference_rtol`` default 1e-6, in its
+Lawson form between contacts: ``reference_integrator``) until the state at the revolution boundaries repeats (1–8
+revolutions, :func:`study.solvers.kernels.periodicity.settled_period`), the pipe bounces with stationary statistics
+(:func:`stationary`, checked every ``reference_window`` revolutions from three times that on) or
+``reference_revolutions`` (default 40) have passed; then a window of ``reference_window`` revolutions (default 6; the
+period's multiple when periodic) is recorded and the outputs are taken over it. Where the modes left out take a figure's
+error over half the study's tolerance (where the pipe strikes the wall, from a few of the window's strikes replayed at
+N, 2N and more modes, :mod:`study.solvers.methods.reference.replay`, docs/reference_model.md §2.2; elsewhere
+:func:`modal_check`, measured on the run) the point is run again with more modes, up to ``reference_max_modes`` (default
+64; :func:`solve`).
 """
 
 from __future__ import annotations
 
-# The package's public names: ``reference.solve(...)`` and ``from study.solvers.methods.reference import X`` as before the
-# split. A test that patches a name patches it in the submodule whose functions look it up, not here.
+# The package's public names: ``reference.solve(...)`` and ``from study.solvers.methods.reference import X`` as before
+# the split. A test that patches a name patches it in the submodule whose functions look it up, not here.
 from study.solvers.methods.reference.model import (CONTACT_LAWS, SECOND_MOMENT_HARMONICS, SLIP_VELOCITY, WhirlModel,
                                                    basis_static_gain, build_model, eccentric_parts,
                                                    residual_flexibility, residual_ritz, residual_second_moment,

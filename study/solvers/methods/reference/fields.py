@@ -96,8 +96,8 @@ def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -
 
 def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | None = None) -> np.ndarray:
     """(T, 2N) q̈ of the recorded rows (y then z modes) from the modal equations (module docstring of
-    :mod:`study.solvers.kernels.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear damping,
-    the turning eccentric load, the side load, the quadratic drag and the contacts. With ``shapes`` (N, K) the
+    :mod:`study.solvers.kernels.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear
+    damping, the turning eccentric load, the side load, the quadratic drag and the contacts. With ``shapes`` (N, K) the
     accelerations Σ_n q̈_n shapes_nk at K points instead, (T, 2K) (y then z)."""
     N = model.n_modes
     z = window.states

@@ -16,7 +16,8 @@ SCHEMES = ReferenceOptions.choices("reference_integrator")
 
 
 #: the kernel's code of each scheme (whirl_kernel.advance)
-SCHEME_CODES = {"dopri5": whirl_kernel.DOPRI5, "lawson": whirl_kernel.LAWSON, "lawson-flight": whirl_kernel.LAWSON_FLIGHT}
+SCHEME_CODES = {"dopri5": whirl_kernel.DOPRI5, "lawson": whirl_kernel.LAWSON,
+                "lawson-flight": whirl_kernel.LAWSON_FLIGHT}
 
 
 #: Largest step times the highest natural frequency (Dormand–Prince 5(4) is stable on the imaginary axis

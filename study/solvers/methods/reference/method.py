@@ -47,12 +47,13 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
     its first, and where they differ significantly (still settling) the first half is dropped.
 
     Returns model, integrator, verdict ('periodic', 'not_periodic', 'failed'), period (revolutions or None),
-    revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values
-    of the window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance:
-    the budget would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within
-    the tolerance; inf where more would not), needed_by (the same per figure left over its tolerance), ratio (:func:`settle_ratio`), failure (text or None), stationary
-    (the transient ended as the bouncing was found stationary), modal (:func:`modal_check` of the
-    window), stats (:func:`settling` of the window as the last look took it; None when periodic).
+    revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values of the
+    window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance: the budget
+    would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within the tolerance; inf
+    where more would not), needed_by (the same per figure left over its tolerance), ratio (:func:`settle_ratio`),
+    failure (text or None), stationary (the transient ended as the bouncing was found stationary), modal
+    (:func:`modal_check` of the window), stats (:func:`settling` of the window as the last look took it; None when
+    periodic).
     """
     point = DesignPoint.of(point)
     option = point.reference
@@ -163,7 +164,8 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                     continue
                 if room <= 0:
                     wants[name] = np.inf  # the integrator or the modes take it over: more revolutions do not help
-                elif np.isfinite(ratio) and e["window"] > CONFIDENCE * stats[name]["error"]:  # settling: drifts shrink by ρ
+                elif np.isfinite(ratio) and e["window"] > CONFIDENCE * stats[name]["error"]:
+                    # settling: drifts shrink by ρ
                     wants[name] = np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0
                 else:  # the standard error falls as the root of the window's length (half the record's if settling)
                     length = len(window_cycles) * (1 if stationary_record else 2)
@@ -174,8 +176,8 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                         wants[name] = float(length)
                     else:
                         wants[name] = length * ((e["window"] / room) ** 2 - 1.0)
-            # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK of
-            # it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
+            # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK
+            # of it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
             # does not stop the others' growth (issue 36)
             # (with reference_window_growth = "point", the default, the window grows only while every figure over its
             # tolerance can get there: a point that stays over it whatever the window stops at its first look)
@@ -216,10 +218,12 @@ def run(point: DesignPoint) -> PointResult:
 
     The mode count is chosen per point: from ``reference_modes`` it doubles (or grows by the power of two that the
     residual flexibility's N⁻³ foresees) while the modal part of a design figure's error (:func:`modal_check`) is over
-    half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer (``extras["reference_modes"]``), the counts tried and their
-    figures in ``extras["modes_tried"]`` (docs/reference_model.md §3.1)."""
+    half the study's tolerance and the count is within ``reference_max_modes``; the last run is the answer
+    (``extras["reference_modes"]``), the counts tried and their figures in ``extras["modes_tried"]``
+    (docs/reference_model.md §3.1)."""
     option = point.reference
-    # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from half the modes
+    # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from
+    # half the modes
     dynamic = option.reference_residual == "dynamic" or option.reference_strike_force == "pulse"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
@@ -263,10 +267,10 @@ def run(point: DesignPoint) -> PointResult:
 
 
 def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
-    """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses applied,
-    restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the steps in
-    contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over the Hertz
-    approach at its pulse's peak."""
+    """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses
+    applied, restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the
+    steps in contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over
+    the Hertz approach at its pulse's peak."""
     state, work = integrator.pulse, integrator.work
     joints = model.kinds == 1
     return dict(pulses=float(work[whirl_kernel.S_PULSES]), restrikes=float(work[whirl_kernel.S_RESTRIKES]),
@@ -378,7 +382,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
         vals["period_revolutions"] = float(run["period"])
     measure = whirl_measure(model, window)
     vals.update(whirl_frequency_ratio=measure["whirl_frequency_ratio"],
-                whirl_class=float(WHIRL_CLASSES[measure["whirl"]]), regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
+                whirl_class=float(WHIRL_CLASSES[measure["whirl"]]),
+                regime=float(REGIMES[WHIRL_REGIMES[measure["whirl"]]]))
     spacing, touching = contact_spacing(model, window)
     vals["contact_spacing"] = spacing
     # the largest Hertz approach of a contact on the body (the gate holds the largest deflection, on the body, to the
@@ -394,7 +399,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     budget = energy_balance(model, window)
     modal = run["modal"]
     replayed = run.get("replay") if (run.get("replay") or {}).get("impacts") else None
-    if ((model.dynamic or model.pulse is not None) and previous is not None and not periodic and previous.status == "ok" and replayed is None
+    if ((model.dynamic or model.pulse is not None) and previous is not None and not periodic
+            and previous.status == "ok" and replayed is None
             and previous.extras.get("reference_modes") == model.n_modes // 2):
         modal = doubling_modal_error(previous, summary)
     errors = convergence(point, model, window, summary, stats, periodic, residual=budget["residual"], modal=modal)
@@ -409,8 +415,11 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
                          energy_budget=budget, steps=run["integrator"].steps,
-                         **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None else {}), quasi_static_correction=correction,
-                         revolutions_needed=float(run.get("revolutions_needed", np.nan)), modal_quarter_fraction=quarter,
+                         **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None
+                            else {}),
+                         quasi_static_correction=correction,
+                         revolutions_needed=float(run.get("revolutions_needed", np.nan)),
+                         modal_quarter_fraction=quarter,
                          revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
                          modal_error={name: float(v) for name, v in (modal or {}).items()},
                          replay=None if replayed is None else replay_summary(replayed),
@@ -443,7 +452,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                 f" (largest seen: window_largest_*){stopped}",
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
                 f"{float(option.reference_rtol):g}"
-                f"{' and the residual flexibility and quasi-static correction of the modes left out' if correction else ''}"
+                f"""{' and the residual flexibility and quasi-static correction of the modes left out'
+                     if correction else ''}"""
                 f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})"
                 + (f"; modal parts from {len(replayed['impacts'])} strike(s) replayed at "
                    + ", ".join(str(n) for n in replayed["counts"]) + " modes" if replayed else ""),

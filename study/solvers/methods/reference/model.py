@@ -60,8 +60,10 @@ class WhirlModel:
     penalty_damping: np.ndarray  #: (P,) [N s/m]
     props: Mapping[str, float] = field(default_factory=dict)
     eccentricity: float = 0.0
-    frame: float = 0.0  #: angle β of the model's +y from the hole's low side towards +z: the side load's direction [rad]
-    hole_curvature: np.ndarray = field(default_factory=lambda: np.zeros(2))  #: κ⃗ of the hole in the model's frame [1/m]
+    #: angle β of the model's +y from the hole's low side towards +z: the side load's direction [rad]
+    frame: float = 0.0
+    #: κ⃗ of the hole in the model's frame [1/m]
+    hole_curvature: np.ndarray = field(default_factory=lambda: np.zeros(2))
     #: (N, N) the modes on the periodic basis with the tool joints' mass (:func:`joint_modes`); None: the basis itself
     basis: np.ndarray | None = None
     joint_mass: float = 0.0  #: m_j, each tool joint's mass beyond the plain pipe's, lumped at the joint [kg]
@@ -260,8 +262,8 @@ def residual_flexibility(model: "WhirlModel") -> np.ndarray:
     """(P,) the static flexibility of the modes left out at each contact point [m/N], f_p = Σ_{n ≥ N} ψ_n(x_p)²/(m ω_n²)
     (m = M L/2): the periodic beam-column's whole, :func:`periodic_point_deflection` at s = 0, less the kept modes'
     terms (the rigid translation has none). It vanishes as N grows (like N⁻³: terms like j⁻⁴); in series with a
-    contact's Hertz spring (:func:`study.solvers.kernels.whirl_kernel.series_hertz`) it makes a held contact's static answer
-    the continuous beam's (docs/reference_model.md §2.1). With the tool joints' mass the kept modes span the same
+    contact's Hertz spring (:func:`study.solvers.kernels.whirl_kernel.series_hertz`) it makes a held contact's static
+    answer the continuous beam's (docs/reference_model.md §2.1). With the tool joints' mass the kept modes span the same
     basis functions, so their static part is the basis' own, a matter of stiffness alone (as in
     :func:`static_correction`): m ω_n² = (L/2)(EI k_n⁴ + T k_n²) on the basis."""
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
@@ -275,9 +277,10 @@ SECOND_MOMENT_HARMONICS = 4096
 
 
 def residual_second_moments(model: "WhirlModel") -> np.ndarray:
-    """(P, P) the modes left out's second moments between the contact points [m/N s²], G_pq = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x_q)
-    /(m ω_n⁴): the mass of the residual vectors (:func:`residual_ritz`); its diagonal is :func:`residual_second_moment`
-    (the tail beyond the harmonics summed counted there only: off it the terms alternate in sign and fall like j⁻⁸)."""
+    """(P, P) the modes left out's second moments between the contact points [m/N s²],
+    G_pq = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x_q) /(m ω_n⁴): the mass of the residual vectors (:func:`residual_ritz`); its diagonal
+    is :func:`residual_second_moment` (the tail beyond the harmonics summed counted there only: off it the terms
+    alternate in sign and fall like j⁻⁸)."""
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     L, N = model.span, model.n_modes
     n = np.arange(N, N + 2 * SECOND_MOMENT_HARMONICS)
@@ -286,7 +289,8 @@ def residual_second_moments(model: "WhirlModel") -> np.ndarray:
     shapes = mode_shapes(model.points, L, n)
     out = (shapes * (model.mass * gain**2)) @ shapes.T
     J = (N + 2 * SECOND_MOMENT_HARMONICS - 1) // 2
-    out[np.diag_indices_from(out)] += model.mass * (2.0 / (L * ei)) ** 2 * (L / (2 * np.pi)) ** 8 / (7.0 * (J + 0.5) ** 7)
+    out[np.diag_indices_from(out)] += (model.mass * (2.0 / (L * ei)) ** 2 * (L / (2 * np.pi)) ** 8
+                                       / (7.0 * (J + 0.5) ** 7))
     return out
 
 

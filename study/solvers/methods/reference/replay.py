@@ -25,7 +25,8 @@ from study.solvers.methods.reference.statistics import whirl_measure
 #: Impacts replayed per window: the largest half and the rest spread evenly over the others (typical strikes).
 REPLAY_IMPACTS = 4
 #: A replay runs this many times the recorded contact's duration past the row before its strike, plus
-#: :data:`REPLAY_MARGIN`: the strike, its rebound and the ringing just after (the stresses' peak may follow the contact).
+#: :data:`REPLAY_MARGIN`: the strike, its rebound and the ringing just after (the stresses' peak may follow the
+#: contact).
 REPLAY_SPAN = 1.5
 REPLAY_MARGIN = 5e-4  #: [s]
 #: Strikes whose contact lasts longer than this many periods of the first mode left out are not replayed: the modes left

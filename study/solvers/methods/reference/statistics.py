@@ -103,9 +103,9 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
     """The outputs of each of consecutive cycles of the motion (a revolution, or the period when periodic):
     :func:`stresses` (with the quasi-static correction of the modes left out wherever a contact force acts,
     :func:`quasi_static_applies`; the fields computed once) and the peak contact force, exact at every step of the
-    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]; :data:`DAMAGE` the Miner's
-    damage of each of :data:`DAMAGE_FIBRES` fibres in the cycle (F,), counted by rainflow over the cycles' joined
-    history at the section of their largest alternating stress (:func:`fibre_damage`)."""
+    integrator; ``correction`` says whether the correction entered, ``start`` is the cycle's start [s]; :data:`DAMAGE`
+    the Miner's damage of each of :data:`DAMAGE_FIBRES` fibres in the cycle (F,), counted by rainflow over the cycles'
+    joined history at the section of their largest alternating stress (:func:`fibre_damage`)."""
     point = DesignPoint.of(point)
     joined = merge(cycles)
     correction = quasi_static_applies(model, joined)
@@ -129,10 +129,10 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
 
 
 #: The local model's own error of a strike's peak force (relative; docs/reference_model.md §2.3): on strikes of three
-#: bouncing points of the default study, taken from their 64-mode runs and replayed at 128 and 256 modes, the local model
-#: from the run's onset speed was a median 1.0-5.0 % above the 256-mode replays (the series law's, still rising) and
-#: 0-8.3 % below their extrapolation by a geometric tail, per point; the largest of those medians, rounded up. The string
-#: thrown onto its joints: 1.5 % under its 256-mode run (tests/physics/test_strike.py).
+#: bouncing points of the default study, taken from their 64-mode runs and replayed at 128 and 256 modes, the local
+#: model from the run's onset speed was a median 1.0-5.0 % above the 256-mode replays (the series law's, still rising)
+#: and 0-8.3 % below their extrapolation by a geometric tail, per point; the largest of those medians, rounded up. The
+#: string thrown onto its joints: 1.5 % under its 256-mode run (tests/physics/test_strike.py).
 LOCAL_STRIKE_ERROR = 0.09
 
 
@@ -164,7 +164,8 @@ def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.nda
     norm = np.maximum(np.hypot(y, w), 1e-300)
 
     def rate(mask):
-        return (y * np.sum(phi * mask * q[:, 2 * N:3 * N], axis=1) + w * np.sum(phi * mask * q[:, 3 * N:4 * N], axis=1)) / norm
+        return (y * np.sum(phi * mask * q[:, 2 * N:3 * N], axis=1)
+                + w * np.sum(phi * mask * q[:, 3 * N:4 * N], axis=1)) / norm
 
     speed = rate(1.0)
     size = np.maximum(np.abs(speed), 1e-300)
@@ -296,20 +297,20 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
 
 def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, segments):
     """:func:`stresses` per segment with the strikes' local bending (``reference_strike_stress = "local"``;
-    docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their
-    strikes (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite beam's moment under the local model's force less the
-    kept modes' share, at the strike's onset speed) is added along the wall's force to the moment at each of
-    :func:`strike_stations`, at the row nearest the time after the onset at which the local moment there peaks
-    (the table's: the run's kept modes then carry what the table's kept modes do, as N grows): the max bending and normal stress of a segment are the larger of the fields' and the
-    struck stations' so corrected, the alternating stress the larger of the fields' and the struck stations' fibre
-    histories with the correction added at the strike's row. Each segment's ``strike_modal``: the stress figures'
-    modal part, absolute — where a struck station's corrected value is the figure, its strike's (``change``): the
-    kept modes' share of the local moment times the run's own strike force's relative difference from the local
-    model's peak (the run's kept modes carry their share under their own force), plus :data:`LOCAL_STRIKE_ERROR` of
-    the local moment (half of it on the alternating stress, a half range of which it moves one extreme); and the quasi-static correction of the loads not masked times :func:`quasi_static_ratio`
-    (``rest``). Returns (values, (masked,
-    pulses_at)), ``pulses_at(station)`` the (R, 2) moments the correction adds at a station for
-    :func:`fibre_damage`."""
+    docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their strikes
+    (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite
+    beam's moment under the local model's force less the kept modes' share, at the strike's onset speed) is added along
+    the wall's force to the moment at each of :func:`strike_stations`, at the row nearest the time after the onset at
+    which the local moment there peaks (the table's: the run's kept modes then carry what the table's kept modes do, as
+    N grows): the max bending and normal stress of a segment are the larger of the fields' and the struck stations' so
+    corrected, the alternating stress the larger of the fields' and the struck stations' fibre histories with the
+    correction added at the strike's row. Each segment's ``strike_modal``: the stress figures' modal part, absolute —
+    where a struck station's corrected value is the figure, its strike's (``change``): the kept modes' share of the
+    local moment times the run's own strike force's relative difference from the local model's peak (the run's kept
+    modes carry their share under their own force), plus :data:`LOCAL_STRIKE_ERROR` of the local moment (half of it on
+    the alternating stress, a half range of which it moves one extreme); and the quasi-static correction of the loads
+    not masked times :func:`quasi_static_ratio` (``rest``). Returns (values, (masked, pulses_at)),
+    ``pulses_at(station)`` the (R, 2) moments the correction adds at a station for :func:`fibre_damage`."""
     N = model.n_modes
     struck = local_strikes(model, window)
     R, P = window.forces.shape[:2]
@@ -541,9 +542,9 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     the window's cycles), ``largest`` (over them), ``error`` (relative standard error of the mean by batch means),
     ``drift`` (relative difference of the window's and the preceding stretch's means), ``significant`` (that
     difference is more than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the
-    window's part of the figure's error: the larger of :data:`CONFIDENCE` standard errors and the drift, and where the motion
-    settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still to
-    come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
+    window's part of the figure's error: the larger of :data:`CONFIDENCE` standard errors and the drift, and where the
+    motion settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still
+    to come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
     out = {}
     h = len(window)
     settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
@@ -675,8 +676,8 @@ def strike_stress_modal_part(cycles: list[Mapping[str, Any]], modal: Mapping[str
     """The stresses' modal part with the strikes' local bending (``reference_strike_stress = "local"``, cycles of
     :func:`cycle_values` carrying ``strike_modal``; docs/reference_model.md §2.3): per stress figure, the mean over
     the cycles of the struck stations' error (:func:`strike_stress_values`) plus the quasi-static correction of the
-    loads that are not strikes times :func:`quasi_static_ratio`, over the figure's mean (the alternating stress's over the
-    larger of it and the max bending stress, as :func:`modal_check`'s). The other figures as ``modal`` states them;
+    loads that are not strikes times :func:`quasi_static_ratio`, over the figure's mean (the alternating stress's over
+    the larger of it and the max bending stress, as :func:`modal_check`'s). The other figures as ``modal`` states them;
     ``modal`` unchanged where no cycle carries a struck joint's correction."""
     taken = [c for c in cycles if "strike_modal" in c]
     if not taken:
@@ -725,7 +726,8 @@ def convergence(point: DesignPoint, model: WhirlModel, window: Window, values: M
                                                floor)}
     # the damage goes as the stress to the S-N curve's power m: the stresses' integrator and modal parts as damage
     exponent = fatigue.damage_exponent(point.limits.sn_curve or "B1")
-    # the peak force is held to its own tolerance: its error counts in the point's as its share of it (stress_equivalent)
+    # the peak force is held to its own tolerance: its error counts in the point's as its share of it
+    # (stress_equivalent)
     force_share = (point.tolerances.tolerance if periodic else point.tolerances.statistical) / point.tolerances.force
     modes[DAMAGE] = (1.0 + modes["alternating_bending_stress"]) ** exponent - 1.0
     # the damage rate goes as the alternating stress to the power m: its window part, as the stress error that makes
@@ -760,10 +762,9 @@ def stress_equivalent(name: str, error: float, exponent: float, force_share: flo
 
 
 def figure_tolerance(name: str, tolerance: float, exponent: float, force: float | None = None) -> float:
-    """The relative error a figure may have at the stress ``tolerance``: the damage's (:data:`DAMAGE`)
-    (1 + tolerance)^m − 1 (27.6 % for 5 % on m = 5), the peak contact force's its own tolerance ``force``
-    (``solver.force_tolerance``, :func:`study.solvers.model.options.force_tolerance`; the stress tolerance where None), the
-    others' the tolerance."""
+    """The relative error a figure may have at the stress ``tolerance``: the damage's (:data:`DAMAGE`) (1 + tolerance)^m
+    − 1 (27.6 % for 5 % on m = 5), the peak contact force's its own tolerance ``force`` (``solver.force_tolerance``,
+    :func:`study.solvers.model.options.force_tolerance`; the stress tolerance where None), the others' the tolerance."""
     if name == DAMAGE:
         return float((1.0 + tolerance) ** exponent - 1.0)
     return float(force) if name == "peak_contact_force" and force is not None else float(tolerance)
