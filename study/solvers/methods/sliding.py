@@ -34,10 +34,9 @@ smaller error (its harmonic truncation and the modes'); where the joints swing f
 coordinates (each touching joint's angle along it and radial approach, :func:`balance`), not answered
 where they swing beyond :data:`STABLE_SWING` (the motion found there was unstable).
 
-Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the
-tangential direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at
-50–150 rpm it had not settled after 120 revolutions, at 1–20 s a point; this state is what it tends to.
-"""
+Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the tangential
+direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at 50–150 rpm it had not
+settled after 120 revolutions, at 1–20 s a point; this state is what it tends to."""
 
 from __future__ import annotations
 
@@ -59,12 +58,10 @@ METHOD = "sliding"
 #: held contact never had), so the restitution never enters. ``auto`` reuses one answer across them (a test holds
 #: the claim).
 INDEPENDENT_OF = ("restitution",)
-#: Samples over the revolution for the outputs and the drag's equal dissipation.
-SAMPLES = 256
+SAMPLES = 256  #: Samples over the revolution for the outputs and the drag's equal dissipation.
 #: Fixed-point iterations on the drag at most, and the relative change of A that ends them.
 ITERATIONS, SETTLED = 50, 1e-10
-#: Changes of the touching set at most.
-ACTIVE_SET_STEPS = 10
+ACTIVE_SET_STEPS = 10  #: Changes of the touching set at most.
 #: e^{iθ} at the phases over the cycle at which the drag's equal dissipation is averaged.
 PHASES = np.exp(1j * np.linspace(0.0, 2 * np.pi, 64, endpoint=False))
 
@@ -124,9 +121,8 @@ def rest(model: reference.WhirlModel) -> dict[str, Any]:
         touching[:] = model.kinds == 1 if np.any(model.kinds == 1) else True
     forces, found = np.zeros((P, 2)), not touching.any()
     lift = np.zeros((rigid.size, 2))  # the rigid coordinates (y, z)
-    # the friction's regularised sign at rest
     s = whirl_physics.friction_factor(whirl_physics.sliding_velocity(0.0, model.rotary_speed, model.radius),
-                                      model.slip_velocity)
+                                      model.slip_velocity)  # the friction's regularised sign at rest
     scale = max(float(np.max(np.abs(held_load))) if held_load.size else 0.0, 1e-300)
     r = rigid.size
     for _ in range(ACTIVE_SET_STEPS * P):
@@ -240,7 +236,8 @@ def whirl(model: reference.WhirlModel, rested: dict[str, Any], contact_scale: fl
             speed = np.hypot((vel[0][:, None] * phase).real, (vel[1][:, None] * phase).real)  # (G, 64)
             mean2 = np.mean(speed**2, axis=1)
             if drag_rule == "dissipation":
-                c_eq = model.drag * np.where(mean2 > 0, np.mean(speed**3, axis=1) / np.where(mean2 > 0, mean2, 1.0), 0.0)
+                c_eq = model.drag * np.where(mean2 > 0,
+                                             np.mean(speed**3, axis=1) / np.where(mean2 > 0, mean2, 1.0), 0.0)
             else:
                 c_eq = model.drag * np.mean(speed, axis=1)
             C = (S * (w * c_eq)[:, None]).T @ S / model.mass
@@ -285,9 +282,8 @@ def _dynamic_matrix(model: reference.WhirlModel, stiff: np.ndarray, damp: np.nda
 
 
 def _with_drag(matrix: np.ndarray, frequency: float, drag: np.ndarray) -> np.ndarray:
-    """The modal equations ``matrix`` (2N, 2N) of :func:`_dynamic_matrix` at ``frequency`` [rad/s] with the viscous
-    drag ``drag`` (N, N) per modal mass, the same in both directions: + i frequency · drag on each direction's
-    block."""
+    """The modal equations ``matrix`` (2N, 2N) of :func:`_dynamic_matrix` at ``frequency`` [rad/s] with the viscous drag
+    ``drag`` (N, N) per modal mass, the same in both directions: + i frequency · drag on each direction's block."""
     N = drag.shape[0]
     out = matrix.copy()
     term = 1j * frequency * drag
@@ -362,7 +358,8 @@ def revolution(model: reference.WhirlModel, rested: dict[str, Any], whirled: dic
     states = np.zeros((t.size, 4 * N + 4))
     states[:, :2 * N], states[:, 2 * N:4 * N] = q, v
     window = reference.Window(times=t, states=states, forces=np.concatenate((forces, fn[..., None]), axis=-1),
-                              peak=peak, onsets=np.zeros(P, np.int64), contact_time=np.where(touching, model.period, 0.0),
+                              peak=peak, onsets=np.zeros(P, np.int64),
+                              contact_time=np.where(touching, model.period, 0.0),
                               any_contact_time=model.period if np.any(touching) else 0.0, start=0.0, end=model.period)
     return window, sizes
 
@@ -457,7 +454,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         factor = linalg.lu_factor(matrix, check_finite=False)
         inverse.append(factor)
         receptance.append(B @ linalg.lu_solve(factor, B.T.astype(complex) / model.mass, check_finite=False))
-    # the real Fourier basis over the samples: a0, then (Re, Im) of each harmonic: x(θ) = a0 + Σ Re c_h cos hθ − Im c_h sin hθ
+    # the real Fourier basis over the samples: a0, then (Re, Im) of each harmonic:
+    # x(θ) = a0 + Σ Re c_h cos hθ − Im c_h sin hθ
     theta = 2 * np.pi * np.arange(M) / M
     E, Ed = np.zeros((M, 2 * H + 1)), np.zeros((M, 2 * H + 1))
     E[:, 0] = 1.0
@@ -613,7 +611,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
     return dict(harmonics=Q, iterations=iteration, change=change, settled=settled)
 
 
-#: The unknowns of :func:`balance` at the touching points: displacements in y and z, or angle along the wall and approach.
+#: The unknowns of :func:`balance` at the touching points: displacements in y and z, or angle along the wall and
+#: approach.
 BALANCE_COORDINATES = ("cartesian", "polar")
 
 
@@ -892,7 +891,8 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
             if k or coordinates == "cartesian":  # the coarser motion's, or the Cartesian one's (as before): no answer
                 return None
             where = ", ".join(f"{x:.3g} m" for x in model.points[opens | strikes])
-            how = f"during the revolution at {where} by harmonic balance in the wall's coordinates ({harmonics} harmonics)"
+            how = (f"during the revolution at {where} by harmonic balance in the wall's coordinates "
+                   f"({harmonics} harmonics)")
             return dict(opens=f"the contact opens {how}: the pipe bounces" if np.any(opens) else
                         f"a point off the wall reaches it {how}")
     if not coarse["settled"]:
@@ -987,8 +987,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
             where_on = " in the wall's coordinates" if fine["coordinates"] == "polar" else ""
             return finish("ok", f"{lying}±{swing:.3g} N as the eccentric load turns; harmonic balance of the exact "
                                 f"contact and drag{where_on} in {fine['iterations']} iterations (the linearisation's "
-                                f"{linearisation:.2g} removed), {fine['harmonics']} against {fine['coarser']} harmonics "
-                                f"{fine['harmonic_error']:.2g}, {model.n_modes} against {COARSE_MODES} modes "
+                                f"{linearisation:.2g} removed), {fine['harmonics']} against {fine['coarser']} "
+                                f"harmonics {fine['harmonic_error']:.2g}, {model.n_modes} against {COARSE_MODES} modes "
                                 f"{truncation:.2g} (on the linear state)")
     fn = state["window"].forces[:, :, 2]
     swing = float(np.max(np.max(fn, axis=0) - np.min(fn, axis=0)) / 2)
