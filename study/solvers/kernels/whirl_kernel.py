@@ -39,7 +39,9 @@ Right-hand side (per modal mass m = M L/2, φ_pn = ψ_n(x_p), the periodic basis
 with the contact force on the pipe at point p, penetration δ = |u_p| − c_p, outward normal n̂,
 t̂ = e_x × n̂:  F_p = −F_n n̂ − μ F_n v_s/√(v_s² + v_ε²) t̂, v_s = u̇_p·t̂ + Ω r_p, and
 F_n = F_s(δ)(1 + χ_p δ̇)₊ (law 0, Hertz with Hunt–Crossley damping) or (k_p δ + c_p δ̇)₊ (law 1,
-linear penalty spring-dashpot). F_s is the Hertz spring K_p δ_H^{3/2} in series with the residual flexibility f_p
+linear penalty spring-dashpot); or, for a strike at a tool joint with ``reference_strike_force = "pulse"``, the local
+strike's force history at its onset speed (:func:`pulse_force`, docs/reference_model.md §2.4), after which the point's
+wall is shifted to where the kept modes put the point (``P_SHIFT``). F_s is the Hertz spring K_p δ_H^{3/2} in series with the residual flexibility f_p
 of the modes left out at the point (:func:`series_hertz`; f_p = 0: Hertz alone; docs/reference_model.md §2.1);
 the penalty's k_p has it folded in by the model.
 """
@@ -180,7 +182,9 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
 
     sy = (omega2, damping, eccentric (1 or 2, N: in phase with cos Ωt, and in quadrature where the joints'
     eccentricities turn), side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
-    fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring):
+    fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring; then the
+    strikes' pulse tables, floor (P,), log speeds (S,), log peaks and log durations (P, S), shape coefficients (P, S, 4,
+    G − 1), and the per-point pulse state (P, N_PULSE_STATE), :func:`kernel_system`):
     the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
     there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
@@ -377,11 +381,16 @@ def _start_strike(p, t, speed, pst, floor, logv, lpeak, ldur, K):
     returns whether it did (else the contact law takes it)."""
     if not speed >= floor[p]:
         return False
-    x = np.log(speed)
     S = logv.size
+    v = min(speed, np.exp(logv[S - 1]))  # the table's top speed at most
     i = 0
-    while i < S - 2 and x >= logv[i + 1]:
+    while i < S - 2 and v >= np.exp(logv[i + 1]):
         i += 1
+    # log v0 by Newton's method on e^x = v0 from the table's log speed below it (np.log is not among the functions
+    # advance may call: :data:`FASTMATH`): quadratic from within a table step, 1e-16 in six
+    x = logv[i]
+    for _ in range(6):
+        x -= 1.0 - v * np.exp(-x)
     w = (x - logv[i]) / (logv[i + 1] - logv[i])
     if w > 1.0:
         w = 1.0
@@ -760,7 +769,9 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
 def kernel_system(sy: tuple) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`) before
-    the residual flexibility per point."""
+    the residual flexibility per point; then the strikes' pulse tables (the model's, in logs; without them a floor no
+    speed reaches) and a fresh per-point pulse state (P, :data:`N_PULSE_STATE`), which :func:`advance` updates (the
+    clearances are the kernel's own copy: a shifted wall moves them)."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -806,7 +817,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     Lz + N). The contact bookkeeping, the step cap and the counts are the same. A Dormand–Prince step is no
     longer than ``h_stable`` (its stability on the modes' frequencies), a Lawson step no longer than ``h_max``.
 
-    ``active``/``chi`` (P,): contact state, updated. ``scale`` (4N,): error scale of the dynamic
+    ``active``/``chi`` (P,): contact state, updated (and the strikes' pulse state, the last entry of ``sy``). ``scale`` (4N,): error scale of the dynamic
     entries (c for q, Ωc for q̇); error per entry (z5 − z4)/(rtol (scale + |z|)), RMS ≤ 1 accepted.
     ``peak`` (P,): largest F_n; ``onsets`` (P,): contact onsets; ``contact_time`` (P,): time in
     contact; ``stats`` (N_STATS,): the work, added to (S_* above). With ``record``, rows (t, z, F) are
