@@ -416,7 +416,7 @@ def pulse_force(time, speed, table: dict[str, np.ndarray]) -> np.ndarray:
     """The local strike's force F(t) [N] at ``time`` t [s] after its onset (array; 0 outside [0, T_c]) at approach
     ``speed`` v0 [m/s], from :func:`strike_pulse_table`'s ``table`` as the reference run's kernel interpolates it:
     F_peak and T_c in log-log between the table's speeds, the shape linearly in log v0 between theirs, each by its
-    cubic spline in t/T_c (``study.solvers.kernels.whirl_kernel.pulse_force`` the same, compiled)."""
+    cubic spline in t/T_c (``study.solvers.kernels.pulse.pulse_force`` the same, compiled)."""
     speeds = table["speeds"]
     x = np.log(np.clip(float(speed), speeds[0], speeds[-1]))
     i = min(int(np.searchsorted(np.log(speeds), x, side="right")) - 1, speeds.size - 2)
