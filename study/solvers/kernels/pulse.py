@@ -1,6 +1,7 @@
 """The strikes' pulses of the reference model's integrator (``reference_strike_force = "pulse"``;
 docs/reference_model.md §2.4): the per-point pulse state's columns and the kernels :func:`whirl_kernel.advance` and
-:func:`whirl_kernel.rhs` inline (``inline="always"``: nothing compiled apart is linked into advance, whirl_kernel.FASTMATH)
+:func:`whirl_kernel.rhs` inline (``inline="always"``: nothing compiled apart is linked into advance,
+whirl_kernel.FASTMATH)
 to start a strike's pulse and to give its force at a time."""
 
 from __future__ import annotations

@@ -41,7 +41,8 @@ t̂ = e_x × n̂:  F_p = −F_n n̂ − μ F_n v_s/√(v_s² + v_ε²) t̂, v_s 
 F_n = F_s(δ)(1 + χ_p δ̇)₊ (law 0, Hertz with Hunt–Crossley damping) or (k_p δ + c_p δ̇)₊ (law 1,
 linear penalty spring-dashpot); or, for a strike at a tool joint with ``reference_strike_force = "pulse"``, the local
 strike's force history at its onset speed (:func:`pulse_force`, docs/reference_model.md §2.4), after which the point's
-wall is shifted to where the kept modes put the point (``P_SHIFT``). F_s is the Hertz spring K_p δ_H^{3/2} in series with the residual flexibility f_p
+wall is shifted to where the kept modes put the point (``P_SHIFT``). F_s is the Hertz spring K_p δ_H^{3/2} in series
+with the residual flexibility f_p
 of the modes left out at the point (:func:`series_hertz`; f_p = 0: Hertz alone; docs/reference_model.md §2.1);
 the penalty's k_p has it folded in by the model.
 """
@@ -169,7 +170,8 @@ def drag_halves(S):
 @numba.njit(cache=True, nogil=True, inline="always")
 def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     """ż into ``out`` (without ``linear``, only its nonlinear part N(t, z), ż − Lz: the modal terms q̇ and
-    −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n) per point into ``fc`` (P, 3); penetration
+    −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n)
+    per point into ``fc`` (P, 3); penetration
     and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (6, G) holds the drag points' velocities and
     their half sums.
 
@@ -361,7 +363,8 @@ def _error_norm(difference, z, znew, scale, rtol, N):
 def _step(t, z, h, chi, sy, k, stage, znew, fc, pen, scratch, scale, rtol, N):
     """One Dormand–Prince step from (t, z) with k[0] = f(t, z) given: the 5th-order state into ``znew``, its
     derivative (the next step's first stage) into k[6], with the forces and penetrations there in ``fc``
-    and ``pen``; ``stage`` ends holding the embedded difference z5 − z4. Returns its error norm (:func:`_error_norm`)."""
+    and ``pen``; ``stage`` ends holding the embedded difference z5 − z4. Returns its error norm
+    (:func:`_error_norm`)."""
     n = z.size
     for s in range(1, 6):
         for i in range(n):
@@ -503,7 +506,8 @@ def _lawson_step(t, z, h, chi, sy, k, kv, ex, stage, vend, shift, znew, fc, pen,
     part, ``rhs`` without ``linear``; Lawson 1967, doi:10.1137/0704033; Hochbruck & Ostermann 2010 §2.4,
     doi:10.1017/S0962492910000048), taken about the step's first force: the free motion under the constant
     force N_0 = k[0] is the free motion about the static deflection u_s = −L⁻¹N_0 (q_s = f/ω² per mode, into
-    ``shift``; a mode with ω = 0 has none and keeps the plain Lawson form, N_0 in its stages), so with w = u − u_s, w' = Lw + N(t, w + u_s) − N_0 exactly, and the Dormand–Prince pair is
+    ``shift``; a mode with ω = 0 has none and keeps the plain Lawson form, N_0 in its stages), so with w = u − u_s,
+    w' = Lw + N(t, w + u_s) − N_0 exactly, and the Dormand–Prince pair is
     applied to v(τ) = e^{−τL} w(t + τ): stage s is U_s = u_s + e^{c_s hL}[w_0 + h Σ_j a_sj e^{−c_j hL}(N_j − N_0)].
     The modes' free motion is exact at any step, and so is a rest under constant forces, which the plain
     Lawson form is not (its N_0 turns in e^{−τL} at the modes' frequencies; a contact held against the modes'
@@ -758,7 +762,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     Lz + N). The contact bookkeeping, the step cap and the counts are the same. A Dormand–Prince step is no
     longer than ``h_stable`` (its stability on the modes' frequencies), a Lawson step no longer than ``h_max``.
 
-    ``active``/``chi`` (P,): contact state, updated (and the strikes' pulse state, the last entry of ``sy``). ``scale`` (4N,): error scale of the dynamic
+    ``active``/``chi`` (P,): contact state, updated (and the strikes' pulse state, the last entry of ``sy``).
+    ``scale`` (4N,): error scale of the dynamic
     entries (c for q, Ωc for q̇); error per entry (z5 − z4)/(rtol (scale + |z|)), RMS ≤ 1 accepted.
     ``peak`` (P,): largest F_n; ``onsets`` (P,): contact onsets; ``contact_time`` (P,): time in
     contact; ``stats`` (N_STATS,): the work, added to (S_* above). With ``record``, rows (t, z, F) are
