@@ -111,6 +111,16 @@ class WhirlModel:
                              / self.props["mass_per_length"]))
 
     @property
+    def joint_spacing(self) -> float:
+        """The least spacing [m] of the tool joints along the string (of the section's joint contact points where the
+        joints' places are not given; the section's length with one joint or none): how far a strike's bending waves
+        travel to the next joint and back (:func:`study.physics.strike.return_time`)."""
+        joints = np.sort(self.points[self.kinds == 1])
+        if self.joint_x.size > 1:
+            return float(np.min(np.diff(np.sort(self.joint_x))))
+        return float(np.min(np.diff(joints))) if joints.size > 1 else float(self.span)
+
+    @property
     def period(self) -> float:
         return 2.0 * np.pi / self.rotary_speed
 
@@ -476,8 +486,7 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
     if joints.size == 0 or model.joint_mass <= 0.0:
         return None
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    spacing = (float(np.min(np.diff(np.sort(model.joint_x)))) if model.joint_x.size > 1 else
-               float(np.min(np.diff(np.sort(model.points[joints])))) if joints.size > 1 else model.span)
+    spacing = model.joint_spacing
     P = model.points.size
     S, G = strike.TABLE_SPEEDS.size, strike.PULSE_GRID
     floor = np.full(P, np.inf)

@@ -190,9 +190,7 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
     fn = window.forces[:, :, 2]
     rows, points, speed, share = strike_speeds(model, window)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    spacing = float(np.min(np.diff(np.sort(model.joint_x)))) if model.joint_x.size > 1 else (
-        float(np.min(np.diff(np.sort(model.points[model.kinds == 1])))) if np.count_nonzero(model.kinds == 1) > 1
-        else model.span)
+    spacing = model.joint_spacing
     local = fn.copy()  # the recorded forces, a strike's rows replaced by nothing and its local peak put at its onset
     extra = np.zeros(fn.shape[0])
     taken = np.zeros(fn.shape[0], int)  # strikes taken locally, per onset row
@@ -273,9 +271,7 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     fn = window.forces[:, :, 2]
     rows, points, speed, _ = strike_speeds(model, window)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    spacing = float(np.min(np.diff(np.sort(model.joint_x)))) if model.joint_x.size > 1 else (
-        float(np.min(np.diff(np.sort(model.points[model.kinds == 1])))) if np.count_nonzero(model.kinds == 1) > 1
-        else model.span)
+    spacing = model.joint_spacing
     keep = np.zeros(rows.size, bool)
     for p in np.unique(points):
         at = points == p
