@@ -55,7 +55,7 @@ from study.physics.restitution import check_range
 __all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
            "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
            "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
-           "moment_correction", "strike_pulse_table", "pulse_force"]
+           "moment_correction", "strike_pulse_table"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):
@@ -410,25 +410,3 @@ def strike_pulse_table(joint_mass: float, stiffness: float, mass_per_length: flo
     return dict(speeds=TABLE_SPEEDS.copy(), peak=np.array(peaks), duration=np.array(durations),
                 impulse=np.array(impulses), ended=np.array(ended), shape=np.array(shapes), grid=s,
                 coefficients=np.array(coefficients))
-
-
-def pulse_force(time, speed, table: dict[str, np.ndarray]) -> np.ndarray:
-    """The local strike's force F(t) [N] at ``time`` t [s] after its onset (array; 0 outside [0, T_c]) at approach
-    ``speed`` v0 [m/s], from :func:`strike_pulse_table`'s ``table`` as the reference run's kernel interpolates it:
-    F_peak and T_c in log-log between the table's speeds, the shape linearly in log v0 between theirs, each by its
-    cubic spline in t/T_c (``study.solvers.kernels.pulse.pulse_force`` the same, compiled)."""
-    speeds = table["speeds"]
-    x = np.log(np.clip(float(speed), speeds[0], speeds[-1]))
-    i = min(int(np.searchsorted(np.log(speeds), x, side="right")) - 1, speeds.size - 2)
-    w = (x - np.log(speeds[i])) / (np.log(speeds[i + 1]) - np.log(speeds[i]))
-    peak = np.exp((1 - w) * np.log(table["peak"][i]) + w * np.log(table["peak"][i + 1]))
-    duration = np.exp((1 - w) * np.log(table["duration"][i]) + w * np.log(table["duration"][i + 1]))
-    s = np.asarray(time, float) / duration
-    g = table["grid"].size - 1
-    j = np.clip(np.floor(s * g).astype(int), 0, g - 1)
-    dx = s - j / g
-    shape = 0.0
-    for k, weight in ((i, 1 - w), (i + 1, w)):
-        c = table["coefficients"][k]
-        shape = shape + weight * (((c[0, j] * dx + c[1, j]) * dx + c[2, j]) * dx + c[3, j])
-    return np.where((s >= 0.0) & (s <= 1.0), peak * shape, 0.0)

@@ -8,7 +8,7 @@ import pytest
 
 from study import config
 from study.physics import strike
-from study.solvers.kernels import whirl_kernel
+from study.solvers.kernels import pulse, whirl_kernel
 from study.solvers.methods import reference
 from study.solvers.methods.reference.fields import energy_balance
 from study.solvers.model import options
@@ -47,14 +47,17 @@ def test_the_pulse_carries_the_local_strikes_impulse_and_history(default_point):
     # the tabulated history (17 speeds, the shape on 65 points of t/T_c, interpolated in log v0) against a direct run of
     # the local model (study.physics.strike.strike, 200 steps a rise) between the table's speeds: measured 0.05-0.07 %
     # off in the impulse, 0.2-0.3 % of the peak in the history, 1e-5 in the peak (default joint, e = 0.7)
+    # the kernel's own history (kernels.pulse's start_strike and pulse_force on the model's kernel tuple)
     m = reference.build_model({**default_point(250, 5, 0.7, 9, 0.0), "reference_modes": 16,
                                "reference_strike_force": "pulse"})
-    _, args = _joint(m)
-    table = strike.strike_pulse_table(*args)
+    p, args = _joint(m)
+    sy = whirl_kernel.kernel_system(m.system())
+    floor, logv, lpeak, ldur, coef, state = sy[15:21]
     for speed in (0.05, 1.7):
         direct = strike.strike(*args[:4], speed, args[4], 200)
         t = np.linspace(0.0, 1.5 * direct.duration, 3001)
-        force = strike.pulse_force(t, speed, table)
+        assert pulse.start_strike(p, 0.0, speed, state, floor, logv, lpeak, ldur, sy[9])
+        force = np.array([pulse.pulse_force(time, state, coef, p) for time in t])
         assert np.trapezoid(force, t) == pytest.approx(np.trapezoid(direct.force, direct.times), rel=5e-3)
         off = np.max(np.abs(force - np.interp(t, direct.times, direct.force, right=0.0))) / direct.peak_force
         assert off < 0.01, (speed, off)

@@ -26,7 +26,7 @@ def pulse_force(t, pst, pcoef, p):
     """The normal force [N] at time t [s] of the strike whose pulse point p is under (its state ``pst[p]``, the
     :data:`P_MODE` … columns): the local model's history at its onset speed (study.physics.strike.strike_pulse_table),
     F_peak times its shape at s = (t − t0)/T_c, each speed's natural cubic spline in s (``pcoef`` (P, S, 4, G − 1))
-    weighed linearly in log v0 between the two table speeds about v0 (as study.physics.strike.pulse_force); 0
+    weighed linearly in log v0 between the two table speeds about v0; 0
     outside 0 < s < 1 and where the spline dips below 0."""
     s = (t - pst[p, P_T0]) / pst[p, P_DURATION]
     if s <= 0.0 or s >= 1.0:
