@@ -321,8 +321,7 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     offsets = strike_stations(point)
     full = strike_moment_tables(point, model)
     S = struck["rows"].size
-    corrections, errors, locals_ = np.zeros((S, offsets.size)), np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
-    superposed = point.reference.reference_strike_stress == "superposed"
+    corrections, errors = np.zeros((S, offsets.size)), np.zeros((S, offsets.size))
     at_rows = np.zeros((S, offsets.size), int)  # the rows nearest each station's local peak after the onset
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     for p in np.unique(struck["points"]):
@@ -337,7 +336,6 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
         # the local model's own error on what it gives
         errors[at] = (np.abs(kept) * np.abs(own / local - 1.0)[:, None]
                       + LOCAL_STRIKE_ERROR * np.abs(corrections[at] + kept))
-        locals_[at] = corrections[at] + kept
         speeds, times = full[int(p)][0], full[int(p)][2]
         v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
         for s in range(offsets.size):
@@ -372,18 +370,7 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     def pulses(i, table):
         out = np.zeros((R, 2))
         for k, s in stations[xs[i]]:
-            row = at_rows[k, s]
-            if superposed:  # the moment at the onset plus the local one: the run's own strike response replaced
-                onset = struck["rows"][k]
-                out[row] += locals_[k, s] * struck["directions"][k] - np.array(
-                    [moments[j][row, i] - moments[j][onset, i] for j in range(2)])
-                before = max(onset - 1, 0)
-                span = float(window.times[onset] - window.times[before])
-                drift = (float(np.hypot(*[moments[j][onset, i] - moments[j][before, i] for j in range(2)]))
-                         * float(window.times[row] - window.times[onset]) / span if span > 0 else 0.0)
-                errors[k, s] = LOCAL_STRIKE_ERROR * abs(locals_[k, s]) + drift
-            else:
-                out[row] += table[k, s] * struck["directions"][k]
+            out[at_rows[k, s]] += table[k, s] * struck["directions"][k]
         return out
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
