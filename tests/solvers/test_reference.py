@@ -397,6 +397,12 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
     # the default growth ("point") stops at the first look: the force cannot get there, so the point stays over
     held = solve_point({**point, "reference_window_growth": "point"}, "reference")
     assert held.values["revolutions_simulated"] == first.values["revolutions_simulated"]
+    # and its message says so: the figures over their tolerance within reach were stopped by the force, not by a
+    # budget they would exceed (their forecasts are within it)
+    stopped = held.extras["window_stopped_by"]
+    assert stopped.pop("peak_contact_force") == "modes" and stopped and set(stopped.values()) == {"others"}
+    assert "window stopped as peak force could not get there" in held.message
+    assert "more than the budget" not in held.message
     grown = solve_point(point, "reference")
     assert grown.extras["whirl"] == "bouncing" and grown.status == "not_converged"
     assert grown.values["revolutions_simulated"] > first.values["revolutions_simulated"]
@@ -419,6 +425,31 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
     for name in ("max_normal_stress", "alternating_bending_stress", "max_deflection", "peak_contact_force"):
         off = abs(grown.values[name] / longer.values[name] - 1.0)
         assert off <= parts[name]["window"] + longer.extras["convergence"][name]["window"], name
+
+
+def test_the_stopped_windows_message_says_why_each_figure_stopped():
+    # issue 36: a figure left over its tolerance stopped for its own reason (its modes part, its forecast beyond
+    # FORECAST_SLACK x the budget, the budget spent) or, with reference_window_growth = "point", because another could
+    # not get there; the message said "more than the budget" of 42 revolutions under a budget of 200
+    slack = reference.FORECAST_SLACK
+    needed = {"peak_contact_force": np.inf, "alternating_bending_stress": 42.0,
+              "max_normal_stress": slack * 200 + 1.0}
+    assert reference.method.stop_reasons(needed, 24, 200) == {
+        "peak_contact_force": "modes", "alternating_bending_stress": "others", "max_normal_stress": "forecast"}
+    labels = {"peak_contact_force": "peak force", "alternating_bending_stress": "alternating stress",
+              "max_normal_stress": "max normal stress"}
+    text = reference.method.stop_message(needed, reference.method.stop_reasons(needed, 24, 200), 200, labels)
+    assert ("alternating stress: about 42 revolutions in all would, within reach of the budget of 200 "
+            "(solver.reference_max_revolutions), but the window stopped as peak force and max normal stress could not "
+            "get there") in text
+    assert f"max normal stress: about {slack * 200 + 1:.0f} revolutions in all would, beyond {slack:g} times" in text
+    assert "peak force: more revolutions would not bring it within" in text
+    # the budget spent: more than it, as said before
+    assert reference.method.stop_reasons({"max_normal_stress": 250.0}, 200, 200) == {"max_normal_stress": "budget"}
+    assert "more than the budget of 200" in reference.method.stop_message(
+        {"max_normal_stress": 250.0}, {"max_normal_stress": "budget"}, 200, labels)
+    # a forecast asking for no more (a settling ratio of nought) is not called out of reach
+    assert reference.method.stop_reasons({"max_normal_stress": 24.0}, 24, 200) == {"max_normal_stress": "none"}
 
 
 def test_the_force_is_held_to_its_own_tolerance_in_the_point_estimate():

@@ -50,7 +50,8 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
     revolutions (before the window), window (:class:`Window` or None), cycles and preceding (per-cycle values of the
     window and of the stretch before it, :func:`cycle_values`), budget_spent (stopped over the tolerance: the budget
     would not do), revolutions_needed (the revolutions in all foreseen to bring every figure within the tolerance; inf
-    where more would not), needed_by (the same per figure left over its tolerance), ratio (:func:`settle_ratio`),
+    where more would not), needed_by (the same per figure left over its tolerance), stopped_by (why the window
+    stopped for each of those, :func:`stop_reasons`), ratio (:func:`settle_ratio`),
     failure (text or None), stationary (the transient ended as the bouncing was found stationary), modal
     (:func:`modal_check` of the window), stats (:func:`settling` of the window as the last look took it; None when
     periodic).
@@ -105,7 +106,7 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
             bouncing = True
             break
     done = len(states) - 1
-    budget_spent, needed, needed_by = False, float(done), {}
+    budget_spent, needed, needed_by, stopped_by = False, float(done), {}, {}
     if period:
         blocks = []
         for _ in range(max(1, int(np.ceil(n_window / period)))):
@@ -190,6 +191,7 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
             needed_by = {name: float(used + m) for name, m in wants.items()}
             if more == 0.0 or used >= budget:
                 budget_spent = bool(wants)
+                stopped_by = stop_reasons(needed_by, used, budget)
                 break
             # on towards where the figures are foreseen to be within the tolerance, at least a window more and at most
             # the record's length again (a forecast from a short record's scatter is itself rough): few looks; the
@@ -202,9 +204,56 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
         done = used - len(window_cycles)
     return dict(model=model, integrator=run, verdict="periodic" if period else "not_periodic", period=period,
                 revolutions=done, window=window, cycles=[v for _, v in window_cycles], preceding=preceding,
-                budget_spent=budget_spent, revolutions_needed=float(needed), needed_by=needed_by, ratio=ratio,
+                budget_spent=budget_spent, revolutions_needed=float(needed), needed_by=needed_by,
+                stopped_by=stopped_by, ratio=ratio,
                 failure=None, stationary=bouncing, modal=modal, stats=None if period else stats,
                 replay=replays.get("replay"))
+
+
+def stop_reasons(needed_by: Mapping[str, float], used: int, budget: int) -> dict[str, str]:
+    """Why the window stopped (:func:`simulate`) for each figure left over its tolerance, from the revolutions in all
+    foreseen to bring it within (``needed_by``; inf where more would not), the revolutions ``used`` and the
+    ``budget``: "modes" (its modes or integrator part alone is over the tolerance), "forecast" (its own forecast
+    beyond :data:`FORECAST_SLACK` times the budget), "budget" (the budget spent), "others" (within reach, the window
+    stopped by a figure that could not get there: ``reference_window_growth = "point"``), "none" (its forecast asks
+    for no more revolutions)."""
+    def reason(n: float) -> str:
+        if not np.isfinite(n):
+            return "modes"
+        if n > FORECAST_SLACK * budget:
+            return "forecast"
+        if n <= used:
+            return "none"
+        if used >= budget:
+            return "budget"
+        # within reach and the budget not spent: the window stopped only as another figure could not get there
+        return "others" if any(m > FORECAST_SLACK * budget for m in needed_by.values()) else "none"
+
+    return {name: reason(n) for name, n in needed_by.items()}
+
+
+def stop_message(needed_by: Mapping[str, float], stopped_by: Mapping[str, str], budget: int,
+                 labels: Mapping[str, str]) -> str:
+    """The message's account of a window stopped over the tolerance: each figure left over it (``labels`` its name)
+    and why (:func:`stop_reasons`)."""
+    blocking = [labels[name] for name, why in stopped_by.items() if why in ("modes", "forecast")]
+    budget_text = f"the budget of {budget} (solver.reference_max_revolutions)"
+
+    def why(name: str, n: float) -> str:
+        reason = stopped_by.get(name, "budget")
+        if reason == "modes":
+            return "more revolutions would not bring it within (its modes or integrator part is over)"
+        if reason == "forecast":
+            return (f"about {n:.0f} revolutions in all would, beyond {FORECAST_SLACK:g} times {budget_text}: its "
+                    f"forecast is out of reach")
+        if reason == "others":
+            return (f"about {n:.0f} revolutions in all would, within reach of {budget_text}, but the window stopped "
+                    f"as {' and '.join(blocking)} could not get there (solver.reference_window_growth = \"point\")")
+        if reason == "none":
+            return "its forecast asked for no more revolutions"
+        return f"about {n:.0f} revolutions in all would, more than {budget_text}, spent"
+
+    return "; ".join(f"{labels[name]}: {why(name, n)}" for name, n in needed_by.items())
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -421,6 +470,7 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                          revolutions_needed=float(run.get("revolutions_needed", np.nan)),
                          modal_quarter_fraction=quarter,
                          revolutions_needed_by_figure=dict(run.get("needed_by") or {}),
+                         window_stopped_by=dict(run.get("stopped_by") or {}),
                          modal_error={name: float(v) for name, v in (modal or {}).items()},
                          replay=None if replayed is None else replay_summary(replayed),
                          convergence={name: {**e, "drift": stats[name]["drift"], "standard_error": stats[name]["error"]}
@@ -432,13 +482,10 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     stopped = ""
     if run["budget_spent"]:
         # each figure left over its tolerance, and why: the window grew for the others all the same
-        why = [f"{names[name]}: more revolutions would not bring it within (its modes or integrator part is over)"
-               if not np.isfinite(n) else
-               f"{names[name]}: about {n:.0f} revolutions in all would, more than the budget of "
-               f"{option.reference_max_revolutions} (solver.reference_max_revolutions)"
-               for name, n in (run.get("needed_by") or {}).items()]
-        stopped = "; over the tolerance after the window grew for every figure that could get there: " + (
-            "; ".join(why) if why else f"about {needed:.0f} revolutions in all would bring them within")
+        why = stop_message(run.get("needed_by") or {}, run.get("stopped_by") or {},
+                           int(option.reference_max_revolutions), names)
+        stopped = "; over the tolerance where the window stopped: " + (
+            why or f"about {needed:.0f} revolutions in all would bring them within")
     figures = ", ".join(f"{names[name]} {e['total']:.2%} (mostly {e['dominant']}: window {e['window']:.2%}, "
                         f"integrator {e['integrator']:.1e}, "
                         f"modes {e['modes']:.2%})"
