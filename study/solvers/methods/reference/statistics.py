@@ -188,36 +188,23 @@ def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dic
     upper modes' share of the onset speed of the strike with the largest local force (:func:`strike_speeds`),
     ``reflection`` the largest contact duration over the waves' return time."""
     fn = window.forces[:, :, 2]
-    rows, points, speed, share = strike_speeds(model, window)
-    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    spacing = model.joint_spacing
+    struck = local_strikes(model, window)
+    rows = struck["rows"]
     local = fn.copy()  # the recorded forces, a strike's rows replaced by nothing and its local peak put at its onset
-    extra = np.zeros(fn.shape[0])
-    taken = np.zeros(fn.shape[0], int)  # strikes taken locally, per onset row
-    long_rows = np.zeros(fn.shape[0], int)
-    reflection = np.zeros(fn.shape[0])
-    speed_at = np.zeros(fn.shape[0])
-    speed_at[rows] = speed
-    forces, durations = np.zeros(rows.size), np.zeros(rows.size)
-    for p in np.unique(points):  # one interpolation per joint (its wall's K)
-        at = points == p
-        forces[at], durations[at] = strike.peak_force(speed[at], model.joint_mass, model.stiffness[p], rho, ei,
-                                                      model.hysteresis)
-    ratios = durations / strike.return_time(durations, spacing, rho, ei)
-    for row, p, force, ratio in zip(rows, points, forces, ratios):
-        reflection[row] = ratio
-        if ratio >= 1.0:
-            long_rows[row] += 1
-            continue
-        end = row
-        while end < fn.shape[0] and fn[end, p] > 0:
-            end += 1
+    for row, end, p in zip(rows, struck["ends"], struck["points"]):
         local[row:end, p] = 0.0
-        extra[row] = max(extra[row], float(force))
-        taken[row] += 1
+    extra = np.zeros(fn.shape[0])
+    np.maximum.at(extra, rows, struck["forces"])
+    taken = np.bincount(rows, minlength=fn.shape[0])  # strikes taken locally, per onset row
+    long_rows = np.bincount(struck["long_rows"], minlength=fn.shape[0])
+    reflection = np.zeros(fn.shape[0])
+    np.maximum.at(reflection, np.concatenate((rows, struck["long_rows"])),
+                  np.concatenate((struck["ratios"], struck["long_ratios"])))
+    speed_at = np.zeros(fn.shape[0])
+    speed_at[rows] = struck["speeds"]
     out = []
     shares = np.zeros(fn.shape[0])
-    shares[rows] = share
+    shares[rows] = struck["shares"]
     for a, b in segments:
         largest = a + int(np.argmax(extra[a:b])) if b > a else a  # the cycle's strongest strike taken locally
         out.append(dict(peak_contact_force=float(max(np.max(local[a:b], initial=0.0), np.max(extra[a:b], initial=0.0))),
@@ -263,21 +250,26 @@ def strike_moment_tables(point: DesignPoint, model: WhirlModel, kept: int | None
 
 def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     """The window's strikes at the tool joints taken by their local model (:func:`strike_speeds`; those whose contact
-    ends before the neighbouring joints' waves come back, as :func:`local_strike_forces` takes them): ``rows`` the
-    onsets, ``points``, ``speeds`` [m/s], ``ends`` the first row after the run's contact, ``peaks`` the row of the
-    run's largest force in it, ``directions`` (S, 2) the unit direction of the wall's force on the pipe (towards the
-    hole's axis from the joint)."""
+    ends before the neighbouring joints' waves come back, :func:`study.physics.strike.return_time`, the joints' spacing
+    away): ``rows`` the onsets, ``points``, ``speeds`` [m/s], ``shares`` their modal parts (:func:`strike_speeds`),
+    ``forces`` the local model's peak force [N] (:func:`study.physics.strike.peak_force` at the onset speed),
+    ``ratios`` the contact's duration over the waves' return time, ``ends`` the first row after the run's contact,
+    ``peaks`` the row of the run's largest force in it, ``directions`` (S, 2) the unit direction of the wall's force on
+    the pipe (towards the hole's axis from the joint); and of the strikes too long for it, left to the modes,
+    ``long_rows`` the onsets and ``long_ratios``."""
     N = model.n_modes
     fn = window.forces[:, :, 2]
-    rows, points, speed, _ = strike_speeds(model, window)
+    rows, points, speed, share = strike_speeds(model, window)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    spacing = model.joint_spacing
-    keep = np.zeros(rows.size, bool)
-    for p in np.unique(points):
+    forces, durations = np.zeros(rows.size), np.zeros(rows.size)
+    for p in np.unique(points):  # one interpolation per joint (its wall's K)
         at = points == p
-        _, durations = strike.peak_force(speed[at], model.joint_mass, model.stiffness[p], rho, ei, model.hysteresis)
-        keep[at] = durations < strike.return_time(durations, spacing, rho, ei)
-    rows, points, speed = rows[keep], points[keep], speed[keep]
+        forces[at], durations[at] = strike.peak_force(speed[at], model.joint_mass, model.stiffness[p], rho, ei,
+                                                      model.hysteresis)
+    ratios = durations / strike.return_time(durations, model.joint_spacing, rho, ei)
+    keep = ratios < 1.0
+    long_rows, long_ratios = rows[~keep], ratios[~keep]
+    rows, points, speed, share, forces, ratios = (x[keep] for x in (rows, points, speed, share, forces, ratios))
     ends, peaks = np.zeros(rows.size, int), np.zeros(rows.size, int)
     for k, (row, p) in enumerate(zip(rows, points)):
         end = row
@@ -288,7 +280,8 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     y, w = np.sum(model.phi[points] * q[:, :N], axis=1), np.sum(model.phi[points] * q[:, N:2 * N], axis=1)
     norm = np.maximum(np.hypot(y, w), 1e-300)
     return dict(rows=rows, points=points, speeds=speed, ends=ends, peaks=peaks,
-                directions=-np.column_stack([y / norm, w / norm]))
+                directions=-np.column_stack([y / norm, w / norm]), forces=forces, shares=share, ratios=ratios,
+                long_rows=long_rows, long_ratios=long_ratios)
 
 
 def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, segments):
