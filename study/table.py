@@ -71,8 +71,8 @@ EXTRA_OUTPUTS = {
     "revolutions_needed_by_figure": (None, "per figure left over its tolerance, the revolutions in all that would "
                                            "bring it within (inf: its modes or integrator part is over)"),
     "window_stopped_by": (None, "per figure left over its tolerance, why the window stopped: modes (its modes or "
-                                "integrator part is over), forecast (beyond FORECAST_SLACK times the budget), budget (spent), others "
-                                "(stopped by a figure that could not get there), none"),
+                                "integrator part is over), forecast (beyond FORECAST_SLACK times the budget), budget "
+                                "(spent), others (stopped by a figure that could not get there), none"),
     "modal_quarter_fraction": ("1", "share of the largest bending moment carried by the upper quarter of the modes "
                                "(a truncation indicator)"),
     "drag_iterations": ("1", "iterations of the drag's fixed point"),
