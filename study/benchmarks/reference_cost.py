@@ -2,8 +2,9 @@
 in one run (docs/reference_model.md §6).
 
 Two worker processes, one per checkout (each imports ``study`` from its checkout's root, with its compiled kernels),
-take the same design points in turn, each after a warm-up point, so that a shared machine's load falls on both alike:
-the ratios are the measure, not the absolute times. Per point: the CPU time of :func:`study.solvers.solve_point`
+take the same design points in turn (``--rounds`` times each, alternating; the least CPU time of the rounds is
+kept), after a warm-up, so that a shared machine's load falls on both alike: the ratios are the measure, not the
+absolute times. Per point: the CPU time of :func:`study.solvers.solve_point`
 (``reference``) over the revolutions it simulated, the status, the error estimate and the design figures with their
 stated errors. Run from a checkout's root::
 
@@ -118,6 +119,7 @@ def main(argv=None) -> int:
     parser.add_argument("--modes", type=int, nargs="+", default=[32, 64])
     parser.add_argument("--options", nargs="+", default=["default", "pulse/local"])
     parser.add_argument("--budget", type=int, default=80)
+    parser.add_argument("--rounds", type=int, default=3, help="runs of each point, before and after alternating")
     parser.add_argument("--json", help="write the rows here too")
     args = parser.parse_args(argv)
     before, after = (Worker(root, args.results, args.config) for root in (args.before, args.after))
@@ -128,8 +130,11 @@ def main(argv=None) -> int:
             for modes in args.modes:
                 for index in args.indices:
                     inputs = options(name, modes, args.budget)
-                    row = dict(index=index, modes=modes, options=name, before=before.run(index, inputs),
-                               after=after.run(index, inputs))
+                    runs = [(before.run(index, inputs), after.run(index, inputs)) for _ in range(args.rounds)]
+                    row = dict(index=index, modes=modes, options=name, before=runs[0][0], after=runs[0][1])
+                    for key, at in (("before", 0), ("after", 1)):  # the least CPU of the rounds: the load only adds
+                        row[key] = dict(row[key], cpu=min(r[at]["cpu"] for r in runs),
+                                        cpus=[r[at]["cpu"] for r in runs])
                     rows.append(row)
                     print(table([row]).splitlines()[-1], file=sys.stderr, flush=True)
     finally:
