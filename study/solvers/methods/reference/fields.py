@@ -16,19 +16,28 @@ from study.physics.string_modes import mode_shapes
 from study.solvers.model.point import DesignPoint
 
 
-def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
-                    direction: int | None = None) -> dict:
-    """Deflection [m] and moment −EI u'' [N m] on the stations x [m] (shape times × x) of one direction from the
-    modal states q (T, N) (ψ_n'' = −k_n² ψ_n: mode n's moment is EI k_n² ψ_n q_n, none for the rigid translation),
-    plus with ``forces`` (T, P) on the pipe the quasi-static correction for the modes left out
-    (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
-    hole's curvature in that direction (the pipe follows the curved hole)."""
+def modal_fields(model: WhirlModel, q: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(T, 2X) the kept modes' deflection [m] and moment −EI u'' [N m] (without the hole's curvature) on the stations
+    x [m] of one direction from the modal states q (T, N): the modal part of :func:`periodic_fields`, which the
+    stresses with and without the quasi-static correction share (:func:`stresses`)."""
     x = np.asarray(x, float)
     base = mode_shapes(x, model.span, model.modes)
     moments = base * (model.props["bending_stiffness"] * model.wavenumber**2)  # each mode's −EI ψ''
     if model.basis is not None:
         base, moments = base @ model.basis, moments @ model.basis
-    both = q @ np.vstack([base, moments]).T
+    return q @ np.vstack([base, moments]).T
+
+
+def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
+                    direction: int | None = None, modal: np.ndarray | None = None) -> dict:
+    """Deflection [m] and moment −EI u'' [N m] on the stations x [m] (shape times × x) of one direction from the
+    modal states q (T, N) (ψ_n'' = −k_n² ψ_n: mode n's moment is EI k_n² ψ_n q_n, none for the rigid translation),
+    plus with ``forces`` (T, P) on the pipe the quasi-static correction for the modes left out
+    (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
+    hole's curvature in that direction (the pipe follows the curved hole). ``modal``: :func:`modal_fields` of q and x
+    where computed already."""
+    x = np.asarray(x, float)
+    both = modal_fields(model, q, x) if modal is None else modal
     if forces is not None:
         if direction == 0 and model.point_side is not None:
             forces = forces + model.point_side  # the joints' weight at the joints: a point load as the contacts'
@@ -123,10 +132,27 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
     return np.hstack([ay, az])
 
 
+def window_memo(window: Window, model: WhirlModel, key: tuple, compute):
+    """What ``compute()`` gives for the window and model under ``key``, computed once per window (kept in
+    ``window.memo``, with the model it was computed for): the post-processing paths of a window (the stresses with
+    and without the correction, the strikes' stations, the modal check) share its fields instead of recomputing them
+    (docs/reference_model.md §6)."""
+    full = (id(model),) + key
+    hit = window.memo.get(full)
+    if hit is None or hit[0] is not model:
+        hit = window.memo[full] = (model, compute())
+    return hit[1]
+
+
 def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
     that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
-    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3)."""
+    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3). Computed once per
+    window and model (:func:`window_memo`): do not write into it."""
+    return window_memo(window, model, ("inertia",), lambda: _joint_inertia_forces(model, window))
+
+
+def _joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     at = model.joint_points
     J = int(np.count_nonzero(at))
     acc = modal_accelerations(model, window, model.phi[at].T)  # at the joints
@@ -159,7 +185,6 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
     N = model.n_modes
     L = model.span
     x = np.unique(np.concatenate([np.linspace(0.0, L, space_points), model.points]))
-    ei = model.props["bending_stiffness"]
     fields = []
     # the joints' inertia forces corrected statically; with the residual vectors too where the fields are recovered from
     # the contact forces (the mode-acceleration method: the modes left out take the contact force and the joints'
@@ -168,14 +193,43 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
     # coupling with the joints' mass is in the motion)
     inertia = (joint_inertia_forces(model, window) if correction and model.joint_points is not None
                and (not model.dynamic or model.recovery == "force") else None)
+    scene = DesignPoint.of(point).scene  # its inputs typed where the sliding state's parts pass them
+    r_o, r_i = scene.outer_radius, scene.inner_radius
+    if not correction and masked is None:  # the modes alone: once per window (the modal check reads them too)
+        key = ("plain", space_points, fibres, r_o, r_i, scene.axial_tension,
+               None if segments is None else tuple((int(a), int(b)) for a, b in segments))
+        outs = window_memo(window, model, key, lambda: _stresses(model, window, x, scene, fibres, None, segments))
+        return [dict(v) for v in outs] if segments is not None else dict(outs[0])
     for j in range(2):
         forces = window.correction_forces(model, j) if correction else None  # without it, the modes alone
         if inertia is not None:
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         if masked is not None and forces is not None:
             forces = np.where(masked, 0.0, forces)
-        fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j))
-    scene = DesignPoint.of(point).scene  # its inputs typed where the sliding state's parts pass them
+        fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j,
+                                      modal=shared_modal_fields(model, window, x, j)))
+    outs = _stresses(model, window, x, scene, fibres, fields, segments)
+    return outs if segments is not None else outs[0]
+
+
+def shared_modal_fields(model: WhirlModel, window: Window, x: np.ndarray, direction: int) -> np.ndarray:
+    """:func:`modal_fields` of the window's states in one direction (0 y, 1 z) on the stations x [m], computed once per
+    window, model and stations (:func:`window_memo`): do not write into it."""
+    N = model.n_modes
+    x = np.asarray(x, float)
+    return window_memo(window, model, ("modal", direction, x.tobytes()),
+                       lambda: modal_fields(model, window.states[:, direction * N:(direction + 1) * N], x))
+
+
+def _stresses(model: WhirlModel, window: Window, x: np.ndarray, scene, fibres: int, fields: list | None,
+              segments) -> list[dict]:
+    """:func:`stresses`' values per segment from the fields of each direction (:func:`periodic_fields`; None: the
+    modes alone, from :func:`shared_modal_fields`)."""
+    N = model.n_modes
+    ei = model.props["bending_stiffness"]
+    if fields is None:
+        fields = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], None, x, j,
+                                  modal=shared_modal_fields(model, window, x, j)) for j in range(2)]
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]
@@ -224,7 +278,7 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
                          max_shear_stress_t=float(times[jt] - times[0]),
                          modal_tail_fraction=float(tail / full) if full > 0 else 0.0,
                          modal_quarter_fraction=float(below / full) if full > 0 else 0.0))
-    return outs if segments is not None else outs[0]
+    return outs
 
 
 def contact_spacing(model: WhirlModel, window: Window) -> tuple[float, list[float]]:

@@ -3,7 +3,7 @@ revolution by revolution (:class:`Integrator`), its initial state and the record
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -42,6 +42,9 @@ class Window:
     residual: np.ndarray | None = None
     #: the kernel's first and last states (with the residual vectors; None without them), for the energy balance
     ends: tuple | None = None
+    #: what the window's post-processing computed once and shares (fields.window_memo): the joints' inertia forces,
+    #: the modal fields, the stresses without the correction
+    memo: dict = field(default_factory=dict, repr=False, compare=False)
 
     def correction_forces(self, model: "WhirlModel", direction: int) -> np.ndarray:
         """(R, P) the forces [N] whose static field of the modes left out completes the kept modes' (the quasi-static

@@ -115,6 +115,10 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
         values, (masked, pulses_at) = strike_stress_values(point, model, joined, segments)
     else:
         values, masked, pulses_at = stresses(point, model, joined, correction=correction, segments=segments), None, None
+    # the modal check's stresses without the correction, per cycle as the corrected ones (modal_check reads them: no
+    # whole-window recomputation at each look of the window's growth; the fields are shared, fields.window_memo)
+    plain = [{name: v[name] for name in UNCORRECTED}
+             for v in stresses(point, model, joined, correction=False, segments=segments)]
     station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
     damage = fibre_damage(point, model, joined, station, [first for first, _ in segments], correction, masked=masked,
                           pulses=pulses_at(station) if pulses_at is not None else None)
@@ -123,9 +127,14 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
     if point.reference.reference_strike_force == "local" and model.law == 0:
         local = local_strike_forces(model, joined, segments)
         peaks = [v["peak_contact_force"] for v in local]
-    return [dict(v, peak_contact_force=f, correction=correction, start=c.start, **{DAMAGE: d},
+    return [dict(v, peak_contact_force=f, correction=correction, start=c.start, **{DAMAGE: d}, uncorrected=u,
                  **({"strikes": s} if s is not None else {}))
-            for v, c, d, f, s in zip(values, cycles, damage, peaks, local)]
+            for v, c, d, f, s, u in zip(values, cycles, damage, peaks, local, plain)]
+
+
+#: The stress figures :func:`modal_check` compares with and without the quasi-static correction, kept per cycle
+#: (``uncorrected`` of :func:`cycle_values`).
+UNCORRECTED = ("max_normal_stress", "alternating_bending_stress", "max_bending_stress", "max_deflection")
 
 
 #: The local model's own error of a strike's peak force (relative; docs/reference_model.md §2.3): on strikes of three
@@ -372,6 +381,9 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
         for k, s in stations[xs[i]]:
             station_error[i] = max(station_error[i], errors[k, s])
     figures = ("max_bending_stress", "max_normal_stress", "alternating_bending_stress")
+    # the fibres' turned directions over the window, once (the same values as per segment: elementwise)
+    angle = turn[:, None] + fibre[None, :]
+    cos_angle, sin_angle = np.cos(angle), np.sin(angle)
     out = []
     for (a, b), v, bare in zip(segments, values, plain):
         fields_only = v
@@ -385,8 +397,7 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
             if size[k] > bend:
                 bend, where, when = float(size[k]), float(xs[i]), float(window.times[a + k] - window.times[a])
                 bend_error = station_error[i]
-            angle = turn[a:b, None] + fibre[None, :]
-            stress = my[:, None] * np.cos(angle) + mz[:, None] * np.sin(angle)
+            stress = my[:, None] * cos_angle[a:b] + mz[:, None] * sin_angle[a:b]
             h = float(np.max(0.5 * (np.max(stress, axis=0) - np.min(stress, axis=0))))
             if h > alt:
                 alt, alt_x, alt_error = h, float(xs[i]), station_error[i]
@@ -588,7 +599,8 @@ def modal_check(point: DesignPoint, model: WhirlModel, window: Window,
     of what the modes left out were given — the quasi-static correction of the fields and the residual flexibility in
     series with the contacts (:func:`residual_flexibility`) — times :func:`quasi_static_ratio`, how far they are from
     responding statically (1 at impacts: the whole correction; nil for held contacts, where it is exact). Stresses
-    and deflection: the cycles' figures recomputed from the same motion and forces without the correction, the mean
+    and deflection: the cycles' figures from the same motion and forces without the correction (kept per cycle by
+    :func:`cycle_values`, ``uncorrected``, on the cycle's own rows; else recomputed over the window), the mean
     over the cycles of each cycle's difference over the figure's mean (the largest deflection: its difference).
     Peak contact force: at each cycle's largest recorded force, the Hertz force K d^{3/2} at the contact's total
     approach d against the series force there (:func:`series_contact`), the mean of their relative differences: how
@@ -600,7 +612,10 @@ def modal_check(point: DesignPoint, model: WhirlModel, window: Window,
         return out
     first = np.searchsorted(window.times, [c["start"] for c in cycles])
     segments = list(zip(first, list(first[1:]) + [window.times.size]))
-    plain = stresses(point, model, window, correction=False, segments=segments)
+    if all("uncorrected" in c for c in cycles):  # kept per cycle by cycle_values, on the cycle's own rows
+        plain = [c["uncorrected"] for c in cycles]
+    else:
+        plain = stresses(point, model, window, correction=False, segments=segments)
     for name in ("max_normal_stress", "alternating_bending_stress", "max_bending_stress"):
         mean = float(np.mean([c[name] for c in cycles]))
         if name == "alternating_bending_stress":  # relative to the bending it alternates within (convergence)
