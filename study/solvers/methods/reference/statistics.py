@@ -261,6 +261,42 @@ def strike_moment_tables(point: DesignPoint, model: WhirlModel, kept: int | None
     return out
 
 
+
+def strike_history_tables(point: DesignPoint, model: WhirlModel) -> dict:
+    """Per tool-joint contact point p: :func:`study.physics.strike.strike_history_table` at :func:`strike_stations`
+    with the model's kept modes, the correction of a strike's bending for the modes left out as a history after its
+    onset (docs/reference_model.md §2.3.1), over the horizon :func:`history_horizon`. Cached on the model."""
+    key = ("strike_history",)
+    if key in model.cache:
+        return model.cache[key]
+    N = model.n_modes
+    omega = np.nan_to_num(np.asarray(model.omega[:N], float))
+    offsets = strike_stations(point)
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    out = {}
+    for p in np.flatnonzero(model.kinds == 1):
+        x = np.mod(model.points[p] + offsets, model.span)
+        gains = model.phi[p][None, :] * model.moment_shapes(x) / model.mass
+        horizon = history_horizon(model, p)
+        out[int(p)] = strike.strike_history_table(model.joint_mass, model.stiffness[p], rho, ei, model.hysteresis,
+                                                  offsets, omega, gains, horizon)
+    model.cache[key] = out
+    return out
+
+
+def history_horizon(model: WhirlModel, p: int) -> float:
+    """The time [s] after a strike's onset over which its correction for the modes left out is the infinite beam's
+    (:func:`strike_history_tables`): until the first of the waves it carries come back from the neighbouring joints,
+    whose mass reflects them. Its band lies above the kept modes' highest frequency ω_N and below the strike's own,
+    2π/T_c (T_c the shortest strike of the force's table, :func:`study.physics.strike.strike_peak_table`): its fastest
+    waves travel at c_g of the higher of the two, and are back after 2 s/c_g (s the joints' spacing)."""
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    top = float(np.max(np.nan_to_num(np.asarray(model.omega[:model.n_modes], float))))
+    _, _, durations = strike.strike_peak_table(float(model.joint_mass), float(model.stiffness[p]), float(rho),
+                                               float(ei), float(model.hysteresis))
+    band = 2.0 * np.pi / float(np.min(durations))
+    return float(2.0 * model.joint_spacing / strike.group_velocity(max(top, band), rho, ei))
+
 def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     """The window's strikes at the tool joints taken by their local model (:func:`strike_speeds`; those whose contact
     ends before the neighbouring joints' waves come back, as :func:`local_strike_forces` takes them): ``rows`` the
@@ -311,7 +347,13 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     struck = local_strikes(model, window)
     R, P = window.forces.shape[:2]
     masked = np.zeros((R, P), bool)
-    for row, end, p in zip(struck["rows"], struck["ends"], struck["points"]):
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    pulse = point.reference.reference_strike_force == "pulse"
+    for row, end, p, v in zip(struck["rows"], struck["ends"], struck["points"], struck["speeds"]):
+        if pulse:  # the run's force is the local strike's for its T_c, then the contact law's (held: quasi-static)
+            duration = float(strike.peak_force([v], model.joint_mass, model.stiffness[p], rho, ei,
+                                               model.hysteresis)[1][0])
+            end = min(end, max(int(np.searchsorted(window.times, window.times[row] + duration)), row + 1))
         masked[row:end, p] = True
     values = stresses(point, model, window, correction=True, segments=segments, masked=masked)
     if struck["rows"].size == 0:
@@ -382,9 +424,20 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
                 drift = (float(np.hypot(*[moments[j][onset, i] - moments[j][before, i] for j in range(2)]))
                          * float(window.times[row] - window.times[onset]) / span if span > 0 else 0.0)
                 errors[k, s] = LOCAL_STRIKE_ERROR * abs(locals_[k, s]) + drift
-            else:
-                out[row] += table[k, s] * struck["directions"][k]
+            else:  # the correction's history over its horizon after the onset (strike_history_tables)
+                onset, stop, history = histories(k)
+                out[onset:stop] += history[:, s, None] * struck["directions"][k][None, :]
         return out
+
+    history_tables, history_rows = strike_history_tables(point, model), {}
+
+    def histories(k):
+        if k not in history_rows:
+            onset, table = int(struck["rows"][k]), history_tables[int(struck["points"][k])]
+            stop = int(np.searchsorted(window.times, window.times[onset] + table["times"][-1], side="right"))
+            history_rows[k] = (onset, stop, strike.history_correction(
+                float(struck["speeds"][k]), window.times[onset:stop] - window.times[onset], table))
+        return history_rows[k]
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
     station_error = np.zeros(xs.size)  # the largest error of a correction at each station
