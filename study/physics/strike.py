@@ -409,10 +409,14 @@ def strike_moment_history(joint_mass, stiffness, mass_per_length, bending_stiffn
         mean_p, mean_f = 0.5 * (P[1:] + P[:-1]), 0.5 * (F[1:] + F[:-1])
         kept_step = modal_moment_step(t, omega, gains.T)  # (n, S)
         rows = np.zeros((samples, gains.shape[0]))
+        locals_ = {}  # per distance (the infinite beam's moment is the same at every joint's station that far)
         for s, d in enumerate(np.atleast_1d(distances)):
-            local = np.zeros(n)
-            local[1:] = np.convolve(mean_p, np.diff(beam_moment_step(t, float(d), mass_per_length,
-                                                                     bending_stiffness)))[:n - 1]
+            if float(d) not in locals_:
+                local = np.zeros(n)
+                local[1:] = np.convolve(mean_p, np.diff(beam_moment_step(t, float(d), mass_per_length,
+                                                                         bending_stiffness)))[:n - 1]
+                locals_[float(d)] = local
+            local = locals_[float(d)]
             kept = np.zeros(n)
             kept[1:] = np.convolve(mean_f, np.diff(kept_step[:, s]))[:n - 1]
             rows[:, s] = np.interp(out_t, t, local - kept)

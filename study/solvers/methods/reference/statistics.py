@@ -274,12 +274,17 @@ def strike_history_tables(point: DesignPoint, model: WhirlModel) -> dict:
     offsets = strike_stations(point)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     out = {}
-    for p in np.flatnonzero(model.kinds == 1):
-        x = np.mod(model.points[p] + offsets, model.span)
-        gains = model.phi[p][None, :] * model.moment_shapes(x) / model.mass
-        horizon = history_horizon(model, p)
-        out[int(p)] = strike.strike_history_table(model.joint_mass, model.stiffness[p], rho, ei, model.hysteresis,
-                                                  offsets, omega, gains, horizon)
+    joints = np.flatnonzero(model.kinds == 1)
+    for k in np.unique(model.stiffness[joints]):  # the joints of one wall stiffness together: one strike, one sum
+        group = joints[model.stiffness[joints] == k]
+        gains = np.concatenate([model.phi[p][None, :] * model.moment_shapes(np.mod(model.points[p] + offsets,
+                                                                                   model.span)) / model.mass
+                                for p in group])
+        horizon = min(history_horizon(model, p) for p in group)
+        table = strike.strike_history_table(model.joint_mass, k, rho, ei, model.hysteresis,
+                                            np.tile(offsets, group.size), omega, gains, horizon)
+        for j, p in enumerate(group):
+            out[int(p)] = dict(table, corrections=table["corrections"][:, :, j * offsets.size:(j + 1) * offsets.size])
     model.cache[key] = out
     return out
 
