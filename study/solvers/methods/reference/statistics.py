@@ -335,11 +335,13 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
 def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, segments):
     """:func:`stresses` per segment with the strikes' local bending (``reference_strike_stress = "local"``;
     docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their strikes
-    (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite
-    beam's moment under the local model's force less the kept modes' share, at the strike's onset speed) is added along
-    the wall's force to the moment at each of :func:`strike_stations`, at the row nearest the time after the onset at
-    which the local moment there peaks (the table's: the run's kept modes then carry what the table's kept modes do, as
-    N grows): the max bending and normal stress of a segment are the larger of the fields' and the struck stations' so
+    (their contact and inertia forces, ``masked``; with ``reference_strike_force = "pulse"`` over the pulse's T_c only,
+    the contact law's held force after it corrected quasi-statically), and the correction's history of
+    :func:`strike_history_tables` (the infinite beam's moment under the local model's force less the kept modes' share,
+    at the strike's onset speed) is added along the wall's force to the moment at each of :func:`strike_stations`, at
+    every row from the onset over its horizon (:func:`history_horizon`; the run's kept modes then carry what the
+    table's kept modes do, as N grows; with ``"superposed"`` the local moment at the row nearest its peak, as before):
+    the max bending and normal stress of a segment are the larger of the fields' and the struck stations' so
     corrected, the alternating stress the larger of the fields' and the struck stations' fibre histories with the
     correction added at the strike's row. Each segment's ``strike_modal``: the stress figures' modal part, absolute —
     where a struck station's corrected value is the figure, its strike's (``change``): the kept modes' share of the
