@@ -393,7 +393,8 @@ def strike_moment_history(joint_mass, stiffness, mass_per_length, bending_stiffn
     falls as t^{-1/2} only, its part above the kept modes' band ringing at their highest frequency and falling as
     1/(k_N √(a t)) of it (:func:`beam_moment_response`). Added to the run's kept modes' moment along the strike's
     force at each row of the horizon it gives the infinite beam's moment there as the kept modes tend to it; the
-    Richardson extrapolation of ``steps_per_rise`` and twice that (the strike's scheme is first order). Other arguments as :func:`strike`'s."""
+    Richardson extrapolation of ``steps_per_rise`` and twice that (the strike's scheme is first order). Other
+    arguments as :func:`strike`'s."""
     runs = _strike_pair(float(joint_mass), float(stiffness), float(mass_per_length), float(bending_stiffness),
                         float(speed), float(hysteresis), int(steps_per_rise))
     gains = np.atleast_2d(np.asarray(gains, float))
