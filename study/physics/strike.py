@@ -55,7 +55,8 @@ from study.physics.restitution import check_range
 __all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
            "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
            "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
-           "moment_correction", "strike_pulse_table"]
+           "moment_correction", "strike_pulse_table", "strike_moment_history", "strike_history_table",
+           "history_correction"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):
@@ -374,6 +375,84 @@ def moment_correction(speed, table, column: int = 1) -> np.ndarray:
             out[:, s] = np.interp(x, np.log(speeds), c)
     return out
 
+
+
+#: Samples of :func:`strike_history_table`'s correction histories over their horizon, evenly in time.
+HISTORY_SAMPLES = 512
+
+
+def strike_moment_history(joint_mass, stiffness, mass_per_length, bending_stiffness, speed, hysteresis, distances,
+                          omega, gains, horizon, steps_per_rise: int = MOMENT_STEPS, samples: int = HISTORY_SAMPLES
+                          ) -> tuple[np.ndarray, np.ndarray, float]:
+    """The correction of a strike's bending for the modes left out as a history (docs/reference_model.md §2.3.1):
+    (times (T,) [s] from the onset, evenly over [0, ``horizon``], corrections (T, S) [N m] at the stations
+    ``distances`` (S,) [m] from the joint, the strike's duration T_c [s]): the infinite beam's moment under the local
+    strike (:func:`strike_moment`, the beam's reaction P convolved with the closed-form step response) less the kept
+    modes' share under its wall force F (``omega`` (N,), ``gains`` (S, N) as :func:`strike_moment_peak`'s), with the
+    force nil after the strike: the waves it sent go on past the stations, and under the joint the beam's moment
+    falls as t^{-1/2} only, its part above the kept modes' band ringing at their highest frequency and falling as
+    1/(k_N √(a t)) of it (:func:`beam_moment_response`). Added to the run's kept modes' moment along the strike's
+    force at each row of the horizon it gives the infinite beam's moment there as the kept modes tend to it; the
+    Richardson extrapolation of ``steps_per_rise`` and twice that (the strike's scheme is first order). Other
+    arguments as :func:`strike`'s."""
+    runs = _strike_pair(float(joint_mass), float(stiffness), float(mass_per_length), float(bending_stiffness),
+                        float(speed), float(hysteresis), int(steps_per_rise))
+    gains = np.atleast_2d(np.asarray(gains, float))
+    out_t = np.linspace(0.0, float(horizon), samples)
+    pair = []
+    for r in runs:
+        dt = float(r.times[1] - r.times[0])
+        n = max(int(np.ceil(horizon / dt)) + 2, r.times.size + 1)
+        t = np.arange(n) * dt
+        m = r.times.size  # the force is nil from there on: its steps' means (as step_convolution's) over the strike
+        P, F = np.zeros(m + 1), np.zeros(m + 1)
+        P[:m], F[:m] = beam_reaction(r, joint_mass, speed), r.force
+        mean_p, mean_f = 0.5 * (P[1:] + P[:-1]), 0.5 * (F[1:] + F[:-1])
+        kept_step = modal_moment_step(t, omega, gains.T)  # (n, S)
+        rows = np.zeros((samples, gains.shape[0]))
+        locals_ = {}  # per distance (the infinite beam's moment is the same at every joint's station that far)
+        for s, d in enumerate(np.atleast_1d(distances)):
+            if float(d) not in locals_:
+                local = np.zeros(n)
+                local[1:] = np.convolve(mean_p, np.diff(beam_moment_step(t, float(d), mass_per_length,
+                                                                         bending_stiffness)))[:n - 1]
+                locals_[float(d)] = local
+            local = locals_[float(d)]
+            kept = np.zeros(n)
+            kept[1:] = np.convolve(mean_f, np.diff(kept_step[:, s]))[:n - 1]
+            rows[:, s] = np.interp(out_t, t, local - kept)
+        pair.append(rows)
+    coarse, fine = pair
+    return out_t, 2.0 * fine - coarse, 2.0 * runs[1].duration - runs[0].duration
+
+
+def strike_history_table(joint_mass, stiffness, mass_per_length, bending_stiffness, hysteresis, distances, omega,
+                         gains, horizon) -> dict[str, np.ndarray]:
+    """:func:`strike_moment_history` over :data:`MOMENT_SPEEDS`: ``speeds`` (V,) [m/s], ``durations`` (V,) T_c [s],
+    ``times`` (T,) [s], ``corrections`` (V, T, S) [N m], for :func:`history_correction`."""
+    rows = [strike_moment_history(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, distances,
+                                  omega, gains, horizon) for v in MOMENT_SPEEDS]
+    return dict(speeds=MOMENT_SPEEDS.copy(), durations=np.array([r[2] for r in rows]), times=rows[0][0],
+                corrections=np.array([r[1] for r in rows]))
+
+
+def history_correction(speed: float, after, table) -> np.ndarray:
+    """(R, S) the correction [N m] of :func:`strike_history_table`'s ``table`` at the times ``after`` (R,) [s] from the
+    onset of a strike at ``speed`` [m/s]: between the two table speeds about it, each history at the time scaled by
+    its duration over the strike's (T_c interpolated in log-log; the rise scales with T_c), weighted linearly in
+    log v0; speeds outside the table clipped to it; nil beyond the table's horizon."""
+    speeds, durations, times, c = table["speeds"], table["durations"], table["times"], table["corrections"]
+    x = float(np.clip(np.log(max(float(speed), speeds[0])), np.log(speeds[0]), np.log(speeds[-1])))
+    i = int(np.clip(np.searchsorted(np.log(speeds), x) - 1, 0, speeds.size - 2))
+    w = (x - np.log(speeds[i])) / (np.log(speeds[i + 1]) - np.log(speeds[i]))
+    own = float(np.exp((1 - w) * np.log(durations[i]) + w * np.log(durations[i + 1])))
+    after = np.asarray(after, float)
+    out = np.zeros((after.size, c.shape[2]))
+    for j, weight in ((i, 1.0 - w), (i + 1, w)):
+        t = after * durations[j] / own
+        for s in range(c.shape[2]):
+            out[:, s] += weight * np.interp(t, times, c[j, :, s], left=0.0, right=0.0)
+    return np.where(((after >= 0) & (after <= times[-1]))[:, None], out, 0.0)
 
 #: Points of the grid of t/T_c on which :func:`strike_pulse_table` tabulates a strike's force shape F/F_peak.
 PULSE_GRID = 65

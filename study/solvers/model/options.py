@@ -337,7 +337,7 @@ class ReferenceOptions(MethodOptions):
     reference_strike_force: str = option("modes", ("modes", "local", "pulse"))
     #: the bending of a strike at a tool joint: the modes' own with the quasi-static correction ("modes"), or the
     #: run's modes plus the strike's local bending that the modes left out miss ("local": the infinite beam's moment
-    #: under the local model's force less the kept modes' share of it, study.physics.strike.strike_moment_table, in
+    #: under the local model's force less the kept modes' share of it, study.physics.strike.strike_history_table, in
     #: place of the strike's quasi-static correction; docs/reference_model.md §2.3, the stresses at a strike)
     reference_strike_stress: str = option("modes", ("modes", "local"))
     #: contact points as fractions of the section, in place of the tool joints and body stations (code and tests), and

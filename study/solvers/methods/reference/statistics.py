@@ -257,6 +257,47 @@ def strike_moment_tables(point: DesignPoint, model: WhirlModel, kept: int | None
     return out
 
 
+
+def strike_history_tables(point: DesignPoint, model: WhirlModel) -> dict:
+    """Per tool-joint contact point p: :func:`study.physics.strike.strike_history_table` at :func:`strike_stations`
+    with the model's kept modes, the correction of a strike's bending for the modes left out as a history after its
+    onset (docs/reference_model.md §2.3.1), over the horizon :func:`history_horizon`. Cached on the model."""
+    key = ("strike_history",)
+    if key in model.cache:
+        return model.cache[key]
+    N = model.n_modes
+    omega = np.nan_to_num(np.asarray(model.omega[:N], float))
+    offsets = strike_stations(point)
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    out = {}
+    joints = np.flatnonzero(model.kinds == 1)
+    for k in np.unique(model.stiffness[joints]):  # the joints of one wall stiffness together: one strike, one sum
+        group = joints[model.stiffness[joints] == k]
+        gains = np.concatenate([model.phi[p][None, :] * model.moment_shapes(np.mod(model.points[p] + offsets,
+                                                                                   model.span)) / model.mass
+                                for p in group])
+        horizon = min(history_horizon(model, p) for p in group)
+        table = strike.strike_history_table(model.joint_mass, k, rho, ei, model.hysteresis,
+                                            np.tile(offsets, group.size), omega, gains, horizon)
+        for j, p in enumerate(group):
+            out[int(p)] = dict(table, corrections=table["corrections"][:, :, j * offsets.size:(j + 1) * offsets.size])
+    model.cache[key] = out
+    return out
+
+
+def history_horizon(model: WhirlModel, p: int) -> float:
+    """The time [s] after a strike's onset over which its correction for the modes left out is the infinite beam's
+    (:func:`strike_history_tables`): until the first of the waves it carries come back from the neighbouring joints,
+    whose mass reflects them. Its band lies above the kept modes' highest frequency ω_N and below the strike's own,
+    2π/T_c (T_c the shortest strike of the force's table, :func:`study.physics.strike.strike_peak_table`): its fastest
+    waves travel at c_g of the higher of the two, and are back after 2 s/c_g (s the joints' spacing)."""
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    top = float(np.max(np.nan_to_num(np.asarray(model.omega[:model.n_modes], float))))
+    _, _, durations = strike.strike_peak_table(float(model.joint_mass), float(model.stiffness[p]), float(rho),
+                                               float(ei), float(model.hysteresis))
+    band = 2.0 * np.pi / float(np.min(durations))
+    return float(2.0 * model.joint_spacing / strike.group_velocity(max(top, band), rho, ei))
+
 def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     """The window's strikes at the tool joints taken by their local model (:func:`strike_speeds`; those whose contact
     ends before the neighbouring joints' waves come back, :func:`study.physics.strike.return_time`, the joints' spacing
@@ -296,11 +337,13 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
 def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, segments):
     """:func:`stresses` per segment with the strikes' local bending (``reference_strike_stress = "local"``;
     docs/reference_model.md §2.3): the quasi-static correction leaves out the struck joints' loads over their strikes
-    (their contact and inertia forces, ``masked``), and the correction of :func:`strike_moment_tables` (the infinite
-    beam's moment under the local model's force less the kept modes' share, at the strike's onset speed) is added along
-    the wall's force to the moment at each of :func:`strike_stations`, at the row nearest the time after the onset at
-    which the local moment there peaks (the table's: the run's kept modes then carry what the table's kept modes do, as
-    N grows): the max bending and normal stress of a segment are the larger of the fields' and the struck stations' so
+    (their contact and inertia forces, ``masked``; with ``reference_strike_force = "pulse"`` over the pulse's T_c only,
+    the contact law's held force after it corrected quasi-statically), and the correction's history of
+    :func:`strike_history_tables` (the infinite beam's moment under the local model's force less the kept modes' share,
+    at the strike's onset speed) is added along the wall's force to the moment at each of :func:`strike_stations`, at
+    every row from the onset over its horizon (:func:`history_horizon`; the run's kept modes then carry what the
+    table's kept modes do, as N grows):
+    the max bending and normal stress of a segment are the larger of the fields' and the struck stations' so
     corrected, the alternating stress the larger of the fields' and the struck stations' fibre histories with the
     correction added at the strike's row. Each segment's ``strike_modal``: the stress figures' modal part, absolute —
     where a struck station's corrected value is the figure, its strike's (``change``): the kept modes' share of the
@@ -313,7 +356,13 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     struck = local_strikes(model, window)
     R, P = window.forces.shape[:2]
     masked = np.zeros((R, P), bool)
-    for row, end, p in zip(struck["rows"], struck["ends"], struck["points"]):
+    ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
+    pulse = point.reference.reference_strike_force == "pulse"
+    for row, end, p, v in zip(struck["rows"], struck["ends"], struck["points"], struck["speeds"]):
+        if pulse:  # the run's force is the local strike's for its T_c, then the contact law's (held: quasi-static)
+            duration = float(strike.peak_force([v], model.joint_mass, model.stiffness[p], rho, ei,
+                                               model.hysteresis)[1][0])
+            end = min(end, max(int(np.searchsorted(window.times, window.times[row] + duration)), row + 1))
         masked[row:end, p] = True
     values = stresses(point, model, window, correction=True, segments=segments, masked=masked)
     if struck["rows"].size == 0:
@@ -372,8 +421,19 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     def pulses(i, table):
         out = np.zeros((R, 2))
         for k, s in stations[xs[i]]:
-            out[at_rows[k, s]] += table[k, s] * struck["directions"][k]
+            onset, stop, history = histories(k)
+            out[onset:stop] += history[:, s, None] * struck["directions"][k][None, :]
         return out
+
+    history_tables, history_rows = strike_history_tables(point, model), {}
+
+    def histories(k):
+        if k not in history_rows:
+            onset, table = int(struck["rows"][k]), history_tables[int(struck["points"][k])]
+            stop = int(np.searchsorted(window.times, window.times[onset] + table["times"][-1], side="right"))
+            history_rows[k] = (onset, stop, strike.history_correction(
+                float(struck["speeds"][k]), window.times[onset:stop] - window.times[onset], table))
+        return history_rows[k]
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
     station_error = np.zeros(xs.size)  # the largest error of a correction at each station
