@@ -307,6 +307,10 @@ def test_where_the_joints_swing_far_along_the_wall_the_balance_in_the_wall_s_coo
     result = solve_point(point, "sliding")
     assert result.status == "ok" and "in the wall's coordinates" in result.message, result.message
     assert result.error_estimate < 1e-3 and result.extras["harmonic_balance"]["linear_estimate"] > 0.01
+    # a swing beyond sliding.STABILITY_SWING: its stability tested, the reference model kicked off it by 1 % coming
+    # back 0.92-fold a revolution over revolutions 11-20 (measured; an unstable one grew 1.21-fold)
+    assert result.extras["stability"]["stable"] and result.extras["stability"]["growth"] < 0.97
+    assert "coexisting_motion" not in result.values  # its lift-off 8.6 times the point's eccentricity: not checked
     # the reference model's time integration from the sliding rest on the same 48 modes settles on it (periodic
     # every revolution after 140: 415.131 N, 20.3433 MPa, 4.09698 MPa; measured 0.058 %, 0.001 %, 0.051 % apart, the
     # peak force the last to settle, §10; started on the balance's orbit it stays there, 0.008 % apart)
@@ -321,14 +325,49 @@ def test_where_the_joints_swing_far_along_the_wall_the_balance_in_the_wall_s_coo
     assert work_in == pytest.approx(dissipated, rel=1e-6)
 
 
-def test_where_the_joints_swing_beyond_the_stable_angle_it_does_not_answer():
+def test_where_the_motion_on_the_wall_is_unstable_it_does_not_answer():
     # default grid point 54 (75 rpm, 20 000 lbf, 12 ppg, no flow, straight hole): the balance in the wall's
     # coordinates settles with the joints swinging 0.37 rad along the wall, but that motion is unstable: the reference
-    # model started on it with its velocities 1 % off bounced within 40 revolutions (peak 7.7 kN), and from the sliding
-    # rest it bounces after 20 (docs/reference_model.md §10); beyond sliding.STABLE_SWING the reference model answers
+    # model started on it with its velocities 1 % off leaves it, the kick growing 1.21-fold a revolution from the 10th
+    # (measured, sliding.STABILITY_REVOLUTIONS; the contact opened in the 36th, peak 9.5 kN in the 40th,
+    # docs/reference_model.md §10); the reference model answers
     result = sliding.solve(_study_point(54))
     assert result.status == "out_of_scope" and "swing 0.37 rad along the wall" in result.message, result.message
+    assert "unstable" in result.message and "the kick grew 1.2" in result.message, result.message
     assert result.error_estimate is None and result.values["peak_contact_force"] > 0
+
+
+def test_where_a_bouncing_motion_coexists_with_the_sliding_one_the_answer_says_so():
+    # default grid point 322 (300 rpm, 5 000 lbf, 12 ppg, no flow, straight hole): the sliding motion (by the balance
+    # in the wall's coordinates) is stable (the kicked run comes back, 0.94-fold a revolution), but the lift-off
+    # eccentricity is 1.11 times the point's and the reference model's run from the rest on the wall leaves the wall in
+    # its first revolution (it then bounces at 24 kN: docs/reference_model.md §10)
+    result = sliding.solve(_study_point(322))
+    assert result.status == "ok" and result.extras["stability"]["stable"], result.message
+    assert result.extras["stability"]["growth"] < 0.97
+    assert result.values["coexisting_motion"] == 1.0 and "a bouncing motion coexists" in result.message
+    assert result.extras["second_motion"]["opened"] == 1
+    # default grid point 154 (125 rpm, 20 000 lbf, 12 ppg, no flow): lift-off 1.88 times the point's eccentricity,
+    # below sliding.BASIN_LIFT_RATIO, so checked: the run from rest stays on the wall its 10 revolutions
+    calm = sliding.solve(_study_point(154))
+    assert calm.status == "ok" and calm.values["coexisting_motion"] == 0.0, calm.message
+    assert "coexists" not in calm.message
+
+
+def test_auto_reports_the_bouncing_motion_where_both_exist_and_flags_it():
+    # the engineer's safe side: where the stable sliding answer has a bouncing motion beside it, the reference model
+    # answers (the motion reached from rest, the worse for the limits), flagged, the sliding figures in its message
+    from study.solvers.methods import auto
+    from study.solvers.model.result import PointResult
+
+    lying = PointResult(method="sliding", values=dict(coexisting_motion=1.0, peak_contact_force=595.4,
+                                                      max_normal_stress=22.04e6, alternating_bending_stress=5e6))
+    assert auto.MENDS["reference"](lying, {}) is True
+    bouncing = PointResult(method="reference", status="not_converged", values=dict(peak_contact_force=24e3),
+                           message="bouncing")
+    auto._coexisting(bouncing, [lying, bouncing])
+    assert bouncing.values["coexisting_motion"] == 1.0 and bouncing.extras["coexisting"]["peak_contact_force"] == 595.4
+    assert "stable sliding motion (sliding: 595.4 N" in bouncing.message
 
 
 def test_the_lift_off_holds_its_precision_with_fewer_sliding_solves(monkeypatch):

@@ -25,8 +25,13 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 Every rung is given the same typed design point (:class:`~study.solvers.model.point.DesignPoint`, built once by
 :func:`study.solvers.solve_point`); the series gets it with its own harmonics' tolerance.
 
-The free whirl and the sliding state depend on no restitution (``INDEPENDENT_OF`` in their modules): their answers
-are kept by the other inputs (:func:`solve_rung`), so a sweep over the restitution solves them once.
+The free whirl depends on no restitution (``INDEPENDENT_OF`` in its module): its answers are kept by the other inputs
+(:func:`solve_rung`), so a sweep over the restitution solves it once. (The sliding state's figures do not depend on it
+either, but its checks of stability and of a second motion run the reference model, whose held contacts it damps.)
+
+Where the sliding state is stable but a bouncing motion coexists with it (the reference model's run from rest bounces:
+output ``coexisting_motion`` 1), the point goes up too and its answer is the bouncing one, the worse for the limits,
+flagged and naming the sliding one's figures (:func:`_coexisting`).
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -81,6 +86,8 @@ def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
+    if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
+        return True  # a bouncing motion coexists with the sliding one: the worse is reported (:func:`climb`)
     return _not_final(result, point)
 
 
@@ -117,7 +124,7 @@ MENDS: dict[str, Callable[[PointResult, DesignPoint], bool]] = {
 
 #: The answers of rungs whose method declares inputs it does not depend on (its module's ``INDEPENDENT_OF``), kept
 #: by the other inputs, at most this many in a process (the least recently used dropped): a sweep over the
-#: restitution solves the free whirl and the sliding state once for all its values.
+#: restitution solves the free whirl once for all its values.
 MEMO_SIZE = 4096
 _memo: OrderedDict[tuple, PointResult] = OrderedDict()
 _memo_lock = threading.Lock()  # a worker may run several threads
@@ -152,6 +159,24 @@ def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
     return result
 
 
+def _coexisting(result: PointResult, tried: list[PointResult]) -> None:
+    """Where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the sliding state,
+    :func:`study.solvers.methods.sliding.second_motion`) and a higher rung answered the point, the point's answer is the
+    higher rung's — the motion the pipe reaches from rest, the worse for the limits (a kicked pipe bounces) — flagged
+    with ``coexisting_motion`` 1, the other motion's figures in its message and extras ``coexisting``."""
+    for other in tried:
+        if other is not result and other.values.get("coexisting_motion") == 1.0:
+            result.values["coexisting_motion"] = 1.0
+            figures = {k: other.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
+                                                        "alternating_bending_stress")}
+            result.extras["coexisting"] = dict(method=other.method, status=str(other.status), **figures)
+            result.message += (f"; beside it a stable {other.method} motion ({other.method}: "
+                               f"{figures['peak_contact_force']:.4g} N, max normal stress "
+                               f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: "
+                               f"the figures are the bouncing motion's, the worse")
+            return
+
+
 def climb(ladder: str, point: DesignPoint) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     tried: list[PointResult] = []
@@ -160,13 +185,14 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
             continue
         answer = solve_rung(method, prepare(point))
         tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
-        if tried[-1].status == "ok":
-            break
+        if tried[-1].status == "ok" and tried[-1].values.get("coexisting_motion") != 1.0:
+            break  # (an ok answer beside which a bouncing motion coexists goes up: the worse motion is reported)
     result = tried[-1]
     answers = [r for r in tried if r.status == "not_converged" and r.error_estimate is not None
                and np.isfinite(r.error_estimate)]
     if result.status == "not_converged" and answers:  # nothing converged: the answer nearest to it stands
         result = min(answers, key=lambda r: r.error_estimate)
+    _coexisting(result, tried)
     why = (f"{result.method} answered" if result.status == "ok" else
            f"no model served ({result.method}'s {result.status} is what is known)")
     if len(tried) > 1:

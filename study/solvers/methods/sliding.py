@@ -32,7 +32,7 @@ Where that estimate is above the study's tolerance the same periodic state is so
 harmonic balance on the exact force laws (:func:`refine`, :func:`balance`), and answers where it settles with a
 smaller error (its harmonic truncation and the modes'); where the joints swing far along the wall, in the wall's own
 coordinates (each touching joint's angle along it and radial approach, :func:`balance`), not answered
-where they swing beyond :data:`STABLE_SWING` (the motion found there was unstable).
+where that motion is unstable (:func:`stability`: the reference model's run kicked off it leaves it).
 
 Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the tangential
 direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at 50–150 rpm it had not
@@ -49,15 +49,19 @@ from scipy import optimize
 from study.physics import contact
 from study.physics import whirl as whirl_physics
 from study.solvers.methods import reference
-from study.solvers.model.options import study_tolerance
+from study.solvers.kernels import whirl_kernel
+from study.solvers.model.options import ReferenceOptions, study_tolerance
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 METHOD = "sliding"
-#: Inputs the answer does not depend on: the contacts are held, with no Hunt–Crossley term (it depends on an onset a
-#: held contact never had), so the restitution never enters. ``auto`` reuses one answer across them (a test holds
-#: the claim).
-INDEPENDENT_OF = ("restitution",)
+#: Inputs the answer does not depend on (``auto`` reuses one answer across them; a test holds the claim): none. The
+#: sliding state's figures do not depend on the restitution (its held contacts have no Hunt–Crossley term, which depends
+#: on an onset a held contact never had), but the checks of its stability and of a second motion (:func:`stability`,
+#: :func:`from_rest`) run the reference model, whose held contacts have that damping: without it (restitution 1) the
+#: contact's own normal oscillation is undamped and a 1 % kick opened the contact at default grid points 88 and 322
+#: (stable with it).
+INDEPENDENT_OF = ()
 SAMPLES = 256  #: Samples over the revolution for the outputs and the drag's equal dissipation.
 #: Fixed-point iterations on the drag at most, and the relative change of A that ends them.
 ITERATIONS, SETTLED = 50, 1e-10
@@ -864,10 +868,74 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
 #: Harmonics of the balance in the wall's coordinates (:func:`balance`) and of its coarser solution (at default grid
 #: points 40 and 505 the figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 3e-5, with 12 and 16 4e-5).
 POLAR_HARMONICS = (16, 12)
-#: The largest angle [rad] a joint may swing from its rest in a motion solved in the wall's coordinates: the reference
-#: model started on it with its velocities 1 % off came back to it where the joints swung 0.10-0.25 rad (default grid
-#: points 32, 40, 322, 354, 394, 472) and bounced within 40 revolutions at 0.37 and 0.59 rad (points 54 and 392).
-STABLE_SWING = 0.3
+#: The stability test of a motion solved in the wall's coordinates (:func:`stability`): the relative kick of its modal
+#: velocities, the revolutions run, and the swing [rad] along the wall at or below which a motion is not tested (the
+#: linear answers and the Cartesian balance, which settle only below it, never test). At default grid point 54 (0.37 rad)
+#: the kicked run's distance from the motion fell for 10 revolutions, then grew 1.21-fold a revolution and the contact
+#: opened at 36; at point 40 (0.24 rad) it fell 0.93-fold a revolution: over revolutions 11-20 the two are told apart
+#: by the sign of the growth.
+STABILITY_KICK, STABILITY_REVOLUTIONS, STABILITY_SWING = 0.01, 20, 0.1
+
+
+def stability(model: reference.WhirlModel, window: reference.Window, held: np.ndarray,
+              revolutions: int = STABILITY_REVOLUTIONS, kick: float = STABILITY_KICK) -> dict[str, Any]:
+    """Whether a periodic motion on the wall is stable, by the reference model's own time integration (its compiled
+    kernel, the Hertz wall with the Hunt–Crossley damping of a held contact, which depends on the restitution): the
+    run starts on the motion's state at
+    t = 0 (``window``, one revolution of it) with its modal velocities ``kick`` larger, and runs ``revolutions``
+    revolutions. At the end of each the distance d_k of the modal state from the motion's (its largest component in
+    units of the clearance and Ω × the clearance) is the perturbation left (a Poincaré map: the motion repeats every
+    revolution); its growth per revolution, exp of the least-squares slope of ln d_k over the second half of the run
+    (the faster parts of the perturbation died in the first), estimates the largest Floquet multiplier's modulus.
+    Unstable where a contact of ``held`` (bool P) opens and closes again (an onset) or a point off the wall strikes it,
+    or where the perturbation grows (growth ≥ 1).
+
+    Returns stable (bool), growth (per revolution), decay (d over d_0 at the end), revolutions run and opened (the
+    revolution at which a contact opened, or None)."""
+    N = model.n_modes
+    start = np.zeros(4 * N + 4)
+    start[:4 * N] = window.states[0, :4 * N]
+    motion = start[:4 * N].copy()
+    start[2 * N:4 * N] *= 1.0 + kick
+    c = float(np.max(model.clearance))
+    scale = np.concatenate((np.full(2 * N, c), np.full(2 * N, model.rotary_speed * c)))
+    d0 = max(float(np.max(np.abs(start[:4 * N] - motion) / scale)), 1e-300)
+    run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
+    distance, opened = [], None
+    for k in range(1, revolutions + 1):
+        cycle = run.run(k * model.period)
+        if run.outcome != whirl_kernel.OK or np.any(cycle.onsets > 0):
+            opened = k
+            break
+        distance.append(float(np.max(np.abs(run.modal_state() - motion) / scale)))
+    late = np.log(np.maximum(distance[len(distance) // 2:], 1e-300))
+    growth = (float(np.exp(np.polyfit(np.arange(late.size), late, 1)[0])) if opened is None and late.size > 1
+              else float("inf"))
+    return dict(stable=bool(opened is None and growth < 1.0), growth=growth,
+                decay=distance[-1] / d0 if distance else float("inf"), revolutions=k, opened=opened)
+
+
+#: The check for a second motion (:func:`from_rest`): the revolutions the reference model runs from the sliding rest,
+#: and the lift-off eccentricity over the point's below which it runs (a joint's least force over the revolution near
+#: nil: the whole eccentric load applied at once may throw it off the wall).
+BASIN_REVOLUTIONS, BASIN_LIFT_RATIO = 10, 2.0
+
+
+def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
+    """Whether the reference model's run from the string's rest on the wall (its own start,
+    :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) stays
+    on the wall for ``revolutions`` revolutions, or a contact opens and strikes again (an onset): then a bouncing motion
+    is reached from there, beside the sliding one (docs/reference_model.md §10). Returns bounced (bool), the revolution
+    it opened in (or None) and the largest contact force seen [N]."""
+    run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), reference.initial_state(model))
+    peak, opened = 0.0, None
+    for k in range(1, revolutions + 1):
+        cycle = run.run(k * model.period)
+        peak = max(peak, float(np.max(cycle.peak)))
+        if run.outcome != whirl_kernel.OK or np.any(cycle.onsets > 0):
+            opened = k
+            break
+    return dict(bounced=opened is not None, opened=opened, peak=peak, revolutions=k)
 
 
 def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: str, harmonics: int,
@@ -897,18 +965,42 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
                         f"a point off the wall reaches it {how}")
     if not coarse["settled"]:
         return None
-    if coordinates == "polar":  # the joints' largest angle along the wall from their rest
+    tested = None
+    if coordinates == "polar":  # the joints' largest angle along the wall from their rest; beyond STABILITY_SWING
         u, at_rest = windows[0].states[:, :2 * N].reshape(-1, 2, N) @ model.phi[held].T, rested["u"][held]
         turned = np.unwrap(np.arctan2(u[:, 1], u[:, 0]), axis=0) - np.arctan2(at_rest[:, 1], at_rest[:, 0])[None]
-        if (swing := float(np.max(np.abs(turned)))) > STABLE_SWING:
-            return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
-                              f"coordinates, beyond the {STABLE_SWING:.2g} rad up to which such a motion was found "
-                              f"stable (the pipe may leave it and bounce)")
+        swing = float(np.max(np.abs(turned)))
+        if swing > STABILITY_SWING:  # the motion's stability by the reference model's run kicked off it
+            tested = dict(stability(model, windows[0], held), swing=swing)
+            if not tested["stable"]:
+                left = (f"a contact opened in revolution {tested['opened']}" if tested["opened"] else
+                        f"the kick grew {tested['growth']:.3g}-fold a revolution")
+                return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
+                                  f"coordinates, and that motion is unstable: the reference model started on it with "
+                                  f"its velocities {STABILITY_KICK:.0%} off left it ({left}): the pipe bounces",
+                            stability=tested)
     mine, other = values(inputs, [{**state, "window": w} for w in windows])
     harmonic = max(abs(other[k] - mine[k]) / max(abs(mine[k]), 1e-300) for k in FIGURES)
     return dict(values=mine, window=windows[0], error=float(harmonic + fine["change"]), harmonic_error=float(harmonic),
                 iterations=fine["iterations"], change=float(fine["change"]), harmonics=harmonics, coarser=coarser,
-                coordinates=coordinates)
+                coordinates=coordinates, stability=tested)
+
+
+def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
+    """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a bouncing
+    motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall bounces),
+    its message saying so and its extras ``second_motion`` the run's; 0 where the run stays on the wall; not set
+    (NaN) where the lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
+    lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
+    if not (eps > 0 and np.isfinite(lift) and lift < BASIN_LIFT_RATIO * eps):
+        return result
+    found = result.extras["second_motion"] = from_rest(model)
+    result.values["coexisting_motion"] = float(found["bounced"])
+    if found["bounced"]:
+        result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
+                           f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
+                           f"left the wall in revolution {found['opened']}, {found['peak']:.4g} N")
+    return result
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -924,6 +1016,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
 
     def finish(status: str, message: str) -> PointResult:
         result.status, result.message = status, message
+        if status == "ok":
+            second_motion(result, model)
         return result
 
     if state["why"] == "buckled":
@@ -985,6 +1079,12 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
             fn = fine["window"].forces[:, :, 2]
             swing = float(np.max(np.max(fn, axis=0) - np.min(fn, axis=0)) / 2)
             where_on = " in the wall's coordinates" if fine["coordinates"] == "polar" else ""
+            if fine.get("stability"):  # tested stable (:func:`stability`)
+                tested = fine["stability"]
+                result.extras["stability"] = tested
+                where_on += (f" (the joints swing {tested['swing']:.2g} rad; stable: the reference model kicked off it "
+                             f"by {STABILITY_KICK:.0%} came back, {tested['growth']:.3g}-fold a revolution over "
+                             f"{tested['revolutions']} revolutions)")
             return finish("ok", f"{lying}±{swing:.3g} N as the eccentric load turns; harmonic balance of the exact "
                                 f"contact and drag{where_on} in {fine['iterations']} iterations (the linearisation's "
                                 f"{linearisation:.2g} removed), {fine['harmonics']} against {fine['coarser']} "
