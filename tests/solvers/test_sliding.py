@@ -134,7 +134,9 @@ PANEL = [
                  (415.57809414808133, 35683146.6946752, 2798370.0456557223, 0.032696877991786694, 145362.83293734686),
                  "lying on the wall at 0 m, 9.45 m, 18.9 m, sliding: 225.2 N at rest, ±165 N as the eccentric load "
                  "turns; linearisation 0.0054 (contact 0.002, drag 8.3e-05, orders left out 0.0034), 48 against 24 modes "
-                 "0.0016, drag settled in 4 iterations", id="150: 150 rpm, 20 klbf, e 0.7, 12 ppg, no flow: ok"),
+                 "0.0016, drag settled in 4 iterations; a bouncing motion coexists: the reference model's run from the rest on "
+                 "the wall (the eccentric load applied at once; lift-off eccentricity 1.57 times the point's) left the "
+                 "wall in revolution 1, 927 N", id="150: 150 rpm, 20 klbf, e 0.7, 12 ppg, no flow: ok, and bouncing"),
 ]
 def _without_joint_mass(point: dict) -> dict:
     """The point with no tool-joint mass lumped (the panel's figures were taken before it was)."""
@@ -374,7 +376,8 @@ def test_the_lift_off_holds_its_precision_with_fewer_sliding_solves(monkeypatch)
     # default grid point 0 (50 rpm, 5 000 lbf, 9 ppg, no flow, straight hole): the least normal force over the
     # revolution h(ε) falls to nil at the lift-off eccentricity; its root to 1e-12 by Brent's method on the same
     # states (each the whirl about the rest with the eccentric load scaled, its drag settled to 1e-10) is the fine
-    # answer, and the search holds it to its 0.1 % (measured 1e-8) with at most 3 states (the secant took 5)
+    # answer, and the search holds it to its 0.1 % (measured 2e-7) with at most 2 states (the secant took 5, the
+    # parabola started by the secant 3; started by the slope at ε = 0, sliding._least_force_slope, 2)
     point = _study_point(0)
     state = sliding.steady_state(point)
     model, rested, linear = state["model"], state["rest"], state["linear"]
@@ -395,4 +398,4 @@ def test_the_lift_off_holds_its_precision_with_fewer_sliding_solves(monkeypatch)
 
     monkeypatch.setattr(sliding, "whirl", counting)
     assert sliding.lift_off_eccentricity(point, state) == pytest.approx(fine, rel=1e-3)
-    assert len(whirled) <= 3
+    assert len(whirled) <= 2

@@ -747,27 +747,62 @@ def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | 
         window, _ = revolution(scaled, rested, whirled)
         return _least_force(dict(rest=rested, window=window))
 
-    # the least force h(ε) from h(0) = 1 (the rest) and the point's own ε (or the trial's); the root of the parabola
-    # through the last three values (h is linear in ε but for the drag's growth and the arc's second order, whose
-    # share grows as ε²), the secant where it has none
+    # the least force h(ε) from h(0) = 1 (the rest), its slope there (:func:`_least_force_slope`: the drag's and the
+    # arc's parts grow as ε², so h = 1 + h'(0) ε + O(ε²)) and the point's own ε (or the trial's): first the root of the
+    # parabola with that value and slope through the point's value, then of the parabola through the last three values,
+    # the secant where one has none
     e0, h0 = 0.0, 1.0
     e1 = base
     h1 = _least_force(state) if state["model"].eccentricity > 0 else least(e1)
     if not h1 < h0:  # the turning load does not lower the force
         return float("inf")
     known = [(e0, h0), (e1, h1)]
+    slope = _least_force_slope(model, rested, linear) / base
     for _ in range(LIFT_ITERATIONS):
         (e0, h0), (e1, h1) = known[-2:]
         e2 = e1 + h1 * (e1 - e0) / (h0 - h1) if h0 != h1 else e1
-        if len(known) >= 3:
-            curve = _parabola_root(known[-3:], e2)
-            e2 = curve if curve is not None else e2
+        curve = (_hermite_root(known[:1] + known[-2:] if len(known) > 3 else known, slope, e2) if slope < 0 else
+                 _parabola_root(known[-3:], e2) if len(known) >= 3 else None)
+        e2 = curve if curve is not None else e2
         if not (np.isfinite(e2) and e2 > 0):
             break
         if abs(e2 - e1) <= LIFT_SETTLED * e2:
             return float(e2)
         known.append((e2, least(e2)))
     return float(known[-1][0])
+
+
+def _least_force_slope(model: reference.WhirlModel, rested: dict[str, Any],
+                       linear: tuple[np.ndarray, np.ndarray]) -> float:
+    """dh/dε at ε = 0 times ε [-] of the least normal force over the revolution relative to the rest (:func:`_least_force`)
+    for ``model``'s eccentric load: the drag made viscous by equal dissipation grows with the motion (its damping as ε)
+    and the arc's second order as ε², so as ε → 0 the motion is the synchronous response without drag, A = Z⁻¹ L
+    (:func:`_dynamic_matrix`), and a touching point's normal force swings by |n̂ᵀ (K + iΩ D) a_p| about its rest, a_p
+    its displacement amplitude: h'(0) ε = −max_p |n̂_pᵀ (K_p + iΩ D_p) a_p| / F_p. One complex solve."""
+    N, held = model.n_modes, np.flatnonzero(rested["touching"])
+    stiff, damp = linear
+    load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)
+    A = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, 1), load)
+    a = np.stack((model.phi[held] @ A[:N], model.phi[held] @ A[N:]), axis=-1)  # (H, 2) complex
+    u0 = rested["u"][held]
+    n0 = u0 / np.hypot(u0[:, 0], u0[:, 1])[:, None]
+    swing = np.abs(np.einsum("hi,hij,hj->h", n0, stiff[held] + 1j * model.rotary_speed * damp[held], a))
+    return float(-np.max(swing / rested["normal"][held]))
+
+
+def _hermite_root(points: list[tuple[float, float]], slope: float, near: float) -> float | None:
+    """The real root nearest ``near`` of the polynomial through (ε, h) ``points``, the first (0, 1), with the slope
+    ``slope`` at 0 (of degree the points' count), None where it has none."""
+    x = np.array([p[0] for p in points])
+    scale = float(np.max(np.abs(x)))
+    t = x / scale
+    degree = len(points)
+    rows = np.vstack([t[:, None] ** np.arange(degree + 1), (np.arange(degree + 1) * (0.0 ** np.maximum(
+        np.arange(degree + 1) - 1, 0)))[None]])  # the values at the points and the slope at 0
+    coefficients = np.linalg.solve(rows, np.array([p[1] for p in points] + [slope * scale]))
+    roots = np.roots(coefficients[::-1]) * scale
+    roots = roots[(np.abs(roots.imag) <= 1e-9 * scale) & (roots.real > 0)].real
+    return float(roots[np.argmin(np.abs(roots - near))]) if roots.size else None
 
 
 def _parabola_root(points: list[tuple[float, float]], near: float) -> float | None:
@@ -999,7 +1034,7 @@ def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResu
     if found["bounced"]:
         result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
                            f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
-                           f"left the wall in revolution {found['opened']}, {found['peak']:.4g} N")
+                           f"left the wall in revolution {found['opened']}, {found['peak']:.3g} N")
     return result
 
 
