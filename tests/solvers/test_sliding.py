@@ -363,14 +363,18 @@ def test_auto_reports_the_bouncing_motion_where_both_exist_and_flags_it():
     from study.solvers.methods import auto
     from study.solvers.model.result import PointResult
 
-    lying = PointResult(method="sliding", values=dict(coexisting_motion=1.0, peak_contact_force=595.4,
+    lying = PointResult(method="sliding", values=dict(coexisting_motion=1.0, peak_contact_force=595.4, regime=6.0,
                                                       max_normal_stress=22.04e6, alternating_bending_stress=5e6))
     assert auto.MENDS["reference"](lying, {}) is True
-    bouncing = PointResult(method="reference", status="not_converged", values=dict(peak_contact_force=24e3),
-                           message="bouncing")
+    bouncing = PointResult(method="reference", status="not_converged", values=dict(peak_contact_force=24e3,
+                                                                                    regime=3.0), message="bouncing")
     auto._coexisting(bouncing, [lying, bouncing])
     assert bouncing.values["coexisting_motion"] == 1.0 and bouncing.extras["coexisting"]["peak_contact_force"] == 595.4
     assert "stable sliding motion (sliding: 595.4 N" in bouncing.message
+    # where the reference model's run came to the sliding regime after all, no second motion is flagged
+    settled = PointResult(method="reference", values=dict(peak_contact_force=596.0, regime=6.0), message="sliding")
+    auto._coexisting(settled, [lying, settled])
+    assert settled.values["coexisting_motion"] == 0.0 and settled.message == "sliding"
 
 
 def test_the_lift_off_holds_its_precision_with_fewer_sliding_solves(monkeypatch):

@@ -162,10 +162,14 @@ def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
 def _coexisting(result: PointResult, tried: list[PointResult]) -> None:
     """Where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the sliding state,
     :func:`study.solvers.methods.sliding.second_motion`) and a higher rung answered the point, the point's answer is the
-    higher rung's — the motion the pipe reaches from rest, the worse for the limits (a kicked pipe bounces) — flagged
-    with ``coexisting_motion`` 1, the other motion's figures in its message and extras ``coexisting``."""
+    higher rung's — the motion the pipe reaches from rest, the safe side for the limits (a kicked pipe bounces or
+    chatters on the wall) — flagged with ``coexisting_motion`` 1, the other motion's figures in its message and extras
+    ``coexisting``; 0 where the higher rung's run came to the same regime as the stable motion's."""
     for other in tried:
         if other is not result and other.values.get("coexisting_motion") == 1.0:
+            if result.values.get("regime") == other.values.get("regime"):  # the higher rung's run found the same
+                result.values["coexisting_motion"] = 0.0
+                return
             result.values["coexisting_motion"] = 1.0
             figures = {k: other.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
                                                         "alternating_bending_stress")}
@@ -173,7 +177,7 @@ def _coexisting(result: PointResult, tried: list[PointResult]) -> None:
             result.message += (f"; beside it a stable {other.method} motion ({other.method}: "
                                f"{figures['peak_contact_force']:.4g} N, max normal stress "
                                f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: "
-                               f"the figures are the bouncing motion's, the worse")
+                               f"the figures are those of the motion reached from rest, which a kick throws it into")
             return
 
 
