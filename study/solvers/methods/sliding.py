@@ -49,18 +49,16 @@ from scipy import optimize
 from study.physics import contact
 from study.physics import whirl as whirl_physics
 from study.solvers.methods import reference
-from study.solvers.kernels import whirl_kernel
-from study.solvers.model.options import ReferenceOptions, study_tolerance
+from study.solvers.methods.sliding_parts import (STABILITY_KICK, STABILITY_SWING, least_force_slope,
+                                                polynomial_root, second_motion, stability)
+from study.solvers.model.options import study_tolerance
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 METHOD = "sliding"
-#: Inputs the answer does not depend on (``auto`` reuses one answer across them; a test holds the claim): none. The
-#: sliding state's figures do not depend on the restitution (its held contacts have no Hunt–Crossley term, which depends
-#: on an onset a held contact never had), but the checks of its stability and of a second motion (:func:`stability`,
-#: :func:`from_rest`) run the reference model, whose held contacts have that damping: without it (restitution 1) the
-#: contact's own normal oscillation is undamped and a 1 % kick opened the contact at default grid points 88 and 322
-#: (stable with it).
+#: Inputs the answer does not depend on (``auto`` reuses one answer across them; a test holds the claim): none. Its
+#: figures do not depend on the restitution, but its checks (:mod:`~study.solvers.methods.sliding_parts`) run the
+#: reference model, whose held contacts it damps.
 INDEPENDENT_OF = ()
 SAMPLES = 256  #: Samples over the revolution for the outputs and the drag's equal dissipation.
 #: Fixed-point iterations on the drag at most, and the relative change of A that ends them.
@@ -747,22 +745,22 @@ def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | 
         window, _ = revolution(scaled, rested, whirled)
         return _least_force(dict(rest=rested, window=window))
 
-    # the least force h(ε) from h(0) = 1 (the rest), its slope there (:func:`_least_force_slope`: the drag's and the
-    # arc's parts grow as ε², so h = 1 + h'(0) ε + O(ε²)) and the point's own ε (or the trial's): first the root of the
-    # parabola with that value and slope through the point's value, then of the parabola through the last three values,
-    # the secant where one has none
+    # the least force h(ε) from h(0) = 1 (the rest), its slope there (:func:`least_force_slope`: the drag's and the
+    # arc's parts grow as ε², so h = 1 + h'(0) ε + O(ε²)) and the point's own ε (or the trial's): the root of the
+    # polynomial with that value and slope at 0 through the last two values (docs/reference_model.md §10: 41 whirls
+    # against the parabola's 48 over 20 points), the secant where it has none
     e0, h0 = 0.0, 1.0
     e1 = base
     h1 = _least_force(state) if state["model"].eccentricity > 0 else least(e1)
     if not h1 < h0:  # the turning load does not lower the force
         return float("inf")
     known = [(e0, h0), (e1, h1)]
-    slope = _least_force_slope(model, rested, linear) / base
+    slope = least_force_slope(model, rested, linear,
+                              _dynamic_matrix(model, *linear, np.flatnonzero(rested["touching"]), 1)) / base
     for _ in range(LIFT_ITERATIONS):
         (e0, h0), (e1, h1) = known[-2:]
         e2 = e1 + h1 * (e1 - e0) / (h0 - h1) if h0 != h1 else e1
-        curve = (_hermite_root(known[:1] + known[-2:] if len(known) > 3 else known, slope, e2) if slope < 0 else
-                 _parabola_root(known[-3:], e2) if len(known) >= 3 else None)
+        curve = polynomial_root(known[:1] + known[-2:] if len(known) > 3 else known, e2, slope if slope < 0 else None)
         e2 = curve if curve is not None else e2
         if not (np.isfinite(e2) and e2 > 0):
             break
@@ -770,55 +768,6 @@ def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | 
             return float(e2)
         known.append((e2, least(e2)))
     return float(known[-1][0])
-
-
-def _least_force_slope(model: reference.WhirlModel, rested: dict[str, Any],
-                       linear: tuple[np.ndarray, np.ndarray]) -> float:
-    """dh/dε at ε = 0 times ε [-] of the least normal force over the revolution relative to the rest (:func:`_least_force`)
-    for ``model``'s eccentric load: the drag made viscous by equal dissipation grows with the motion (its damping as ε)
-    and the arc's second order as ε², so as ε → 0 the motion is the synchronous response without drag, A = Z⁻¹ L
-    (:func:`_dynamic_matrix`), and a touching point's normal force swings by |n̂ᵀ (K + iΩ D) a_p| about its rest, a_p
-    its displacement amplitude: h'(0) ε = −max_p |n̂_pᵀ (K_p + iΩ D_p) a_p| / F_p. One complex solve."""
-    N, held = model.n_modes, np.flatnonzero(rested["touching"])
-    stiff, damp = linear
-    load = np.concatenate((model.eccentric, -1j * model.eccentric)).astype(complex)
-    A = np.linalg.solve(_dynamic_matrix(model, stiff, damp, held, 1), load)
-    a = np.stack((model.phi[held] @ A[:N], model.phi[held] @ A[N:]), axis=-1)  # (H, 2) complex
-    u0 = rested["u"][held]
-    n0 = u0 / np.hypot(u0[:, 0], u0[:, 1])[:, None]
-    swing = np.abs(np.einsum("hi,hij,hj->h", n0, stiff[held] + 1j * model.rotary_speed * damp[held], a))
-    return float(-np.max(swing / rested["normal"][held]))
-
-
-def _hermite_root(points: list[tuple[float, float]], slope: float, near: float) -> float | None:
-    """The real root nearest ``near`` of the polynomial through (ε, h) ``points``, the first (0, 1), with the slope
-    ``slope`` at 0 (of degree the points' count), None where it has none."""
-    x = np.array([p[0] for p in points])
-    scale = float(np.max(np.abs(x)))
-    t = x / scale
-    degree = len(points)
-    rows = np.vstack([t[:, None] ** np.arange(degree + 1), (np.arange(degree + 1) * (0.0 ** np.maximum(
-        np.arange(degree + 1) - 1, 0)))[None]])  # the values at the points and the slope at 0
-    coefficients = np.linalg.solve(rows, np.array([p[1] for p in points] + [slope * scale]))
-    roots = np.roots(coefficients[::-1]) * scale
-    roots = roots[(np.abs(roots.imag) <= 1e-9 * scale) & (roots.real > 0)].real
-    return float(roots[np.argmin(np.abs(roots - near))]) if roots.size else None
-
-
-def _parabola_root(points: list[tuple[float, float]], near: float) -> float | None:
-    """The root nearest ``near`` of the parabola through three (ε, h) ``points`` (Newton's divided differences), None
-    where it has no real root."""
-    (x0, y0), (x1, y1), (x2, y2) = points
-    if len({x0, x1, x2}) < 3:
-        return None
-    d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
-    a = (d12 - d01) / (x2 - x0)  # h = y2 + b (ε − x2) + a (ε − x2)²
-    b = d12 + a * (x2 - x1)
-    disc = b * b - 4 * a * y2
-    if a == 0.0 or disc < 0:
-        return x2 - y2 / b if a == 0.0 and b != 0.0 else None
-    roots = x2 + (-b + np.array([1.0, -1.0]) * np.sqrt(disc)) / (2 * a)
-    return float(roots[np.argmin(np.abs(roots - near))])
 
 
 def add_lift_off(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
@@ -903,85 +852,6 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
 #: Harmonics of the balance in the wall's coordinates (:func:`balance`) and of its coarser solution (at default grid
 #: points 40 and 505 the figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 3e-5, with 12 and 16 4e-5).
 POLAR_HARMONICS = (16, 12)
-#: The stability test of a motion solved in the wall's coordinates (:func:`stability`): the relative kick of its modal
-#: velocities, the revolutions run, and the swing [rad] along the wall at or below which a motion is not tested (the
-#: linear answers and the Cartesian balance, which settle only below it, never test). At default grid point 54 (0.37 rad)
-#: the kicked run's distance from the motion fell for 10 revolutions, then grew 1.21-fold a revolution and the contact
-#: opened at 36; at point 40 (0.24 rad) it fell 0.93-fold a revolution: over revolutions 11-20 the two are told apart
-#: by the sign of the growth.
-STABILITY_KICK, STABILITY_REVOLUTIONS, STABILITY_SWING = 0.01, 20, 0.1
-
-
-def stability(model: reference.WhirlModel, window: reference.Window, held: np.ndarray,
-              revolutions: int = STABILITY_REVOLUTIONS, kick: float = STABILITY_KICK) -> dict[str, Any]:
-    """Whether a periodic motion on the wall is stable, by the reference model's own time integration (its compiled
-    kernel, the Hertz wall with the Hunt–Crossley damping of a held contact, which depends on the restitution): the
-    run starts on the motion's state at
-    t = 0 (``window``, one revolution of it) with its modal velocities ``kick`` larger, and runs ``revolutions``
-    revolutions. At the end of each the distance d_k of the modal state from the motion's (its largest component in
-    units of the clearance and Ω × the clearance) is the perturbation left (a Poincaré map: the motion repeats every
-    revolution); its growth per revolution, exp of the least-squares slope of ln d_k over the second half of the run
-    (the faster parts of the perturbation died in the first), estimates the largest Floquet multiplier's modulus.
-    Unstable where a contact of ``held`` (bool P) opens and closes again (an onset) or a point off the wall strikes it,
-    or where the perturbation grows (growth ≥ 1).
-
-    Returns stable (bool), growth (per revolution), decay (d over d_0 at the end), revolutions run and opened (the
-    revolution at which a contact opened, or None)."""
-    N = model.n_modes
-    start = np.zeros(4 * N + 4)
-    start[:4 * N] = window.states[0, :4 * N]
-    motion = start[:4 * N].copy()
-    start[2 * N:4 * N] *= 1.0 + kick
-    c = float(np.max(model.clearance))
-    scale = np.concatenate((np.full(2 * N, c), np.full(2 * N, model.rotary_speed * c)))
-    d0 = max(float(np.max(np.abs(start[:4 * N] - motion) / scale)), 1e-300)
-    run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
-    distance, opened = [], None
-    for k in range(1, revolutions + 1):
-        cycle = run.run(k * model.period)
-        if run.outcome != whirl_kernel.OK or np.any(cycle.onsets > 0):
-            opened = k
-            break
-        distance.append(float(np.max(np.abs(run.modal_state() - motion) / scale)))
-    late = np.log(np.maximum(distance[len(distance) // 2:], 1e-300))
-    growth = (float(np.exp(np.polyfit(np.arange(late.size), late, 1)[0])) if opened is None and late.size > 1
-              else float("inf"))
-    return dict(stable=bool(opened is None and growth < 1.0), growth=growth,
-                decay=distance[-1] / d0 if distance else float("inf"), revolutions=k, opened=opened)
-
-
-#: The check for a second motion (:func:`from_rest`): the revolutions the reference model runs from the sliding rest,
-#: the last of them in which a strike means the pipe still bounces, the strike beyond this many times a joint's rest
-#: force that decides it at once, and the lift-off eccentricity over the point's below which the check runs (a joint's
-#: least force over the revolution near nil: the whole eccentric load applied at once may throw it off the wall). At
-#: default grid points 128 and 146 the run lifted off in its first revolutions (600 N, 2.2 and 2.5 times the rest
-#: force) and settled on the wall by the 15th and the 7th; at 384 it still struck in each of revolutions 16-30.
-BASIN_REVOLUTIONS, BASIN_LAST, BASIN_STRIKE, BASIN_LIFT_RATIO = 20, 5, 5.0, 2.0
-
-
-def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS,
-              last: int = BASIN_LAST) -> dict[str, Any]:
-    """Whether the reference model's run from the string's rest on the wall (its own start,
-    :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) still
-    bounces after ``revolutions`` revolutions — a contact opens and strikes again (an onset) in the ``last`` of them,
-    or a strike exceeds :data:`BASIN_STRIKE` times the largest rest force — or settles on the wall: where it bounces a
-    bouncing motion is reached from there, beside the sliding one (docs/reference_model.md §10). Returns bounced
-    (bool), the revolution of the first onset (or None), the revolutions run and the largest contact force seen [N]."""
-    run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), reference.initial_state(model))
-    strike = BASIN_STRIKE * float(np.max(rest(model)["normal"]))
-    peak, opened, late = 0.0, None, 0
-    for k in range(1, revolutions + 1):
-        cycle = run.run(k * model.period)
-        peak = max(peak, float(np.max(cycle.peak)))
-        struck = run.outcome != whirl_kernel.OK or np.any(cycle.onsets > 0)
-        opened = k if struck and opened is None else opened
-        late += bool(struck and k > revolutions - last)
-        if struck and (peak > strike or run.outcome != whirl_kernel.OK):
-            late = 1
-            break
-    return dict(bounced=late > 0, opened=opened, peak=peak, revolutions=k)
-
-
 def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: str, harmonics: int,
              coarser: int) -> dict[str, Any] | None:
     """:func:`refine` with the balance in ``coordinates`` (:data:`BALANCE_COORDINATES`) at ``harmonics`` against
@@ -1015,7 +885,7 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
         turned = np.unwrap(np.arctan2(u[:, 1], u[:, 0]), axis=0) - np.arctan2(at_rest[:, 1], at_rest[:, 0])[None]
         swing = float(np.max(np.abs(turned)))
         if swing > STABILITY_SWING:  # the motion's stability by the reference model's run kicked off it
-            tested = dict(stability(model, windows[0], held), swing=swing)
+            tested = dict(stability(model, windows[0]), swing=swing)
             if not tested["stable"]:
                 left = (f"a contact opened in revolution {tested['opened']}" if tested["opened"] else
                         f"the kick grew {tested['growth']:.3g}-fold a revolution")
@@ -1028,27 +898,6 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
     return dict(values=mine, window=windows[0], error=float(harmonic + fine["change"]), harmonic_error=float(harmonic),
                 iterations=fine["iterations"], change=float(fine["change"]), harmonics=harmonics, coarser=coarser,
                 coordinates=coordinates, stability=tested)
-
-
-def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
-    """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a bouncing
-    motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall bounces),
-    its message saying so and its extras ``second_motion`` the run's; 0 where the run stays on the wall; not set
-    (NaN) where the lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
-    lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
-    if not (eps > 0 and np.isfinite(lift) and lift < BASIN_LIFT_RATIO * eps):
-        return result
-    found = result.extras["second_motion"] = from_rest(model)
-    result.values["coexisting_motion"] = float(found["bounced"])
-    if found["bounced"]:
-        result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
-                           f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
-                           f"left the wall in revolution {found['opened']} and "
-                           + (f"struck it at {found['peak']:.3g} N, over {BASIN_STRIKE:g} times the rest force"
-                              if found["revolutions"] < BASIN_REVOLUTIONS else
-                              f"still struck it in the last {BASIN_LAST} of {found['revolutions']} revolutions "
-                              f"({found['peak']:.3g} N)"))
-    return result
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
