@@ -84,10 +84,10 @@ SLIDING_STANDS_BELOW = 0.05
 def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
+    if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
+        return True  # a bouncing motion coexists with it: the reference model's run decides (:func:`climb`)
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
-    if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
-        return True  # a bouncing motion coexists with the sliding one: the worse is reported (:func:`climb`)
     return _not_final(result, point)
 
 
@@ -159,26 +159,32 @@ def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
     return result
 
 
-def _coexisting(result: PointResult, tried: list[PointResult]) -> None:
-    """Where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the sliding state,
-    :func:`study.solvers.methods.sliding.second_motion`) and a higher rung answered the point, the point's answer is the
+def _coexisting(tried: list[PointResult]) -> PointResult | None:
+    """The point's answer where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the
+    sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after: the
     higher rung's — the motion the pipe reaches from rest, the safe side for the limits (a kicked pipe bounces or
-    chatters on the wall) — flagged with ``coexisting_motion`` 1, the other motion's figures in its message and extras
-    ``coexisting``; 0 where the higher rung's run came to the same regime as the stable motion's."""
-    for other in tried:
-        if other is not result and other.values.get("coexisting_motion") == 1.0:
-            if result.values.get("regime") == other.values.get("regime"):  # the higher rung's run found the same
-                result.values["coexisting_motion"] = 0.0
-                return
-            result.values["coexisting_motion"] = 1.0
-            figures = {k: other.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
-                                                        "alternating_bending_stress")}
-            result.extras["coexisting"] = dict(method=other.method, status=str(other.status), **figures)
-            result.message += (f"; beside it a stable {other.method} motion ({other.method}: "
-                               f"{figures['peak_contact_force']:.4g} N, max normal stress "
-                               f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: "
-                               f"the figures are those of the motion reached from rest, which a kick throws it into")
-            return
+    chatters on the wall), whatever its error — flagged with ``coexisting_motion`` 1, the other motion's figures in
+    its message and extras ``coexisting``; but where the higher rung's run came to the stable motion's regime, the
+    stable motion's answer, flagged 0 (its second motion not found by the higher model). None where no rung was so
+    flagged or none answered after it."""
+    flagged = next((r for r in tried[:-1] if r.values.get("coexisting_motion") == 1.0), None)
+    if flagged is None:
+        return None
+    higher = tried[-1]
+    if higher.values.get("regime") == flagged.values.get("regime"):  # the higher model's run found the same motion
+        flagged.values["coexisting_motion"] = 0.0
+        flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
+                           + f"; the {higher.method} model's run from the rest came to this motion too")
+        return flagged
+    higher.values["coexisting_motion"] = 1.0
+    figures = {k: flagged.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
+                                                  "alternating_bending_stress")}
+    higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures)
+    higher.message += (f"; beside it a stable {flagged.method} motion ({flagged.method}: "
+                       f"{figures['peak_contact_force']:.4g} N, max normal stress "
+                       f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: the "
+                       f"figures are those of the motion reached from rest, which a kick throws it into")
+    return higher
 
 
 def climb(ladder: str, point: DesignPoint) -> PointResult:
@@ -196,7 +202,7 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
                and np.isfinite(r.error_estimate)]
     if result.status == "not_converged" and answers:  # nothing converged: the answer nearest to it stands
         result = min(answers, key=lambda r: r.error_estimate)
-    _coexisting(result, tried)
+    result = _coexisting(tried) or result  # two motions: the one reached from rest, flagged
     why = (f"{result.method} answered" if result.status == "ok" else
            f"no model served ({result.method}'s {result.status} is what is known)")
     if len(tried) > 1:
