@@ -256,6 +256,11 @@ METHOD_EDGES = {
                               "reference model's stresses and whirl measure",
     ("reference", "sliding"): "the reference model's integration starts from the sliding rest in a deviated hole "
                               "(integrate.initial_state calls sliding.rest, which sliding's solver shares)",
+    ("sliding", "sliding_parts"): "the sliding method's parts kept in a module of their own (sliding.py at the "
+                                  "thousand-line cap): its checks of stability and of a second motion, the lift-off "
+                                  "search's start",
+    ("sliding_parts", "reference"): "the sliding state's checks run the reference model's integrator on its model "
+                                    "(stability, from_rest)",
 }
 
 

@@ -33,6 +33,11 @@ EXTRA_OUTPUTS = {
 }
 
 
+#: CF flag attributes of the outputs that are flags (besides ``regime``'s codes).
+FLAGS = {"coexisting_motion": {"flag_values": np.array([0.0, 1.0]),
+                               "flag_meanings": "one_motion_found bouncing_motion_coexists"}}
+
+
 def _input_attrs(name: str) -> dict[str, str]:
     spec = FIELDS_BY_NAME[name]
     attrs = {"long_name": spec.long_name}
@@ -58,7 +63,7 @@ def _data_variables(grid: Grid, columns, order: np.ndarray) -> Iterator[tuple[st
         if name in OUTPUTS and np.all(np.isnan(values)):
             continue
         flags = {"flag_values": np.array(list(REGIMES.values()), dtype=float),
-                 "flag_meanings": " ".join(REGIMES)} if name == "regime" else {}
+                 "flag_meanings": " ".join(REGIMES)} if name == "regime" else FLAGS.get(name, {})
         yield name, xr.Variable(dims, values, {"units": unit, "long_name": long_name, **flags})
     codes = [code for code, _ in STATUS.values()]
     yield "status", xr.Variable(dims, grid_array("status").astype(np.int8), {

@@ -25,8 +25,13 @@ can mend (buckling, missing inputs) is a property of the point, returned at once
 Every rung is given the same typed design point (:class:`~study.solvers.model.point.DesignPoint`, built once by
 :func:`study.solvers.solve_point`); the series gets it with its own harmonics' tolerance.
 
-The free whirl and the sliding state depend on no restitution (``INDEPENDENT_OF`` in their modules): their answers
-are kept by the other inputs (:func:`solve_rung`), so a sweep over the restitution solves them once.
+The free whirl depends on no restitution (``INDEPENDENT_OF`` in its module): its answers are kept by the other inputs
+(:func:`solve_rung`), so a sweep over the restitution solves it once. (The sliding state's figures do not depend on it
+either, but its checks of stability and of a second motion run the reference model, whose held contacts it damps.)
+
+Where the sliding state is stable but a bouncing motion coexists with it (the reference model's run from rest bounces:
+output ``coexisting_motion`` 1), the point goes up too and its answer is the bouncing one, the worse for the limits,
+flagged and naming the sliding one's figures (:func:`_coexisting`).
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -79,6 +84,8 @@ SLIDING_STANDS_BELOW = 0.05
 def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
+    if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
+        return True  # a bouncing motion coexists with it: the reference model's run decides (:func:`climb`)
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
     return _not_final(result, point)
@@ -117,7 +124,7 @@ MENDS: dict[str, Callable[[PointResult, DesignPoint], bool]] = {
 
 #: The answers of rungs whose method declares inputs it does not depend on (its module's ``INDEPENDENT_OF``), kept
 #: by the other inputs, at most this many in a process (the least recently used dropped): a sweep over the
-#: restitution solves the free whirl and the sliding state once for all its values.
+#: restitution solves the free whirl once for all its values.
 MEMO_SIZE = 4096
 _memo: OrderedDict[tuple, PointResult] = OrderedDict()
 _memo_lock = threading.Lock()  # a worker may run several threads
@@ -152,6 +159,34 @@ def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
     return result
 
 
+def _coexisting(tried: list[PointResult]) -> PointResult | None:
+    """The point's answer where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the
+    sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after: the
+    higher rung's — the motion the pipe reaches from rest, the safe side for the limits (a kicked pipe bounces or
+    chatters on the wall), whatever its error — flagged with ``coexisting_motion`` 1, the other motion's figures in
+    its message and extras ``coexisting``; but where the higher rung's run came to the stable motion's regime, the
+    stable motion's answer, flagged 0 (its second motion not found by the higher model). None where no rung was so
+    flagged or none answered after it."""
+    flagged = next((r for r in tried[:-1] if r.values.get("coexisting_motion") == 1.0), None)
+    if flagged is None:
+        return None
+    higher = tried[-1]
+    if higher.values.get("regime") == flagged.values.get("regime"):  # the higher model's run found the same motion
+        flagged.values["coexisting_motion"] = 0.0
+        flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
+                           + f"; the {higher.method} model's run from the rest came to this motion too")
+        return flagged
+    higher.values["coexisting_motion"] = 1.0
+    figures = {k: flagged.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
+                                                  "alternating_bending_stress")}
+    higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures)
+    higher.message += (f"; beside it a stable {flagged.method} motion ({flagged.method}: "
+                       f"{figures['peak_contact_force']:.4g} N, max normal stress "
+                       f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: the "
+                       f"figures are those of the motion reached from rest, which a kick throws it into")
+    return higher
+
+
 def climb(ladder: str, point: DesignPoint) -> PointResult:
     """Climb :data:`LADDERS` [ladder] until a rung serves the point (see the module docstring)."""
     tried: list[PointResult] = []
@@ -160,13 +195,14 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
             continue
         answer = solve_rung(method, prepare(point))
         tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
-        if tried[-1].status == "ok":
-            break
+        if tried[-1].status == "ok" and tried[-1].values.get("coexisting_motion") != 1.0:
+            break  # (an ok answer beside which a bouncing motion coexists goes up: the worse motion is reported)
     result = tried[-1]
     answers = [r for r in tried if r.status == "not_converged" and r.error_estimate is not None
                and np.isfinite(r.error_estimate)]
     if result.status == "not_converged" and answers:  # nothing converged: the answer nearest to it stands
         result = min(answers, key=lambda r: r.error_estimate)
+    result = _coexisting(tried) or result  # two motions: the one reached from rest, flagged
     why = (f"{result.method} answered" if result.status == "ok" else
            f"no model served ({result.method}'s {result.status} is what is known)")
     if len(tried) > 1:

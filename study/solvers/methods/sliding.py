@@ -32,7 +32,7 @@ Where that estimate is above the study's tolerance the same periodic state is so
 harmonic balance on the exact force laws (:func:`refine`, :func:`balance`), and answers where it settles with a
 smaller error (its harmonic truncation and the modes'); where the joints swing far along the wall, in the wall's own
 coordinates (each touching joint's angle along it and radial approach, :func:`balance`), not answered
-where they swing beyond :data:`STABLE_SWING` (the motion found there was unstable).
+where that motion is unstable (:func:`stability`: the reference model's run kicked off it leaves it).
 
 Why a rung of its own: the reference model reaches this state only as its start-up ringing dies, and in the tangential
 direction nothing but the quadratic drag damps it (sliding friction has a constant sense), so at 50–150 rpm it had not
@@ -49,15 +49,17 @@ from scipy import optimize
 from study.physics import contact
 from study.physics import whirl as whirl_physics
 from study.solvers.methods import reference
+from study.solvers.methods.sliding_parts import (STABILITY_KICK, STABILITY_SWING, least_force_slope,
+                                                polynomial_root, second_motion, stability)
 from study.solvers.model.options import study_tolerance
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
 METHOD = "sliding"
-#: Inputs the answer does not depend on: the contacts are held, with no Hunt–Crossley term (it depends on an onset a
-#: held contact never had), so the restitution never enters. ``auto`` reuses one answer across them (a test holds
-#: the claim).
-INDEPENDENT_OF = ("restitution",)
+#: Inputs the answer does not depend on (``auto`` reuses one answer across them; a test holds the claim): none. Its
+#: figures do not depend on the restitution, but its checks (:mod:`~study.solvers.methods.sliding_parts`) run the
+#: reference model, whose held contacts it damps.
+INDEPENDENT_OF = ()
 SAMPLES = 256  #: Samples over the revolution for the outputs and the drag's equal dissipation.
 #: Fixed-point iterations on the drag at most, and the relative change of A that ends them.
 ITERATIONS, SETTLED = 50, 1e-10
@@ -743,43 +745,29 @@ def lift_off_eccentricity(inputs: Mapping[str, Any], state: Mapping[str, Any] | 
         window, _ = revolution(scaled, rested, whirled)
         return _least_force(dict(rest=rested, window=window))
 
-    # the least force h(ε) from h(0) = 1 (the rest) and the point's own ε (or the trial's); the root of the parabola
-    # through the last three values (h is linear in ε but for the drag's growth and the arc's second order, whose
-    # share grows as ε²), the secant where it has none
+    # the least force h(ε) from h(0) = 1 (the rest), its slope there (:func:`least_force_slope`: the drag's and the
+    # arc's parts grow as ε², so h = 1 + h'(0) ε + O(ε²)) and the point's own ε (or the trial's): the root of the
+    # polynomial with that value and slope at 0 through the last two values (docs/reference_model.md §10: 41 whirls
+    # against the parabola's 48 over 20 points), the secant where it has none
     e0, h0 = 0.0, 1.0
     e1 = base
     h1 = _least_force(state) if state["model"].eccentricity > 0 else least(e1)
     if not h1 < h0:  # the turning load does not lower the force
         return float("inf")
     known = [(e0, h0), (e1, h1)]
+    slope = least_force_slope(model, rested, linear,
+                              _dynamic_matrix(model, *linear, np.flatnonzero(rested["touching"]), 1)) / base
     for _ in range(LIFT_ITERATIONS):
         (e0, h0), (e1, h1) = known[-2:]
         e2 = e1 + h1 * (e1 - e0) / (h0 - h1) if h0 != h1 else e1
-        if len(known) >= 3:
-            curve = _parabola_root(known[-3:], e2)
-            e2 = curve if curve is not None else e2
+        curve = polynomial_root(known[:1] + known[-2:] if len(known) > 3 else known, e2, slope if slope < 0 else None)
+        e2 = curve if curve is not None else e2
         if not (np.isfinite(e2) and e2 > 0):
             break
         if abs(e2 - e1) <= LIFT_SETTLED * e2:
             return float(e2)
         known.append((e2, least(e2)))
     return float(known[-1][0])
-
-
-def _parabola_root(points: list[tuple[float, float]], near: float) -> float | None:
-    """The root nearest ``near`` of the parabola through three (ε, h) ``points`` (Newton's divided differences), None
-    where it has no real root."""
-    (x0, y0), (x1, y1), (x2, y2) = points
-    if len({x0, x1, x2}) < 3:
-        return None
-    d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
-    a = (d12 - d01) / (x2 - x0)  # h = y2 + b (ε − x2) + a (ε − x2)²
-    b = d12 + a * (x2 - x1)
-    disc = b * b - 4 * a * y2
-    if a == 0.0 or disc < 0:
-        return x2 - y2 / b if a == 0.0 and b != 0.0 else None
-    roots = x2 + (-b + np.array([1.0, -1.0]) * np.sqrt(disc)) / (2 * a)
-    return float(roots[np.argmin(np.abs(roots - near))])
 
 
 def add_lift_off(result: PointResult, inputs: Mapping[str, Any]) -> PointResult:
@@ -864,12 +852,6 @@ def refine(inputs: Mapping[str, Any], state: Mapping[str, Any]) -> dict[str, Any
 #: Harmonics of the balance in the wall's coordinates (:func:`balance`) and of its coarser solution (at default grid
 #: points 40 and 505 the figures with 4 harmonics were 75 % and 59 % off, with 8 1.7 % and 3e-5, with 12 and 16 4e-5).
 POLAR_HARMONICS = (16, 12)
-#: The largest angle [rad] a joint may swing from its rest in a motion solved in the wall's coordinates: the reference
-#: model started on it with its velocities 1 % off came back to it where the joints swung 0.10-0.25 rad (default grid
-#: points 32, 40, 322, 354, 394, 472) and bounced within 40 revolutions at 0.37 and 0.59 rad (points 54 and 392).
-STABLE_SWING = 0.3
-
-
 def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: str, harmonics: int,
              coarser: int) -> dict[str, Any] | None:
     """:func:`refine` with the balance in ``coordinates`` (:data:`BALANCE_COORDINATES`) at ``harmonics`` against
@@ -897,18 +879,25 @@ def _refined(inputs: Mapping[str, Any], state: Mapping[str, Any], coordinates: s
                         f"a point off the wall reaches it {how}")
     if not coarse["settled"]:
         return None
-    if coordinates == "polar":  # the joints' largest angle along the wall from their rest
+    tested = None
+    if coordinates == "polar":  # the joints' largest angle along the wall from their rest; beyond STABILITY_SWING
         u, at_rest = windows[0].states[:, :2 * N].reshape(-1, 2, N) @ model.phi[held].T, rested["u"][held]
         turned = np.unwrap(np.arctan2(u[:, 1], u[:, 0]), axis=0) - np.arctan2(at_rest[:, 1], at_rest[:, 0])[None]
-        if (swing := float(np.max(np.abs(turned)))) > STABLE_SWING:
-            return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
-                              f"coordinates, beyond the {STABLE_SWING:.2g} rad up to which such a motion was found "
-                              f"stable (the pipe may leave it and bounce)")
+        swing = float(np.max(np.abs(turned)))
+        if swing > STABILITY_SWING:  # the motion's stability by the reference model's run kicked off it
+            tested = dict(stability(model, windows[0]), swing=swing)
+            if not tested["stable"]:
+                left = (f"a contact opened in revolution {tested['opened']}" if tested["opened"] else
+                        f"the kick grew {tested['growth']:.3g}-fold a revolution")
+                return dict(opens=f"the joints swing {swing:.2g} rad along the wall by harmonic balance in the wall's "
+                                  f"coordinates, and that motion is unstable: the reference model started on it with "
+                                  f"its velocities {STABILITY_KICK:.0%} off left it ({left}): the pipe bounces",
+                            stability=tested)
     mine, other = values(inputs, [{**state, "window": w} for w in windows])
     harmonic = max(abs(other[k] - mine[k]) / max(abs(mine[k]), 1e-300) for k in FIGURES)
     return dict(values=mine, window=windows[0], error=float(harmonic + fine["change"]), harmonic_error=float(harmonic),
                 iterations=fine["iterations"], change=float(fine["change"]), harmonics=harmonics, coarser=coarser,
-                coordinates=coordinates)
+                coordinates=coordinates, stability=tested)
 
 
 def solve(inputs: Mapping[str, Any]) -> PointResult:
@@ -924,6 +913,8 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
 
     def finish(status: str, message: str) -> PointResult:
         result.status, result.message = status, message
+        if status == "ok":
+            second_motion(result, model)
         return result
 
     if state["why"] == "buckled":
@@ -985,6 +976,12 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
             fn = fine["window"].forces[:, :, 2]
             swing = float(np.max(np.max(fn, axis=0) - np.min(fn, axis=0)) / 2)
             where_on = " in the wall's coordinates" if fine["coordinates"] == "polar" else ""
+            if fine.get("stability"):  # tested stable (:func:`stability`)
+                tested = fine["stability"]
+                result.extras["stability"] = tested
+                where_on += (f" (the joints swing {tested['swing']:.2g} rad; stable: the reference model kicked off it "
+                             f"by {STABILITY_KICK:.0%} came back, {tested['growth']:.3g}-fold a revolution over "
+                             f"{tested['revolutions']} revolutions)")
             return finish("ok", f"{lying}±{swing:.3g} N as the eccentric load turns; harmonic balance of the exact "
                                 f"contact and drag{where_on} in {fine['iterations']} iterations (the linearisation's "
                                 f"{linearisation:.2g} removed), {fine['harmonics']} against {fine['coarser']} "
