@@ -427,9 +427,10 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
     if damping_model == "viscous":
         damping = 2.0 * float(option.damping_ratio) * omega
     elif damping_model == "drag+viscous":
-        # the mud's viscous loss on each mode at its frequency: the Stokes layer confined by the hole (Chen, Wambsganss
-        # & Jendrzejczyk 1976), 2ζ_nω_n = c(ω_n)/M on the plain pipe's mass (the joints' lumped mass left out of M: ζ_n a
-        # little high); 0 on the rigid translation (ω = 0, the drag alone) and on a buckled mode (NaN ω_n: refused below)
+        # the mud's viscous loss on each mode at its frequency: the Stokes layer confined by the hole (Chen,
+        # Wambsganss & Jendrzejczyk 1976), 2ζ_nω_n = c(ω_n)/M on the plain pipe's mass (the joints' lumped mass left
+        # out of M: ζ_n a little high); 0 on the rigid translation (ω = 0, the drag alone) and on a buckled mode (NaN
+        # ω_n: refused below)
         zeta = viscous_modal_damping_ratio(omega, M, scene.mud_density, r_o, scene.mud_viscosity
                                            / max(scene.mud_density, 1e-300), hole_r)
         damping = np.nan_to_num(2.0 * np.asarray(zeta) * omega)
