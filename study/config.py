@@ -176,6 +176,10 @@ FIELDS: tuple[Field, ...] = (
           display_unit="ft/s", **_NON_NEGATIVE),
     Field("mud.drag_coefficient", "drag_coefficient", "drag coefficient of the annular flow", "", default=0.5,
           **_NON_NEGATIVE),
+    Field("mud.plastic_viscosity", "plastic_viscosity", "plastic viscosity of the mud (method reference with "
+          "solver.reference_damping = 'drag+viscous': the viscous loss of the pipe's bending modes; default 20 cP, "
+          "a water-base mud's, within API RP 13D's ranges)", "Pa*s", default=0.020, display_unit="cP",
+          **_NON_NEGATIVE),
     Field("mud.added_mass_model", "added_mass_model", "added-mass model of the annular mud", None,
           default="potential_flow", choices=tuple(ADDED_MASS_MODELS)),
     Field("load.axial_tension", "axial_tension", "axial tension at the sample section (negative: compression)",

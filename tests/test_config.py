@@ -76,6 +76,8 @@ PSI = LBF / 0.0254**2
         ("pipe.tool_joint_inner_diameter", '"3.25 in"', 3.25 * 0.0254),
         ("pipe.tool_joint_length", '"20 in"', 0.508),
         ("pipe.tool_joint_length", '"0.5 m"', 0.5),
+        ("mud.plastic_viscosity", '"20 cP"', 0.020),  # 1 cP = 1 mPa s
+        ("mud.plastic_viscosity", '"0.035 Pa s"', 0.035),
     ],
     ids=lambda v: v if isinstance(v, str) else None,
 )
@@ -89,6 +91,7 @@ def test_defaults_fill_optional_inputs():
     study = load_text(MINIMAL)
     assert study.inputs["pipe_poisson_ratio"] == 0.30
     assert study.inputs["drag_coefficient"] == 0.5  # paper §IV D
+    assert study.inputs["plastic_viscosity"] == 0.020  # 20 cP: a water-base mud's (config.FIELDS' note)
     assert study.inputs["added_mass_model"] == "potential_flow"
     assert study.inputs["pipe_linear_mass"] is None
     assert study.size == 1 and study.axes == {}
@@ -138,6 +141,9 @@ BAD = [
                                      "relative error of the force: 0.15 asks for 15 %)"),
     ("[solver] force_tolerance = 1.5", "solver.force_tolerance = 1.5: must be a finite number > 0 and < 1"),
     ("[sweep] chunksize = 10", "did you mean 'chunk_size'"),
+    # issue 36: the mud's plastic viscosity, a viscosity >= 0
+    ('[mud] plastic_viscosity = "-5 cP"', "mud.plastic_viscosity = '-5 cP'"),
+    ('[mud] plastic_viscosity = "20 ppg"', "mud.plastic_viscosity = '20 ppg': '20 ppg' has dimension"),
 ]
 
 

@@ -126,3 +126,100 @@ def compensated_amplitudes(load_factors, moment_factors, transfer, moments):
     a = np.asarray(load_factors, dtype=float)[None, :]
     e = np.asarray(moment_factors, dtype=float)[None, :]
     return (a + 1j * np.asarray(moments, dtype=float)[:, None] * e) * np.asarray(transfer)
+
+
+def oscillating_cylinder_force_coefficients(radius, frequency, kinematic_viscosity, outer_radius=None):
+    """Added-mass and damping coefficients of a cylinder oscillating across its axis in a viscous fluid, per length.
+
+    A cylinder of radius a moving with velocity U e^{iωt} in a fluid of density ρ and kinematic viscosity ν (the
+    linearised, unsteady Stokes equations) feels per length F = −(iω C_m ρπa² + C_c ρπa² ω) U, returned as
+    (C_m, C_c) [-]: the added mass is C_m ρπa² [kg/m], the damping c = C_c ρπa²ω [N s/m²].
+
+    - Unbounded fluid (``outer_radius`` None): Stokes (1851, "On the effect of the internal friction of fluids on
+      the motion of pendulums", Trans. Camb. Phil. Soc. 9, 8; Landau & Lifshitz, Fluid Mechanics §24, problem 5):
+      C_m − i C_c = 1 + 4 K₁(s)/(s K₀(s)), s = a √(iω/ν). For large |s|, C_m → 1 (potential flow) and
+      c → 2√2 πρa √(ων) (the Stokes layer), with relative corrections O(1/|s|).
+    - Fluid confined by a fixed concentric cylinder of radius b (the annulus): the same equations with no slip on
+      both walls (Chen, Wambsganss & Jendrzejczyk 1976, "Added mass and damping of a vibrating rod in confined
+      viscous fluids", J. Appl. Mech. 43(2) 325–329). The stream function ψ = F(r) sin θ,
+      F = A r + B/r + C I₁(kr) + D K₁(kr), k = √(iω/ν), takes F(a) = a, F'(a) = 1, F(b) = F'(b) = 0 (unit
+      velocity), solved here as its 4 × 4 system (the Bessel functions scaled so that it stays well conditioned at
+      large |k|b); the wall's force is πa[iωρ(Aa − B/a) + μF''(a)] (pressure −iωρ(Ar − B/r) cos θ of the potential
+      part; the normal viscous stress vanishes on the rigid wall). Its inviscid limit is the potential-flow
+      C_m = (b² + a²)/(b² − a²).
+
+    radius a [m], frequency ω [rad/s] (> 0), kinematic_viscosity ν [m²/s] (> 0), outer_radius b [m] (> a) or None.
+    Broadcast over ``frequency`` (and the others, scalars in the confined case).
+    """
+    from scipy import special
+
+    a = np.asarray(radius, dtype=float)
+    om = np.asarray(frequency, dtype=float)
+    nu = np.asarray(kinematic_viscosity, dtype=float)
+    k = np.sqrt(1j * om / nu)  # principal root: Re k > 0
+    s = k * a
+    if outer_radius is None:
+        gamma = 1.0 + 4.0 * special.kve(1, s) / (s * special.kve(0, s))  # the scalings e^{s} cancel
+        return gamma.real, -gamma.imag
+    b = float(outer_radius)
+    if not np.all(b > a):
+        raise ValueError(f"outer_radius = {b:.6g} m: must exceed the cylinder's radius {float(np.max(a)):.6g} m")
+    a_, k_ = np.broadcast_arrays(a, k)
+    gam = np.empty(k_.shape, dtype=complex)
+    for index in np.ndindex(k_.shape):
+        ai, ki = float(a_[index]), complex(k_[index])
+        gam[index] = _confined_gamma(ai, b, ki)
+    return gam.real, -gam.imag
+
+
+def _bessel_columns(k, r, b, a):
+    """Values, first and second r-derivatives at r of I₁(kr) e^{−kb} and K₁(kr) e^{ka} (scaled to stay finite)."""
+    from scipy import special
+
+    z = k * r
+    # scaled: ive(n, z) = I_n(z) e^{−|Re z|}, kve(n, z) = K_n(z) e^{z}
+    i_scale = np.exp(abs(z.real) - k * b)
+    k_scale = np.exp(-z + k * a)
+    i0, i1 = special.ive(0, z) * i_scale, special.ive(1, z) * i_scale
+    k0, k1 = special.kve(0, z) * k_scale, special.kve(1, z) * k_scale
+    di, dk = i0 - i1 / z, -k0 - k1 / z  # I₁' = I₀ − I₁/z, K₁' = −K₀ − K₁/z
+    # z² y'' + z y' − (z² + 1) y = 0 for both
+    ddi = ((z * z + 1.0) * i1 - z * di) / (z * z)
+    ddk = ((z * z + 1.0) * k1 - z * dk) / (z * z)
+    return (i1, k * di, k * k * ddi), (k1, k * dk, k * k * ddk)
+
+
+def _confined_gamma(a, b, k):
+    """C_m − i C_c of a cylinder of radius a in a fixed concentric one of radius b (see
+    :func:`oscillating_cylinder_force_coefficients`); k = √(iω/ν) [1/m]."""
+    ia, ka = _bessel_columns(k, a, b, a)
+    ib, kb = _bessel_columns(k, b, b, a)
+    system = np.array([[a, 1.0 / a, ia[0], ka[0]],
+                       [1.0, -1.0 / a**2, ia[1], ka[1]],
+                       [b, 1.0 / b, ib[0], kb[0]],
+                       [1.0, -1.0 / b**2, ib[1], kb[1]]], dtype=complex)
+    A, B, C, D = np.linalg.solve(system, np.array([a, 1.0, 0.0, 0.0], dtype=complex))
+    second = 2.0 * B / a**3 + C * ia[2] + D * ka[2]  # F''(a)
+    # F_x/(−iωρπa²) with μ/(iωρ) = ν/(iω) = 1/k²: −[(Aa − B/a) + F''(a)/k²]/a
+    return -((A * a - B / a) + second / (k * k)) / a
+
+
+def viscous_modal_damping_ratio(natural_frequency, mass_per_length, mud_density, radius, kinematic_viscosity,
+                                outer_radius=None):
+    """ζ_n = c(ω_n)/(2 m ω_n) [-]: the modal damping ratio the mud's viscous loss gives a bending mode of the pipe.
+
+    c(ω) = C_c ρπa²ω [N s/m²] is the damping per length of :func:`oscillating_cylinder_force_coefficients` (the
+    Stokes layer on the pipe's outer wall; confined by the hole where ``outer_radius`` is given); every point of the
+    span moves at the mode's frequency, so the modal damping is c/m whatever the mode's shape. natural_frequency
+    ω_n [rad/s] (NaN stays NaN; ≤ 0 gives 0), mass_per_length m [kg/m] (the pipe's with the mud inside and the
+    added mass), mud_density ρ [kg/m³], radius a [m] (the pipe's outer), kinematic_viscosity ν [m²/s] (the mud's
+    plastic viscosity over its density), outer_radius b [m] (the hole's) or None."""
+    om = np.asarray(natural_frequency, dtype=float)
+    out = np.zeros(om.shape)
+    out[np.isnan(om)] = np.nan
+    live = np.isfinite(om) & (om > 0.0)
+    if np.any(live) and float(kinematic_viscosity) > 0.0 and float(mud_density) > 0.0:
+        _, c_c = oscillating_cylinder_force_coefficients(radius, om[live], kinematic_viscosity, outer_radius)
+        c = c_c * float(mud_density) * np.pi * float(radius) ** 2 * om[live]
+        out[live] = c / (2.0 * float(mass_per_length) * om[live])
+    return out if out.ndim else float(out)

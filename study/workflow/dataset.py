@@ -25,7 +25,7 @@ CONVENTIONS = "CF-1.10"
 
 # CF/UDUNITS spellings of the SI units used in config.FIELDS.
 _UDUNITS = {"m": "m", "kg/m": "kg m-1", "kg/m^3": "kg m-3", "Pa": "Pa", "": "1", "m/s": "m s-1", "N": "N",
-            "rad/s": "rad s-1", "1/m": "m-1"}
+            "rad/s": "rad s-1", "1/m": "m-1", "Pa*s": "Pa s"}
 
 EXTRA_OUTPUTS = {
     "error_estimate": ("1", "error estimate of the method (relative)"),

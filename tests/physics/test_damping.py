@@ -83,3 +83,69 @@ def test_without_damping_no_moment_is_needed():
     transfer = damping.modal_transfer(np.array([10.0, 30.0]), np.array([[5.0], [20.0]]), 0.0)
     mu = damping.in_phase_moments(np.array([1.0, -1.0]), np.array([2.0, 6.0]), transfer, np.array([1.0, -1.0]))
     assert np.all(mu == 0.0)
+
+
+# --- the mud's viscous loss on an oscillating cylinder (Stokes 1851; Chen, Wambsganss & Jendrzejczyk 1976) ---------
+
+PIPE_RADIUS = 0.05715  # 4 1/2-in pipe [m]
+HOLE_RADIUS = 0.111125  # 8 3/4-in hole [m]
+MUD_DENSITY = 1250.0  # [kg/m³]
+MUD_NU = 0.020 / MUD_DENSITY  # 20 cP over the density [m²/s]
+
+
+def test_unbounded_cylinder_tends_to_the_stokes_layer_and_potential_flow():
+    """Large |s| = a√(ω/ν): the damping c → 2√2 πρa√(ων) and the added-mass coefficient → 1, both with relative
+    corrections O(1/|s|) (Stokes 1851, Trans. Camb. Phil. Soc. 9, 8; Landau & Lifshitz, Fluid Mechanics §24,
+    problem 5: C_m − iC_c = 1 + 4K₁(s)/(sK₀(s)) → 1 + 4/s)."""
+    from study.physics.damping import oscillating_cylinder_force_coefficients
+
+    omega = 2 * np.pi * np.array([10.0, 100.0, 1000.0])
+    c_m, c_c = oscillating_cylinder_force_coefficients(PIPE_RADIUS, omega, MUD_NU)
+    s = PIPE_RADIUS * np.sqrt(omega / MUD_NU)
+    layer = 2 * np.sqrt(2) * np.pi * MUD_DENSITY * PIPE_RADIUS * np.sqrt(omega * MUD_NU)
+    c = c_c * MUD_DENSITY * np.pi * PIPE_RADIUS**2 * omega
+    # the next terms (K₁/K₀ = 1 + 1/(2s) + O(1/s²)): C_m = 1 + 2√2/|s| + O(1/|s|³), C_c = 2√2/|s| + 2/|s|²
+    np.testing.assert_allclose(c_m, 1 + 2 * np.sqrt(2) / s, rtol=2 / s.min() ** 2)
+    assert np.all(np.abs(c / layer - 1.0) < 1.0 / s)
+    assert np.all(np.abs(c / layer - 1.0) > 0.0) and np.all(np.diff(np.abs(c / layer - 1.0)) < 0)
+
+
+def test_confined_cylinder_limits():
+    """The annulus of Chen, Wambsganss & Jendrzejczyk (1976, J. Appl. Mech. 43, 325): as ν → 0 the added-mass
+    coefficient tends to the potential flow's (b² + a²)/(b² − a²) (Chen 1987, Flow-induced vibration of circular
+    cylindrical structures, eq. for concentric cylinders) and the damping to the thin-layer one, the unbounded
+    2√2 πρa√(ων) times (1 + (a/b)³)/(1 − (a/b)²)²; a far wall (b = 100 a) gives the unbounded cylinder within
+    O((a/b)²)."""
+    from study.physics.damping import oscillating_cylinder_force_coefficients
+
+    a, b, omega = PIPE_RADIUS, HOLE_RADIUS, 2 * np.pi * 100.0
+    gamma = a / b
+    for nu in (1e-8, 1e-10):
+        c_m, c_c = oscillating_cylinder_force_coefficients(a, omega, nu, outer_radius=b)
+        s = a * np.sqrt(omega / nu)
+        np.testing.assert_allclose(c_m, (b * b + a * a) / (b * b - a * a), rtol=20 / s)
+        layer = 2 * np.sqrt(2) / s * (1 + gamma**3) / (1 - gamma**2) ** 2
+        np.testing.assert_allclose(c_c, layer, rtol=10 / s)
+    far = oscillating_cylinder_force_coefficients(a, omega, MUD_NU, outer_radius=100 * a)
+    free = oscillating_cylinder_force_coefficients(a, omega, MUD_NU)
+    np.testing.assert_allclose(far, free, rtol=2e-3)
+    with pytest.raises(ValueError, match="outer_radius"):
+        oscillating_cylinder_force_coefficients(a, omega, MUD_NU, outer_radius=0.5 * a)
+
+
+def test_viscous_modal_damping_ratio_of_the_default_pipe():
+    """ζ = c/(2mω): for the default pipe in 20 cP mud (m = 58.4 kg/m) the unbounded Stokes layer gives ζ ≈ 8.7e-4
+    at 100 Hz and 3.9e-4 at 500 Hz (2√2 πρa√(ων)/(2mω) by hand, within the O(1/|s|) ~ 0.2 % correction), falling as
+    ω^(-1/2); the hole's confinement raises it by (1 + (a/b)³)/(1 − (a/b)²)² ≈ 1.6; NaN (a buckled mode) stays NaN."""
+    from study.physics.damping import viscous_modal_damping_ratio
+
+    omega = 2 * np.pi * np.array([100.0, 500.0, np.nan])
+    zeta = viscous_modal_damping_ratio(omega, 58.4, MUD_DENSITY, PIPE_RADIUS, MUD_NU)
+    by_hand = 2 * np.sqrt(2) * np.pi * MUD_DENSITY * PIPE_RADIUS * np.sqrt(omega[:2] * MUD_NU) / (2 * 58.4 * omega[:2])
+    np.testing.assert_allclose(zeta[:2], by_hand, rtol=5e-3)
+    np.testing.assert_allclose(zeta[:2], [8.7e-4, 3.9e-4], rtol=0.02)
+    assert np.isnan(zeta[2])
+    gamma = PIPE_RADIUS / HOLE_RADIUS
+    confined = viscous_modal_damping_ratio(omega[:2], 58.4, MUD_DENSITY, PIPE_RADIUS, MUD_NU, HOLE_RADIUS)
+    np.testing.assert_allclose(confined / zeta[:2], (1 + gamma**3) / (1 - gamma**2) ** 2, rtol=0.02)
+    assert viscous_modal_damping_ratio(omega[0], 58.4, MUD_DENSITY, PIPE_RADIUS, 0.0) == 0.0

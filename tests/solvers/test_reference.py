@@ -544,3 +544,29 @@ def test_restitution_zero_is_refused_not_computed_as_an_elastic_contact():
     inputs = {**config.load(root / "configs" / "paper.toml").point(), "restitution": 0.0}
     result = solve_point(inputs, "reference")
     assert result.status == "failed" and "restitution = 0.0: the calibrated contact needs 0 < e <= 1" in result.message
+
+
+def test_drag_and_viscous_keeps_the_drag_and_damps_each_mode_by_the_mud_s_stokes_layer(base):
+    # issue 36: "drag+viscous" keeps the quadratic drag of "drag" and adds each mode's linear damping c(ω_n)/M, the
+    # Stokes layer of the mud's plastic viscosity confined by the hole. Its thin-layer limit (|s| = a√(ω/ν) >> 1):
+    # c = 2√2 πρa√(ων) (1 + γ³)/(1 − γ²)², γ = a/b (Stokes 1851; Chen, Wambsganss & Jendrzejczyk 1976), within
+    # O(1/|s|) (the modes' 1 to 4 % here); ten times the viscosity: √10 times the layer's, with
+    # its O(1/|s|) √10 times larger
+    options = {**base, "reference_modes": 16}
+    drag = reference.build_model(options)
+    model = reference.build_model({**options, "reference_damping": "drag+viscous", "plastic_viscosity": 0.020})
+    thick = reference.build_model({**options, "reference_damping": "drag+viscous", "plastic_viscosity": 0.200})
+    assert model.drag == drag.drag > 0 and np.all(drag.damping == 0.0)
+    scene = Scene.from_inputs(base)
+    rho, a, b = scene.mud_density, scene.outer_radius, scene.hole_radius
+    gamma = a / b
+    omega = model.omega[4:]
+    layer = (2 * np.sqrt(2) * np.pi * rho * a * np.sqrt(omega * 0.020 / rho) * (1 + gamma**3) / (1 - gamma**2) ** 2
+             / model.props["mass_per_length"])
+    s = a * np.sqrt(omega * rho / 0.020)
+    assert np.all(np.abs(model.damping[4:] / layer - 1.0) < 4.0 / s)  # the next term: 2.7/|s| here
+    thin = np.abs(thick.damping[4:] / (np.sqrt(10.0) * layer) - 1.0)  # √10 the layer, |s| √10 smaller
+    assert np.all(thin < 4.0 * np.sqrt(10.0) / s) and np.all(thin > np.abs(model.damping[4:] / layer - 1.0))
+    assert np.all(model.damping[1:] > 0.0) and model.damping[0] == 0.0  # the rigid translation (ω = 0): drag alone
+    # the mud's viscosity reaches the scene from its input, 20 cP by default
+    assert scene.mud_viscosity == 0.020 and Scene.from_inputs({**base, "plastic_viscosity": 0.05}).mud_viscosity == 0.05

@@ -300,7 +300,10 @@ class ReferenceOptions(MethodOptions):
     #: it holds the force's 15 % at all 10, the stresses' 5 % at 8 and the damage rate's at 7 (docs/reference_model.md
     #: §3.1)
     reference_max_revolutions: int = 200
-    reference_damping: str = option("drag", ("drag", "viscous", "none"))
+    #: the mud's damping of the modes: "drag" its quadratic drag (docs/reference_model.md §2); "drag+viscous" that and
+    #: the viscous loss of each mode, the Stokes layer of mud.plastic_viscosity in the annulus (linear, 2ζ_nω_n:
+    #: study.physics.damping.viscous_modal_damping_ratio); "viscous" the ratio ``damping_ratio`` on every mode alone
+    reference_damping: str = option("drag", ("drag", "viscous", "none", "drag+viscous"))
     reference_initial: str = option("forced", ("forced", "rest"))
     contact_law: str = option("hertz", ("hertz", "penalty"))
     reference_rtol: float = 1e-6  #: relative tolerance of the compiled integrator

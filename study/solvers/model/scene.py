@@ -69,6 +69,7 @@ class Scene:
     impact_mass: str = "momentum"  #: IMPACT_MASSES
     mud_density: float = 0.0  #: ρ_m [kg/m³] (mud.density)
     mud_flow_velocity: float = 0.0  #: V_m [m/s] inside the pipe (mud.flow_velocity)
+    mud_viscosity: float = 0.020  #: the mud's plastic viscosity μ_p [Pa s] (mud.plastic_viscosity)
     pipe_density: float = 7850.0  #: the pipe steel's density [kg/m³] (pipe.density)
     inclination: float = 0.0  #: the hole's inclination from vertical [rad] (hole.inclination)
     dogleg_curvature: float = 0.0  #: the hole's curvature κ [1/m] (hole.dogleg_severity)
@@ -103,6 +104,7 @@ class Scene:
                    impact_mass=impact_mass,
                    inner_radius=r_i, axial_tension=float(inputs["axial_tension"]),
                    mud_density=inputs["mud_density"], mud_flow_velocity=flow or 0.0,
+                   mud_viscosity=float(inputs.get("plastic_viscosity", 0.020)),
                    pipe_density=pipe_density or 7850.0, inclination=float(inputs.get("inclination") or 0.0),
                    dogleg_curvature=float(inputs.get("dogleg_curvature") or 0.0),
                    dogleg_direction=float(inputs.get("dogleg_direction") or 0.0),

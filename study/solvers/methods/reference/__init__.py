@@ -24,7 +24,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   both directions (``reference_damping = "drag"``, default; D from
   :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
   Gauss–Legendre quadrature with 2N + 8 points. For validation ``"viscous"`` (modal damping ratio
-  ``damping_ratio`` in every mode) and ``"none"``.
+  ``damping_ratio`` in every mode) and ``"none"``; ``"drag+viscous"`` the drag and each mode's viscous loss in
+  the mud (:func:`study.physics.damping.viscous_modal_damping_ratio`, ``plastic_viscosity``).
 - **contact points**: the tool joints at 0, s, 2s, … (s = ``joint_length``; x = L is the joint at 0 again),
   radius r_tj = ``tool_joint_diameter``/2, clearance R − r_tj; and the pipe body halfway between neighbouring
   joints, radius r_o, clearance R − r_o (:func:`study.physics.string_modes.contact_layout`; ``reference_body_stations``

@@ -10,6 +10,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import hertz, well, whirl
+from study.physics.damping import viscous_modal_damping_ratio
 from study.physics.contact import (calibrated_hysteresis, hertz_energy, linear_contact_damping,
                                    linearised_stiffness)
 from study.solvers.model.options import ReferenceOptions
@@ -425,10 +426,18 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
     damping = np.zeros(N)
     if damping_model == "viscous":
         damping = 2.0 * float(option.damping_ratio) * omega
+    elif damping_model == "drag+viscous":
+        # the mud's viscous loss on each mode at its frequency: the Stokes layer confined by the hole (Chen,
+        # Wambsganss & Jendrzejczyk 1976), 2ζ_nω_n = c(ω_n)/M on the plain pipe's mass (the joints' lumped mass left
+        # out of M: ζ_n a little high); 0 on the rigid translation (ω = 0, the drag alone) and on a buckled mode (NaN
+        # ω_n: refused below)
+        zeta = viscous_modal_damping_ratio(omega, M, scene.mud_density, r_o, scene.mud_viscosity
+                                           / max(scene.mud_density, 1e-300), hole_r)
+        damping = np.nan_to_num(2.0 * np.asarray(zeta) * omega)
     G = 2 * N + 8
     gx, gw = whirl.gauss_legendre(G)
     shapes = lift(mode_shapes(0.5 * L * (gx + 1), L, N))
-    drag = props["drag_coefficient_per_length"] if damping_model == "drag" else 0.0
+    drag = props["drag_coefficient_per_length"] if damping_model in ("drag", "drag+viscous") else 0.0
     e = scene.restitution
     law = CONTACT_LAWS.index(option.contact_law)
     # the linear penalty: Hertz linearised at the elastic approach of the point's effective mass at Ω c_p

@@ -761,8 +761,9 @@ def convergence(point: DesignPoint, model: WhirlModel, window: Window, values: M
     the damage's through the S-N exponent, the peak force's as its share of ``solver.force_tolerance``). The
     alternating stress's error is relative to the larger of it and the max bending stress."""
     option = point.reference
-    # the energy balance is whole only without the linear modal damping of "viscous", whose loss is not integrated
-    whole = residual is not None and option.reference_damping != "viscous"
+    # the energy balance is whole only without the linear modal damping of "viscous" and "drag+viscous", whose loss is
+    # not integrated
+    whole = residual is not None and option.reference_damping not in ("viscous", "drag+viscous")
     integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
     normal = values["max_normal_stress"]
     modes = {name: float((modal or {}).get(name, 0.0)) for name in FIGURES}
