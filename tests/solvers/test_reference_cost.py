@@ -59,8 +59,9 @@ def test_the_cycles_figures_do_not_depend_on_the_batches_they_are_computed_in(bo
     point, model, cycles = bouncing
     whole = reference.cycle_values(point, model, cycles)
     parts = reference.cycle_values(point, model, cycles[:2]) + reference.cycle_values(point, model, cycles[2:])
-    if len({c["correction"] for c in whole + parts}) > 1:
-        pytest.skip("the correction differs between the batches")
+    # the tool joints' mass is lumped here, so the quasi-static correction enters every batch (quasi_static_applies):
+    # decided alike, not skipped where it is not
+    assert model.joint_points is not None and len({c["correction"] for c in whole + parts}) == 1
     for a, b in zip(whole, parts):
         for name in ("max_normal_stress", "alternating_bending_stress", "max_deflection", "peak_contact_force"):
             assert a[name] == pytest.approx(b[name], rel=1e-12), name
