@@ -104,6 +104,14 @@ def replays(names, counts, top, out):
                 print(json.dumps(record), file=out, flush=True)
 
 
+def result_points(ds):
+    """The coordinates of the point at flat index i of a sweep's results ``ds`` (its variables' order), as
+    ``study.point`` takes them: a function of i."""
+    dims = list(ds["method"].dims)
+    grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
+    return lambda i: {d: float(v) for d, v in zip(dims, grid[i])}
+
+
 def sample(count, options, out, results, extra=None, indices=None, cap=300):
     import xarray as xr
 
@@ -113,19 +121,18 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
 
     ds = xr.open_dataset(results)
     study = config.load(ROOT / "configs" / "default.toml")
-    dims = list(ds["method"].dims)
     bouncing = ((ds["method"].values.reshape(-1) == "reference")
                 & (ds["regime"].values.reshape(-1) == REGIMES["bouncing"]))
     found = np.flatnonzero(bouncing)
     picks = found[np.linspace(0, found.size - 1, count).round().astype(int)] if indices is None else np.asarray(indices)
-    grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
+    point_coords = result_points(ds)
 
     def stop(*_):
         raise TimeoutError
 
     signal.signal(signal.SIGALRM, stop)
     for i in picks:
-        coords = {d: float(v) for d, v in zip(dims, grid[i])}
+        coords = point_coords(i)
         for option in options:
             clock = time.process_time()
             signal.alarm(cap)

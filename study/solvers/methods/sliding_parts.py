@@ -6,6 +6,7 @@ module of their own: its checks by the reference model's own run — whether a p
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -62,58 +63,79 @@ def stability(model: reference.WhirlModel, window: reference.Window, revolutions
                 decay=distance[-1] / d0 if distance else float("inf"), revolutions=k, opened=opened)
 
 
-#: The check for a second motion (:func:`from_rest`): the revolutions the reference model runs from the sliding rest,
-#: the last of them in which a strike means the pipe still bounces, the strike beyond this many times a joint's rest
-#: force that decides it at once, and the lift-off eccentricity over the point's below which the check runs (a joint's
-#: least force over the revolution near nil: the whole eccentric load applied at once may throw it off the wall). At
-#: default grid points 128 and 146 the run lifted off in its first revolutions (600 N, 2.2 and 2.5 times the rest
-#: force) and settled on the wall by the 15th and the 7th; at 384 it still struck in each of revolutions 16-30.
-BASIN_REVOLUTIONS, BASIN_LAST, BASIN_STRIKE, BASIN_LIFT_RATIO = 20, 5, 5.0, 2.0
+#: The check for a second motion (:func:`from_rest`, :func:`strikes_verdict`). A strike beyond :data:`BASIN_STRIKE`
+#: times a joint's largest rest force is a bounce: the sliding motion's own force swings to at most about twice the rest
+#: force (1.6-2.1 times over the default grid's checked points). The first :data:`BASIN_TRANSIENT` revolutions decide
+#: nothing: the whole eccentric load applied at once throws the joints off the wall, strikes of up to 41 times the rest
+#: force that die out (default grid points 130-191). After them :data:`BASIN_LAST` revolutions in a row decide, each
+#: with such a strike (bounces) or none with one (settles); a run still undecided after :data:`BASIN_REVOLUTIONS`
+#: revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`: the lift-off eccentricity
+#: over the point's below which the check runs (a joint's least force over the revolution near nil). The figures
+#: behind them: docs/reference_model.md §10.
+BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_STRIKE, BASIN_LIFT_RATIO = 40, 5, 5, 5.0, 2.0
 
 
-def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS,
-              last: int = BASIN_LAST) -> dict[str, Any]:
+def strikes_verdict(heavy: Sequence[bool], transient: int = BASIN_TRANSIENT, last: int = BASIN_LAST) -> bool | None:
+    """Whether a run from rest bounces, from ``heavy`` (per revolution run so far: it struck the wall beyond
+    :data:`BASIN_STRIKE` times the rest force): True where each of the last ``last`` revolutions did, False where none
+    of them did, both only once they all come after the first ``transient`` (the load's start-up); None (undecided)
+    else."""
+    tail = list(heavy[transient:])[-last:]
+    if len(tail) < last:
+        return None
+    return True if all(tail) else False if not any(tail) else None
+
+
+def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
     """Whether the reference model's run from the string's rest on the wall (its own start,
-    :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) still
-    bounces after ``revolutions`` revolutions — a contact opens and strikes again (an onset) in the ``last`` of them,
-    or a strike exceeds :data:`BASIN_STRIKE` times the largest rest force — or settles on the wall: where it bounces a
-    bouncing motion is reached from there, beside the sliding one (docs/reference_model.md §10). Returns bounced
-    (bool), the revolution of the first onset (or None), the revolutions run and the largest contact force seen [N]."""
+    :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) keeps
+    bouncing — strikes beyond :data:`BASIN_STRIKE` times the largest rest force revolution after revolution, past the
+    start-up (:func:`strikes_verdict`) — or settles on the wall: where it bounces a bouncing motion is reached from
+    there, beside the sliding one (docs/reference_model.md §10). The run stops as soon as it is decided, at most
+    ``revolutions``; one undecided then, or whose integration fails, counts as bouncing (the reference model's own run
+    decides). Returns bounced (bool), decided (bool), the revolution of the first onset (opened, or None), the
+    revolutions with a strike beyond the bound (heavy), the revolutions run and the largest contact force [N] after
+    the start-up (peak; over the whole run where it ended within it)."""
     start = reference.initial_state(model)  # the rest on the wall, kept in the model's cache
     run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
     strike = BASIN_STRIKE * float(np.max(model.cache["sliding_rest"]["normal"]))
-    peak, opened, late = 0.0, None, 0
+    heavy: list[bool] = []
+    peaks, opened, verdict = [], None, None
     for k in range(1, revolutions + 1):
         cycle = run.run(k * model.period)
-        peak = max(peak, float(np.max(cycle.peak)))
-        struck = run.outcome != whirl_kernel.OK or np.any(cycle.onsets > 0)
-        opened = k if struck and opened is None else opened
-        late += bool(struck and k > revolutions - last)
-        if struck and (peak > strike or run.outcome != whirl_kernel.OK):
-            late = 1
+        peaks.append(float(np.max(cycle.peak)))
+        failed = run.outcome != whirl_kernel.OK
+        opened = k if opened is None and (failed or np.any(cycle.onsets > 0)) else opened
+        heavy.append(failed or bool(np.any(cycle.onsets > 0) and peaks[-1] > strike))
+        verdict = True if failed else strikes_verdict(heavy)
+        if verdict is not None:
             break
-    return dict(bounced=late > 0, opened=opened, peak=peak, revolutions=k)
+    late = peaks[BASIN_TRANSIENT:] or peaks
+    return dict(bounced=verdict is not False, decided=verdict is not None and not failed, opened=opened,
+                heavy=[i + 1 for i, h in enumerate(heavy) if h], peak=max(late), revolutions=k)
 
 
 def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
     """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a bouncing
     motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall
-    bounces),
-    its message saying so and its extras ``second_motion`` the run's; 0 where the run stays on the wall; not set
-    (NaN) where the lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
+    keeps bouncing, or is undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the
+    run stays on the wall or settles back on it; not set (NaN) where the lift-off eccentricity is
+    :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
     lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
     if not (eps > 0 and np.isfinite(lift) and lift < BASIN_LIFT_RATIO * eps):
         return result
     found = result.extras["second_motion"] = from_rest(model)
     result.values["coexisting_motion"] = float(found["bounced"])
     if found["bounced"]:
+        k = found["revolutions"]
         result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
                            f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
                            f"left the wall in revolution {found['opened']} and "
-                           + (f"struck it at {found['peak']:.3g} N, over {BASIN_STRIKE:g} times the rest force"
-                              if found["revolutions"] < BASIN_REVOLUTIONS else
-                              f"still struck it in the last {BASIN_LAST} of {found['revolutions']} revolutions "
-                              f"({found['peak']:.3g} N)"))
+                           + (f"struck it beyond {BASIN_STRIKE:g} times the rest force in each of revolutions "
+                              f"{k - BASIN_LAST + 1}-{k}" if found["decided"] else
+                              f"still struck it beyond {BASIN_STRIKE:g} times the rest force in "
+                              f"{len(found['heavy'])} of {k} revolutions")
+                           + f" (up to {found['peak']:.3g} N)")
     return result
 
 

@@ -1,0 +1,77 @@
+"""The check for a second motion beside the sliding one (:func:`study.solvers.methods.sliding_parts.from_rest`) at
+the points a sweep checked, against what the sweep's full reference run gave there (docs/reference_model.md §10)::
+
+    python -m study.benchmarks.second_motion outputs/default/results.nc out.jsonl
+
+The checked points are those with output ``coexisting_motion`` set (0 or 1); the sweep's verdict at each: 1 where the
+full reference run bounced beside the sliding motion, 0 where the check did not send it up or that run came to the
+sliding motion (its message says so). Per point, one JSON line: the index, the sweep's verdict and whether it went up,
+the check's (bounced, decided, revolutions, the revolutions with a strike beyond ``BASIN_STRIKE`` times the rest
+force, the peak after the start-up [N]) and its CPU [s] (``time.process_time``, the check alone: the sliding state's
+model built first). A summary on stdout: the counts and the CPU's median, largest and sum.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from study.benchmarks.strikes import ROOT, result_points
+
+#: The sliding answer's message where the full reference run went up and came to the sliding motion too
+#: (``auto._coexisting``).
+CAME_BACK = "run from the rest came to this motion too"
+
+
+def checked(results: str | Path) -> list[tuple[int, dict, float, bool]]:
+    """(flat index, the point's coordinates, the sweep's ``coexisting_motion``, whether it went up) at the points of
+    ``results`` where the check ran."""
+    import xarray as xr
+
+    ds = xr.open_dataset(results)
+    coords = result_points(ds)
+    flag = ds["coexisting_motion"].values.reshape(-1)
+    message = ds["message"].values.reshape(-1)
+    return [(int(i), coords(i), float(flag[i]), bool(flag[i] == 1.0 or CAME_BACK in str(message[i])))
+            for i in np.flatnonzero(np.isfinite(flag))]
+
+
+def run(results: str | Path, out) -> list[dict]:
+    """:func:`checked`'s points, each checked again (:func:`sliding_parts.from_rest` on the sliding state's model),
+    one JSON line each to ``out``."""
+    from study import config
+    from study.solvers.methods import sliding, sliding_parts
+
+    study = config.load(ROOT / "configs" / "default.toml")
+    rows = []
+    for index, coords, flag, went_up in checked(results):
+        model = sliding.steady_state(study.point(**coords))["model"]
+        clock = time.process_time()
+        found = sliding_parts.from_rest(model)
+        row = dict(index=index, sweep=flag, went_up=went_up, **found, cpu=time.process_time() - clock)
+        print(json.dumps(row), file=out, flush=True)
+        rows.append(row)
+    return rows
+
+
+def summary(rows: list[dict]) -> str:
+    """The counts of the sweep's verdicts against the check's, and the check's CPU."""
+    true = [r for r in rows if r["sweep"] == 1.0]
+    cpu = np.array([r["cpu"] for r in rows])
+    up = [r["index"] for r in rows if r["bounced"]]
+    return "\n".join((
+        f"checked {len(rows)}; the sweep's full reference run bounced at {len(true)}, of which the check sends up "
+        f"{sum(r['bounced'] for r in true)}",
+        f"the check sends up {len(up)} (undecided {sum(not r['decided'] for r in rows)}): {up}",
+        f"of those the sweep had sent up and its run came to the sliding motion: "
+        f"{[r['index'] for r in rows if r['bounced'] and r['went_up'] and r['sweep'] == 0.0]}",
+        f"CPU per point: median {np.median(cpu):.3f} s, largest {np.max(cpu):.3f} s, sum {np.sum(cpu):.1f} s"))
+
+
+if __name__ == "__main__":
+    with open(sys.argv[2], "a") as handle:
+        print(summary(run(sys.argv[1], handle)))
