@@ -6,8 +6,8 @@ the points a sweep checked, against what the sweep's full reference run gave the
 The checked points are those with output ``coexisting_motion`` set (0 or 1); the sweep's verdict at each: 1 where the
 full reference run bounced beside the sliding motion, 0 where the check did not send it up or that run came to the
 sliding motion (its message says so). Per point, one JSON line: the index, the sweep's verdict and whether it went up,
-the check's (bounced, decided, revolutions, the revolutions with a strike beyond ``BASIN_STRIKE`` times the rest
-force, the peak after the start-up [N]) and its CPU [s] (``time.process_time``, the check alone: the sliding state's
+the check's (bounced, decided, revolutions, the revolutions off the wall, the least contact fraction and the peak
+force after the start-up [N]) and its CPU [s] (``time.process_time``, the check alone: the sliding state's
 model built first). A summary on stdout: the counts and the CPU's median, largest and sum.
 """
 

@@ -136,9 +136,9 @@ PANEL = [
                  "turns; linearisation 0.0054 (contact 0.002, drag 8.3e-05, orders left out 0.0034), 48 against 24 modes "
                  "0.0016, drag settled in 4 iterations",
                  # checked for a second motion (lift-off 1.57 times the point's eccentricity): the run from rest
-                 # struck beyond 5 times the rest force in revolutions 2-4 (the start-up; 1.57 kN in the 2nd) and
-                 # settled; the full reference run from that rest came to the sliding motion too (regime sliding,
-                 # 432 N: solve_point(p, "reference"), measured)
+                 # left the wall in revolutions 1-8 (the start-up; 1.57 kN in the 2nd) and stayed on it from the 9th;
+                 # the full reference run from that rest came to the sliding motion too (regime sliding, 432 N:
+                 # solve_point(p, "reference"), measured)
                  id="150: 150 rpm, 20 klbf, e 0.7, 12 ppg, no flow: ok, no second motion"),
 ]
 def _without_joint_mass(point: dict) -> dict:

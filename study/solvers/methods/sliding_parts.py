@@ -63,24 +63,25 @@ def stability(model: reference.WhirlModel, window: reference.Window, revolutions
                 decay=distance[-1] / d0 if distance else float("inf"), revolutions=k, opened=opened)
 
 
-#: The check for a second motion (:func:`from_rest`, :func:`strikes_verdict`). A strike beyond :data:`BASIN_STRIKE`
-#: times a joint's largest rest force is a bounce: the sliding motion's own force swings to at most about twice the rest
-#: force (1.6-2.1 times over the default grid's checked points). The first :data:`BASIN_TRANSIENT` revolutions decide
-#: nothing: the whole eccentric load applied at once throws the joints off the wall, strikes of up to 41 times the rest
-#: force that die out (default grid points 130-191). After them :data:`BASIN_LAST` revolutions in a row decide, each
-#: with such a strike (bounces) or none with one (settles); a run still undecided after :data:`BASIN_REVOLUTIONS`
-#: revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`: the lift-off eccentricity
-#: over the point's below which the check runs (a joint's least force over the revolution near nil). The figures
-#: behind them: docs/reference_model.md §10.
-BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_STRIKE, BASIN_LIFT_RATIO = 40, 5, 5, 5.0, 2.0
+#: The check for a second motion (:func:`from_rest`, :func:`basin_verdict`). A revolution in which the string is off
+#: the wall — every contact open — for more than 1 - ``reference.SLIDING_CONTACT`` of it is a bouncing one: the
+#: reference model's own test of its regime (``statistics.whirl_measure``: in contact less of the time, not sliding),
+#: which is what ``auto`` tells its full run's motion by (``auto._coexisting``). The first :data:`BASIN_TRANSIENT`
+#: revolutions decide nothing: the whole eccentric load applied at once throws the joints off the wall (the string
+#: flew in revolutions 2-9 at default grid points 650-700 and came back to the wall). After them :data:`BASIN_LAST`
+#: revolutions in a row decide, each a bouncing one (bounces) or none (settles); a run still undecided after
+#: :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`:
+#: the lift-off eccentricity over the point's below which the check runs (a joint's least force over the revolution
+#: near nil). The figures behind them: docs/reference_model.md §10.
+BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_LIFT_RATIO = 40, 5, 5, 2.0
 
 
-def strikes_verdict(heavy: Sequence[bool], transient: int = BASIN_TRANSIENT, last: int = BASIN_LAST) -> bool | None:
-    """Whether a run from rest bounces, from ``heavy`` (per revolution run so far: it struck the wall beyond
-    :data:`BASIN_STRIKE` times the rest force): True where each of the last ``last`` revolutions did, False where none
-    of them did, both only once they all come after the first ``transient`` (the load's start-up); None (undecided)
-    else."""
-    tail = list(heavy[transient:])[-last:]
+def basin_verdict(flying: Sequence[bool], transient: int = BASIN_TRANSIENT, last: int = BASIN_LAST) -> bool | None:
+    """Whether a run from rest bounces, from ``flying`` (per revolution run so far: the string was off the wall for
+    more than 1 - ``reference.SLIDING_CONTACT`` of it): True where each of the last ``last`` revolutions was, False
+    where none of them was, both only once they all come after the first ``transient`` (the load's start-up); None
+    (undecided) else."""
+    tail = list(flying[transient:])[-last:]
     if len(tail) < last:
         return None
     return True if all(tail) else False if not any(tail) else None
@@ -89,36 +90,38 @@ def strikes_verdict(heavy: Sequence[bool], transient: int = BASIN_TRANSIENT, las
 def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
     """Whether the reference model's run from the string's rest on the wall (its own start,
     :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) keeps
-    bouncing — strikes beyond :data:`BASIN_STRIKE` times the largest rest force revolution after revolution, past the
-    start-up (:func:`strikes_verdict`) — or settles on the wall: where it bounces a bouncing motion is reached from
-    there, beside the sliding one (docs/reference_model.md §10). The run stops as soon as it is decided, at most
-    ``revolutions``; one undecided then, or whose integration fails, counts as bouncing (the reference model's own run
-    decides). Returns bounced (bool), decided (bool), the revolution of the first onset (opened, or None), the
-    revolutions with a strike beyond the bound (heavy), the revolutions run and the largest contact force [N] after
-    the start-up (peak; over the whole run where it ended within it)."""
+    leaving the wall — revolution after revolution past the start-up, the string off it (every contact open) for more
+    than 1 - ``reference.SLIDING_CONTACT`` of each (:func:`basin_verdict`) — or settles on it: where it bounces a
+    bouncing motion is reached from there, beside the sliding one (docs/reference_model.md §10). The run stops as soon
+    as it is decided, at most ``revolutions``; one undecided then, or whose integration fails, counts as bouncing (the
+    reference model's own run decides). Returns bounced (bool), decided (bool), the revolution of the first onset
+    (opened, or None), the revolutions off the wall (flying), the revolutions run, the least fraction of a revolution
+    in contact after the start-up (contact) and the largest contact force after it [N] (peak; over the whole run
+    where it ended within it)."""
     start = reference.initial_state(model)  # the rest on the wall, kept in the model's cache
     run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
-    strike = BASIN_STRIKE * float(np.max(model.cache["sliding_rest"]["normal"]))
-    heavy: list[bool] = []
-    peaks, opened, verdict = [], None, None
+    flying: list[bool] = []
+    peaks, contact, opened, verdict, failed = [], [], None, None, False
     for k in range(1, revolutions + 1):
         cycle = run.run(k * model.period)
         peaks.append(float(np.max(cycle.peak)))
+        contact.append(cycle.any_contact_time / model.period)
         failed = run.outcome != whirl_kernel.OK
         opened = k if opened is None and (failed or np.any(cycle.onsets > 0)) else opened
-        heavy.append(failed or bool(np.any(cycle.onsets > 0) and peaks[-1] > strike))
-        verdict = True if failed else strikes_verdict(heavy)
+        flying.append(failed or contact[-1] < reference.SLIDING_CONTACT)
+        verdict = True if failed else basin_verdict(flying)
         if verdict is not None:
             break
-    late = peaks[BASIN_TRANSIENT:] or peaks
+    late = slice(BASIN_TRANSIENT if k > BASIN_TRANSIENT else 0, None)
     return dict(bounced=verdict is not False, decided=verdict is not None and not failed, opened=opened,
-                heavy=[i + 1 for i, h in enumerate(heavy) if h], peak=max(late), revolutions=k)
+                flying=[i + 1 for i, f in enumerate(flying) if f], revolutions=k, contact=min(contact[late]),
+                peak=max(peaks[late]))
 
 
 def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
     """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a bouncing
     motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall
-    keeps bouncing, or is undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the
+    keeps leaving it, or is undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the
     run stays on the wall or settles back on it; not set (NaN) where the lift-off eccentricity is
     :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
     lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
@@ -131,11 +134,10 @@ def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResu
         result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
                            f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
                            f"left the wall in revolution {found['opened']} and "
-                           + (f"struck it beyond {BASIN_STRIKE:g} times the rest force in each of revolutions "
-                              f"{k - BASIN_LAST + 1}-{k}" if found["decided"] else
-                              f"still struck it beyond {BASIN_STRIKE:g} times the rest force in "
-                              f"{len(found['heavy'])} of {k} revolutions")
-                           + f" (up to {found['peak']:.3g} N)")
+                           + (f"was off it in each of revolutions {k - BASIN_LAST + 1}-{k}" if found["decided"] else
+                              f"was still off it in {len(found['flying'])} of {k} revolutions")
+                           + f" (in contact {found['contact']:.0%} of a revolution at least, striking it at up to "
+                             f"{found['peak']:.3g} N)")
     return result
 
 
