@@ -52,12 +52,12 @@ def _study_point(index: int) -> dict:
 @pytest.mark.parametrize("index, bounces", [(168, True), (130, False), (384, False)])
 def test_the_run_from_rest_on_the_default_grid_decides_as_the_full_reference_run(index, bounces):
     # default grid points (configs/default.toml, restitution 0.3, no flow); what the full reference run from the same
-    # rest gave in the default sweep (docs/reference_model.md §10): at 168 (225 rpm, 5 000 lbf, 9 ppg, straight hole;
-    # lift-off 1.03 times the point's eccentricity) it bounced at 36.6 kN; at 130 (150 rpm, 10 000 lbf, 9 ppg,
+    # rest gave in the default sweep (docs/reference_model.md §10): at 168 (175 rpm, 10 000 lbf, 9 ppg, straight hole;
+    # lift-off 1.03 times the point's eccentricity) it bounced at 36.6 kN; at 130 (150 rpm, 5 000 lbf, 12 ppg,
     # straight; 1.37 times) it came to the sliding motion, though the run from rest struck the wall at 26 times the
-    # rest force in its 3rd revolution; at 384 (275 rpm, 5 000 lbf, 9 ppg, 3°/100 ft; 1.80 times) it came to the
-    # sliding motion too, though the run from rest strikes a joint at 10-25 times the rest force every revolution
-    # from the 5th: the string never leaves the wall
+    # rest force in its 3rd revolution; at 384 (75 rpm, 5 000 lbf, 9 ppg, 3°/100 ft; 1.80 times) it came to the
+    # sliding motion too, though in the run from rest a joint strikes at up to 25 times the rest force, beyond 5
+    # times in most revolutions from the 5th to the 60th: the string never leaves the wall (measured, 60 revolutions)
     model = sliding.steady_state(_study_point(index))["model"]
     found = sliding_parts.from_rest(model)
     assert found["decided"] and found["bounced"] is bounces, found
