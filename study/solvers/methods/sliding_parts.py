@@ -133,9 +133,10 @@ def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResu
         k = found["revolutions"]
         result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
                            f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
-                           f"left the wall in revolution {found['opened']} and "
-                           + (f"was off it in each of revolutions {k - BASIN_LAST + 1}-{k}" if found["decided"] else
-                              f"was still off it in {len(found['flying'])} of {k} revolutions")
+                           f"lifted a joint off the wall in revolution {found['opened']} and "
+                           + (f"the string was off it in each of revolutions {k - BASIN_LAST + 1}-{k}"
+                              if found["decided"] else
+                              f"the string was still off it in {len(found['flying'])} of {k} revolutions")
                            + f" (in contact {found['contact']:.0%} of a revolution at least, striking it at up to "
                              f"{found['peak']:.3g} N)")
     return result
