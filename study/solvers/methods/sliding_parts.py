@@ -67,8 +67,9 @@ def stability(model: reference.WhirlModel, window: reference.Window, revolutions
 #: the wall — every contact open — for more than 1 - ``reference.SLIDING_CONTACT`` of it is a bouncing one: the
 #: reference model's own test of its regime (``statistics.whirl_measure``: in contact less of the time, not sliding),
 #: which is what ``auto`` tells its full run's motion by (``auto._coexisting``). The first :data:`BASIN_TRANSIENT`
-#: revolutions decide nothing: the whole eccentric load applied at once throws the joints off the wall (the string
-#: flew in revolutions 2-9 at default grid points 650-700 and came back to the wall). After them :data:`BASIN_LAST`
+#: revolutions decide nothing: the whole eccentric load applied at once throws the joints off the wall (at default
+#: grid points 654, 688, 696 and 700 the string flew in revolutions 2-9, 4-6, 6-7 and 5-7 and came back to the wall,
+#: as the full reference runs there did). After them :data:`BASIN_LAST`
 #: revolutions in a row decide, each a bouncing one (bounces) or none (settles); a run still undecided after
 #: :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`:
 #: the lift-off eccentricity over the point's below which the check runs (a joint's least force over the revolution
