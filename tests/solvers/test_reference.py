@@ -427,41 +427,6 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
         assert off <= parts[name]["window"] + longer.extras["convergence"][name]["window"], name
 
 
-def test_the_doubling_modal_part_is_the_change_beyond_the_two_windows_scatter():
-    # issue 36: the modal part between whole runs at N/2 and N modes (reference.doubling_modal_error, docs/
-    # reference_model.md §3.1) is max(0, |Δ| − √(w₁² + w₂²)) of the two windows' parts w (absolute), over the figure at
-    # N: constructed runs whose figures and window parts are known, the expected values that rule's arithmetic
-    from study.solvers.model.result import PointResult
-
-    previous = PointResult(method="reference", values={
-        "peak_contact_force": 100.0, "max_normal_stress": 200.0, "alternating_bending_stress": 50.0,
-        "max_bending_stress": 100.0, "max_deflection": 1.0})
-    # the run at N/2's window parts as convergence states them: relative to the figure (the alternating stress's to
-    # its max bending stress, 100): absolute 6 (force), 12 (normal), 3 (alternating), 0.01 (deflection)
-    previous.extras["convergence"] = {"peak_contact_force": {"window": 0.06}, "max_normal_stress": {"window": 0.06},
-                                      "alternating_bending_stress": {"window": 0.03}, "max_deflection": {"window": 0.01}}
-    values = {"peak_contact_force": 110.0, "max_normal_stress": 240.0, "alternating_bending_stress": 40.0,
-              "max_bending_stress": 80.0, "max_deflection": 1.0}
-    # the run at N's (settling's: relative to its own mean): absolute 8, 16, 4, 0.02
-    stats = {"peak_contact_force": {"value": 110.0, "window": 8.0 / 110.0},
-             "max_normal_stress": {"value": 240.0, "window": 16.0 / 240.0},
-             "alternating_bending_stress": {"value": 40.0, "window": 0.1},
-             "max_deflection": {"value": 1.0, "window": 0.02}}
-    net = reference.doubling_modal_error(previous, values, stats)
-    assert net["peak_contact_force"] == pytest.approx(0.0)  # |Δ| 10 within √(6² + 8²) = 10: the scatter explains it
-    assert net["max_normal_stress"] == pytest.approx((40.0 - 20.0) / 240.0)  # 40 beyond √(12² + 16²) = 20
-    # the alternating stress relative to the larger of it and its max bending stress at N (80): 10 beyond 5
-    assert net["alternating_bending_stress"] == pytest.approx((10.0 - 5.0) / 80.0)
-    assert net["max_deflection"] == 0.0  # no change
-    # without the windows' parts (and for the max bending stress, which states none) the whole change
-    whole = reference.doubling_modal_error(previous, values)
-    assert whole["peak_contact_force"] == pytest.approx(10.0 / 110.0)
-    assert whole["max_normal_stress"] == pytest.approx(40.0 / 240.0)
-    assert net["max_bending_stress"] == whole["max_bending_stress"] == pytest.approx(20.0 / 80.0)
-    # never more than the whole change, never below nought
-    assert all(0.0 <= net[name] <= whole[name] for name in net)
-
-
 def test_a_pulse_runs_window_is_not_stopped_by_the_in_run_modal_part(default_study, monkeypatch):
     # issue 36: with the strikes' pulses (docs/reference_model.md §2.4) the modal part stated is the figures' change
     # between whole runs at N/2 and N modes (reference.doubling_modal_error); the in-run measure's (here a force part
