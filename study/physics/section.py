@@ -169,7 +169,8 @@ def euler_bernoulli_frequency(wavenumber, bending_stiffness, mass, tension=0.0):
 
 def timoshenko_frequencies(wavenumber, bending_stiffness, shear_stiffness, mass, rotary_inertia, tension=0.0):
     """(lower, upper) ω [rad/s] of Timoshenko's beam for the wavenumber k [1/m] (Graff 1975, Wave Motion in Elastic
-    Solids, §3.4): the two roots in ω² of the determinant of its equations for w = W e^{i(kx − ωt)}, ψ = Ψ e^{i(kx − ωt)},
+    Solids, §3.4): the two roots in ω² of the determinant of its equations for w = W e^{i(kx − ωt)},
+    ψ = Ψ e^{i(kx − ωt)},
 
         | κGA k² + T k² − M ω²    i κGA k                 |
         | −i κGA k                EI k² + κGA − ρI ω²      | = 0,

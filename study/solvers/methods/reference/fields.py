@@ -185,9 +185,9 @@ def window_memo(window: Window, model: WhirlModel, key: tuple, compute):
 def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
     that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
-    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3); ü of the modes within the
-    stresses' band (:func:`above_band`), those above it being quasi-static. Computed once per window and model
-    (:func:`window_memo`): do not write into it."""
+    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3); ü of the modes
+    within the stresses' band (:func:`above_band`), those above it being quasi-static. Computed once per window and
+    model (:func:`window_memo`): do not write into it."""
     return window_memo(window, model, ("inertia",), lambda: _joint_inertia_forces(model, window))
 
 

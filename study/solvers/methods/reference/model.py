@@ -477,7 +477,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
     if option.reference_strike_force == "pulse" and law == 0:
         model.pulse = strike_pulses(model)
     if option.reference_stress_band == "timoshenko":
-        model.stress_band = stress_band_edge(point)
+        model.stress_band = stress_band_edge(scene)
     return model
 
 
@@ -485,21 +485,19 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
 #: (``reference_stress_band = "timoshenko"``, :func:`stress_band_edge`): the study's statistical tolerance
 #: (solver.statistical_tolerance, 5 %), the accuracy its chaotic figures are held to, so that the beam theory's own
 #: error in the modes the stresses take is no larger than what the figures may be off anyway. For the default study's
-#: 4½-in pipe the edge is 283 Hz at 12 ppg, 304 Hz at 9 ppg (the 47th mode of its 37.8-m section; docs/reference_model.md
-#: §2.3.1).
+#: 4½-in pipe the edge is 283 Hz at 12 ppg, 304 Hz at 9 ppg (the 47th mode of its 37.8-m section;
+#: docs/reference_model.md §2.3.1).
 BAND_FRACTION = 0.05
 
 
-def stress_band_edge(point: DesignPoint | Mapping[str, Any], fraction: float = BAND_FRACTION) -> float:
-    """ω_b [rad/s]: the Euler–Bernoulli frequency of the point's section at which Timoshenko's bending branch lies
+def stress_band_edge(scene: Scene, fraction: float = BAND_FRACTION) -> float:
+    """ω_b [rad/s]: the Euler–Bernoulli frequency of the scene's section at which Timoshenko's bending branch lies
     ``fraction`` below it (:func:`study.physics.section.timoshenko_band_edge`; Graff 1975 §3.4): the section's whole
     mass per length (mud and added mass with it) against its steel's shear stiffness κGA (κ of Cowper 1966 for the
     tube, G = E/(2(1 + ν))) and rotary inertia ρ_s I, the effective tension with them."""
-    point = DesignPoint.of(point)
-    scene, props = point.scene, point.scene.props
+    props = scene.props
     r_o, r_i = scene.outer_radius, scene.inner_radius
-    youngs = float(point.inputs["pipe_youngs_modulus"])
-    nu = float(point.inputs.get("pipe_poisson_ratio", 0.3))
+    youngs, nu = scene.pipe_youngs_modulus, scene.pipe_poisson_ratio
     shear = (float(section.cowper_shear_coefficient(nu, r_o, r_i)) * youngs / (2.0 * (1.0 + nu))
              * props["steel_area"])
     rotary = scene.pipe_density * float(section.second_moment_of_area(r_o, r_i))

@@ -11,7 +11,8 @@ import numpy as np
 from study.physics import fatigue, limits, section, strike
 from study.physics.contact import hertz_force
 from study.solvers.model.point import DesignPoint
-from study.solvers.methods.reference.fields import above_band, field_states, joint_inertia_forces, periodic_fields, stresses
+from study.solvers.methods.reference.fields import (above_band, field_states, joint_inertia_forces, periodic_fields,
+                                                    stresses)
 from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
 from study.physics.string_modes import series_contact
