@@ -296,6 +296,11 @@ FIELDS: tuple[Field, ...] = (
           "bending that the modes left out miss (docs/reference_model.md §2.3)", None,
           default=ReferenceOptions.default("reference_strike_stress"),
           choices=ReferenceOptions.choices("reference_strike_stress")),
+    Field("solver.reference_stress_band", "reference_stress_band", "the band of the reference model's stresses: every "
+          "kept mode's dynamic response, or the modes where the Euler-Bernoulli beam holds within 5 % of Timoshenko's "
+          "dynamically and those above by their quasi-static response (docs/reference_model.md §2.3.1)", None,
+          default=ReferenceOptions.default("reference_stress_band"),
+          choices=ReferenceOptions.choices("reference_stress_band")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "

@@ -14,6 +14,14 @@
             '{"reference_modes": 128, "reference_max_modes": 128}'
         the same at the points of those flat indices of the results (cap 1200 s)
 
+    python -m study.benchmarks.strikes recover 274,515,687,201 128 12 out.jsonl
+        one motion recovered with fewer modes and with the stresses' band (docs/reference_model.md §2.3.1): each point
+        of those flat indices of the default study's grid run at that fixed mode count (``reference_strike_force =
+        "pulse"``, ``reference_strike_stress = "local"``, that many revolutions at most), its window's states projected
+        onto the first n basis functions (n = 32, 64 and the count) and its stresses recovered with the n-mode model,
+        ``reference_stress_band`` "all" and "timoshenko": the means over the window's revolutions and their standard
+        errors [MPa]
+
     python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
         the thrown string's bending under a joint from the modes, with the strike's correction and by default
         (docs/reference_model.md §2.3.1)
@@ -161,6 +169,56 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
                              for k, e in conv.items()})), file=out, flush=True)
 
 
+def recover(indices, count, revolutions, out):
+    from study import config
+    from study.solvers.methods.reference.integrate import Window
+    from study.solvers.methods.reference.method import simulate
+    from study.solvers.methods.reference.model import build_model
+    from study.solvers.methods.reference.statistics import cycle_values
+
+    study = config.load(ROOT / "configs" / "default.toml")
+    dims = list(study.axes)  # the sweep's order: the results' flat index
+    grid = np.stack(np.meshgrid(*[study.axes[d] for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
+
+    def revolutions_of(model, w):
+        turn = np.floor((w.times - w.start) / model.period + 1e-9).astype(int)
+        for j in np.unique(turn):
+            rows = np.flatnonzero(turn == j)
+            if rows.size >= 10:
+                at = slice(rows[0], rows[-1] + 1)
+                yield Window(times=w.times[at], states=w.states[at], forces=w.forces[at],
+                             peak=np.max(w.forces[at, :, 2], axis=0), onsets=np.zeros(w.forces.shape[1], int),
+                             contact_time=np.zeros(w.forces.shape[1]), any_contact_time=0.0,
+                             start=float(w.times[rows[0]]), end=float(w.times[rows[-1]]))
+
+    def projected(small, big, w):  # the states on the first n basis functions, in the n-mode model's modes
+        N, n = big.n_modes, small.n_modes
+        to_basis = big.basis if big.basis is not None else np.eye(N)
+        modes = small.basis if small.basis is not None else np.eye(n)
+        blocks = [np.linalg.solve(modes, (w.states[:, j * N:(j + 1) * N] @ to_basis.T)[:, :n].T).T for j in range(4)]
+        return Window(times=w.times, states=np.hstack(blocks + [w.states[:, 4 * N:]]), forces=w.forces, peak=w.peak,
+                      onsets=w.onsets, contact_time=w.contact_time, any_contact_time=w.any_contact_time,
+                      start=w.start, end=w.end)
+
+    for i in indices:
+        inputs = {**study.point(**{d: float(v) for d, v in zip(dims, grid[i])}), "reference_strike_force": "pulse",
+                  "reference_strike_stress": "local", "reference_modes": count, "reference_max_modes": count,
+                  "reference_max_revolutions": revolutions}
+        clock = time.process_time()
+        run = simulate({**inputs, "reference_stress_band": "all"})
+        cycles = list(revolutions_of(run["model"], run["window"]))
+        record = dict(index=int(i), N=count, revolutions=len(cycles), cpu=time.process_time() - clock)
+        for n in sorted({32, 64, count}):
+            for band in ("all", "timoshenko"):
+                small = build_model({**inputs, "reference_modes": n, "reference_stress_band": band})
+                values = cycle_values(inputs, small, [projected(small, run["model"], c) for c in cycles])
+                for name in ("max_normal_stress", "alternating_bending_stress"):
+                    x = np.array([v[name] for v in values]) / 1e6
+                    record[f"{n}/{band}/{name}"] = [float(np.mean(x)), float(np.std(x, ddof=1) / np.sqrt(x.size))]
+                record[f"{n}/{band}/in_band"] = int(np.sum(small.omega <= small.stress_band))
+        print(json.dumps(record), file=out, flush=True)
+
+
 def thrown(residuals, counts, out):
     """The string of tests/solvers/test_modes.py thrown at 0.3 m/s onto its three joints (the default study's pipe at
     250 rpm, 5 klbf, 9 ppg, e 0.7, straight vertical hole, no damping; 4 ms recorded at 16 384 rows a revolution): the
@@ -226,8 +284,11 @@ if __name__ == "__main__":
             sample(0, sys.argv[3].split(","), handle, sys.argv[5],
                    json.loads(sys.argv[6]) if len(sys.argv) > 6 else None,
                    indices=[int(i) for i in sys.argv[2].split(",")], cap=1200)
+    elif kind == "recover":  # python -m study.benchmarks.strikes recover 274,515 128 12 out.jsonl
+        with open(sys.argv[5], "a") as handle:
+            recover([int(i) for i in sys.argv[2].split(",")], int(sys.argv[3]), int(sys.argv[4]), handle)
     elif kind == "thrown":  # python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
         with open(sys.argv[4], "a") as handle:
             thrown(sys.argv[2].split(","), [int(x) for x in sys.argv[3].split(",")], handle)
     else:
-        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at, thrown")
+        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at, recover, thrown")

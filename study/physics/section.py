@@ -8,6 +8,7 @@ the reconstructions written there.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import brentq
 
 #: Added-mass models for the annular mud: name -> one-line description.
 ADDED_MASS_MODELS = {
@@ -147,3 +148,73 @@ def equivalent_mass(mass, span_length):
     at the midspan velocity. mass M [kg/m], span_length L [m].
     """
     return 2.0 * np.asarray(mass) * np.asarray(span_length) / np.pi
+
+
+def cowper_shear_coefficient(poisson_ratio, outer_radius, inner_radius):
+    """Timoshenko's shear coefficient κ [-] of a hollow circular section (Cowper 1966, J. Appl. Mech. 33, 335,
+    doi:10.1115/1.3625046, Table 1): κ = 6(1 + ν)(1 + m²)² / [(7 + 6ν)(1 + m²)² + (20 + 12ν) m²], m = r_i/r_o;
+    6(1 + ν)/(7 + 6ν) for the solid section (m = 0), 2(1 + ν)/(4 + 3ν) for the thin tube (m → 1).
+    poisson_ratio ν [-], radii [m]."""
+    nu = np.asarray(poisson_ratio, dtype=float)
+    m2 = (np.asarray(inner_radius, dtype=float) / np.asarray(outer_radius, dtype=float)) ** 2
+    return 6.0 * (1.0 + nu) * (1.0 + m2) ** 2 / ((7.0 + 6.0 * nu) * (1.0 + m2) ** 2 + (20.0 + 12.0 * nu) * m2)
+
+
+def euler_bernoulli_frequency(wavenumber, bending_stiffness, mass, tension=0.0):
+    """ω [rad/s] of the Euler–Bernoulli beam-column's bending wave of wavenumber k [1/m]:
+    ω² = (EI k⁴ + T k²)/M (docs/model.md §2). bending_stiffness EI [N m²], mass M [kg/m], tension T [N]."""
+    k = np.asarray(wavenumber, dtype=float)
+    return np.sqrt((np.asarray(bending_stiffness) * k**4 + np.asarray(tension) * k**2) / np.asarray(mass))
+
+
+def timoshenko_frequencies(wavenumber, bending_stiffness, shear_stiffness, mass, rotary_inertia, tension=0.0):
+    """(lower, upper) ω [rad/s] of Timoshenko's beam for the wavenumber k [1/m] (Graff 1975, Wave Motion in Elastic
+    Solids, §3.4): the two roots in ω² of the determinant of its equations for w = W e^{i(kx − ωt)},
+    ψ = Ψ e^{i(kx − ωt)},
+
+        | κGA k² + T k² − M ω²    i κGA k                 |
+        | −i κGA k                EI k² + κGA − ρI ω²      | = 0,
+
+    i.e. M ρI ω⁴ − [ρI (κGA + T) k² + M (EI k² + κGA)] ω² + (κGA + T) EI k⁴ + T κGA k² = 0. The lower root is the
+    bending branch, which tends to Euler–Bernoulli's (EI k⁴ + T k²)/M as k → 0 (:func:`euler_bernoulli_frequency`); the
+    upper starts at the cut-off √(κGA/ρI). bending_stiffness EI [N m²], shear_stiffness κGA [N] (κ:
+    :func:`cowper_shear_coefficient`), mass M [kg/m] (the section's whole, mud and added mass with it), rotary_inertia
+    ρI [kg m] (the steel's: ρ_s I; 0: the shear beam, its upper branch inf), tension T [N]."""
+    k2 = np.asarray(wavenumber, dtype=float) ** 2
+    ei, ks, m, j, t = (np.asarray(v, dtype=float) for v in (bending_stiffness, shear_stiffness, mass, rotary_inertia,
+                                                             tension))
+    a = m * j
+    b = j * (ks + t) * k2 + m * (ei * k2 + ks)
+    c = (ks + t) * ei * k2**2 + t * ks * k2
+    root = np.sqrt(b * b - 4.0 * a * c)
+    lower = 2.0 * c / (b + root)  # the smaller root without cancellation
+    with np.errstate(divide="ignore"):  # no rotary inertia: no upper branch (inf)
+        upper = np.sqrt((b + root) / (2.0 * a))
+    return np.sqrt(lower), upper
+
+
+def timoshenko_band_edge(fraction, bending_stiffness, shear_stiffness, mass, rotary_inertia, tension=0.0) -> float:
+    """The Euler–Bernoulli frequency ω_b [rad/s] at which Timoshenko's bending branch (:func:`timoshenko_frequencies`)
+    lies ``fraction`` [-] below it, 1 − ω_T/ω_EB = fraction (the ratio falls monotonically with k, from 1 at k = 0): the
+    upper edge of the band where the Euler–Bernoulli beam holds within that fraction (docs/reference_model.md §2.3.1).
+    To first order in k², 1 − ω_T/ω_EB ≈ (k r)²/2 (E/κG + ρ_s A_s/M), r² = I/A_s. Arguments as
+    :func:`timoshenko_frequencies`."""
+    fraction = float(fraction)
+    if not 0.0 < fraction < 1.0:
+        raise ValueError(f"fraction = {fraction}: must lie in (0, 1)")
+    args = (bending_stiffness, shear_stiffness, mass, rotary_inertia, tension)
+
+    def gap(log_k):
+        k = np.exp(log_k)
+        return 1.0 - float(timoshenko_frequencies(k, *args)[0] / euler_bernoulli_frequency(
+            k, bending_stiffness, mass, tension)) - fraction
+
+    # the first-order estimate's k, then a bracket about it: the gap grows from −fraction at k → 0 towards 1 − fraction
+    first = np.sqrt(2.0 * fraction / (bending_stiffness / shear_stiffness + rotary_inertia / mass))
+    low, high = np.log(first) - 1.0, np.log(first) + 1.0
+    while gap(low) > 0.0:
+        low -= 1.0
+    while gap(high) < 0.0:
+        high += 1.0
+    k = float(np.exp(brentq(gap, low, high, xtol=1e-14, rtol=1e-14)))
+    return float(euler_bernoulli_frequency(k, bending_stiffness, mass, tension))

@@ -112,3 +112,81 @@ def test_functions_broadcast_over_arrays():
     omega = section.natural_frequencies(spans, 8e5, 1e4, 50.0, [1, 3])
     assert omega.shape == (3, 2)
     assert np.all(np.diff(omega[:, 0]) < 0)  # longer span, lower frequency
+
+
+# Timoshenko's beam (section.timoshenko_frequencies, timoshenko_band_edge): the 4½-in pipe of the default study in
+# 12-ppg mud (EI of E 207 GPa, M the section's whole mass with mud and added mass, the steel's shear stiffness and
+# rotary inertia), as docs/reference_model.md §2.3.1 takes it
+R_O, R_I = 0.05715, 0.0485902
+E_STEEL, NU_STEEL, RHO_STEEL = 207e9, 0.3, 7850.0
+I_PIPE = float(section.second_moment_of_area(R_O, R_I))
+A_PIPE = float(section.steel_area(R_O, R_I))
+EI_PIPE, M_PIPE, J_PIPE = E_STEEL * I_PIPE, 58.35, RHO_STEEL * I_PIPE
+KGA_PIPE = float(section.cowper_shear_coefficient(NU_STEEL, R_O, R_I)) * E_STEEL / (2 * (1 + NU_STEEL)) * A_PIPE
+
+
+def test_cowpers_shear_coefficient_has_his_solid_and_thin_tube_limits():
+    # Cowper 1966 (J. Appl. Mech. 33, 335), Table 1: solid circle 6(1 + ν)/(7 + 6ν), thin-walled round tube
+    # 2(1 + ν)/(4 + 3ν); at ν = 0.3, 0.886 and 0.530
+    assert section.cowper_shear_coefficient(0.3, 1.0, 0.0) == pytest.approx(6 * 1.3 / 8.8, rel=1e-15)
+    assert section.cowper_shear_coefficient(0.3, 1.0, 0.0) == pytest.approx(0.886, abs=5e-4)
+    assert section.cowper_shear_coefficient(0.3, 1.0, 1.0 - 1e-9) == pytest.approx(2 * 1.3 / 4.9, rel=1e-8)
+    assert section.cowper_shear_coefficient(0.3, 1.0, 1.0 - 1e-9) == pytest.approx(0.531, abs=5e-4)
+
+
+def test_timoshenkos_frequencies_are_the_roots_of_his_determinant():
+    # Graff 1975 §3.4: the 2×2 determinant of the beam's equations for w, ψ ∝ e^{i(kx − ωt)} vanishes at both
+    # branches; found here independently by bracketing its sign changes in ω (scipy's brentq), with tension too
+    from scipy.optimize import brentq
+
+    for tension in (0.0, 9e4):
+        for k in (0.05, 1.0, 5.0, 20.0, 80.0):
+            def det(w):
+                a = KGA_PIPE * k**2 + tension * k**2 - M_PIPE * w**2
+                d = EI_PIPE * k**2 + KGA_PIPE - J_PIPE * w**2
+                return a * d - (KGA_PIPE * k) ** 2  # |[a, iκGAk], [−iκGAk, d]|
+
+            lower, upper = section.timoshenko_frequencies(k, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE, tension)
+            grid = np.geomspace(1e-3, 10 * upper, 20001)
+            values = det(grid)
+            roots = [brentq(det, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-14)
+                     for i in np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:]))]
+            assert len(roots) == 2
+            np.testing.assert_allclose([lower, upper], roots, rtol=1e-10)
+
+
+def test_timoshenkos_frequencies_have_their_limit_cases():
+    k = np.array([0.1, 1.0, 5.0, 20.0])
+    eb = section.euler_bernoulli_frequency(k, EI_PIPE, M_PIPE)
+    # no rotary inertia: the shear beam, ω² = EI k⁴/(M (1 + EI k²/κGA)) (Han, Benaroya & Wei 1999, JSV 225:935,
+    # doi:10.1006/jsvi.1999.2257: its shear model's dispersion relation)
+    shear = section.timoshenko_frequencies(k, EI_PIPE, KGA_PIPE, M_PIPE, 0.0)[0]
+    np.testing.assert_allclose(shear, eb / np.sqrt(1 + EI_PIPE * k**2 / KGA_PIPE), rtol=1e-12)
+    # rigid in shear: the Rayleigh beam, ω² = EI k⁴/(M + ρI k²) (ibid.: the Rayleigh model's)
+    rayleigh = section.timoshenko_frequencies(k, EI_PIPE, 1e12 * KGA_PIPE, M_PIPE, J_PIPE)[0]
+    np.testing.assert_allclose(rayleigh, np.sqrt(EI_PIPE * k**4 / (M_PIPE + J_PIPE * k**2)), rtol=1e-9)
+    # k → 0: Euler–Bernoulli's, the gap to first order (k r)²/2 (E/κG + ρ_s A_s/M), r² = I/A_s (Graff §3.4); the
+    # upper branch starts at the cut-off √(κGA/ρI)
+    small = np.array([1e-3, 1e-2])
+    gap = 1 - (section.timoshenko_frequencies(small, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE)[0]
+               / section.euler_bernoulli_frequency(small, EI_PIPE, M_PIPE))
+    first = small**2 / 2 * (EI_PIPE / KGA_PIPE + J_PIPE / M_PIPE)
+    np.testing.assert_allclose(gap, first, rtol=1e-3)
+    assert section.timoshenko_frequencies(1e-9, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE)[1] == pytest.approx(
+        np.sqrt(KGA_PIPE / J_PIPE), rel=1e-12)
+
+
+def test_the_band_edge_is_where_timoshenko_parts_from_euler_bernoulli_by_the_fraction():
+    for fraction, tension in ((0.02, 0.0), (0.05, 0.0), (0.05, 9e4), (0.1, 0.0)):
+        edge = section.timoshenko_band_edge(fraction, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE, tension)
+        # its wavenumber from the EB relation, then Timoshenko's at it
+        k = np.sqrt((-tension + np.sqrt(tension**2 + 4 * EI_PIPE * M_PIPE * edge**2)) / (2 * EI_PIPE))
+        ratio = section.timoshenko_frequencies(k, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE, tension)[0] / edge
+        assert ratio == pytest.approx(1 - fraction, abs=1e-10)
+    # the default pipe at 5 %: some 0.28 kHz, where the first-order estimate puts it within its O(k⁴) error
+    edge = section.timoshenko_band_edge(0.05, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE)
+    k1 = np.sqrt(2 * 0.05 / (EI_PIPE / KGA_PIPE + J_PIPE / M_PIPE))
+    assert edge == pytest.approx(float(section.euler_bernoulli_frequency(k1, EI_PIPE, M_PIPE)), rel=0.1)
+    assert 250 < edge / (2 * np.pi) < 320
+    with pytest.raises(ValueError, match=r"fraction = 1.5: must lie in \(0, 1\)"):
+        section.timoshenko_band_edge(1.5, EI_PIPE, KGA_PIPE, M_PIPE, J_PIPE)

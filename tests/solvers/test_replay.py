@@ -46,7 +46,11 @@ def test_a_replayed_strike_converges_with_the_modes(bouncing):
     # force is 29 %, 9 %, 1.4 % off at 16, 32, 64 modes (docs/reference_model.md §2.1's table over six points)
     inputs, model, run = bouncing
     counts = (16, 32, 64, 128, 256)
-    [event] = _replays(inputs, model, run, counts)
+    # every kept mode in the stresses: the replays' Euler-Bernoulli modes converging. With the stresses' band
+    # (reference_stress_band = "timoshenko", its 47 modes at 128 and 256) the strike's stresses follow the quasi-static
+    # response of the modes above it to the series law's force, as that force converges: the alternating stress at 128
+    # modes 5.9 % under 256's (14.8 against 15.8 MPa, measured)
+    [event] = _replays({**inputs, "reference_stress_band": "all"}, model, run, counts)
     figures = event["figures"]
     # the replay at the run's own count is the run's strike (same state, model and integrator; the Hunt-Crossley
     # damping of other open contacts is the only thing not carried over)

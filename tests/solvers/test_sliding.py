@@ -166,8 +166,10 @@ PANEL_PRECISION = 1e-6
 @pytest.mark.parametrize("index, status, estimate, figures, message", PANEL)
 def test_a_panel_of_the_default_study_keeps_the_outputs_it_had(default_grid, index, status, estimate, figures,
                                                                 message):
-    # without the tool joints' mass (pipe.tool_joint_length = 0) the outputs are those of before it was lumped
-    result = sliding.solve(_without_joint_mass(default_grid.point(index)))
+    # without the tool joints' mass (pipe.tool_joint_length = 0) the outputs are those of before it was lumped; every
+    # kept mode in the stresses, as then (the stresses' band, reference_stress_band = "timoshenko", moved point 101's
+    # max shear stress by 1.6e-6 and point 150's error estimate by 1.3e-4, the first assertions off, measured)
+    result = sliding.solve({**_without_joint_mass(default_grid.point(index)), "reference_stress_band": "all"})
     assert (result.status, result.message) == (status, message)
     if estimate is None:
         assert result.error_estimate is None

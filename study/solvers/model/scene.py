@@ -71,6 +71,8 @@ class Scene:
     mud_flow_velocity: float = 0.0  #: V_m [m/s] inside the pipe (mud.flow_velocity)
     mud_viscosity: float = 0.020  #: the mud's plastic viscosity μ_p [Pa s] (mud.plastic_viscosity)
     pipe_density: float = 7850.0  #: the pipe steel's density [kg/m³] (pipe.density)
+    pipe_youngs_modulus: float = 207e9  #: the pipe steel's E [Pa] (pipe.youngs_modulus)
+    pipe_poisson_ratio: float = 0.3  #: the pipe steel's ν [-] (pipe.poisson_ratio)
     inclination: float = 0.0  #: the hole's inclination from vertical [rad] (hole.inclination)
     dogleg_curvature: float = 0.0  #: the hole's curvature κ [1/m] (hole.dogleg_severity)
     dogleg_direction: float = 0.0  #: the direction of the hole's centre of curvature from the low side [rad]
@@ -105,7 +107,9 @@ class Scene:
                    inner_radius=r_i, axial_tension=float(inputs["axial_tension"]),
                    mud_density=inputs["mud_density"], mud_flow_velocity=flow or 0.0,
                    mud_viscosity=float(inputs.get("plastic_viscosity", 0.020)),
-                   pipe_density=pipe_density or 7850.0, inclination=float(inputs.get("inclination") or 0.0),
+                   pipe_density=pipe_density or 7850.0, pipe_youngs_modulus=float(inputs["pipe_youngs_modulus"]),
+                   pipe_poisson_ratio=float(inputs["pipe_poisson_ratio"]),
+                   inclination=float(inputs.get("inclination") or 0.0),
                    dogleg_curvature=float(inputs.get("dogleg_curvature") or 0.0),
                    dogleg_direction=float(inputs.get("dogleg_direction") or 0.0),
                    side_load=None if side is None else float(side), span_length=span)

@@ -28,14 +28,14 @@ def modal_fields(model: WhirlModel, q: np.ndarray, x: np.ndarray) -> np.ndarray:
     return q @ np.vstack([base, moments]).T
 
 
-def periodic_fields(model: WhirlModel, q: np.ndarray, forces: np.ndarray | None, x: np.ndarray,
+def periodic_fields(model: WhirlModel, q: np.ndarray | None, forces: np.ndarray | None, x: np.ndarray,
                     direction: int | None = None, modal: np.ndarray | None = None) -> dict:
     """Deflection [m] and moment −EI u'' [N m] on the stations x [m] (shape times × x) of one direction from the
     modal states q (T, N) (ψ_n'' = −k_n² ψ_n: mode n's moment is EI k_n² ψ_n q_n, none for the rigid translation),
     plus with ``forces`` (T, P) on the pipe the quasi-static correction for the modes left out
     (:func:`static_correction`). With ``direction`` (0 y, 1 z) the moment is the pipe's whole, −EI (κ + u''), κ the
     hole's curvature in that direction (the pipe follows the curved hole). ``modal``: :func:`modal_fields` of q and x
-    where computed already."""
+    where computed already (q then unused: None)."""
     x = np.asarray(x, float)
     both = modal_fields(model, q, x) if modal is None else modal
     if forces is not None:
@@ -132,6 +132,44 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
     return np.hstack([ay, az])
 
 
+def above_band(model: WhirlModel) -> np.ndarray:
+    """(N,) which kept modes lie above the stresses' band, ω_n > ω_b (``reference_stress_band``,
+    :attr:`WhirlModel.stress_band`; none with "all")."""
+    return np.asarray(model.omega[:model.n_modes], float) > model.stress_band
+
+
+def field_states(model: WhirlModel, window: Window, direction: int, masked: np.ndarray | None = None) -> np.ndarray:
+    """(T, N) the modal coordinates the fields take in one direction (0 y, 1 z): each kept mode's own q_n within the
+    stresses' band, and above it (:func:`above_band`) its quasi-static response to its loads, L_n/ω_n² (the
+    mode-acceleration method, as the modes left out take theirs, docs/reference_model.md §3), with
+    L_n = q̈_n + d_n q̇_n + ω_n² q_n [m/s²] the load per modal mass its equation has at the row (the contact forces,
+    the eccentric and side loads, the drag: :func:`modal_accelerations`), less the ``masked`` (T, P) contact forces
+    (the strikes whose local bending is added instead, statistics.strike_stress_values). Without masked loads computed
+    once per window and model (:func:`window_memo`): do not write into it."""
+    N = model.n_modes
+    above = above_band(model)
+    if not np.any(above):
+        return window.states[:, direction * N:(direction + 1) * N]
+    if masked is None:
+        return window_memo(window, model, ("band", direction), lambda: _field_states(model, window, direction, None))
+    return _field_states(model, window, direction, masked)
+
+
+def _field_states(model: WhirlModel, window: Window, direction: int, masked: np.ndarray | None) -> np.ndarray:
+    N = model.n_modes
+    above = above_band(model)
+    q = window.states[:, direction * N:(direction + 1) * N]
+    v = window.states[:, (2 + direction) * N:(3 + direction) * N]
+    w2 = model.omega[:N][above] ** 2
+    acc = window_memo(window, model, ("accelerations",), lambda: modal_accelerations(model, window))
+    loads = acc[:, direction * N:(direction + 1) * N][:, above] + model.damping[above] * v[:, above] + w2 * q[:, above]
+    if masked is not None:
+        loads = loads - np.where(masked, window.forces[:, :, direction], 0.0) @ model.phi[:, above] / model.mass
+    out = q.copy()
+    out[:, above] = loads / w2
+    return out
+
+
 def window_memo(window: Window, model: WhirlModel, key: tuple, compute):
     """What ``compute()`` gives for the window and model under ``key``, computed once per window (kept in
     ``window.memo``, with the model it was computed for): the post-processing paths of a window (the stresses with
@@ -147,15 +185,17 @@ def window_memo(window: Window, model: WhirlModel, key: tuple, compute):
 def joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     """(T, P, 2) the inertia forces −m_j ü(x_j) [N] of the tool joints' lumped mass on the pipe at the contact points
     that are joints (zero elsewhere), from :func:`modal_accelerations`: point loads whose part on the modes left out
-    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3). Computed once per
-    window and model (:func:`window_memo`): do not write into it."""
+    the quasi-static correction completes (:func:`periodic_fields`; docs/reference_model.md §3); ü of the modes
+    within the stresses' band (:func:`above_band`), those above it being quasi-static. Computed once per window and
+    model (:func:`window_memo`): do not write into it."""
     return window_memo(window, model, ("inertia",), lambda: _joint_inertia_forces(model, window))
 
 
 def _joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     at = model.joint_points
     J = int(np.count_nonzero(at))
-    acc = modal_accelerations(model, window, model.phi[at].T)  # at the joints
+    # the in-band modes' accelerations at the joints: those above the band are quasi-static (field_states)
+    acc = modal_accelerations(model, window, model.phi[at].T * ~above_band(model)[:, None])  # at the joints
     out = np.zeros(window.forces.shape[:2] + (2,))
     for j in range(2):
         out[:, at, j] = -model.joint_mass * acc[:, j * J:(j + 1) * J]
@@ -206,19 +246,20 @@ def stresses(point: DesignPoint | Mapping[str, Any], model: WhirlModel, window: 
             forces = forces + inertia[:, :, j]  # the joints' inertia forces, point loads as the contacts'
         if masked is not None and forces is not None:
             forces = np.where(masked, 0.0, forces)
-        fields.append(periodic_fields(model, window.states[:, j * N:(j + 1) * N], forces, x, j,
-                                      modal=shared_modal_fields(model, window, x, j)))
+        modal = (modal_fields(model, field_states(model, window, j, masked), x)
+                 if masked is not None and np.any(above_band(model)) else shared_modal_fields(model, window, x, j))
+        fields.append(periodic_fields(model, None, forces, x, j, modal=modal))
     outs = _stresses(model, window, x, scene, fibres, fields, segments)
     return outs if segments is not None else outs[0]
 
 
 def shared_modal_fields(model: WhirlModel, window: Window, x: np.ndarray, direction: int) -> np.ndarray:
-    """:func:`modal_fields` of the window's states in one direction (0 y, 1 z) on the stations x [m], computed once per
-    window, model and stations (:func:`window_memo`): do not write into it."""
-    N = model.n_modes
+    """:func:`modal_fields` of the window's states in one direction (0 y, 1 z) on the stations x [m] (the coordinates of
+    :func:`field_states`: within the stresses' band), computed once per window, model and stations
+    (:func:`window_memo`): do not write into it."""
     x = np.asarray(x, float)
     return window_memo(window, model, ("modal", direction, x.tobytes()),
-                       lambda: modal_fields(model, window.states[:, direction * N:(direction + 1) * N], x))
+                       lambda: modal_fields(model, field_states(model, window, direction), x))
 
 
 def _stresses(model: WhirlModel, window: Window, x: np.ndarray, scene, fibres: int, fields: list | None,
@@ -228,8 +269,8 @@ def _stresses(model: WhirlModel, window: Window, x: np.ndarray, scene, fibres: i
     N = model.n_modes
     ei = model.props["bending_stiffness"]
     if fields is None:
-        fields = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], None, x, j,
-                                  modal=shared_modal_fields(model, window, x, j)) for j in range(2)]
+        fields = [periodic_fields(model, None, None, x, j, modal=shared_modal_fields(model, window, x, j))
+                  for j in range(2)]
     r_o, r_i = scene.outer_radius, scene.inner_radius
     scale = r_o / float(section.second_moment_of_area(r_o, r_i))
     area = model.props["steel_area"]
@@ -257,7 +298,7 @@ def _stresses(model: WhirlModel, window: Window, x: np.ndarray, scene, fibres: i
             my, mz, uy, uz, x, cos_turn[rows], sin_turn[rows], cos_fibre, sin_fibre)
         # modal truncation indicator: the upper half of the modes' share of the largest modal moment
         shapes = model.shapes(x[ix])[0] * ei * k**2 if model.basis is None else model.moment_shapes(x[ix])[0]
-        qy, qz = window.states[first + it, :N], window.states[first + it, N:2 * N]
+        qy, qz = (field_states(model, window, j)[first + it] for j in range(2))
         bend = ei * model.hole_curvature  # the hole's curvature: exact, in no mode
         full = np.hypot(qy @ shapes - bend[0], qz @ shapes - bend[1])
         tail = np.hypot(qy[upper] @ shapes[upper], qz[upper] @ shapes[upper])

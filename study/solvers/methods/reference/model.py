@@ -9,7 +9,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from study.physics import hertz, well, whirl
+from study.physics import hertz, section, well, whirl
 from study.physics.damping import viscous_modal_damping_ratio
 from study.physics.contact import (calibrated_hysteresis, hertz_energy, linear_contact_damping,
                                    linearised_stiffness)
@@ -91,6 +91,10 @@ class WhirlModel:
     #: the strikes' pulses at the tool joints (``reference_strike_force = "pulse"``: :func:`strike_pulses`; None: the
     #: contact law at every strike)
     pulse: dict | None = None
+    #: the upper edge ω_b [rad/s] of the band of the section's bending the stresses state (``reference_stress_band``:
+    #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
+    #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
+    stress_band: float = float("inf")
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -472,7 +476,33 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
     if option.reference_strike_force == "pulse" and law == 0:
         model.pulse = strike_pulses(model)
+    if option.reference_stress_band == "timoshenko":
+        model.stress_band = stress_band_edge(scene)
     return model
+
+
+#: How far [-] below the Euler–Bernoulli beam's frequency Timoshenko's may lie within the stresses' band
+#: (``reference_stress_band = "timoshenko"``, :func:`stress_band_edge`): the study's statistical tolerance
+#: (solver.statistical_tolerance, 5 %), the accuracy its chaotic figures are held to, so that the beam theory's own
+#: error in the modes the stresses take is no larger than what the figures may be off anyway. For the default study's
+#: 4½-in pipe the edge is 283 Hz at 12 ppg, 304 Hz at 9 ppg (the 47th mode of its 37.8-m section;
+#: docs/reference_model.md §2.3.1).
+BAND_FRACTION = 0.05
+
+
+def stress_band_edge(scene: Scene, fraction: float = BAND_FRACTION) -> float:
+    """ω_b [rad/s]: the Euler–Bernoulli frequency of the scene's section at which Timoshenko's bending branch lies
+    ``fraction`` below it (:func:`study.physics.section.timoshenko_band_edge`; Graff 1975 §3.4): the section's whole
+    mass per length (mud and added mass with it) against its steel's shear stiffness κGA (κ of Cowper 1966 for the
+    tube, G = E/(2(1 + ν))) and rotary inertia ρ_s I, the effective tension with them."""
+    props = scene.props
+    r_o, r_i = scene.outer_radius, scene.inner_radius
+    youngs, nu = scene.pipe_youngs_modulus, scene.pipe_poisson_ratio
+    shear = (float(section.cowper_shear_coefficient(nu, r_o, r_i)) * youngs / (2.0 * (1.0 + nu))
+             * props["steel_area"])
+    rotary = scene.pipe_density * float(section.second_moment_of_area(r_o, r_i))
+    return section.timoshenko_band_edge(fraction, props["bending_stiffness"], shear, props["mass_per_length"], rotary,
+                                        props["effective_tension"])
 
 
 #: The slowest approach [m/s] at which a strike at a tool joint is a pulse (``reference_strike_force = "pulse"``): below

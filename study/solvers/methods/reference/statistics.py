@@ -11,7 +11,8 @@ import numpy as np
 from study.physics import fatigue, limits, section, strike
 from study.physics.contact import hertz_force
 from study.solvers.model.point import DesignPoint
-from study.solvers.methods.reference.fields import joint_inertia_forces, periodic_fields, stresses
+from study.solvers.methods.reference.fields import (above_band, field_states, joint_inertia_forces, periodic_fields,
+                                                    stresses)
 from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
 from study.physics.string_modes import series_contact
@@ -242,9 +243,9 @@ def strike_moment_tables(point: DesignPoint, model: WhirlModel, kept: int | None
         return model.cache[key]
     N = model.n_modes
     omega = np.nan_to_num(np.asarray(model.omega[:N], float))
-    use = np.ones(N, bool)
+    use = ~above_band(model)  # the modes above the stresses' band are quasi-static in the fields, as the left out
     if kept is not None:
-        use = np.argsort(np.argsort(omega, kind="stable"), kind="stable") < kept
+        use &= np.argsort(np.argsort(omega, kind="stable"), kind="stable") < kept
     offsets = strike_stations(point)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     out = {}
@@ -275,7 +276,7 @@ def strike_history_tables(point: DesignPoint, model: WhirlModel) -> dict:
         group = joints[model.stiffness[joints] == k]
         gains = np.concatenate([model.phi[p][None, :] * model.moment_shapes(np.mod(model.points[p] + offsets,
                                                                                    model.span)) / model.mass
-                                for p in group])
+                                for p in group]) * ~above_band(model)[None, :]
         horizon = min(history_horizon(model, p) for p in group)
         table = strike.strike_history_table(model.joint_mass, k, rho, ei, model.hysteresis,
                                             np.tile(offsets, group.size), omega, gains, horizon)
@@ -292,7 +293,7 @@ def history_horizon(model: WhirlModel, p: int) -> float:
     2π/T_c (T_c the shortest strike of the force's table, :func:`study.physics.strike.strike_peak_table`): its fastest
     waves travel at c_g of the higher of the two, and are back after 2 s/c_g (s the joints' spacing)."""
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
-    top = float(np.max(np.nan_to_num(np.asarray(model.omega[:model.n_modes], float))))
+    top = float(np.max(np.nan_to_num(np.asarray(model.omega[:model.n_modes], float))[~above_band(model)]))
     _, _, durations = strike.strike_peak_table(float(model.joint_mass), float(model.stiffness[p]), float(rho),
                                                float(ei), float(model.hysteresis))
     band = 2.0 * np.pi / float(np.min(durations))
@@ -413,7 +414,7 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
             x = float(np.mod(model.points[p] + off, model.span))
             stations.setdefault(round(x, 9), []).append((k, s))
     xs = np.array(sorted(stations))
-    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], loads(j), xs, j)["moment"]
+    moments = [periodic_fields(model, field_states(model, window, j, masked), loads(j), xs, j)["moment"]
                for j in range(2)]  # (R, X) each
     fibre = np.linspace(0.0, np.pi, 16, endpoint=False)
     turn = model.rotary_speed * window.times
@@ -494,8 +495,8 @@ def fibre_stress(point: DesignPoint, model: WhirlModel, window: Window, station:
         forces = window.correction_forces(model, j)
         return forces if masked is None else np.where(masked, 0.0, forces)
 
-    moments = [periodic_fields(model, window.states[:, j * N:(j + 1) * N], loads(j), x, j)["moment"][:, 0]
-               for j in range(2)]
+    moments = [periodic_fields(model, field_states(model, window, j, masked if correction else None), loads(j), x,
+                               j)["moment"][:, 0] for j in range(2)]
     if pulses is not None:
         moments = [moments[j] + pulses[:, j] for j in range(2)]
     scene = point.scene
