@@ -175,10 +175,10 @@ def recover(indices, count, revolutions, out):
     from study.solvers.methods.reference.method import simulate
     from study.solvers.methods.reference.model import build_model
     from study.solvers.methods.reference.statistics import cycle_values
+    from study.workflow.grid import Grid
 
     study = config.load(ROOT / "configs" / "default.toml")
-    dims = list(study.axes)  # the sweep's order: the results' flat index
-    grid = np.stack(np.meshgrid(*[study.axes[d] for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
+    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))  # the sweep's grid: the results' flat index
 
     def revolutions_of(model, w):
         turn = np.floor((w.times - w.start) / model.period + 1e-9).astype(int)
@@ -201,7 +201,7 @@ def recover(indices, count, revolutions, out):
                       start=w.start, end=w.end)
 
     for i in indices:
-        inputs = {**study.point(**{d: float(v) for d, v in zip(dims, grid[i])}), "reference_strike_force": "pulse",
+        inputs = {**grid.point(int(i)), "reference_strike_force": "pulse",
                   "reference_strike_stress": "local", "reference_modes": count, "reference_max_modes": count,
                   "reference_max_revolutions": revolutions}
         clock = time.process_time()
