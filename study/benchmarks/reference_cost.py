@@ -36,14 +36,13 @@ from study import config
 from study.solvers import solve_point
 ds = xr.open_dataset(sys.argv[2])
 study = config.load(sys.argv[3])
-dims = list(ds["method"].dims)
-grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
+from study.benchmarks.strikes import result_points
+coords_of = result_points(ds)
 import study as package
 print(json.dumps({"ready": package.__file__}), flush=True)
 for line in sys.stdin:
     job = json.loads(line)
-    coords = {d: float(v) for d, v in zip(dims, grid[job["index"]])}
-    inputs = {**study.point(**coords), **job["inputs"]}
+    inputs = {**study.point(**coords_of(job["index"])), **job["inputs"]}
     if job.get("warm"):
         solve_point({**inputs, "reference_max_revolutions": 1, "reference_revolutions": 2}, "reference")
     start = time.process_time()

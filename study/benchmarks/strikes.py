@@ -115,9 +115,10 @@ def replays(names, counts, top, out):
 def result_points(ds):
     """The coordinates of the point at flat index i of a sweep's results ``ds`` (its variables' order), as
     ``study.point`` takes them: a function of i."""
-    dims = list(ds["method"].dims)
-    grid = np.stack(np.meshgrid(*[ds[d].values for d in dims], indexing="ij"), -1).reshape(-1, len(dims))
-    return lambda i: {d: float(v) for d, v in zip(dims, grid[i])}
+    from study.workflow.grid import Grid
+
+    grid = Grid(base={}, axes={d: ds[d].values for d in ds["method"].dims})  # the sweep's grid, the same C order
+    return lambda i: {d: float(v) for d, v in grid.point(int(i)).items()}
 
 
 def sample(count, options, out, results, extra=None, indices=None, cap=300):
