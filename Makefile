@@ -19,7 +19,7 @@ help:
 	@echo "make bench-compile  the opt-in section: study compile into an empty cache, minutes (docs/performance_compile.md)"
 	@echo "make bench-sweep-default  the opt-in section: the default study's sweep on about 100 points against workers,"
 	@echo "               minutes (docs/performance_sweep-default.md)"
-	@echo "make bench-large  the measured sweep of 10^5 points, about 9 minutes (docs/large_sweep.md);"
+	@echo "make bench-large  the measured sweep of 10^5 points (docs/large_sweep.md: hours on 2 cores now, see its first note);"
 	@echo "               POINTS=N: its grid thinned to N points, a smoke test of the command (outputs/large_sweep_N.md)"
 	@echo "make validate  compare with the printed numbers (docs/validation.md)"
 	@echo "make coverage  the stated errors against 4x-modes, 4x-window runs on 20 impacting points (docs/validation.md;"
