@@ -176,31 +176,37 @@ def figure_error(result: PointResult, name: str, tolerance: float) -> float:
 
 def worse_figures(lower: PointResult, higher: PointResult, tolerances: Tolerances) -> dict[str, tuple[float, float]]:
     """The design figures (``sliding.FIGURES``: peak contact force, max normal and alternating stress) in which
-    ``higher``'s motion is worse than ``lower``'s beyond their stated errors — figure → (higher's, lower's) — where
-    h − l > e_l |l| + e_h |h|, each e the figure's relative error as :func:`figure_error` credits it (at most its
-    tolerance: ``tolerances.force`` for the force, :func:`gate.held_to` the higher run's for the stresses); a figure
-    either does not have counts as worse (nothing shows it is not). Empty: the higher run's figures are those of the
-    lower's motion, or better, within their errors (docs/reference_model.md §10)."""
+    ``higher``'s motion is worse than ``lower``'s — figure → (higher's h, lower's l) — where
+
+        h − l > (t + e_h) |h| + e_l |l|,
+
+    t the figure's tolerance (``tolerances.force`` for the force; for the stresses the higher run's,
+    :func:`gate.held_to`), e_h and e_l the figures' stated relative errors as :func:`figure_error` credits them (each
+    at most t). t is what the study calls the same figure, and it covers what a reference run's stated error leaves
+    out: a run on its way to the sliding motion still rings, its figures above that motion's by more than its window's
+    scatter states (docs/reference_model.md §10). A figure either does not have counts as worse (nothing shows it is
+    not). Empty: the higher run's figures are those of the lower's motion, or lower."""
     stress_tolerance = gate.held_to(higher.values, tolerances)[0]
     worse = {}
     for name in sliding.FIGURES:
         tolerance = tolerances.force if name == "peak_contact_force" else stress_tolerance
         h, lo = higher.values.get(name, np.nan), lower.values.get(name, np.nan)
-        if not (np.isfinite(h) and np.isfinite(lo)) or h - lo > (figure_error(lower, name, tolerance) * abs(lo)
-                                                                  + figure_error(higher, name, tolerance) * abs(h)):
+        allowed = ((tolerance + figure_error(higher, name, tolerance)) * abs(h)
+                   + figure_error(lower, name, tolerance) * abs(lo))
+        if not (np.isfinite(h) and np.isfinite(lo)) or h - lo > allowed:
             worse[name] = (float(h), float(lo))
     return worse
 
 
-#: How :func:`_coexisting`'s messages name the figures of ``sliding.FIGURES`` and their scale and unit.
-FIGURE_NAMES = {"peak_contact_force": ("peak force", 1.0, "N"), "max_normal_stress": ("max normal stress", 1e6, "MPa"),
-                "alternating_bending_stress": ("alternating stress", 1e6, "MPa")}
+#: The scale and unit in which :func:`_coexisting`'s messages give the figures of ``sliding.FIGURES``.
+FIGURE_UNITS = {"peak_contact_force": (1.0, "N"), "max_normal_stress": (1e6, "MPa"),
+                "alternating_bending_stress": (1e6, "MPa")}
 
 
 def _figure(name: str, value: float) -> str:
-    """``value`` of the figure ``name`` as a message names it."""
-    label, scale, unit = FIGURE_NAMES[name]
-    return f"{label} {value / scale:.4g} {unit}"
+    """``value`` of the figure ``name`` as a message names it (the reference model's name of it)."""
+    scale, unit = FIGURE_UNITS[name]
+    return f"{reference.FIGURES[name][1]} {value / scale:.4g} {unit}"
 
 
 def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult | None:
@@ -208,13 +214,14 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
     sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after.
 
     The higher run came to the stable motion where its regime is the stable motion's and none of its design figures
-    is worse beyond their stated errors (:func:`worse_figures`, each figure's error credited up to its tolerance, so a
-    run not converged is judged by its figures as far as its error and the tolerance allow, and a run that strikes at
-    three times the sliding force is another motion whatever its label): the stable motion's answer then stands,
-    flagged 0 (its second motion not found by the higher model). Else the higher rung's answer — the motion the pipe
-    reaches from rest, the safe side for the limits (a kicked pipe bounces or chatters on the wall), whatever its
-    error — flagged with ``coexisting_motion`` 1, the other motion's figures in its message and extras ``coexisting``
-    (with the figures that are worse, ``worse``). None where no rung was so flagged or none answered after it."""
+    is above the stable motion's beyond their tolerance and stated errors (:func:`worse_figures`, each figure's error
+    credited up to its tolerance, so a run not converged is judged by its figures as far as its error and the
+    tolerance allow, and a run that strikes at three times the sliding force is another motion whatever its label
+    and its stated error): the stable motion's answer then stands, flagged 0 (its second motion not found by the
+    higher model). Else the higher rung's answer — the motion the pipe reaches from rest, the safe side for the limits
+    (a kicked pipe bounces or chatters on the wall), whatever its error — flagged with ``coexisting_motion`` 1, the
+    other motion's figures in its message and extras ``coexisting`` (with the figures that are worse, ``worse``).
+    None where no rung was so flagged or none answered after it."""
     flagged = next((r for r in tried[:-1] if r.values.get("coexisting_motion") == 1.0), None)
     if flagged is None:
         return None
@@ -226,7 +233,7 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
         figures = ", ".join(_figure(name, higher.values[name]) for name in sliding.FIGURES)
         flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
                            + f"; the {higher.method} model's run from the rest came to this motion too ({figures}: "
-                             f"none above this motion's beyond their errors)")
+                             f"none above this motion's beyond their tolerance and errors)")
         return flagged
     higher.values["coexisting_motion"] = 1.0
     figures = {k: flagged.values.get(k) for k in sliding.FIGURES}
@@ -238,8 +245,9 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
                        f"figures are those of the motion reached from rest, which a kick throws it into")
     if same_regime:
         higher.message += (f" (its regime the same, its figures above the {flagged.method} motion's beyond their "
-                           f"errors: " + ", ".join(f"{_figure(name, h)} against {lo / FIGURE_NAMES[name][1]:.4g}"
-                                                   for name, (h, lo) in worse.items()) + ")")
+                           f"tolerance and errors: " + ", ".join(f"{_figure(name, h)} against "
+                                                                 f"{lo / FIGURE_UNITS[name][0]:.4g}"
+                                                                 for name, (h, lo) in worse.items()) + ")")
     return higher
 
 
