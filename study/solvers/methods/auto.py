@@ -30,8 +30,9 @@ The free whirl depends on no restitution (``INDEPENDENT_OF`` in its module): its
 either, but its checks of stability and of a second motion run the reference model, whose held contacts it damps.)
 
 Where the sliding state is stable but a bouncing motion coexists with it (the reference model's run from rest bounces:
-output ``coexisting_motion`` 1), the point goes up too and its answer is the bouncing one, the worse for the limits,
-flagged and naming the sliding one's figures (:func:`_coexisting`).
+output ``coexisting_motion`` 1), the point goes up too and its answer is the reference model's, the worse for the
+limits, flagged and naming the sliding one's figures — unless that run came to the sliding motion, told by its regime
+and its design figures within their stated errors (:func:`worse_figures`, :func:`_coexisting`).
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -55,6 +56,7 @@ import numpy as np
 from study.solvers.methods.periodic import damped, fast, series
 from study.solvers.methods import freewhirl, reference, sliding
 from study.solvers.model import gate
+from study.solvers.model.options import Tolerances
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
@@ -159,31 +161,93 @@ def solve_rung(method: Solve, point: DesignPoint) -> PointResult:
     return result
 
 
-def _coexisting(tried: list[PointResult]) -> PointResult | None:
+def figure_error(result: PointResult, name: str, tolerance: float) -> float:
+    """The relative error [-] of ``result``'s figure ``name`` that :func:`worse_figures` credits: its own output
+    ``<name>_error`` where the result states one (the reference model, docs/reference_model.md §3.1), else its error
+    estimate (the sliding state's: the largest over its figures), at most ``tolerance`` (the figure's: a figure known
+    only within more than its tolerance cannot show another to be the same figure beyond it); ``tolerance`` where
+    neither is stated."""
+    own = result.values.get(f"{name}_error")
+    stated = own if own is not None and np.isfinite(own) else result.error_estimate
+    if stated is None or not np.isfinite(stated):
+        return tolerance
+    return min(float(stated), tolerance)
+
+
+def worse_figures(lower: PointResult, higher: PointResult, tolerances: Tolerances) -> dict[str, tuple[float, float]]:
+    """The design figures (``sliding.FIGURES``: peak contact force, max normal and alternating stress) in which
+    ``higher``'s motion is worse than ``lower``'s — figure → (higher's h, lower's l) — where
+
+        h − l > (t + e_h) |h| + e_l |l|,
+
+    t the figure's tolerance (``tolerances.force`` for the force; for the stresses the higher run's,
+    :func:`gate.held_to`), e_h and e_l the figures' stated relative errors as :func:`figure_error` credits them (each
+    at most t). t is what the study calls the same figure, and it covers what a reference run's stated error leaves
+    out: a run on its way to the sliding motion still rings, its figures above that motion's by more than its window's
+    scatter states (docs/reference_model.md §10). A figure either does not have counts as worse (nothing shows it is
+    not). Empty: the higher run's figures are those of the lower's motion, or lower."""
+    stress_tolerance = gate.held_to(higher.values, tolerances)[0]
+    worse = {}
+    for name in sliding.FIGURES:
+        tolerance = tolerances.force if name == "peak_contact_force" else stress_tolerance
+        h, lo = higher.values.get(name, np.nan), lower.values.get(name, np.nan)
+        allowed = ((tolerance + figure_error(higher, name, tolerance)) * abs(h)
+                   + figure_error(lower, name, tolerance) * abs(lo))
+        if not (np.isfinite(h) and np.isfinite(lo)) or h - lo > allowed:
+            worse[name] = (float(h), float(lo))
+    return worse
+
+
+#: The scale and unit in which :func:`_coexisting`'s messages give the figures of ``sliding.FIGURES``.
+FIGURE_UNITS = {"peak_contact_force": (1.0, "N"), "max_normal_stress": (1e6, "MPa"),
+                "alternating_bending_stress": (1e6, "MPa")}
+
+
+def _figure(name: str, value: float) -> str:
+    """``value`` of the figure ``name`` as a message names it (the reference model's name of it)."""
+    scale, unit = FIGURE_UNITS[name]
+    return f"{reference.FIGURES[name][1]} {value / scale:.4g} {unit}"
+
+
+def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult | None:
     """The point's answer where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the
-    sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after: the
-    higher rung's — the motion the pipe reaches from rest, the safe side for the limits (a kicked pipe bounces or
-    chatters on the wall), whatever its error — flagged with ``coexisting_motion`` 1, the other motion's figures in
-    its message and extras ``coexisting``; but where the higher rung's run came to the stable motion's regime, the
-    stable motion's answer, flagged 0 (its second motion not found by the higher model). None where no rung was so
-    flagged or none answered after it."""
+    sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after.
+
+    The higher run came to the stable motion where its regime is the stable motion's and none of its design figures
+    is above the stable motion's beyond their tolerance and stated errors (:func:`worse_figures`, each figure's error
+    credited up to its tolerance, so a run not converged is judged by its figures as far as its error and the
+    tolerance allow, and a run that strikes at three times the sliding force is another motion whatever its label
+    and its stated error): the stable motion's answer then stands, flagged 0 (its second motion not found by the
+    higher model). Else the higher rung's answer — the motion the pipe reaches from rest, the safe side for the limits
+    (a kicked pipe bounces or chatters on the wall), whatever its error — flagged with ``coexisting_motion`` 1, the
+    other motion's figures in its message and extras ``coexisting`` (with the figures that are worse, ``worse``).
+    None where no rung was so flagged or none answered after it."""
     flagged = next((r for r in tried[:-1] if r.values.get("coexisting_motion") == 1.0), None)
     if flagged is None:
         return None
     higher = tried[-1]
-    if higher.values.get("regime") == flagged.values.get("regime"):  # the higher model's run found the same motion
+    same_regime = higher.values.get("regime") == flagged.values.get("regime")
+    worse = worse_figures(flagged, higher, tolerances)
+    if same_regime and not worse:  # the higher model's run found the same motion
         flagged.values["coexisting_motion"] = 0.0
+        figures = ", ".join(_figure(name, higher.values[name]) for name in sliding.FIGURES)
         flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
-                           + f"; the {higher.method} model's run from the rest came to this motion too")
+                           + f"; the {higher.method} model's run from the rest came to this motion too ({figures}: "
+                             f"none above this motion's beyond their tolerance and errors)")
         return flagged
     higher.values["coexisting_motion"] = 1.0
-    figures = {k: flagged.values.get(k) for k in ("peak_contact_force", "max_normal_stress",
-                                                  "alternating_bending_stress")}
-    higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures)
+    figures = {k: flagged.values.get(k) for k in sliding.FIGURES}
+    higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures,
+                                       worse=sorted(worse))
     higher.message += (f"; beside it a stable {flagged.method} motion ({flagged.method}: "
                        f"{figures['peak_contact_force']:.4g} N, max normal stress "
                        f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: the "
                        f"figures are those of the motion reached from rest, which a kick throws it into")
+    if same_regime:
+        higher.message += (f" (its regime the same, its figures above the {flagged.method} motion's beyond their "
+                           f"tolerance and errors: " + ", ".join(f"{_figure(name, h)} against "
+                                                                 f"{lo / FIGURE_UNITS[name][0]:.4g}"
+                                                                 for name, (h, lo) in worse.items()) + ")")
     return higher
 
 
@@ -202,7 +266,7 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
                and np.isfinite(r.error_estimate)]
     if result.status == "not_converged" and answers:  # nothing converged: the answer nearest to it stands
         result = min(answers, key=lambda r: r.error_estimate)
-    result = _coexisting(tried) or result  # two motions: the one reached from rest, flagged
+    result = _coexisting(tried, point.tolerances) or result  # two motions: the one reached from rest, flagged
     why = (f"{result.method} answered" if result.status == "ok" else
            f"no model served ({result.method}'s {result.status} is what is known)")
     if len(tried) > 1:

@@ -66,14 +66,15 @@ def stability(model: reference.WhirlModel, window: reference.Window, revolutions
 #: The check for a second motion (:func:`from_rest`, :func:`basin_verdict`). A revolution in which the string is off
 #: the wall — every contact open — for more than 1 - ``reference.SLIDING_CONTACT`` of it is a bouncing one: the
 #: reference model's own test of its regime (``statistics.whirl_measure``: in contact less of the time, not sliding),
-#: which is what ``auto`` tells its full run's motion by (``auto._coexisting``). The first :data:`BASIN_TRANSIENT`
-#: revolutions decide nothing: the whole eccentric load applied at once throws the joints off the wall (at default
-#: grid points 654, 688, 696 and 700 the string flew in revolutions 2-9, 4-6, 6-7 and 5-7 and came back to the wall,
-#: as the full reference runs there did). After them :data:`BASIN_LAST`
-#: revolutions in a row decide, each a bouncing one (bounces) or none (settles); a run still undecided after
-#: :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`:
-#: the lift-off eccentricity over the point's below which the check runs (a joint's least force over the revolution
-#: near nil). The figures behind them: docs/reference_model.md §10.
+#: by which, with its design figures, ``auto`` tells its full run's motion (``auto._coexisting``: a string that
+#: chatters on the wall, its joints striking in turn, is "sliding" by the regime alone and told by its peak force; a
+#: chatter this check does not see, docs/reference_model.md §10). The first :data:`BASIN_TRANSIENT` revolutions decide
+#: nothing: the whole eccentric load applied at once throws the joints off the wall (at default grid points 654, 688,
+#: 696 and 700 the string flew in revolutions 2-9, 4-6, 6-7 and 5-7 and came back to the wall, as the full reference
+#: runs there did). After them :data:`BASIN_LAST` revolutions in a row decide, each a bouncing one (bounces) or none
+#: (settles); a run still undecided after :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run
+#: decides). :data:`BASIN_LIFT_RATIO`: the lift-off eccentricity over the point's below which the check runs (a
+#: joint's least force over the revolution near nil). The figures behind them: docs/reference_model.md §10.
 BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_LIFT_RATIO = 40, 5, 5, 2.0
 
 

@@ -199,9 +199,11 @@ OUTPUTS = {
                               "side load lays the string down, inf where no eccentricity lifts it; methods sliding, "
                               "reference, auto)"),
     "coexisting_motion": ("1", "1 where a bouncing motion coexists with the stable sliding one (the reference "
-                          "model's run from the rest on the wall bounces; auto then reports the bouncing one), 0 "
-                          "where that run settles on the wall, NaN where not checked (the lift-off eccentricity twice "
-                          "the point's or more; methods sliding, auto)"),
+                          "model's run from the rest on the wall bounces; auto then reports the reference model's "
+                          "answer, unless its run came to the sliding motion by its regime and design figures), 0 "
+                          "where that run settles on the wall or the reference model's came to the sliding motion, "
+                          "NaN where not checked (the lift-off eccentricity twice the point's or more; methods "
+                          "sliding, auto)"),
     "contact_fraction": ("1", "fraction of the window's time with any wall contact (method reference)"),
     "whirl_frequency_ratio": ("1", "whirl rate of the most-touching point over the rotary speed, negative backwards "
                               "(method reference)"),
