@@ -237,7 +237,7 @@ def strike_sites(model, window) -> list[dict]:
     onsets per revolution (the kernel's count), ``pulses`` those taken by the strike's pulse per revolution (a joint's
     onset row whose approach speed, :func:`~study.solvers.methods.reference.statistics.strike_speeds`, is at its
     pulse floor or over, ``reference_strike_force = "pulse"``), ``contact`` its mean contact time per onset [s],
-    ``speed`` the mean onset speed of its strikes [m/s]; over the revolutions (:func:`revolutions`): ``force`` the
+    ``speed`` the mean onset speed of its strikes [m/s], ``duration`` the mean T_c of its pulses [s]; over the revolutions (:func:`revolutions`): ``force`` the
     mean of its largest recorded normal force in each [N] (the rows' largest: a pulse's peak between rows is missed by
     up to a few %), ``pulse_force`` the mean of its largest pulse's peak in each (the pulse table's F_peak at the onset
     speed, as the kernel takes it; 0 in a revolution without one) [N], ``carries`` the share of the revolutions whose
@@ -255,14 +255,16 @@ def strike_sites(model, window) -> list[dict]:
     turn = np.searchsorted(starts, window.times[rows], side="right") - 1
     pulsed = np.zeros(points.size, bool)
     pulse_peaks = np.zeros((len(cycles), model.points.size))
+    durations = np.zeros(points.size)
     if model.pulse is not None:
         table = model.pulse
         pulsed = speed >= table["floor"][points]
-        for r, p, v, k in zip(rows[pulsed], points[pulsed], speed[pulsed], turn[pulsed]):
-            f = np.exp(np.interp(np.log(min(v, table["speeds"][-1])), np.log(table["speeds"]),
-                                 np.log(table["peak"][p])))
-            if k >= 0:
-                pulse_peaks[k, p] = max(pulse_peaks[k, p], f)
+        for j in np.flatnonzero(pulsed):
+            p, x = points[j], np.log(min(speed[j], table["speeds"][-1]))
+            f = np.exp(np.interp(x, np.log(table["speeds"]), np.log(table["peak"][p])))
+            durations[j] = np.exp(np.interp(x, np.log(table["speeds"]), np.log(table["duration"][p])))
+            if turn[j] >= 0:
+                pulse_peaks[turn[j], p] = max(pulse_peaks[turn[j], p], f)
     law = peaks[np.arange(len(cycles)), top] > pulse_peaks[np.arange(len(cycles)), top]
     out = []
     for p in range(model.points.size):
@@ -271,6 +273,7 @@ def strike_sites(model, window) -> list[dict]:
                         strikes=float(window.onsets[p] / turns), pulses=float(np.sum(mine & pulsed) / turns),
                         contact=float(window.contact_time[p] / max(window.onsets[p], 1)),
                         speed=float(np.mean(speed[mine])) if np.any(mine) else 0.0,
+                        duration=float(np.mean(durations[mine & pulsed])) if np.any(mine & pulsed) else 0.0,
                         force=float(np.mean(peaks[:, p])), pulse_force=float(np.mean(pulse_peaks[:, p])),
                         carries=float(np.mean(top == p)), law_carries=float(np.mean((top == p) & law))))
     return out
@@ -281,7 +284,7 @@ def where(indices, counts, out, extra=None):
     :func:`~study.solvers.methods.reference.method.simulate` at that fixed count (``reference_strike_force`` "pulse",
     ``reference_strike_stress`` "local", or as ``extra`` sets) and :func:`strike_sites` of its window, with the window's
     revolutions, its largest body wall excess over the clearance (above the study's tolerance the solve would raise
-    the body's stations) and the CPU seconds."""
+    the body's stations), the kept modes' highest frequency [Hz] and the CPU seconds."""
     from study import config
     from study.solvers.methods.reference.method import pulse_summary, simulate
     from study.workflow.grid import Grid
@@ -299,6 +302,7 @@ def where(indices, counts, out, extra=None):
             excess = max((c["max_wall_excess"] for c in run["cycles"]), default=np.nan)
             pulses = pulse_summary(model, run["integrator"]) if model.pulse is not None else {}
             print(json.dumps(dict(index=int(i), N=n, extra=extra or {}, verdict=run["verdict"], pulses=pulses,
+                                  top_frequency=float(np.max(model.omega) / (2.0 * np.pi)),
                                   revolutions=float((window.end - window.start) / model.period) if window else 0.0,
                                   excess=float(excess / np.max(model.clearance)), sites=sites,
                                   cpu=time.process_time() - clock)), file=out, flush=True)

@@ -120,3 +120,31 @@ def test_a_pulses_onset_speed_is_read_at_its_onset_row(default_point, n):
     assert list(joints) == list(np.flatnonzero(m.kinds == 1))
     np.testing.assert_allclose(speed[first], 0.3, rtol=1e-3)
     assert np.all(onset_rows(m, window, rows[first], joints) == rows[first] - 1)
+
+
+def test_where_the_thrown_string_strikes(default_point):
+    # study.benchmarks.strikes.strike_sites on the string thrown at 0.3 m/s from 2 mm off its wall (16 modes, 10 ms):
+    # each tool joint strikes once, by a pulse whose peak is the local model's at 0.3 m/s
+    # (study.physics.strike.peak_force, the table the pulse is taken from) and carries the window's peak force, no
+    # force of the contact law over it; the body stations (1 between joints) do not touch
+    from study.benchmarks.strikes import strike_sites
+
+    n = 16
+    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
+              "reference_damping": "none", "reference_modes": n, "reference_strike_force": "pulse"}
+    m = reference.build_model(inputs)
+    z = np.zeros(4 * n + 4)
+    z[0] = (float(np.min(m.clearance)) - 2e-3) / m.phi[0, 0]
+    z[2 * n] = 0.3 / m.phi[0, 0]
+    window = reference.Integrator(m, 1e-8, z).run(0.01, record=True)
+    turns = 0.01 / m.period
+    p, args = _joint(m)
+    local = strike.peak_force([0.3], *args[:4], args[4])[0][0]
+    sites = strike_sites(m, window)
+    joints = [s for s in sites if s["kind"] == "joint"]
+    assert len(joints) == np.sum(m.kinds == 1) and all(s["strikes"] == 0 for s in sites if s["kind"] == "body")
+    for s in joints:
+        assert s["strikes"] * turns == pytest.approx(1.0) and s["pulses"] * turns == pytest.approx(1.0)
+        assert s["pulse_force"] == pytest.approx(local, rel=1e-3) and s["speed"] == pytest.approx(0.3, rel=1e-3)
+        assert 0.9 * local < s["force"] <= local * (1 + 1e-9)  # the rows' largest: the pulse's peak between rows
+    assert sum(s["carries"] for s in joints) == pytest.approx(1.0) and all(s["law_carries"] == 0 for s in sites)
