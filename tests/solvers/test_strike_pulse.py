@@ -21,14 +21,15 @@ def _joint(model):
                model.props["bending_stiffness"], model.hysteresis)
 
 
-def _thrown(default_point, n, option="pulse", revolutions_time=0.03):
-    """The string thrown rigidly at 0.3 m/s onto its three joints from 10 µm off the wall (tests/solvers/test_modes.py:
-    a straight vertical hole, no drive, no damping), n modes: its model, integrator and recorded window."""
+def _thrown(default_point, n, option="pulse", revolutions_time=0.03, gap=1e-5):
+    """The string thrown rigidly at 0.3 m/s onto its three joints from ``gap`` [m] (10 µm) off the wall
+    (tests/solvers/test_modes.py: a straight vertical hole, no drive, no damping), n modes: its model, integrator and
+    recorded window."""
     inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
               "reference_damping": "none", "reference_modes": n, "reference_strike_force": option}
     m = reference.build_model(inputs)
     z = np.zeros(4 * n + 4)
-    z[0] = (float(np.min(m.clearance)) - 1e-5) / m.phi[0, 0]
+    z[0] = (float(np.min(m.clearance)) - gap) / m.phi[0, 0]
     z[2 * n] = 0.3 / m.phi[0, 0]
     run = reference.Integrator(m, 1e-8, z)
     return m, run, run.run(revolutions_time, record=True)
@@ -108,13 +109,7 @@ def test_a_pulses_onset_speed_is_read_at_its_onset_row(default_point, n):
     # into the pulse, it was 0.262 and 0.220 m/s at 16 and 64 modes (measured): 13-27 % low, and by the modes kept,
     # while the series law's soft start left 0.3 m/s there (docs/reference_model.md §2.4, "Where the hard points
     # strike")
-    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
-              "reference_damping": "none", "reference_modes": n, "reference_strike_force": "pulse"}
-    m = reference.build_model(inputs)
-    z = np.zeros(4 * n + 4)
-    z[0] = (float(np.min(m.clearance)) - 2e-3) / m.phi[0, 0]
-    z[2 * n] = 0.3 / m.phi[0, 0]
-    window = reference.Integrator(m, 1e-8, z).run(0.01, record=True)
+    m, _, window = _thrown(default_point, n, revolutions_time=0.01, gap=2e-3)
     rows, points, speed, _ = strike_speeds(m, window)
     joints, first = np.unique(points, return_index=True)  # each joint's first strike (at 64 modes a weak second)
     assert list(joints) == list(np.flatnonzero(m.kinds == 1))
@@ -129,14 +124,7 @@ def test_where_the_thrown_string_strikes(default_point):
     # force of the contact law over it; the body stations (1 between joints) do not touch
     from study.benchmarks.strikes import strike_sites
 
-    n = 16
-    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
-              "reference_damping": "none", "reference_modes": n, "reference_strike_force": "pulse"}
-    m = reference.build_model(inputs)
-    z = np.zeros(4 * n + 4)
-    z[0] = (float(np.min(m.clearance)) - 2e-3) / m.phi[0, 0]
-    z[2 * n] = 0.3 / m.phi[0, 0]
-    window = reference.Integrator(m, 1e-8, z).run(0.01, record=True)
+    m, _, window = _thrown(default_point, 16, revolutions_time=0.01, gap=2e-3)
     turns = 0.01 / m.period
     p, args = _joint(m)
     local = strike.peak_force([0.3], *args[:4], args[4])[0][0]
