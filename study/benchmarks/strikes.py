@@ -232,7 +232,7 @@ def recover(indices, count, revolutions, out):
 
 
 def strike_sites(model, window) -> list[dict]:
-    """Where a recorded ``window``'s strikes are (docs/reference_model.md §2.4, "Where the hard points strike"): per
+    """Where a recorded ``window``'s strikes are (docs/reference_model.md §2.3.1, "Where the hard points strike"): per
     contact point of ``model`` (``kind`` "joint" or "body", ``x`` [m] along the section): ``strikes`` its contact
     onsets per revolution (the kernel's count), ``pulses`` those taken by the strike's pulse per revolution (a joint's
     onset row whose approach speed, :func:`~study.solvers.methods.reference.statistics.strike_speeds`, is at its

@@ -107,8 +107,8 @@ def test_a_pulses_onset_speed_is_read_at_its_onset_row(default_point, n):
     # records a row at the onset it locates): statistics.strike_speeds finds each joint's strike at the throw's speed
     # (0.3 m/s: the flight is free, no damping). Read at the first row with a force instead, one contact row spacing
     # into the pulse, it was 0.262 and 0.220 m/s at 16 and 64 modes (measured): 13-27 % low, and by the modes kept,
-    # while the series law's soft start left 0.3 m/s there (docs/reference_model.md §2.4, "Where the hard points
-    # strike")
+    # while the series law's soft start left 0.3 m/s there (docs/reference_model.md §2.3.1, "A pulse's onset
+    # speed")
     m, _, window = _thrown(default_point, n, revolutions_time=0.01, gap=2e-3)
     rows, points, speed, _ = strike_speeds(m, window)
     joints, first = np.unique(points, return_index=True)  # each joint's first strike (at 64 modes a weak second)
