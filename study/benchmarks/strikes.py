@@ -239,8 +239,9 @@ def strike_sites(model, window) -> list[dict]:
     pulse floor or over, ``reference_strike_force = "pulse"``), ``contact`` its mean contact time per onset [s],
     ``speed`` the mean onset speed of its strikes [m/s], ``duration`` the mean T_c of its pulses [s]; over the
     revolutions (:func:`revolutions`): ``force`` the mean of its largest recorded normal force in each [N] (the rows'
-    largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its largest pulse's peak in each (the pulse table's F_peak at the onset
-    speed, as the kernel takes it; 0 in a revolution without one) [N], ``carries`` the share of the revolutions whose
+    largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its largest pulse's
+    peak in each (the pulse table's F_peak at the onset speed, as the kernel takes it; 0 in a revolution without one)
+    [N], ``carries`` the share of the revolutions whose
     largest force is its own, and ``law_carries`` the share whose largest force is its own and over its largest
     pulse's peak there (a force of the contact law: a strike under the pulse floor, a contact held on after a pulse,
     or on the body)."""
