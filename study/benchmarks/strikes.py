@@ -176,7 +176,7 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
                              for k, e in conv.items()})), file=out, flush=True)
 
 
-def revolutions(model, w):
+def revolution_windows(model, w):
     """The recorded window ``w`` (:class:`~study.solvers.methods.reference.integrate.Window`) cut into its
     revolutions (those of 10 rows or more), each a Window of its rows, its peaks the rows' largest normal forces."""
     from study.solvers.methods.reference.integrate import Window
@@ -218,7 +218,7 @@ def recover(indices, count, revolutions, out):
                   "reference_max_revolutions": revolutions}
         clock = time.process_time()
         run = simulate({**inputs, "reference_stress_band": "all"})
-        cycles = list(revolutions(run["model"], run["window"]))
+        cycles = list(revolution_windows(run["model"], run["window"]))
         record = dict(index=int(i), N=count, revolutions=len(cycles), cpu=time.process_time() - clock)
         for n in sorted(n for n in {32, 64, count} if n <= count):  # the counts the run has modes for
             for band in ("all", "timoshenko"):
@@ -238,16 +238,16 @@ def strike_sites(model, window) -> list[dict]:
     onset row whose approach speed, :func:`~study.solvers.methods.reference.statistics.strike_speeds`, is at its
     pulse floor or over, ``reference_strike_force = "pulse"``), ``contact`` its mean contact time per onset [s],
     ``speed`` the mean onset speed of its strikes [m/s], ``duration`` the mean T_c of its pulses [s]; over the
-    revolutions (:func:`revolutions`): ``force`` the mean of its largest recorded normal force in each [N] (the rows'
-    largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its largest pulse's
-    peak in each (the pulse table's F_peak at the onset speed, as the kernel takes it; 0 in a revolution without one)
-    [N], ``carries`` the share of the revolutions whose
-    largest force is its own, and ``law_carries`` the share whose largest force is its own and over its largest
+    revolutions (:func:`revolution_windows`): ``force`` the mean of its largest recorded normal force in each [N]
+    (the rows' largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its
+    largest pulse's peak in each (the pulse table's F_peak at the onset speed, as the kernel takes it; 0 in a
+    revolution without one) [N], ``carries`` the share of the revolutions whose largest force is its own, and
+    ``law_carries`` the share whose largest force is its own and over its largest
     pulse's peak there (a force of the contact law: a strike under the pulse floor, a contact held on after a pulse,
     or on the body)."""
     from study.solvers.methods.reference.statistics import strike_speeds
 
-    cycles = list(revolutions(model, window))
+    cycles = list(revolution_windows(model, window))
     starts = np.array([c.start for c in cycles])
     peaks = np.array([c.peak for c in cycles])  # (revolutions, P)
     top = np.argmax(peaks, axis=1)
