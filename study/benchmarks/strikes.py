@@ -236,7 +236,9 @@ def strike_sites(model, window) -> list[dict]:
     contact point of ``model`` (``kind`` "joint" or "body", ``x`` [m] along the section): ``strikes`` its contact
     onsets per revolution (the kernel's count), ``pulses`` those taken by the strike's pulse per revolution (a joint's
     onset row whose approach speed, :func:`~study.solvers.methods.reference.statistics.strike_speeds`, is at its
-    pulse floor or over, ``reference_strike_force = "pulse"``), ``contact`` its mean contact time per onset [s],
+    pulse floor or over, ``reference_strike_force = "pulse"``; a restrike's row, where the contact law takes on a
+    joint after its pulse from nil, counts among them where the record has it at nil: at 16 modes, whose joints hold
+    their walls, more than the onsets), ``contact`` its mean contact time per onset [s],
     ``speed`` the mean onset speed of its strikes [m/s], ``duration`` the mean T_c of its pulses [s]; over the
     revolutions (:func:`revolution_windows`): ``force`` the mean of its largest recorded normal force in each [N]
     (the rows' largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its
