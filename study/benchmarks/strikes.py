@@ -22,6 +22,13 @@
         ``reference_stress_band`` "all" and "timoshenko": the means over the window's revolutions and their standard
         errors [MPa]
 
+    python -m study.benchmarks.strikes where 212,229,252,292,332 64,128 out.jsonl
+            ['{"reference_max_revolutions": 160}']
+        where the strikes of points of the default study's grid at those flat indices are, at each fixed mode count
+        (``reference_strike_force = "pulse"``, ``reference_strike_stress = "local"``): per contact point its strikes
+        and pulses per revolution, its mean largest force in a revolution (and its pulses' peak) and the share of
+        revolutions whose peak it carries, and by the contact law (:func:`strike_sites`)
+
     python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
         the thrown string's bending under a joint from the modes, with the strike's correction and by default
         (docs/reference_model.md §2.3.1)
@@ -170,6 +177,22 @@ def sample(count, options, out, results, extra=None, indices=None, cap=300):
                              for k, e in conv.items()})), file=out, flush=True)
 
 
+def revolution_windows(model, w):
+    """The recorded window ``w`` (:class:`~study.solvers.methods.reference.integrate.Window`) cut into its
+    revolutions (those of 10 rows or more), each a Window of its rows, its peaks the rows' largest normal forces."""
+    from study.solvers.methods.reference.integrate import Window
+
+    turn = np.floor((w.times - w.start) / model.period + 1e-9).astype(int)
+    for j in np.unique(turn):
+        rows = np.flatnonzero(turn == j)
+        if rows.size >= 10:
+            at = slice(rows[0], rows[-1] + 1)
+            yield Window(times=w.times[at], states=w.states[at], forces=w.forces[at],
+                         peak=np.max(w.forces[at, :, 2], axis=0), onsets=np.zeros(w.forces.shape[1], int),
+                         contact_time=np.zeros(w.forces.shape[1]), any_contact_time=0.0,
+                         start=float(w.times[rows[0]]), end=float(w.times[rows[-1]]))
+
+
 def recover(indices, count, revolutions, out):
     from study import config
     from study.solvers.methods.reference.integrate import Window
@@ -180,17 +203,6 @@ def recover(indices, count, revolutions, out):
 
     study = config.load(ROOT / "configs" / "default.toml")
     grid = Grid(base=dict(study.inputs), axes=dict(study.axes))  # the sweep's grid: the results' flat index
-
-    def revolutions_of(model, w):
-        turn = np.floor((w.times - w.start) / model.period + 1e-9).astype(int)
-        for j in np.unique(turn):
-            rows = np.flatnonzero(turn == j)
-            if rows.size >= 10:
-                at = slice(rows[0], rows[-1] + 1)
-                yield Window(times=w.times[at], states=w.states[at], forces=w.forces[at],
-                             peak=np.max(w.forces[at, :, 2], axis=0), onsets=np.zeros(w.forces.shape[1], int),
-                             contact_time=np.zeros(w.forces.shape[1]), any_contact_time=0.0,
-                             start=float(w.times[rows[0]]), end=float(w.times[rows[-1]]))
 
     def projected(small, big, w):  # the states on the first n basis functions, in the n-mode model's modes
         N, n = big.n_modes, small.n_modes
@@ -207,7 +219,7 @@ def recover(indices, count, revolutions, out):
                   "reference_max_revolutions": revolutions}
         clock = time.process_time()
         run = simulate({**inputs, "reference_stress_band": "all"})
-        cycles = list(revolutions_of(run["model"], run["window"]))
+        cycles = list(revolution_windows(run["model"], run["window"]))
         record = dict(index=int(i), N=count, revolutions=len(cycles), cpu=time.process_time() - clock)
         for n in sorted(n for n in {32, 64, count} if n <= count):  # the counts the run has modes for
             for band in ("all", "timoshenko"):
@@ -218,6 +230,86 @@ def recover(indices, count, revolutions, out):
                     record[f"{n}/{band}/{name}"] = [float(np.mean(x)), float(np.std(x, ddof=1) / np.sqrt(x.size))]
                 record[f"{n}/{band}/in_band"] = int(np.sum(small.omega <= small.stress_band))
         print(json.dumps(record), file=out, flush=True)
+
+
+def strike_sites(model, window) -> list[dict]:
+    """Where a recorded ``window``'s strikes are (docs/reference_model.md §2.3.1, "Where the hard points strike"): per
+    contact point of ``model`` (``kind`` "joint" or "body", ``x`` [m] along the section): ``strikes`` its contact
+    onsets per revolution (the kernel's count), ``pulses`` those taken by the strike's pulse per revolution (a joint's
+    onset row whose approach speed, :func:`~study.solvers.methods.reference.statistics.strike_speeds`, is at its
+    pulse floor or over, ``reference_strike_force = "pulse"``; a restrike's row, where the contact law takes on a
+    joint after its pulse from nil, counts among them where the record has it at nil: at 16 modes, whose joints hold
+    their walls, more than the onsets), ``contact`` its mean contact time per onset [s],
+    ``speed`` the mean onset speed of its strikes [m/s], ``duration`` the mean T_c of its pulses [s]; over the
+    revolutions (:func:`revolution_windows`): ``force`` the mean of its largest recorded normal force in each [N]
+    (the rows' largest: a pulse's peak between rows is missed by up to a few %), ``pulse_force`` the mean of its
+    largest pulse's peak in each (the pulse table's F_peak at the onset speed, as the kernel takes it; 0 in a
+    revolution without one) [N], ``carries`` the share of the revolutions whose largest force is its own, and
+    ``law_carries`` the share whose largest force is its own and over its largest
+    pulse's peak there (a force of the contact law: a strike under the pulse floor, a contact held on after a pulse,
+    or on the body)."""
+    from study.solvers.methods.reference.statistics import strike_speeds
+
+    cycles = list(revolution_windows(model, window))
+    starts = np.array([c.start for c in cycles])
+    peaks = np.array([c.peak for c in cycles])  # (revolutions, P)
+    top = np.argmax(peaks, axis=1)
+    turns = (window.end - window.start) / model.period
+    rows, points, speed, _ = strike_speeds(model, window)
+    turn = np.searchsorted(starts, window.times[rows], side="right") - 1
+    pulsed = np.zeros(points.size, bool)
+    pulse_peaks = np.zeros((len(cycles), model.points.size))
+    durations = np.zeros(points.size)
+    if model.pulse is not None:
+        table = model.pulse
+        pulsed = speed >= table["floor"][points]
+        for j in np.flatnonzero(pulsed):
+            p, x = points[j], np.log(min(speed[j], table["speeds"][-1]))
+            f = np.exp(np.interp(x, np.log(table["speeds"]), np.log(table["peak"][p])))
+            durations[j] = np.exp(np.interp(x, np.log(table["speeds"]), np.log(table["duration"][p])))
+            if turn[j] >= 0:
+                pulse_peaks[turn[j], p] = max(pulse_peaks[turn[j], p], f)
+    law = peaks[np.arange(len(cycles)), top] > pulse_peaks[np.arange(len(cycles)), top]
+    out = []
+    for p in range(model.points.size):
+        mine = points == p
+        out.append(dict(point=p, kind="joint" if model.kinds[p] == 1 else "body", x=float(model.points[p]),
+                        strikes=float(window.onsets[p] / turns), pulses=float(np.sum(mine & pulsed) / turns),
+                        contact=float(window.contact_time[p] / max(window.onsets[p], 1)),
+                        speed=float(np.mean(speed[mine])) if np.any(mine) else 0.0,
+                        duration=float(np.mean(durations[mine & pulsed])) if np.any(mine & pulsed) else 0.0,
+                        force=float(np.mean(peaks[:, p])), pulse_force=float(np.mean(pulse_peaks[:, p])),
+                        carries=float(np.mean(top == p)), law_carries=float(np.mean((top == p) & law))))
+    return out
+
+
+def where(indices, counts, out, extra=None):
+    """Per point of configs/default.toml's grid at those flat indices and per mode count: the run of
+    :func:`~study.solvers.methods.reference.method.simulate` at that fixed count (``reference_strike_force`` "pulse",
+    ``reference_strike_stress`` "local", or as ``extra`` sets) and :func:`strike_sites` of its window, with the window's
+    revolutions, its largest body wall excess over the clearance (above the study's tolerance the solve would raise
+    the body's stations), the kept modes' highest frequency [Hz] and the CPU seconds."""
+    from study import config
+    from study.solvers.methods.reference.method import pulse_summary, simulate
+    from study.workflow.grid import Grid
+
+    study = config.load(ROOT / "configs" / "default.toml")
+    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))
+    for i in indices:
+        for n in counts:
+            inputs = {**grid.point(int(i)), "reference_strike_force": "pulse", "reference_strike_stress": "local",
+                      "reference_modes": n, "reference_max_modes": n, **(extra or {})}
+            clock = time.process_time()
+            run = simulate(inputs)
+            model, window = run["model"], run["window"]
+            sites = strike_sites(model, window) if window is not None else []
+            excess = max((c["max_wall_excess"] for c in run["cycles"]), default=np.nan)
+            pulses = pulse_summary(model, run["integrator"]) if model.pulse is not None else {}
+            print(json.dumps(dict(index=int(i), N=n, extra=extra or {}, verdict=run["verdict"], pulses=pulses,
+                                  top_frequency=float(np.max(model.omega) / (2.0 * np.pi)),
+                                  revolutions=float((window.end - window.start) / model.period) if window else 0.0,
+                                  excess=float(excess / np.max(model.clearance)), sites=sites,
+                                  cpu=time.process_time() - clock)), file=out, flush=True)
 
 
 def thrown(residuals, counts, out):
@@ -288,8 +380,12 @@ if __name__ == "__main__":
     elif kind == "recover":  # python -m study.benchmarks.strikes recover 274,515 128 12 out.jsonl
         with open(sys.argv[5], "a") as handle:
             recover([int(i) for i in sys.argv[2].split(",")], int(sys.argv[3]), int(sys.argv[4]), handle)
+    elif kind == "where":  # python -m study.benchmarks.strikes where 212,229 64,128 out.jsonl ['{...}']
+        with open(sys.argv[4], "a") as handle:
+            where([int(i) for i in sys.argv[2].split(",")], [int(x) for x in sys.argv[3].split(",")], handle,
+                  json.loads(sys.argv[5]) if len(sys.argv) > 5 else None)
     elif kind == "thrown":  # python -m study.benchmarks.strikes thrown none,series 16,32,64,128,256 out.jsonl
         with open(sys.argv[4], "a") as handle:
             thrown(sys.argv[2].split(","), [int(x) for x in sys.argv[3].split(",")], handle)
     else:
-        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at, recover, thrown")
+        raise SystemExit(f"kind = {kind!r}; allowed: replays, sample, sample-at, recover, where, thrown")

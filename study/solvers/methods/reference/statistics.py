@@ -17,6 +17,7 @@ from study.solvers.methods.reference.integrate import Window, merge
 from study.solvers.methods.reference.model import WhirlModel, residual_flexibility
 from study.physics.string_modes import series_contact
 from study.solvers.model.result import REGIMES
+from study.solvers.kernels import whirl_kernel
 
 
 #: The regime of the study's charts (study.solvers.model.result.REGIMES) each whirl verdict is.
@@ -151,10 +152,36 @@ LOCAL_STRIKE_ERROR = 0.09
 SPEED_EXPONENT = 1.2
 
 
+def approach(model: WhirlModel, states: np.ndarray, points: np.ndarray, mask=1.0) -> tuple[np.ndarray, np.ndarray]:
+    """(|u| [m], (u·u̇)/|u| [m/s]) (S,): each of ``points`` (S,) displaced from the hole's axis and its velocity
+    towards its wall, from the kept modes of ``states`` (S, 4N + …), the velocity's modes weighed by ``mask`` (N,)."""
+    N = model.n_modes
+    phi = model.phi[points]  # (S, N)
+    y, w = np.sum(phi * states[:, :N], axis=1), np.sum(phi * states[:, N:2 * N], axis=1)
+    size = np.maximum(np.hypot(y, w), 1e-300)
+    return size, (y * np.sum(phi * mask * states[:, 2 * N:3 * N], axis=1)
+                  + w * np.sum(phi * mask * states[:, 3 * N:4 * N], axis=1)) / size
+
+
+def onset_rows(model: WhirlModel, window: Window, rows: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(S,) the row of each strike's onset: for the first row ``rows`` (S,) with a force at ``points`` (S,), the row
+    before it where that row is the onset the kernel located and recorded (the point at its wall, within twice
+    ``whirl_kernel.ONSET_TOLERANCE`` of the clearance, and moving towards it: the kernel records a row at an onset
+    that comes a contact's row spacing or more after its last row), else that first row itself (an onset within a
+    row spacing of the last row, or against a wall shifted after a pulse, docs/reference_model.md §2.4)."""
+    before = np.maximum(rows - 1, 0)
+    size, rate = approach(model, window.states[before], points)
+    at_wall = np.abs(size - model.clearance[points]) <= 2.0 * whirl_kernel.ONSET_TOLERANCE * model.clearance[points]
+    return np.where((rows > 0) & at_wall & (rate > 0), before, rows)
+
+
 def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The window's strikes at the tool joints: (rows, points, onset speeds [m/s], modal parts) — each row where a
-    joint's normal force is nil at the row before and not at it (the kernel records the row at the onset it has
-    located), the kept modes' velocity of the joint towards its wall there (the approach rate, ``(u·u̇)/|u|``), and
+    joint's normal force is nil at the row before and not at it, the kept modes' velocity of the joint towards its
+    wall at the strike's onset (the approach rate, ``(u·u̇)/|u|``, at :func:`onset_rows`: the kernel records a row at
+    the onset it locates, with the contact law's force there just over nil, but a pulse's nil — its history starts
+    at 0 —, so that with ``reference_strike_force = "pulse"`` the first row with a force comes one contact row spacing,
+    60-100 µs, into the strike, where the pulse has taken 10-25 % of the speed off), and
     the onset speed's modal part, relative: the share s_1 of it the last octave of the kept modes carries (the upper
     half by frequency) and, where it falls from the octave before (s_2, the third quarter) by r = s_1/s_2 < 1/2, the
     octaves beyond taken as a geometric series, s_1 r/(1 − r) (the replays' rule: a tail no larger than the last
@@ -167,15 +194,11 @@ def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.nda
     rows, points = rows + 1, joints[which]
     if rows.size == 0:
         return rows, points, np.zeros(0), np.zeros(0)
-    q = window.states[rows]
-    phi = model.phi[points]  # (S, N)
+    q = window.states[onset_rows(model, window, rows, points)]
     rank = np.argsort(np.argsort(model.omega, kind="stable"), kind="stable")  # each mode's place by frequency
-    y, w = np.sum(phi * q[:, :N], axis=1), np.sum(phi * q[:, N:2 * N], axis=1)
-    norm = np.maximum(np.hypot(y, w), 1e-300)
 
     def rate(mask):
-        return (y * np.sum(phi * mask * q[:, 2 * N:3 * N], axis=1)
-                + w * np.sum(phi * mask * q[:, 3 * N:4 * N], axis=1)) / norm
+        return approach(model, q, points, mask)[1]
 
     speed = rate(1.0)
     size = np.maximum(np.abs(speed), 1e-300)
@@ -302,7 +325,8 @@ def history_horizon(model: WhirlModel, p: int) -> float:
 def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     """The window's strikes at the tool joints taken by their local model (:func:`strike_speeds`; those whose contact
     ends before the neighbouring joints' waves come back, :func:`study.physics.strike.return_time`, the joints' spacing
-    away): ``rows`` the onsets, ``points``, ``speeds`` [m/s], ``shares`` their modal parts (:func:`strike_speeds`),
+    away): ``rows`` the onsets (the first rows with a force), ``starts`` their times [s] (:func:`onset_rows`),
+    ``points``, ``speeds`` [m/s], ``shares`` their modal parts (:func:`strike_speeds`),
     ``forces`` the local model's peak force [N] (:func:`study.physics.strike.peak_force` at the onset speed),
     ``ratios`` the contact's duration over the waves' return time, ``ends`` the first row after the run's contact,
     ``peaks`` the row of the run's largest force in it, ``directions`` (S, 2) the unit direction of the wall's force on
@@ -331,6 +355,7 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     y, w = np.sum(model.phi[points] * q[:, :N], axis=1), np.sum(model.phi[points] * q[:, N:2 * N], axis=1)
     norm = np.maximum(np.hypot(y, w), 1e-300)
     return dict(rows=rows, points=points, speeds=speed, ends=ends, peaks=peaks,
+                starts=window.times[onset_rows(model, window, rows, points)],
                 directions=-np.column_stack([y / norm, w / norm]), forces=forces, shares=share, ratios=ratios,
                 long_rows=long_rows, long_ratios=long_ratios)
 
@@ -359,11 +384,12 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     masked = np.zeros((R, P), bool)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
     pulse = point.reference.reference_strike_force == "pulse"
-    for row, end, p, v in zip(struck["rows"], struck["ends"], struck["points"], struck["speeds"]):
+    for row, end, p, v, t0 in zip(struck["rows"], struck["ends"], struck["points"], struck["speeds"],
+                                  struck["starts"]):
         if pulse:  # the run's force is the local strike's for its T_c, then the contact law's (held: quasi-static)
             duration = float(strike.peak_force([v], model.joint_mass, model.stiffness[p], rho, ei,
                                                model.hysteresis)[1][0])
-            end = min(end, max(int(np.searchsorted(window.times, window.times[row] + duration)), row + 1))
+            end = min(end, max(int(np.searchsorted(window.times, t0 + duration)), row + 1))
         masked[row:end, p] = True
     values = stresses(point, model, window, correction=True, segments=segments, masked=masked)
     if struck["rows"].size == 0:
@@ -391,7 +417,7 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
         speeds, times = full[int(p)][0], full[int(p)][2]
         v = np.log(np.clip(struck["speeds"][at], speeds[0], speeds[-1]))
         for s in range(offsets.size):
-            when = window.times[struck["rows"][at]] + np.interp(v, np.log(speeds), times[:, s])
+            when = struck["starts"][at] + np.interp(v, np.log(speeds), times[:, s])
             after = np.clip(np.searchsorted(window.times, when), 1, R - 1)
             nearer = np.abs(window.times[after - 1] - when) < np.abs(window.times[after] - when)
             at_rows[at, s] = np.maximum(np.where(nearer, after - 1, after), struck["rows"][at])
@@ -431,9 +457,9 @@ def strike_stress_values(point: DesignPoint, model: WhirlModel, window: Window, 
     def histories(k):
         if k not in history_rows:
             onset, table = int(struck["rows"][k]), history_tables[int(struck["points"][k])]
-            stop = int(np.searchsorted(window.times, window.times[onset] + table["times"][-1], side="right"))
+            stop = int(np.searchsorted(window.times, struck["starts"][k] + table["times"][-1], side="right"))
             history_rows[k] = (onset, stop, strike.history_correction(
-                float(struck["speeds"][k]), window.times[onset:stop] - window.times[onset], table))
+                float(struck["speeds"][k]), window.times[onset:stop] - struck["starts"][k], table))
         return history_rows[k]
 
     pulse_full = [pulses(i, corrections) for i in range(xs.size)]
