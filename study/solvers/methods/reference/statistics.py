@@ -152,12 +152,21 @@ LOCAL_STRIKE_ERROR = 0.09
 SPEED_EXPONENT = 1.2
 
 
-def approach(model: WhirlModel, states: np.ndarray, points: np.ndarray, mask=1.0) -> tuple[np.ndarray, np.ndarray]:
-    """(|u| [m], (u·u̇)/|u| [m/s]) (S,): each of ``points`` (S,) displaced from the hole's axis and its velocity
-    towards its wall, from the kept modes of ``states`` (S, 4N + …), the velocity's modes weighed by ``mask`` (N,)."""
+def displacement(model: WhirlModel, states: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(y, w) [m] (S,): each of ``points`` (S,) displaced from the hole's axis in the two lateral directions, from the
+    kept modes of ``states`` (S, 4N + …)."""
     N = model.n_modes
     phi = model.phi[points]  # (S, N)
-    y, w = np.sum(phi * states[:, :N], axis=1), np.sum(phi * states[:, N:2 * N], axis=1)
+    return np.sum(phi * states[:, :N], axis=1), np.sum(phi * states[:, N:2 * N], axis=1)
+
+
+def approach(model: WhirlModel, states: np.ndarray, points: np.ndarray, mask=1.0) -> tuple[np.ndarray, np.ndarray]:
+    """(|u| [m], (u·u̇)/|u| [m/s]) (S,): each of ``points`` (S,) displaced from the hole's axis
+    (:func:`displacement`) and its velocity towards its wall, from the kept modes of ``states`` (S, 4N + …), the
+    velocity's modes weighed by ``mask`` (N,)."""
+    N = model.n_modes
+    phi = model.phi[points]  # (S, N)
+    y, w = displacement(model, states, points)
     size = np.maximum(np.hypot(y, w), 1e-300)
     return size, (y * np.sum(phi * mask * states[:, 2 * N:3 * N], axis=1)
                   + w * np.sum(phi * mask * states[:, 3 * N:4 * N], axis=1)) / size
@@ -332,7 +341,6 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
     ``peaks`` the row of the run's largest force in it, ``directions`` (S, 2) the unit direction of the wall's force on
     the pipe (towards the hole's axis from the joint); and of the strikes too long for it, left to the modes,
     ``long_rows`` the onsets and ``long_ratios``."""
-    N = model.n_modes
     fn = window.forces[:, :, 2]
     rows, points, speed, share = strike_speeds(model, window)
     ei, rho = model.props["bending_stiffness"], model.props["mass_per_length"]
@@ -351,8 +359,7 @@ def local_strikes(model: WhirlModel, window: Window) -> dict[str, np.ndarray]:
         while end < fn.shape[0] and fn[end, p] > 0:
             end += 1
         ends[k], peaks[k] = end, row + int(np.argmax(fn[row:max(end, row + 1), p]))
-    q = window.states[rows]
-    y, w = np.sum(model.phi[points] * q[:, :N], axis=1), np.sum(model.phi[points] * q[:, N:2 * N], axis=1)
+    y, w = displacement(model, window.states[rows], points)
     norm = np.maximum(np.hypot(y, w), 1e-300)
     return dict(rows=rows, points=points, speeds=speed, ends=ends, peaks=peaks,
                 starts=window.times[onset_rows(model, window, rows, points)],
