@@ -139,6 +139,9 @@ def run_grid(grid: Grid, store: Path, *, scheduler: str | None = None, workers: 
             _run_distributed(grid, keys, code, tasks, store_chunk, scheduler, workers or os.cpu_count() or 1)
     except KeyboardInterrupt:
         _quiet_shutdown()
+        # what a resume will reuse, counted on disk: a chunk whose file was renamed into place as the signal came,
+        # before store_chunk counted it, is kept too
+        kept = int(np.count_nonzero(Store.scan(store).locate(keys)[0] >= 0))
         raise Interrupted(f"interrupted: kept {kept} of {grid.size} points in {store}; run the same command "
                           "again to resume") from None
     finally:
