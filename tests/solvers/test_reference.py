@@ -593,3 +593,14 @@ def test_drag_and_viscous_keeps_the_drag_and_damps_each_mode_by_the_mud_s_stokes
     assert np.all(model.damping[1:] > 0.0) and model.damping[0] == 0.0  # the rigid translation (ω = 0): drag alone
     # the mud's viscosity reaches the scene from its input, 20 cP by default
     assert scene.mud_viscosity == 0.020 and Scene.from_inputs({**base, "plastic_viscosity": 0.05}).mud_viscosity == 0.05
+
+
+@pytest.mark.parametrize("at, doubled", [(0.5, True), (0.3, False)], ids=["symmetric: vectors", "not: series law"])
+def test_the_modal_measure_is_the_one_the_model_took(base, at, doubled):
+    # reference_residual = "dynamic" asks for the residual vectors, whose modal part is the figures' change from half
+    # the modes (reference.modal_by_doubling); where the contact points do not lie symmetrically about the section's
+    # middle the model keeps the series law (docs/reference_model.md §2.1), and the count's choice follows the model,
+    # not the option (reference.run reads it from the run)
+    result = solve_point(_rolling(base, 0, contact_points=[at], reference_residual="dynamic"), "reference")
+    assert result.extras["reference_residual"] == ("dynamic" if doubled else "series")
+    assert result.extras["modal_by_doubling"] is doubled

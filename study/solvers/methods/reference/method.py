@@ -283,14 +283,15 @@ def run(point: DesignPoint) -> PointResult:
     (``extras["reference_modes"]``), the counts tried and their figures in ``extras["modes_tried"]``
     (docs/reference_model.md §3.1)."""
     option = point.reference
-    # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from
-    # half the modes
-    dynamic = option.reference_residual == "dynamic" or option.reference_strike_force == "pulse"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
     previous = None
     while True:
-        result = solve_with_modes(point.with_reference(reference_modes=count), previous if dynamic else None)
+        result = solve_with_modes(point.with_reference(reference_modes=count), previous)
+        # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from half
+        # the modes: as the run's model took it (:func:`modal_by_doubling`; the options alone may ask for a law the
+        # model could not keep, e.g. the vectors at contact points not symmetric about the middle)
+        dynamic = bool(result.extras.get("modal_by_doubling"))
         parts = result.extras.get("convergence") or {}
         modal = modal_part(result)
         tried.append(dict(modes=count, modal=modal, error_estimate=float(result.error_estimate or 0.0),
@@ -430,7 +431,7 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
                          reference_modes=model.n_modes,
                          reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
-                         else "none")
+                         else "none", modal_by_doubling=modal_by_doubling(model))
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
