@@ -13,7 +13,7 @@ from study.physics import fatigue
 from study.solvers.kernels import whirl_kernel
 from study.solvers.methods.reference.fields import contact_spacing, energy_balance
 from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
-from study.solvers.methods.reference.model import WhirlModel, build_model
+from study.solvers.methods.reference.model import DYNAMIC_RESIDUALS, WhirlModel, build_model
 from study.solvers.methods.reference.replay import impact_modal_error, replay_summary
 from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
@@ -285,7 +285,7 @@ def run(point: DesignPoint) -> PointResult:
     option = point.reference
     # with the residual vectors, or the strikes' pulses (§2.4), the modal part is the figures' change from
     # half the modes
-    dynamic = option.reference_residual == "dynamic" or option.reference_strike_force == "pulse"
+    dynamic = option.reference_residual in DYNAMIC_RESIDUALS or option.reference_strike_force == "pulse"
     count, top = int(option.reference_modes), max(int(option.reference_modes), int(option.reference_max_modes))
     tried = []
     previous = None
@@ -429,8 +429,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     result.rest_model = model if "sliding_rest" in model.cache else None
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
                          reference_modes=model.n_modes,
-                         reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
-                         else "none")
+                         reference_residual=(point.reference.reference_residual if model.dynamic else "series"
+                                             if np.any(model.flexibility > 0) else "none"))
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
