@@ -9,7 +9,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-#: Columns of the per-point pulse state (the last entry of :func:`kernel_system`'s tuple, updated by :func:`advance`):
+#: Columns of the per-point pulse state (entry 20 of :func:`kernel_system`'s tuple, updated by :func:`advance`):
 #: the point's mode (P_LAW: the contact law; P_PULSE: a strike's force prescribed), the pulse's onset time [s], peak
 #: force [N], duration [s], the table's speed index and weight (log v0 between it and the next), its onset speed [m/s],
 #: the largest wall shift over the Hertz approach at its pulse's peak (F_peak/K)^(2/3) [-], and the wall's shift [m]:

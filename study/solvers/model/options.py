@@ -317,6 +317,9 @@ class ReferenceOptions(MethodOptions):
     #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), the same damped
     #: by the bending waves' resistance at the points ("radiating"), or nothing
     reference_residual: str = option("series", ("series", "none", "dynamic", "radiating"))
+    #: with the residual vectors and the strikes' pulses, a pulse's onset speed: the joint's whole approach rate
+    #: ("approach"), or the kept modes' part of it ("kept": the vectors' ringing left out)
+    reference_pulse_speed: str = option("approach", ("approach", "kept"))
     #: the fields' part of the modes left out with the residual vectors: their static response to the contact forces and
     #: the joints' inertia ("force": the mode-acceleration method, the vectors integrated for the contact), or the
     #: vectors' own motion s_p ("vectors", which rings after a strike); docs/reference_model.md §2.1. The residual

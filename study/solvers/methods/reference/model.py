@@ -91,6 +91,9 @@ class WhirlModel:
     #: the strikes' pulses at the tool joints (``reference_strike_force = "pulse"``: :func:`strike_pulses`; None: the
     #: contact law at every strike)
     pulse: dict | None = None
+    #: with the residual vectors and the pulses, a pulse's onset speed: the point's whole approach rate ("approach") or
+    #: the kept modes' part of it ("kept": without the vectors' motion; ``reference_pulse_speed``)
+    pulse_speed: str = "approach"
     #: the upper edge ω_b [rad/s] of the band of the section's bending the stresses state (``reference_stress_band``:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
     #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
@@ -162,9 +165,12 @@ class WhirlModel:
                     self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
                     self.penalty_damping, fpar, self.flexibility) + self.pulse_arrays()
         r = self.ritz
+        kept = ()
+        if self.pulse is not None and self.pulse_speed == "kept":  # the pulses' onset speed from the kept modes' part
+            kept = (self.phi @ r["vectors"][:self.n_modes],)
         return (r["omega2"], r["damping"], r["eccentric"], r["side"], r["drag_shapes"], self.drag_weights,
                 r["phi"], self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
-                fpar, np.zeros(self.points.size)) + self.pulse_arrays()
+                fpar, np.zeros(self.points.size)) + self.pulse_arrays() + kept
 
     def pulse_arrays(self) -> tuple:
         """The strikes' pulse tables for the kernel (:func:`strike_pulses`; ``whirl_kernel.kernel_system``): per point
@@ -469,6 +475,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
                                    float(option.damping_ratio) if damping_model == "viscous" else 0.0,
                                    radiating=option.reference_residual == "radiating")
         model.recovery = option.reference_recovery
+        model.pulse_speed = option.reference_pulse_speed
     elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
         # the modes left out respond to a contact force statically: their flexibility at the point in series with its
         # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
