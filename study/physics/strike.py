@@ -53,10 +53,10 @@ from study.physics.contact import hertz_force, linearised_stiffness
 from study.physics.restitution import check_range
 
 __all__ = ["beam_impulse_response", "group_velocity", "driving_point_resistance", "Strike", "strike",
-           "strike_peak_table", "peak_force", "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
-           "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
-           "moment_correction", "strike_pulse_table", "strike_moment_history", "strike_history_table",
-           "history_correction"]
+           "strike_peak_table", "peak_force", "return_time", "beam_moment_response", "beam_moment_step",
+           "step_convolution", "beam_reaction", "modal_moment_step", "StrikeMoment", "strike_moment",
+           "strike_moment_peak", "strike_moment_table", "moment_correction", "strike_pulse_table",
+           "strike_moment_history", "strike_history_table", "history_correction"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):

@@ -328,8 +328,8 @@ def test_the_radiating_residual_vectors_give_the_joint_the_infinite_beams_blow_r
 
 def test_the_radiation_damping_is_on_the_residual_vectors_alone(paper_inputs):
     # "radiating" is "dynamic" with damping added, nothing else: the same Ritz modes; each damping the resistance
-    # 2 ρA √(ω a) (study.physics.strike.driving_point_resistance) on the vectors' share of the mode at the points, so the
-    # kept modes' own part undamped (the modes below the vectors' a few per mille at most) and the vectors' modes
+    # 2 ρA √(ω a) (study.physics.strike.driving_point_resistance) on the vectors' share of the mode at the points, so
+    # the kept modes' own part undamped (the modes below the vectors' a few per mille at most) and the vectors' modes
     # underdamped; the default ("series") has no vectors, "dynamic" none of this damping
     inputs = {**paper_inputs, "inclination": np.radians(8), "reference_modes": 16, "reference_damping": "drag"}
     plain = reference.build_model({**inputs, "reference_residual": "dynamic"})
