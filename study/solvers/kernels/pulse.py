@@ -44,6 +44,26 @@ def pulse_force(t, pst, pcoef, p):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def onset_speed(z, phi, shapes, p, N, rate):
+    """A strike's onset speed at point p [m/s]: the velocity of the modes' ``shapes`` (P, N) at the point along its
+    normal (the direction of its whole displacement by ``phi``), from the state z; ``rate``, the whole approach rate,
+    where ``shapes`` has no rows (``reference_pulse_speed``, docs/reference_model.md §2.1)."""
+    if shapes.shape[0] == 0:
+        return rate
+    y = 0.0
+    w = 0.0
+    yd = 0.0
+    wd = 0.0
+    for n in range(N):
+        y += phi[p, n] * z[n]
+        w += phi[p, n] * z[N + n]
+        yd += shapes[p, n] * z[2 * N + n]
+        wd += shapes[p, n] * z[3 * N + n]
+    r = np.sqrt(y * y + w * w)
+    return (y * yd + w * wd) / r if r > 0.0 else 0.0
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def start_strike(p, t, speed, pst, floor, logv, lpeak, ldur, K):
     """Point p's strike at time t [s] at approach ``speed`` [m/s] as a pulse (:func:`pulse_force`) where the speed is
     at least the point's ``floor`` (the local model holds: its strike ends before the neighbours' waves return);

@@ -55,7 +55,7 @@ import numpy as np
 from study.physics.contact import hertz_force_one
 from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
                                          P_PEAK, P_PULSE, P_SHIFT, P_SHIFT_MAX, P_SPEED, P_T0, P_WEIGHT,
-                                         start_strike, pulse_force)
+                                         onset_speed, start_strike, pulse_force)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
@@ -967,12 +967,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 active[p] = True
                 onsets[p] += 1
                 opened = True
-                speed = rate
-                if speed_shapes.shape[0] > 0:  # the onset speed from those shapes' velocity along the point's normal
-                    y, w, _, _ = point_state(z, phi, p, N)
-                    _, _, yd, wd = point_state(z, speed_shapes, p, N)
-                    r = np.sqrt(y * y + w * w)
-                    speed = (y * yd + w * wd) / r if r > 0.0 else 0.0
+                speed = onset_speed(z, phi, speed_shapes, p, N, rate)
                 if start_strike(p, t, speed, pst, pfloor, logv, lpeak, ldur, K):
                     stats[S_PULSES] += 1
                     if pst[p, P_PEAK] > peak[p]:
