@@ -44,12 +44,8 @@ def pulse_force(t, pst, pcoef, p):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def onset_speed(z, phi, shapes, p, N, rate):
-    """A strike's onset speed at point p [m/s]: the velocity of the modes' ``shapes`` (P, N) at the point along its
-    normal (the direction of its whole displacement by ``phi``), from the state z; ``rate``, the whole approach rate,
-    where ``shapes`` has no rows (``reference_pulse_speed``, docs/reference_model.md §2.1)."""
-    if shapes.shape[0] == 0:
-        return rate
+def point_state(z, phi, p, N):
+    """(y, z, ẏ, ż) of contact point p from the state."""
     y = 0.0
     w = 0.0
     yd = 0.0
@@ -57,8 +53,20 @@ def onset_speed(z, phi, shapes, p, N, rate):
     for n in range(N):
         y += phi[p, n] * z[n]
         w += phi[p, n] * z[N + n]
-        yd += shapes[p, n] * z[2 * N + n]
-        wd += shapes[p, n] * z[3 * N + n]
+        yd += phi[p, n] * z[2 * N + n]
+        wd += phi[p, n] * z[3 * N + n]
+    return y, w, yd, wd
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def onset_speed(z, phi, shapes, p, N, rate):
+    """A strike's onset speed at point p [m/s]: the velocity of the modes' ``shapes`` (P, N) at the point along its
+    normal (the direction of its whole displacement by ``phi``), from the state z; ``rate``, the whole approach rate,
+    where ``shapes`` has no rows (``reference_pulse_speed``, docs/reference_model.md §2.1)."""
+    if shapes.shape[0] == 0:
+        return rate
+    y, w, _, _ = point_state(z, phi, p, N)
+    _, _, yd, wd = point_state(z, shapes, p, N)
     r = np.sqrt(y * y + w * w)
     return (y * yd + w * wd) / r if r > 0.0 else 0.0
 

@@ -55,7 +55,7 @@ import numpy as np
 from study.physics.contact import hertz_force_one
 from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
                                          P_PEAK, P_PULSE, P_SHIFT, P_SHIFT_MAX, P_SPEED, P_T0, P_WEIGHT,
-                                         onset_speed, start_strike, pulse_force)
+                                         onset_speed, point_state, start_strike, pulse_force)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
@@ -114,21 +114,6 @@ _E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 52
 # its continuous extension (Hairer, Nørsett & Wanner 1993 §II.6; the d_i of their DOPRI5 code, dense output)
 _D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
                701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423])
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def point_state(z, phi, p, N):
-    """(y, z, ẏ, ż) of contact point p from the state."""
-    y = 0.0
-    w = 0.0
-    yd = 0.0
-    wd = 0.0
-    for n in range(N):
-        y += phi[p, n] * z[n]
-        w += phi[p, n] * z[N + n]
-        yd += phi[p, n] * z[2 * N + n]
-        wd += phi[p, n] * z[3 * N + n]
-    return y, w, yd, wd
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
