@@ -55,7 +55,8 @@ EXTRA_OUTPUTS = {
     "rest_normal_force": ("N", "normal force of each touching point at rest"),
     "reference_modes": ("1", "modes per lateral direction of the section"),
     "reference_residual": (None, "how the reference model gave back the modes left out: static in series with the "
-                                 "contacts, as residual vectors in the modes (dynamic), or not at all (none)"),
+                                 "contacts, as residual vectors in the modes (dynamic; radiating: damped by the "
+                                 "bending waves' resistance), or not at all (none)"),
     "steps": ("1", "integrator steps"),
     "quasi_static_correction": (None, "the quasi-static correction for the modes left out was applied"),
     "modal_error": (None, "modal part of each figure's error: from the strikes replayed at more modes, or the size "

@@ -52,11 +52,11 @@ import numpy as np
 from study.physics.contact import hertz_force, linearised_stiffness
 from study.physics.restitution import check_range
 
-__all__ = ["beam_impulse_response", "group_velocity", "Strike", "strike", "strike_peak_table", "peak_force",
-           "return_time", "beam_moment_response", "beam_moment_step", "step_convolution", "beam_reaction",
-           "modal_moment_step", "StrikeMoment", "strike_moment", "strike_moment_peak", "strike_moment_table",
-           "moment_correction", "strike_pulse_table", "strike_moment_history", "strike_history_table",
-           "history_correction"]
+__all__ = ["beam_impulse_response", "group_velocity", "driving_point_resistance", "Strike", "strike",
+           "strike_peak_table", "peak_force", "return_time", "beam_moment_response", "beam_moment_step",
+           "step_convolution", "beam_reaction", "modal_moment_step", "StrikeMoment", "strike_moment",
+           "strike_moment_peak", "strike_moment_table", "moment_correction", "strike_pulse_table",
+           "strike_moment_history", "strike_history_table", "history_correction"]
 
 
 def _wave_parameter(mass_per_length, bending_stiffness):
@@ -77,6 +77,16 @@ def group_velocity(omega, mass_per_length, bending_stiffness):
     """c_g = 2√(ω a) [m/s] of bending waves of circular frequency ω [rad/s] on an Euler–Bernoulli beam (Graff 1975,
     §3.1), a = √(EI/ρA)."""
     return 2.0 * np.sqrt(np.asarray(omega, float) * _wave_parameter(mass_per_length, bending_stiffness))
+
+
+def driving_point_resistance(omega, mass_per_length, bending_stiffness):
+    """Re Z = 2 ρA c_B [N s/m], c_B = √(ω a) the bending phase speed, a = √(EI/ρA): the real part of an infinite
+    Euler–Bernoulli beam's driving-point impedance Z = 2 ρA c_B (1 + i) under a point force of circular frequency ω
+    [rad/s] (Cremer, Heckl & Petersson, *Structure-Borne Sound*, 3rd ed., 2005, §5.4; the Fourier transform of
+    :func:`beam_impulse_response`): the resistance of the bending waves the point sends away both ways, the power a
+    point moving at velocity amplitude V there loses to them being ½ Re Z V². 0 at ω = 0."""
+    omega = np.maximum(np.asarray(omega, float), 0.0)
+    return 2.0 * mass_per_length * np.sqrt(omega * _wave_parameter(mass_per_length, bending_stiffness))
 
 
 def return_time(duration, distance, mass_per_length, bending_stiffness):

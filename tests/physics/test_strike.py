@@ -34,6 +34,17 @@ def test_the_impulse_response_has_the_beams_point_receptance():
     assert laplace == pytest.approx(1.0 / (1j * omega * impedance), rel=1e-12)
 
 
+def test_the_driving_point_resistance_is_the_real_part_of_the_impulse_responses_impedance():
+    # Z = 1/(iω G(iω)), G the Laplace transform of g(t) = c √t, c Γ(3/2) s^{-3/2} (as the test above): its real part is
+    # 2 ρA √(ω a) (Cremer, Heckl & Petersson 2005, §5.4), the resistance the residual vectors' "radiating" damping takes
+    c = float(strike.beam_impulse_response(1.0, RHO, EI))
+    for hz in (300.0, 1500.0, 6000.0):
+        omega = 2 * np.pi * hz
+        impedance = 1.0 / (1j * omega * c * 0.5 * np.sqrt(np.pi) * (1j * omega) ** -1.5)
+        assert strike.driving_point_resistance(omega, RHO, EI) == pytest.approx(impedance.real, rel=1e-12), hz
+    assert strike.driving_point_resistance(0.0, RHO, EI) == 0.0
+
+
 def test_without_the_beam_the_strike_is_hertzs_mass_on_a_spring():
     # ρA → 0: F_max = K^{2/5} (5/4 m v0²)^{3/5} (Johnson 1985 §11.4; hertz.hertz_impact), and with the Hunt–Crossley
     # damping the integrated single impact (contact.hertz_wall_impact)

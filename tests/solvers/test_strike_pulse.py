@@ -136,3 +136,38 @@ def test_where_the_thrown_string_strikes(default_point):
         assert s["pulse_force"] == pytest.approx(local, rel=1e-3) and s["speed"] == pytest.approx(0.3, rel=1e-3)
         assert 0.9 * local < s["force"] <= local * (1 + 1e-9)  # the rows' largest: the pulse's peak between rows
     assert sum(s["carries"] for s in joints) == pytest.approx(1.0) and all(s["law_carries"] == 0 for s in sites)
+
+
+@pytest.mark.parametrize("speed_from", ["approach", "kept"])
+def test_with_the_residual_vectors_a_pulses_onset_speed_is_the_whole_approach_or_the_kept_modes(default_point,
+                                                                                                speed_from):
+    # the thrown string (16 modes, the residual vectors), one vector-dominated mode set ringing at 0.1 m/s at the first
+    # joint: the pulse's onset speed (the kernel's pulse state) is the joint's whole approach rate at the onset row
+    # ("approach", the default), or the kept modes' part of it ("kept", reference_pulse_speed: the vectors' ringing
+    # left out), each read from the recorded row the kernel located at the onset (docs/reference_model.md §2.1)
+    n = 16
+    inputs = {**default_point(250, 5, 0.7, 9, 0.0), "inclination": 0.0, "eccentricity": 0.0,
+              "reference_damping": "none", "reference_modes": n, "reference_strike_force": "pulse",
+              "reference_residual": "dynamic", "reference_pulse_speed": speed_from}
+    m = reference.build_model(inputs)
+    z = np.zeros(4 * n + 4)
+    z[0] = (float(np.min(m.clearance)) - 1e-4) / m.phi[0, 0]
+    z[2 * n] = 0.3 / m.phi[0, 0]
+    z = m.extend(z)
+    K = m.kernel_modes
+    p = int(np.flatnonzero(m.kinds == 1)[0])
+    ringing = int(np.argmax(m.ritz["omega2"] * (np.abs(m.ritz["phi"][p]) > 1e-9)))  # the fastest at the joint
+    z[2 * K + ringing] = 0.1 / m.ritz["phi"][p, ringing]
+    run = reference.Integrator(m, 1e-8, z)
+    window = run.run(1e-3, record=True)
+    row = int(np.argmax(window.forces[:, p, 2] > 0)) - 1  # the row before the first with a force: the onset's
+    flex = reference.static_correction(m, m.points)[:, :m.points.size]
+    y, w = reference.statistics.displacement(m, window.states[row:row + 1], np.array([p]))
+    res = window.residual[row]  # (4, P): the vectors' s_y, s_z, ṡ_y, ṡ_z
+    y, w = y[0] + res[0] @ flex[:, p], w[0] + res[1] @ flex[:, p]
+    size = np.hypot(y, w)
+    assert row > 0 and abs(size - m.clearance[p]) < 2 * whirl_kernel.ONSET_TOLERANCE * m.clearance[p]
+    kept = (y * (m.phi[p] @ window.states[row, 2 * n:3 * n]) + w * (m.phi[p] @ window.states[row, 3 * n:4 * n])) / size
+    whole = kept + (y * (res[2] @ flex[:, p]) + w * (res[3] @ flex[:, p])) / size
+    assert abs(whole - kept) > 0.05 * abs(kept)  # the ringing in the joint's approach
+    assert run.pulse[p, pulse.P_SPEED] == pytest.approx(kept if speed_from == "kept" else whole, rel=1e-3)

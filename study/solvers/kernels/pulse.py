@@ -9,7 +9,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-#: Columns of the per-point pulse state (the last entry of :func:`kernel_system`'s tuple, updated by :func:`advance`):
+#: Columns of the per-point pulse state (entry 20 of :func:`kernel_system`'s tuple, updated by :func:`advance`):
 #: the point's mode (P_LAW: the contact law; P_PULSE: a strike's force prescribed), the pulse's onset time [s], peak
 #: force [N], duration [s], the table's speed index and weight (log v0 between it and the next), its onset speed [m/s],
 #: the largest wall shift over the Hertz approach at its pulse's peak (F_peak/K)^(2/3) [-], and the wall's shift [m]:
@@ -41,6 +41,34 @@ def pulse_force(t, pst, pcoef, p):
     a = ((pcoef[p, i, 0, j] * x + pcoef[p, i, 1, j]) * x + pcoef[p, i, 2, j]) * x + pcoef[p, i, 3, j]
     b = ((pcoef[p, i + 1, 0, j] * x + pcoef[p, i + 1, 1, j]) * x + pcoef[p, i + 1, 2, j]) * x + pcoef[p, i + 1, 3, j]
     return pst[p, P_PEAK] * max((1.0 - w) * a + w * b, 0.0)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def point_state(z, phi, p, N):
+    """(y, z, ẏ, ż) of contact point p from the state."""
+    y = 0.0
+    w = 0.0
+    yd = 0.0
+    wd = 0.0
+    for n in range(N):
+        y += phi[p, n] * z[n]
+        w += phi[p, n] * z[N + n]
+        yd += phi[p, n] * z[2 * N + n]
+        wd += phi[p, n] * z[3 * N + n]
+    return y, w, yd, wd
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def onset_speed(z, phi, shapes, p, N, rate):
+    """A strike's onset speed at point p [m/s]: the velocity of the modes' ``shapes`` (P, N) at the point along its
+    normal (the direction of its whole displacement by ``phi``), from the state z; ``rate``, the whole approach rate,
+    where ``shapes`` has no rows (``reference_pulse_speed``, docs/reference_model.md §2.1)."""
+    if shapes.shape[0] == 0:
+        return rate
+    y, w, _, _ = point_state(z, phi, p, N)
+    _, _, yd, wd = point_state(z, shapes, p, N)
+    r = np.sqrt(y * y + w * w)
+    return (y * yd + w * wd) / r if r > 0.0 else 0.0
 
 
 @numba.njit(cache=True, nogil=True, inline="always")

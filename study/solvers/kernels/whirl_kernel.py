@@ -55,7 +55,7 @@ import numpy as np
 from study.physics.contact import hertz_force_one
 from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
                                          P_PEAK, P_PULSE, P_SHIFT, P_SHIFT_MAX, P_SPEED, P_T0, P_WEIGHT,
-                                         start_strike, pulse_force)
+                                         onset_speed, point_state, start_strike, pulse_force)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
@@ -117,21 +117,6 @@ _D = np.array([-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -1069
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def point_state(z, phi, p, N):
-    """(y, z, ẏ, ż) of contact point p from the state."""
-    y = 0.0
-    w = 0.0
-    yd = 0.0
-    wd = 0.0
-    for n in range(N):
-        y += phi[p, n] * z[n]
-        w += phi[p, n] * z[N + n]
-        yd += phi[p, n] * z[2 * N + n]
-        wd += phi[p, n] * z[3 * N + n]
-    return y, w, yd, wd
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
 def series_hertz(d, K, f):
     """The normal force [N] of the Hertz spring K δ_H^{3/2} [N m^-3/2] in series with the flexibility f [m/N] (the
     modes left out, docs/reference_model.md §2.1) at the total approach d > 0 [m]: δ_H + f F = d, F = K δ_H^{3/2}.
@@ -179,7 +164,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     eccentricities turn), side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
     fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring; then the
     strikes' pulse tables, floor (P,), log speeds (S,), log peaks and log durations (P, S), shape coefficients (P, S, 4,
-    G − 1), and the per-point pulse state (P, N_PULSE_STATE), :func:`kernel_system`):
+    G − 1), the per-point pulse state (P, N_PULSE_STATE) and the shapes (P, N) at the points whose velocity is a pulse's
+    onset speed (none, (0, N): the whole approach rate), :func:`kernel_system`):
     the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
     there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
@@ -716,7 +702,9 @@ def kernel_system(sy: tuple) -> tuple:
     S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`) before
     the residual flexibility per point; then the strikes' pulse tables (the model's, in logs; without them a floor no
     speed reaches) and a fresh per-point pulse state (P, :data:`N_PULSE_STATE`), which :func:`advance` updates (the
-    clearances are the kernel's own copy: a shifted wall moves them)."""
+    clearances are the kernel's own copy: a shifted wall moves them); last the shapes (P, N) whose velocity at a point
+    is its pulse's onset speed, the model's after its pulse tables (``reference_pulse_speed = "kept"``), else none
+    (0, N): the whole approach rate."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -735,7 +723,8 @@ def kernel_system(sy: tuple) -> tuple:
     return (omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity,
             np.ascontiguousarray(fr, dtype=float), np.asarray(pfloor, float), np.log(np.asarray(speeds, float)),
             np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
-            np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)))
+            np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)),
+            np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])))
 
 
 
@@ -772,7 +761,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     allocates nothing and calls no compiled function (everything it calls is inlined: :data:`FASTMATH`).
     """
     omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy[:15]
-    pfloor, logv, lpeak, ldur, pst = sy[15], sy[16], sy[17], sy[18], sy[20]
+    pfloor, logv, lpeak, ldur, pst, speed_shapes = sy[15], sy[16], sy[17], sy[18], sy[20], sy[21]
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])
@@ -963,7 +952,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 active[p] = True
                 onsets[p] += 1
                 opened = True
-                if start_strike(p, t, rate, pst, pfloor, logv, lpeak, ldur, K):
+                speed = onset_speed(z, phi, speed_shapes, p, N, rate)
+                if start_strike(p, t, speed, pst, pfloor, logv, lpeak, ldur, K):
                     stats[S_PULSES] += 1
                     if pst[p, P_PEAK] > peak[p]:
                         peak[p] = pst[p, P_PEAK]

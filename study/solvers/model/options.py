@@ -314,8 +314,12 @@ class ReferenceOptions(MethodOptions):
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]
     #: the modes left out at a contact: their static flexibility in series with its spring ("series"), a residual
-    #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), or nothing
-    reference_residual: str = option("series", ("series", "none", "dynamic"))
+    #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), the same damped
+    #: by the bending waves' resistance at the points ("radiating"), or nothing
+    reference_residual: str = option("series", ("series", "none", "dynamic", "radiating"))
+    #: with the residual vectors and the strikes' pulses, a pulse's onset speed: the joint's whole approach rate
+    #: ("approach"), or the kept modes' part of it ("kept": the vectors' ringing left out)
+    reference_pulse_speed: str = option("approach", ("approach", "kept"))
     #: the fields' part of the modes left out with the residual vectors: their static response to the contact forces and
     #: the joints' inertia ("force": the mode-acceleration method, the vectors integrated for the contact), or the
     #: vectors' own motion s_p ("vectors", which rings after a strike); docs/reference_model.md §2.1. The residual

@@ -109,7 +109,7 @@ class Integrator:
         self.h_stable = STABLE_STEP / max(fastest, 1e-300)  # (the rigid translation alone: none)
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         #: the strikes' pulse state per point (whirl_kernel.P_*; reference_strike_force = "pulse"), kept across runs
-        self.pulse = self.sy[-1]
+        self.pulse = self.sy[20]
         self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
         self.steps = 0
         self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)

@@ -430,8 +430,9 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     result.rest_model = model if "sliding_rest" in model.cache else None
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
                          reference_modes=model.n_modes,
-                         reference_residual="dynamic" if model.dynamic else "series" if np.any(model.flexibility > 0)
-                         else "none", modal_by_doubling=modal_by_doubling(model))
+                         reference_residual=(point.reference.reference_residual if model.dynamic else "series"
+                                             if np.any(model.flexibility > 0) else "none"),
+                         modal_by_doubling=modal_by_doubling(model))
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"

@@ -79,7 +79,7 @@ class WhirlModel:
     #: "dynamic"``: :func:`residual_second_moment`; empty: the residual flexibility, if any, static in series)
     residual_mass: np.ndarray = field(default_factory=lambda: np.zeros(0))
     #: the modes left out as residual vectors, one per contact point, in the kernel's modes (``reference_residual =
-    #: "dynamic"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
+    #: "dynamic"`` or ``"radiating"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
     ritz: dict | None = None
     joint_x: np.ndarray = field(default_factory=lambda: np.zeros(0))  #: the tool joints' positions x_j [m]
     #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
@@ -91,6 +91,9 @@ class WhirlModel:
     #: the strikes' pulses at the tool joints (``reference_strike_force = "pulse"``: :func:`strike_pulses`; None: the
     #: contact law at every strike)
     pulse: dict | None = None
+    #: with the residual vectors and the pulses, a pulse's onset speed: the point's whole approach rate ("approach") or
+    #: the kept modes' part of it ("kept": without the vectors' motion; ``reference_pulse_speed``)
+    pulse_speed: str = "approach"
     #: the upper edge ω_b [rad/s] of the band of the section's bending the stresses state (``reference_stress_band``:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
     #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
@@ -162,9 +165,12 @@ class WhirlModel:
                     self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
                     self.penalty_damping, fpar, self.flexibility) + self.pulse_arrays()
         r = self.ritz
+        kept = ()
+        if self.pulse is not None and self.pulse_speed == "kept":  # the pulses' onset speed from the kept modes' part
+            kept = (self.phi @ r["vectors"][:self.n_modes],)
         return (r["omega2"], r["damping"], r["eccentric"], r["side"], r["drag_shapes"], self.drag_weights,
                 r["phi"], self.clearance, self.radius, self.stiffness, self.penalty_stiffness, self.penalty_damping,
-                fpar, np.zeros(self.points.size)) + self.pulse_arrays()
+                fpar, np.zeros(self.points.size)) + self.pulse_arrays() + kept
 
     def pulse_arrays(self) -> tuple:
         """The strikes' pulse tables for the kernel (:func:`strike_pulses`; ``whirl_kernel.kernel_system``): per point
@@ -458,16 +464,18 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
                       eccentricity=eps, frame=frame, hole_curvature=hole_curvature, basis=basis,
                       joint_mass=float(joint_mass), joint_weight=float(joint_side), point_side=point_side,
                       joint_points=at_joint if joint_mass > 0.0 and np.any(at_joint) else None)
-    if option.reference_residual == "dynamic" and np.all(np.isfinite(omega)) and symmetric_points(x, L):
+    if option.reference_residual in DYNAMIC_RESIDUALS and np.all(np.isfinite(omega)) and symmetric_points(x, L):
         # the modes left out as one residual vector per contact point in the kernel's modes, matched to their
         # flexibility and its second moment (their receptance f + g ω² + … at low frequency), the joints' mass on them;
-        # docs/reference_model.md §2.1
+        # "radiating": with the bending waves' resistance at the points as their damping; docs/reference_model.md §2.1
         model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
         model.residual = residual_flexibility(model)
         model.residual_mass = residual_second_moment(model) / model.residual**2
         model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
-                                   float(option.damping_ratio) if damping_model == "viscous" else 0.0)
+                                   float(option.damping_ratio) if damping_model == "viscous" else 0.0,
+                                   radiating=option.reference_residual == "radiating")
         model.recovery = option.reference_recovery
+        model.pulse_speed = option.reference_pulse_speed
     elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
         # the modes left out respond to a contact force statically: their flexibility at the point in series with its
         # spring (the penalty's folded in, k/(1 + k f)); docs/reference_model.md §2.1. Also for "dynamic" where the
@@ -544,7 +552,12 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
                 coefficients=coefficients)
 
 
-def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0) -> dict:
+#: The ``reference_residual`` values that integrate the modes left out as residual vectors (:func:`residual_ritz`).
+DYNAMIC_RESIDUALS = ("dynamic", "radiating")
+
+
+def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0,
+                  radiating: bool = False) -> dict:
     """The kept modes augmented by one residual vector per contact point (modal truncation augmentation: Dickens,
     Nakagawa & Wittbrodt, Comput. Struct. 62, 985–998, 1997; the residual flexibility and mass of Rubin, AIAA J. 13,
     995–1006, 1975), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual vector p is the static
@@ -561,8 +574,8 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     Returns omega2 (K,) with K = N + P, vectors (K, K) (column k: mode k on (q, σ), σ the vectors' parity
     combinations, s = C σ; scaled to the modal mass m), combinations C (P, P), inverse (K, K) (vectorsᵀ M/m: (q, σ) to
     the modes), and the kernel's phi (P, K), drag_shapes (G, K) at ``drag_points`` [m], eccentric and side (K,) per
-    modal mass, damping (K,) 2ζω, weights (K,) of the error scale (1/n² of the half-waves of each mode's
-    frequency)."""
+    modal mass, damping (K,) 2ζω (with ``radiating`` plus :func:`radiation_damping`), weights (K,) of the error
+    scale (1/n² of the half-waves of each mode's frequency)."""
     from scipy.linalg import eigh
 
     N, P, L, m = model.n_modes, model.points.size, model.span, model.mass
@@ -635,10 +648,29 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     omega = np.sqrt(omega2)
     ei, tn, M = (model.props[k] for k in ("bending_stiffness", "effective_tension", "mass_per_length"))
     wavenumber = np.sqrt(np.maximum((-tn + np.sqrt(tn**2 + 4 * ei * M * omega2)) / (2 * ei), 0.0))
+    damping = 2.0 * float(damping_ratio) * omega
+    if radiating:
+        damping = damping + radiation_damping(omega, (flexibility @ combinations) @ residual, m, M, ei)
     return dict(omega2=omega2, vectors=vectors, combinations=combinations, inverse=vectors.T @ mass / m, phi=phi,
-                drag_shapes=drag_shapes, eccentric=kept.T @ model.eccentric, side=side,
-                damping=2.0 * float(damping_ratio) * omega,
+                drag_shapes=drag_shapes, eccentric=kept.T @ model.eccentric, side=side, damping=damping,
                 weights=1.0 / np.maximum(wavenumber * L / np.pi, 1.0) ** 2)
+
+
+def radiation_damping(omega, residual_shapes, modal_mass, mass_per_length, bending_stiffness) -> np.ndarray:
+    """(K,) d_k = Σ_p Re Z(ω_k) ψ_pk²/m [1/s], the linear damping per modal mass (2ζ_k ω_k) of the residual vectors'
+    Ritz modes (``reference_residual = "radiating"``, docs/reference_model.md §2.1): a dashpot of the infinite beam's
+    driving-point resistance Re Z(ω) = 2 ρA c_B(ω) (:func:`study.physics.strike.driving_point_resistance`) at each
+    contact point p on the vectors' own motion there, evaluated at the mode's frequency ω_k [rad/s] and kept on the
+    diagonal. ``residual_shapes`` (P, K) ψ_pk [m per unit modal coordinate], the vectors' part of mode k's deflection
+    at point p, Σ_q v_q(x_p) s_q (0 on a kept mode's own part, which stays undamped); ``modal_mass`` m [kg],
+    ``mass_per_length`` ρA [kg/m], ``bending_stiffness`` EI [N m²]. It stands for the dispersal of the modes left out:
+    in the continuous string a point's ringing above the kept modes leaves it as bending waves (the modes there dense
+    against the strike's time), while one vector a point would ring on coherently and strike with it again. A single
+    vector alone (mass μ, flexibility f at one point, ψ² = m/μ) rings down as e^{−t Re Z/(2μ)}."""
+    from study.physics.strike import driving_point_resistance
+
+    resistance = driving_point_resistance(omega, mass_per_length, bending_stiffness)
+    return resistance * np.sum(np.asarray(residual_shapes, float) ** 2, axis=0) / modal_mass
 
 
 def static_correction(model: WhirlModel, x: np.ndarray) -> np.ndarray:

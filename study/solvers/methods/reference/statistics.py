@@ -789,15 +789,16 @@ def convergence(point: DesignPoint, model: WhirlModel, window: Window, values: M
     """The error of each design figure by its parts (relative; docs/reference_model.md §3.1): ``window`` (the
     larger of the standard error and the drift from the preceding stretch; the periodicity tolerance when the
     motion is periodic), ``integrator`` (the larger of rtol and the energy balance's residual over the window,
-    which is whole but with ``reference_damping = "viscous"``),
+    which is whole but with ``reference_damping = "viscous"`` and ``reference_residual = "radiating"``),
     ``modes`` (measured on the run, :func:`modal_check`, given as ``modal``; 0 where not given); ``total`` their
     sum; ``equivalent`` the total as the stress error the point's ``error_estimate`` counts (:func:`stress_equivalent`:
     the damage's through the S-N exponent, the peak force's as its share of ``solver.force_tolerance``). The
     alternating stress's error is relative to the larger of it and the max bending stress."""
     option = point.reference
-    # the energy balance is whole only without the linear modal damping of "viscous" and "drag+viscous", whose loss is
-    # not integrated
-    whole = residual is not None and option.reference_damping not in ("viscous", "drag+viscous")
+    # the energy balance is whole only without the linear modal damping of "viscous" and "drag+viscous" and the residual
+    # vectors' radiation damping ("radiating"), whose loss is not integrated
+    whole = (residual is not None and option.reference_damping not in ("viscous", "drag+viscous")
+             and option.reference_residual != "radiating")
     integrator = max(float(option.reference_rtol), abs(residual) if whole else 0.0)
     normal = values["max_normal_stress"]
     modes = {name: float((modal or {}).get(name, 0.0)) for name in FIGURES}
