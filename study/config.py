@@ -301,6 +301,11 @@ FIELDS: tuple[Field, ...] = (
           "dynamically and those above by their quasi-static response (docs/reference_model.md §2.3.1)", None,
           default=ReferenceOptions.default("reference_stress_band"),
           choices=ReferenceOptions.choices("reference_stress_band")),
+    Field("solver.reference_drag_quadrature", "reference_drag_quadrature", "the rule the reference model sums the "
+          "mud's quadratic drag by along the section: Gauss-Legendre at 2N + 8 points, or the periodic midpoint rule at "
+          "3N/2 + 8 evenly spaced points, exact on the modes' products and cheaper (docs/reference_model.md §4)", None,
+          default=ReferenceOptions.default("reference_drag_quadrature"),
+          choices=ReferenceOptions.choices("reference_drag_quadrature")),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "
