@@ -95,6 +95,8 @@ class WhirlModel:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
     #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
     stress_band: float = float("inf")
+    #: the precision of the integrator's drag sums (``reference_drag_precision``: "double", or "single", float32)
+    drag_precision: str = "double"
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -473,6 +475,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
         model.residual = residual_flexibility(model)
         model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
+    model.drag_precision = option.reference_drag_precision
     if option.reference_strike_force == "pulse" and law == 0:
         model.pulse = strike_pulses(model)
     if option.reference_stress_band == "timoshenko":
