@@ -111,7 +111,8 @@ class Integrator:
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         #: the strikes' pulse state per point (whirl_kernel.P_*; reference_strike_force = "pulse"), kept across runs
         self.pulse = self.sy[-1]
-        self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size, drag_dtype)  #: the kernel's room, kept across runs
+        #: the kernel's room, kept across runs
+        self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size, drag_dtype)
         self.steps = 0
         self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK
