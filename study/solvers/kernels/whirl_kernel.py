@@ -222,16 +222,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
         # contiguous rows of SH
         Hm = SH.shape[1]
         H = G // 2
-        uy = scratch[0]
-        uz = scratch[1]
-        ey = scratch[2]
-        ez = scratch[3]
-        oy = scratch[4]
-        oz = scratch[5]
-        # the modes' velocities in the sums' precision (SH's and scratch's: float64, or float32 with
-        # reference_drag_precision = "single"), so that the sums run in it
-        wy = scratch[6]
-        wz = scratch[7]
+        uy, uz, ey, ez, oy, oz = scratch[0], scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
+        wy, wz = scratch[6], scratch[7]  # the modes' velocities in the sums' precision (SH's: float64 or float32)
         for n in range(N):
             wy[n] = z[2 * N + n]
             wz[n] = z[3 * N + n]
@@ -278,8 +270,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
             oy[H] = uy[H]
             oz[H] = uz[H]
         for n in range(N):
-            ay = ey[0] - ey[0]  # 0 in the sums' precision
-            az = ay
+            ay = az = ey[0] - ey[0]  # 0 in the sums' precision
             if parity[n] > 0.0:
                 for g in range(Hm):
                     ay += SH[n, g] * ey[g]
@@ -745,7 +736,6 @@ def kernel_system(sy: tuple, drag_dtype=float) -> tuple:
             np.ascontiguousarray(fr, dtype=float), np.asarray(pfloor, float), np.log(np.asarray(speeds, float)),
             np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
             np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)))
-
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
