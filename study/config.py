@@ -111,6 +111,13 @@ def _dogleg_direction(raw) -> float:
 
 _POSITIVE = dict(lower=0.0, lower_open=True)
 _NON_NEGATIVE = dict(lower=0.0)
+
+
+def _reference_choice(name: str, description: str) -> "Field":
+    """The config field ``solver.<name>`` of a choice option of the reference method (its default and allowed values
+    those ReferenceOptions declares)."""
+    return Field(f"solver.{name}", name, description, None, default=ReferenceOptions.default(name),
+                 choices=ReferenceOptions.choices(name))
 _POISSON = dict(lower=-1.0, upper=0.5, lower_open=True, upper_open=True)
 
 #: Every input a config can set, in section order. ``name`` is the key inside the package and in
@@ -285,22 +292,22 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("reference_max_revolutions"), integer=True, lower=1.0),
     Field("solver.reference_damping", "reference_damping", "mud damping of the reference model", None,
           default=ReferenceOptions.default("reference_damping"), choices=ReferenceOptions.choices("reference_damping")),
-    Field("solver.reference_strike_force", "reference_strike_force", "the peak contact force of the reference model's "
-          "strikes at the tool joints: the modes' own, or each strike's local model from its onset speed (the joint's "
-          "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3), after the run ('local') or "
-          "its force history applied to the modes in the run ('pulse', §2.4)", None,
-          default=ReferenceOptions.default("reference_strike_force"),
-          choices=ReferenceOptions.choices("reference_strike_force")),
-    Field("solver.reference_strike_stress", "reference_strike_stress", "the bending of the reference model's strikes "
-          "at the tool joints: the modes' own with their quasi-static correction, or the modes plus the strike's local "
-          "bending that the modes left out miss (docs/reference_model.md §2.3)", None,
-          default=ReferenceOptions.default("reference_strike_stress"),
-          choices=ReferenceOptions.choices("reference_strike_stress")),
-    Field("solver.reference_stress_band", "reference_stress_band", "the band of the reference model's stresses: every "
-          "kept mode's dynamic response, or the modes where the Euler-Bernoulli beam holds within 5 % of Timoshenko's "
-          "dynamically and those above by their quasi-static response (docs/reference_model.md §2.3.1)", None,
-          default=ReferenceOptions.default("reference_stress_band"),
-          choices=ReferenceOptions.choices("reference_stress_band")),
+    _reference_choice("reference_strike_force", "the peak contact force of the reference model's strikes at the "
+                      "tool joints: the modes' own, or each strike's local model from its onset speed (the joint's "
+                      "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3), after the run "
+                      "('local') or its force history applied to the modes in the run ('pulse', §2.4)"),
+    _reference_choice("reference_strike_stress", "the bending of the reference model's strikes at the tool joints: "
+                      "the modes' own with their quasi-static correction, or the modes plus the strike's local bending "
+                      "that the modes left out miss (docs/reference_model.md §2.3)"),
+    _reference_choice("reference_stress_band", "the band of the reference model's stresses: every kept mode's dynamic "
+                      "response, or the modes where the Euler-Bernoulli beam holds within 5 % of Timoshenko's "
+                      "dynamically and those above by their quasi-static response (docs/reference_model.md §2.3.1)"),
+    _reference_choice("reference_drag_quadrature", "the rule the reference model sums the mud's quadratic drag by "
+                      "along the section: Gauss-Legendre at 2N + 8 points, or the periodic midpoint rule at 3N/2 + 8 "
+                      "evenly spaced points, exact on the modes' products and cheaper (docs/reference_model.md §4)"),
+    _reference_choice("reference_drag_precision", "the precision of the reference model's drag sums in its compiled "
+                      "integrator: double, or single (float32: rounding 1e-7 of the drag, far below its quadrature's "
+                      "error, and faster; docs/reference_model.md §4)"),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "

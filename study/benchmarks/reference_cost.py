@@ -13,7 +13,9 @@ stated errors. Run from a checkout's root::
 
 (``--budget`` the revolutions' budget, ``reference_max_revolutions``, 80 by default; ``--options`` the option sets,
 ``default`` and ``pulse/local``: ``reference_strike_force = "pulse"``, ``reference_strike_stress = "local"``,
-``reference_window_growth = "figure"``.)
+``reference_window_growth = "figure"``; ``--after-inputs`` inputs the 'after' runs add, e.g.
+``'{"reference_drag_quadrature": "uniform"}'`` with ``--after .`` the checkout of ``--before``: an opt-in option against
+the default.)
 """
 
 from __future__ import annotations
@@ -119,8 +121,11 @@ def main(argv=None) -> int:
     parser.add_argument("--options", nargs="+", default=["default", "pulse/local"])
     parser.add_argument("--budget", type=int, default=80)
     parser.add_argument("--rounds", type=int, default=3, help="runs of each point, before and after alternating")
+    parser.add_argument("--after-inputs", default="{}",
+                        help="inputs (JSON) the 'after' runs add, e.g. an opt-in option measured against the default")
     parser.add_argument("--json", help="write the rows here too")
     args = parser.parse_args(argv)
+    after_inputs = json.loads(args.after_inputs)
     before, after = (Worker(root, args.results, args.config) for root in (args.before, args.after))
     print(f"before: {before.ready}\nafter: {after.ready}", file=sys.stderr)
     rows = []
@@ -129,7 +134,8 @@ def main(argv=None) -> int:
             for modes in args.modes:
                 for index in args.indices:
                     inputs = options(name, modes, args.budget)
-                    runs = [(before.run(index, inputs), after.run(index, inputs)) for _ in range(args.rounds)]
+                    runs = [(before.run(index, inputs), after.run(index, {**inputs, **after_inputs}))
+                            for _ in range(args.rounds)]
                     row = dict(index=index, modes=modes, options=name, before=runs[0][0], after=runs[0][1])
                     for key, at in (("before", 0), ("after", 1)):  # the least CPU of the rounds: the load only adds
                         row[key] = dict(row[key], cpu=min(r[at]["cpu"] for r in runs),

@@ -119,7 +119,8 @@ def test_a_held_contact_is_at_rest_where_the_continuous_beam_rests(paper_inputs,
         sy = whirl_kernel.kernel_system(m.system())
         kernel = m.extend(z)
         out, fc, pen = np.zeros(kernel.size), np.zeros((1, 3)), np.zeros((1, 2))
-        whirl_kernel.rhs(0.0, kernel, np.zeros(1), out, fc, pen, np.zeros((6, m.drag_weights.size)), sy)
+        scratch = whirl_kernel.drag_scratch(m.kernel_modes, m.drag_weights.size)
+        whirl_kernel.rhs(0.0, kernel, np.zeros(1), out, fc, pen, scratch, sy)
         k = m.kernel_modes
         accel = np.max(np.abs(out[2 * k:4 * k])) / (m.side[0])
         assert bool(accel < 1e-9) is at_rest, (residual, accel, fc[0, 2] / F)

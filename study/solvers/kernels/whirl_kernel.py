@@ -157,8 +157,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     """ż into ``out`` (without ``linear``, only its nonlinear part N(t, z), ż − Lz: the modal terms q̇ and
     −ω_n² q − d_n q̇ left out, as the Lawson step takes them exactly); contact forces on the pipe (F_y, F_z, F_n)
     per point into ``fc`` (P, 3); penetration
-    and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (6, G) holds the drag points' velocities and
-    their half sums.
+    and its rate (δ, δ̇) per point into ``pen`` (P, 2); ``scratch`` (:func:`drag_scratch`) holds the drag points'
+    velocities and their half sums, and the modes' velocities, in the drag sums' precision (SH's dtype).
 
     sy = (omega2, damping, eccentric (1 or 2, N: in phase with cos Ωt, and in quadrature where the joints'
     eccentricities turn), side, SH (N, ⌈G/2⌉), w, phi, clearance, radius, K, kp, cp, fpar, parity (N,),
@@ -166,7 +166,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     strikes' pulse tables, floor (P,), log speeds (S,), log peaks and log durations (P, S), shape coefficients (P, S, 4,
     G − 1), the per-point pulse state (P, N_PULSE_STATE) and the shapes (P, N) at the points whose velocity is a pulse's
     onset speed (none, (0, N): the whole approach rate), :func:`kernel_system`):
-    the drag points pair about midspan (the Gauss–Legendre nodes g and G − 1 − g), where mode n's shape is
+    the drag points pair about midspan (x_g and x_{G−1−g} = L − x_g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
     there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
     mode's drag the sum over the pairs of its shape times the pair's forces added (symmetric) or subtracted —
@@ -208,20 +208,19 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
         # contiguous rows of SH
         Hm = SH.shape[1]
         H = G // 2
-        uy = scratch[0]
-        uz = scratch[1]
-        ey = scratch[2]
-        ez = scratch[3]
-        oy = scratch[4]
-        oz = scratch[5]
+        uy, uz, ey, ez, oy, oz = scratch[0], scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
+        wy, wz = scratch[6], scratch[7]  # the modes' velocities in the sums' precision (SH's: float64 or float32)
+        for n in range(N):
+            wy[n] = z[2 * N + n]
+            wz[n] = z[3 * N + n]
         for g in range(Hm):
             ey[g] = 0.0
             ez[g] = 0.0
             oy[g] = 0.0
             oz[g] = 0.0
         for n in range(N):
-            vy = z[2 * N + n]
-            vz = z[3 * N + n]
+            vy = wy[n]
+            vz = wz[n]
             if parity[n] > 0.0:
                 for g in range(Hm):
                     ey[g] += SH[n, g] * vy
@@ -257,8 +256,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
             oy[H] = uy[H]
             oz[H] = uz[H]
         for n in range(N):
-            ay = 0.0
-            az = 0.0
+            ay = az = ey[0] - ey[0]  # 0 in the sums' precision
             if parity[n] > 0.0:
                 for g in range(Hm):
                     ay += SH[n, g] * ey[g]
@@ -697,9 +695,10 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
             rec_f[row, p, j] = fc[p, j]
 
 
-def kernel_system(sy: tuple) -> tuple:
+def kernel_system(sy: tuple, drag_dtype=float) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
-    S (G, N)): S replaced by its left half transposed, and each mode's parity appended (:func:`drag_halves`) before
+    S (G, N)): S replaced by its left half transposed (in ``drag_dtype``, the drag sums' precision: float64, or
+    float32 with ``reference_drag_precision = "single"``), and each mode's parity appended (:func:`drag_halves`) before
     the residual flexibility per point; then the strikes' pulse tables (the model's, in logs; without them a floor no
     speed reaches) and a fresh per-point pulse state (P, :data:`N_PULSE_STATE`), which :func:`advance` updates (the
     clearances are the kernel's own copy: a shifted wall moves them); last the shapes (P, N) whose velocity at a point
@@ -717,6 +716,7 @@ def kernel_system(sy: tuple) -> tuple:
         pfloor, speeds = np.full(P, np.inf), np.array([1e-3, 1e1])
         peaks, durations, coef = np.ones((P, 2)), np.ones((P, 2)), np.zeros((P, 2, 4, 1))
     SH, parity = drag_halves(np.ascontiguousarray(S, dtype=float))
+    SH = SH.astype(drag_dtype, copy=False)  # the drag sums' precision
     # the eccentric load's modal amplitudes as rows (in phase with cos Ωt; in quadrature, where complex: the joints'
     # eccentricities turned, string_modes.eccentric_factors)
     ecc = (np.stack((ecc.real, ecc.imag)) if np.iscomplexobj(ecc) else np.asarray(ecc, float)[None, :]).astype(float)
@@ -727,16 +727,21 @@ def kernel_system(sy: tuple) -> tuple:
             np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])))
 
 
+def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
+    """The drag's scratch of :func:`rhs` for N modes and G drag points, (8, max(G, N)) in the drag sums' precision
+    (``dtype``, that of the drag shapes SH: float64, or float32 with ``reference_drag_precision = "single"``)."""
+    return np.zeros((8, max(n_drag, n_modes)), dtype=dtype)
 
-def workspace(n_modes: int, n_points: int, n_drag: int) -> tuple:
+
+def workspace(n_modes: int, n_points: int, n_drag: int, drag_dtype=float) -> tuple:
     """The arrays :func:`advance` works in, for N modes, P contact points and G drag points: the stages k and their
     Lawson images kv (7, 4N + 4), the propagators (2, 5, N, 4), four states (4N + 4,), forces (P, 3) and penetrations
-    (P, 2) at the stages and at the step's end, the drag's scratch (6, G), and the switch location's coefficients and
-    values for a Lawson step, (4N, 5) and (4N,), and for a Dormand–Prince step, (4, 5) and (4,)."""
+    (P, 2) at the stages and at the step's end, the drag's scratch (:func:`drag_scratch`), and the switch location's
+    coefficients and values for a Lawson step, (4N, 5) and (4N,), and for a Dormand–Prince step, (4, 5) and (4,)."""
     N, P, n = n_modes, n_points, 4 * n_modes + 4
     return (np.zeros((7, n)), np.zeros((7, n)), np.zeros((2, 5, N, 4)), np.zeros(n), np.zeros(n), np.zeros(n),
-            np.zeros(n), np.zeros((P, 3)), np.zeros((P, 3)), np.zeros((P, 2)), np.zeros((P, 2)), np.zeros((6, n_drag)),
-            np.zeros((4 * N, 5)), np.zeros(4 * N), np.zeros((4, 5)), np.zeros(4))
+            np.zeros(n), np.zeros((P, 3)), np.zeros((P, 3)), np.zeros((P, 2)), np.zeros((P, 2)),
+            drag_scratch(N, n_drag, drag_dtype), np.zeros((4 * N, 5)), np.zeros(4 * N), np.zeros((4, 5)), np.zeros(4))
 
 
 @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)

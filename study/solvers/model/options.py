@@ -310,6 +310,15 @@ class ReferenceOptions(MethodOptions):
     #: the compiled integrator's scheme: the Lawson (integrating-factor) form of Dormand–Prince 5(4), exact on the
     #: modes' linear part, or Dormand–Prince 5(4) on the whole right-hand side (whirl_kernel.advance)
     reference_integrator: str = option("lawson-flight", INTEGRATOR_SCHEMES)
+    #: the rule the mud's quadratic drag is summed by along the section: Gauss–Legendre at 2N + 8 points ("gauss"), or
+    #: the periodic midpoint rule at 3N/2 + 8 evenly spaced points ("uniform": exact on the periodic basis' products,
+    #: fewer points and a smaller quadrature error; opt-in; docs/reference_model.md §4, §6,
+    #: reference.model.drag_quadrature)
+    reference_drag_quadrature: str = option("gauss", ("gauss", "uniform"))
+    #: the precision of the drag's sums over its points in the compiled integrator: "double", or "single" (float32:
+    #: twice the numbers a vector instruction takes, rounding 1e-7 of the drag, far below its quadrature's error;
+    #: opt-in, docs/reference_model.md §4)
+    reference_drag_precision: str = option("double", ("double", "single"))
     reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]

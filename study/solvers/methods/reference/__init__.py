@@ -23,7 +23,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
 - **mud**: added mass in M; quadratic drag −D |u̇| u̇ per unit length with the velocity's magnitude in
   both directions (``reference_damping = "drag"``, default; D from
   :func:`study.physics.section.drag_coefficient_per_length`), projected on the modes by
-  Gauss–Legendre quadrature with 2N + 8 points. For validation ``"viscous"`` (modal damping ratio
+  Gauss–Legendre quadrature with 2N + 8 points (``reference_drag_quadrature = "uniform"``: the periodic midpoint rule
+  with 3N/2 + 8, :func:`model.drag_quadrature`). For validation ``"viscous"`` (modal damping ratio
   ``damping_ratio`` in every mode) and ``"none"``; ``"drag+viscous"`` the drag and each mode's viscous loss in
   the mud (:func:`study.physics.damping.viscous_modal_damping_ratio`, ``plastic_viscosity``).
 - **contact points**: the tool joints at 0, s, 2s, … (s = ``joint_length``; x = L is the joint at 0 again),

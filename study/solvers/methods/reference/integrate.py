@@ -82,7 +82,8 @@ class Integrator:
             raise ValueError(f"reference_integrator = {scheme!r}; allowed: {', '.join(SCHEMES)}")
         self.model = model
         self.scheme = SCHEME_CODES[scheme]
-        self.sy = whirl_kernel.kernel_system(model.system())
+        drag_dtype = np.float32 if model.drag_precision == "single" else np.float64  # the drag sums' precision
+        self.sy = whirl_kernel.kernel_system(model.system(), drag_dtype)
         N, P = model.kernel_modes, model.points.size
         # the kernel's state: with the residual vectors P more modes (WhirlModel.extend)
         self.z = model.extend(np.zeros(4 * model.n_modes + 4) if state is None else state)
@@ -110,7 +111,8 @@ class Integrator:
         self.h_max = model.period / 64.0 if scheme != "dopri5" else min(model.period / 64.0, self.h_stable)
         #: the strikes' pulse state per point (whirl_kernel.P_*; reference_strike_force = "pulse"), kept across runs
         self.pulse = self.sy[20]
-        self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size)  #: the kernel's room, kept across runs
+        #: the kernel's room, kept across runs
+        self.buffers = whirl_kernel.workspace(N, P, model.drag_weights.size, drag_dtype)
         self.steps = 0
         self.work = np.zeros(whirl_kernel.N_STATS)  #: the kernel's stats summed over the runs (whirl_kernel.S_*)
         self.outcome = whirl_kernel.OK

@@ -98,6 +98,8 @@ class WhirlModel:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
     #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
     stress_band: float = float("inf")
+    #: the precision of the integrator's drag sums (``reference_drag_precision``: "double", or "single", float32)
+    drag_precision: str = "double"
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -444,9 +446,8 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         zeta = viscous_modal_damping_ratio(omega, M, scene.mud_density, r_o, scene.mud_viscosity
                                            / max(scene.mud_density, 1e-300), hole_r)
         damping = np.nan_to_num(2.0 * np.asarray(zeta) * omega)
-    G = 2 * N + 8
-    gx, gw = whirl.gauss_legendre(G)
-    shapes = lift(mode_shapes(0.5 * L * (gx + 1), L, N))
+    drag_x, drag_w = drag_quadrature(L, N, option.reference_drag_quadrature)
+    shapes = lift(mode_shapes(drag_x, L, N))
     drag = props["drag_coefficient_per_length"] if damping_model in ("drag", "drag+viscous") else 0.0
     e = scene.restitution
     law = CONTACT_LAWS.index(option.contact_law)
@@ -457,7 +458,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
     cp = linear_contact_damping(kp, m_eff, e)
     model = WhirlModel(span=L, modes=modes, omega=omega, mass=mass, rotary_speed=Om, points=x, kinds=kinds,
                       clearance=clearance, radius=radius, stiffness=K, phi=phi, eccentric=eccentric, side=side,
-                      damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=0.5 * L * gw,
+                      damping=damping, drag=float(drag), drag_shapes=shapes, drag_weights=drag_w,
                       friction=mu, slip_velocity=float(option.slip_velocity),
                       restitution=e, hysteresis=calibrated_hysteresis(e), law=law,
                       penalty_stiffness=np.asarray(kp, float), penalty_damping=np.asarray(cp, float), props=props,
@@ -471,7 +472,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
         model.residual = residual_flexibility(model)
         model.residual_mass = residual_second_moment(model) / model.residual**2
-        model.ritz = residual_ritz(model, 0.5 * L * (gx + 1),
+        model.ritz = residual_ritz(model, drag_x,
                                    float(option.damping_ratio) if damping_model == "viscous" else 0.0,
                                    radiating=option.reference_residual == "radiating")
         model.recovery = option.reference_recovery
@@ -482,11 +483,33 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         # contact points do not lie symmetrically about the middle (the residual vectors would mix the modes' parities)
         model.residual = residual_flexibility(model)
         model.penalty_stiffness = model.penalty_stiffness / (1.0 + model.penalty_stiffness * model.residual)
+    model.drag_precision = option.reference_drag_precision
     if option.reference_strike_force == "pulse" and law == 0:
         model.pulse = strike_pulses(model)
     if option.reference_stress_band == "timoshenko":
         model.stress_band = stress_band_edge(scene)
     return model
+
+
+def drag_quadrature(span: float, modes: int, rule: str = "gauss") -> tuple[np.ndarray, np.ndarray]:
+    """The points x_g [m] and weights w_g [m] at which the model sums the mud's quadratic drag over the section
+    [0, L] (the integral ∫ ψ_n D |u̇| u̇ dx of docs/reference_model.md §1, §4) for N ``modes``, symmetric about
+    midspan (the kernel sums the drag by mirror pairs, :func:`whirl_kernel.drag_halves`). ``"gauss"``:
+    Gauss–Legendre with 2N + 8 points. ``"uniform"``: the midpoint rule with ⌊3N/2⌋ + 8 evenly spaced points
+    x_g = (g + ½) L/G, weights L/G — the trapezoidal rule of a period, which integrates e^{2πi h x/L} exactly for
+    every harmonic 0 < |h| < G (Trefethen & Weideman, SIAM Rev. 56, 385–458, 2014, doi:10.1137/130932132), so the
+    products of three of the periodic basis' N functions (harmonics up to 3N/2, :func:`mode_shapes`) exactly, where
+    Gauss–Legendre, made for polynomials on an interval, needs more points per harmonic (docs/reference_model.md §6:
+    at 64 and 128 modes fewer points and a smaller quadrature error than "gauss"'s). The drag's |u̇| u̇ is no such
+    product: neither rule is exact on it. Raises ValueError for another rule."""
+    if rule == "gauss":
+        gx, gw = whirl.gauss_legendre(2 * modes + 8)
+        return 0.5 * span * (gx + 1), 0.5 * span * gw
+    if rule == "uniform":
+        G = 3 * modes // 2 + 8
+        return (np.arange(G) + 0.5) * (span / G), np.full(G, span / G)
+    raise ValueError(f"reference_drag_quadrature = {rule!r}; allowed: "
+                     f"{', '.join(ReferenceOptions.choices('reference_drag_quadrature'))}")
 
 
 #: How far [-] below the Euler–Bernoulli beam's frequency Timoshenko's may lie within the stresses' band
