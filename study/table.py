@@ -57,6 +57,8 @@ EXTRA_OUTPUTS = {
     "reference_residual": (None, "how the reference model gave back the modes left out: static in series with the "
                                  "contacts, as residual vectors in the modes (dynamic; radiating: damped by the "
                                  "bending waves' resistance), or not at all (none)"),
+    "modal_by_doubling": (None, "the modal part of the errors is each figure's change from the run at half the modes "
+                                "(the residual vectors, the strikes' pulses), not the in-run measure"),
     "steps": ("1", "integrator steps"),
     "quasi_static_correction": (None, "the quasi-static correction for the modes left out was applied"),
     "modal_error": (None, "modal part of each figure's error: from the strikes replayed at more modes, or the size "
