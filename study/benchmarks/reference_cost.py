@@ -51,8 +51,9 @@ for line in sys.stdin:
     result = solve_point(inputs, "reference")
     cpu = time.process_time() - start
     values = {k: float(v) for k, v in result.values.items() if isinstance(v, (int, float, np.floating, np.integer))}
+    budget = {k: float(v) for k, v in (result.extras.get("energy_budget") or {}).items()}
     print(json.dumps(dict(cpu=cpu, status=result.status, error=float(result.error_estimate), values=values,
-                          steps=int(result.extras.get("steps") or 0))), flush=True)
+                          steps=int(result.extras.get("steps") or 0), energy_budget=budget)), flush=True)
 """
 
 
