@@ -150,7 +150,9 @@ def main(argv=None) -> int:
                         first = before.run(index, inputs)
                         runs.append((first, [after.run(index, {**inputs, **extra}) for extra in after_inputs]))
                     for at, extra in enumerate(after_inputs):
-                        label = " ".join([name] + [f"{k}={v}" for k, v in extra.items()]) if len(after_inputs) > 1 else name
+                        label = name
+                        if len(after_inputs) > 1:
+                            label = " ".join([name] + [f"{k}={v}" for k, v in extra.items()])
                         row = dict(index=index, modes=modes, options=label, before=runs[0][0], after=runs[0][1][at])
                         for key, pick in (("before", lambda r: r[0]), ("after", lambda r: r[1][at])):
                             # the least CPU of the rounds: the load only adds

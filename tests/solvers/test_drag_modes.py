@@ -37,20 +37,6 @@ def slow_system(model, rest="linear"):
         model.slow_drag = None
 
 
-def drag(sy, z):
-    """(2N,) the drag's accelerations of the state z (the right-hand side with the drag less without) and its power."""
-    N, P = sy[0].size, sy[6].shape[0]
-    no_drag = sy[12].copy()
-    no_drag[0] = 0.0
-    parts = []
-    for system in (sy, sy[:12] + (no_drag,) + sy[13:]):
-        out = np.zeros(4 * N + 4)
-        whirl_kernel.rhs(0.0, z, np.zeros(P), out, np.zeros((P, 3)), np.zeros((P, 2)),
-                         whirl_kernel.drag_scratch(N, sy[5].size, sy[4].dtype), system, False)
-        parts.append(out)
-    return parts[0][2 * N:4 * N] - parts[1][2 * N:4 * N], parts[0][4 * N + 2]
-
-
 def test_the_default_sums_every_modes_drag_and_a_count_above_the_modes_changes_nothing(model):
     assert model.slow_drag is None
     sy = whirl_kernel.kernel_system(model.system())
@@ -60,15 +46,15 @@ def test_the_default_sums_every_modes_drag_and_a_count_above_the_modes_changes_n
                                   "reference_drag_modes": "32"}).slow_drag is None
 
 
-def test_the_slow_modes_drag_is_summed_at_their_own_rule_and_alone_moving_matches_every_modes(model):
+def test_the_slow_modes_drag_is_summed_at_their_own_rule_and_alone_moving_matches_every_modes(model, kernel_drag):
     sy = slow_system(model)
     assert sy[4].shape[0] == SLOW and sy[5].size == 2 * SLOW + 8  # Gauss–Legendre at 2N_d + 8 points
     rng = np.random.default_rng(5)
     z = np.zeros(4 * MODES + 4)
     for part in (2, 3):  # the slow modes alone moving, a 1/n spectrum [m/s]
         z[part * MODES:part * MODES + SLOW] = rng.standard_normal(SLOW) / np.maximum(np.arange(SLOW), 1.0)
-    full, power = drag(whirl_kernel.kernel_system(model.system()), z)
-    slow, slow_power = drag(sy, z)
+    full, power = kernel_drag(whirl_kernel.kernel_system(model.system()), z)
+    slow, slow_power = kernel_drag(sy, z)
     low = np.r_[0:SLOW, MODES:MODES + SLOW]
     # the two rules sum the same field: they differ by their quadrature errors (|u̇| u̇ is no polynomial), measured
     # 1.9e-3 of the force and 2.3e-4 of the power
@@ -78,7 +64,7 @@ def test_the_slow_modes_drag_is_summed_at_their_own_rule_and_alone_moving_matche
     assert np.all(slow[np.r_[SLOW:MODES, MODES + SLOW:2 * MODES]] == 0.0)
 
 
-def test_the_linear_equivalent_of_a_uniform_whirl_is_the_derivative_of_the_drag(model):
+def test_the_linear_equivalent_of_a_uniform_whirl_is_the_derivative_of_the_drag(model, kernel_drag):
     # u̇_q = (a, b)/√2 along the whole span (the rigid translation ψ_0 = 1/√2 alone among the slow modes): the drag's
     # Jacobian d(D |u̇| u̇)/du̇ = D (|u̇| I + u̇ u̇ᵀ/|u̇|) is the same everywhere, so a fast mode's part is exactly
     # D |u̇_q| (I + e eᵀ) ∫ ψ_n² dx per modal mass; against the full drag's derivative by central differences of mode
@@ -87,8 +73,7 @@ def test_the_linear_equivalent_of_a_uniform_whirl_is_the_derivative_of_the_drag(
     sy_full, sy = whirl_kernel.kernel_system(model.system()), slow_system(model)
     z = np.zeros(4 * MODES + 4)
     z[2 * MODES], z[3 * MODES] = 0.3, 0.2
-    base, _ = drag(sy_full, z)
-    linear, _ = drag(sy, z)
+    linear, _ = kernel_drag(sy, z)
     h = 1e-6
     for n in range(SLOW, MODES):
         for part in (2, 3):
@@ -96,10 +81,10 @@ def test_the_linear_equivalent_of_a_uniform_whirl_is_the_derivative_of_the_drag(
             up, down = z.copy(), z.copy()
             up[i] += h
             down[i] -= h
-            exact = (drag(sy_full, up)[0] - drag(sy_full, down)[0])[i - 2 * MODES] / (2 * h)
+            exact = (kernel_drag(sy_full, up)[0] - kernel_drag(sy_full, down)[0])[i - 2 * MODES] / (2 * h)
             zz = z.copy()
             zz[i] += h
-            equivalent = (drag(sy, zz)[0] - linear)[i - 2 * MODES] / h
+            equivalent = (kernel_drag(sy, zz)[0] - linear)[i - 2 * MODES] / h
             assert equivalent == pytest.approx(exact, rel=1e-6), (n, part)
     # the closed form itself: a push (h, h) on mode N_d gives D |u̇_q| (I + e eᵀ) (1, 1) ∫ ψ_n² dx per modal mass
     speed = np.hypot(0.3, 0.2) * model.shapes(np.zeros(1))[0, 0]
@@ -107,16 +92,16 @@ def test_the_linear_equivalent_of_a_uniform_whirl_is_the_derivative_of_the_drag(
     zz = z.copy()
     zz[2 * MODES + SLOW] += h
     zz[3 * MODES + SLOW] += h
-    got = (drag(sy, zz)[0] - linear)[[SLOW, MODES + SLOW]] / h
+    got = (kernel_drag(sy, zz)[0] - linear)[[SLOW, MODES + SLOW]] / h
     closed = model.drag * speed * model.span * sy[22][SLOW] * (np.ones(2) + e * e.sum()) / model.mass
     assert got == pytest.approx(-closed, rel=1e-6)  # a drag: against the push
 
 
-def test_without_the_rest_the_fast_modes_feel_no_drag_and_a_bad_count_is_named(model):
+def test_without_the_rest_the_fast_modes_feel_no_drag_and_a_bad_count_is_named(model, kernel_drag):
     sy = slow_system(model, "none")
     z = np.zeros(4 * MODES + 4)
     z[2 * MODES], z[2 * MODES + SLOW + 1] = 0.3, 0.1
-    force, _ = drag(sy, z)
+    force, _ = kernel_drag(sy, z)
     assert np.all(force[SLOW:MODES] == 0.0) and force[0] != 0.0
     point = load(ROOT / "configs" / "default.toml").point()
     with pytest.raises(ValueError, match="reference_drag_modes = '12'; allowed: all, band, 32"):
