@@ -308,6 +308,11 @@ FIELDS: tuple[Field, ...] = (
     _reference_choice("reference_drag_precision", "the precision of the reference model's drag sums in its compiled "
                       "integrator: double, or single (float32: rounding 1e-7 of the drag, far below its quadrature's "
                       "error, and faster; docs/reference_model.md §4)"),
+    _reference_choice("reference_drag_modes", "the modes whose mud drag the reference model sums exactly: all, those "
+                      "up to the stresses' band edge, or the first 32; the rest by reference_drag_rest "
+                      "(docs/reference_model.md §4)"),
+    _reference_choice("reference_drag_rest", "with reference_drag_modes, the drag of the modes above: linearised "
+                      "about the slow modes' velocity field, or none (docs/reference_model.md §4)"),
     Field("solver.sdof_damping", "sdof_damping", "damping of the one-degree-of-freedom model", None,
           default=SdofOptions.default("sdof_damping"), choices=SdofOptions.choices("sdof_damping")),
     Field("fatigue.sn_curve", "sn_curve", "S-N curve in air of DNV-RP-C203 (2016) Table 2-1 (B1: non-welded base "

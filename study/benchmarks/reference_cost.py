@@ -15,7 +15,8 @@ stated errors. Run from a checkout's root::
 ``default`` and ``pulse/local``: ``reference_strike_force = "pulse"``, ``reference_strike_stress = "local"``,
 ``reference_window_growth = "figure"``; ``--after-inputs`` inputs the 'after' runs add, e.g.
 ``'{"reference_drag_quadrature": "uniform"}'`` with ``--after .`` the checkout of ``--before``: an opt-in option against
-the default.)
+the default; several: each a variant, run after the same 'before' run of a point). The table adds the drag's share
+of the losses, drag over drag and contact loss of each run's window (its energy budget).)
 """
 
 from __future__ import annotations
@@ -51,8 +52,9 @@ for line in sys.stdin:
     result = solve_point(inputs, "reference")
     cpu = time.process_time() - start
     values = {k: float(v) for k, v in result.values.items() if isinstance(v, (int, float, np.floating, np.integer))}
+    budget = {k: float(v) for k, v in (result.extras.get("energy_budget") or {}).items()}
     print(json.dumps(dict(cpu=cpu, status=result.status, error=float(result.error_estimate), values=values,
-                          steps=int(result.extras.get("steps") or 0))), flush=True)
+                          steps=int(result.extras.get("steps") or 0), energy_budget=budget)), flush=True)
 """
 
 
@@ -91,7 +93,7 @@ def table(rows: list[dict]) -> str:
     """The comparison as a markdown table: CPU per revolution before and after and their ratio, revolutions, status
     and error estimate, and each figure's relative change after against before with the larger stated error."""
     head = ("| point | modes | options | ms/rev before | ms/rev after | ratio | revolutions before/after | status "
-            "before/after | error before/after | figures' change / stated error |")
+            "before/after | error before/after | figures' change / stated error | drag loss share before/after |")
     lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
     for r in rows:
         b, a = r["before"], r["after"]
@@ -106,8 +108,16 @@ def table(rows: list[dict]) -> str:
         lines.append(f"| {r['index']} | {r['modes']} | {r['options']} | {per[0]:.1f} | {per[1]:.1f} | "
                      f"{per[0] / per[1]:.2f} | {b['values'].get('revolutions_simulated', 0):.0f}/"
                      f"{a['values'].get('revolutions_simulated', 0):.0f} | {b['status']}/{a['status']} | "
-                     f"{b['error']:.2%}/{a['error']:.2%} | {', '.join(changes)} |")
+                     f"{b['error']:.2%}/{a['error']:.2%} | {', '.join(changes)} | "
+                     f"{drag_share(b):.1%}/{drag_share(a):.1%} |")
     return "\n".join(lines)
+
+
+def drag_share(run: dict) -> float:
+    """The drag's loss over the drag and contact losses of a run's window (its energy budget; NaN without)."""
+    budget = run.get("energy_budget") or {}
+    drag, contact = budget.get("drag_loss", float("nan")), budget.get("contact_loss", float("nan"))
+    return drag / (drag + contact) if drag + contact > 0 else float("nan")
 
 
 def main(argv=None) -> int:
@@ -121,11 +131,12 @@ def main(argv=None) -> int:
     parser.add_argument("--options", nargs="+", default=["default", "pulse/local"])
     parser.add_argument("--budget", type=int, default=80)
     parser.add_argument("--rounds", type=int, default=3, help="runs of each point, before and after alternating")
-    parser.add_argument("--after-inputs", default="{}",
-                        help="inputs (JSON) the 'after' runs add, e.g. an opt-in option measured against the default")
+    parser.add_argument("--after-inputs", nargs="+", default=["{}"],
+                        help="inputs (JSON) the 'after' runs add, e.g. an opt-in option measured against the default; "
+                             "several: each a variant run after the same 'before' run")
     parser.add_argument("--json", help="write the rows here too")
     args = parser.parse_args(argv)
-    after_inputs = json.loads(args.after_inputs)
+    after_inputs = [json.loads(text) for text in args.after_inputs]
     before, after = (Worker(root, args.results, args.config) for root in (args.before, args.after))
     print(f"before: {before.ready}\nafter: {after.ready}", file=sys.stderr)
     rows = []
@@ -134,14 +145,21 @@ def main(argv=None) -> int:
             for modes in args.modes:
                 for index in args.indices:
                     inputs = options(name, modes, args.budget)
-                    runs = [(before.run(index, inputs), after.run(index, {**inputs, **after_inputs}))
-                            for _ in range(args.rounds)]
-                    row = dict(index=index, modes=modes, options=name, before=runs[0][0], after=runs[0][1])
-                    for key, at in (("before", 0), ("after", 1)):  # the least CPU of the rounds: the load only adds
-                        row[key] = dict(row[key], cpu=min(r[at]["cpu"] for r in runs),
-                                        cpus=[r[at]["cpu"] for r in runs])
-                    rows.append(row)
-                    print(table([row]).splitlines()[-1], file=sys.stderr, flush=True)
+                    runs = []
+                    for _ in range(args.rounds):  # before, then each 'after' variant, in turn
+                        first = before.run(index, inputs)
+                        runs.append((first, [after.run(index, {**inputs, **extra}) for extra in after_inputs]))
+                    for at, extra in enumerate(after_inputs):
+                        label = name
+                        if len(after_inputs) > 1:
+                            label = " ".join([name] + [f"{k}={v}" for k, v in extra.items()])
+                        row = dict(index=index, modes=modes, options=label, before=runs[0][0], after=runs[0][1][at])
+                        for key, pick in (("before", lambda r: r[0]), ("after", lambda r: r[1][at])):
+                            # the least CPU of the rounds: the load only adds
+                            row[key] = dict(row[key], cpu=min(pick(r)["cpu"] for r in runs),
+                                            cpus=[pick(r)["cpu"] for r in runs])
+                        rows.append(row)
+                        print(table([row]).splitlines()[-1], file=sys.stderr, flush=True)
     finally:
         before.close()
         after.close()

@@ -44,3 +44,25 @@ def default_point():
                            restitution=restitution, mud_density=ppg * 119.826427, mud_flow_velocity=flow * 0.3048)
 
     return point
+
+
+@pytest.fixture(scope="session")
+def kernel_drag():
+    """f(sy, z): the mud drag's part of the compiled integrator's right-hand side (whirl_kernel.rhs without its
+    linear modal terms) at state z: the modes' drag accelerations (2N,) [m/s²], the right-hand side with the drag
+    less without it (sy's drag coefficient 0), and the drag's power [W]."""
+    from study.solvers.kernels import whirl_kernel
+
+    def drag(sy, z):
+        N, P = sy[0].size, sy[6].shape[0]
+        no_drag = sy[12].copy()
+        no_drag[0] = 0.0
+        parts = []
+        for system in (sy, sy[:12] + (no_drag,) + sy[13:]):
+            out = np.zeros(4 * N + 4)
+            whirl_kernel.rhs(0.0, z, np.zeros(P), out, np.zeros((P, 3)), np.zeros((P, 2)),
+                             whirl_kernel.drag_scratch(N, sy[5].size, sy[4].dtype), system, False)
+            parts.append(out)
+        return parts[0][2 * N:4 * N] - parts[1][2 * N:4 * N], parts[0][4 * N + 2]
+
+    return drag

@@ -103,7 +103,7 @@ def test_the_cheaper_drag_leaves_a_thrown_strings_figures_within_half_a_percent(
 
 
 @pytest.mark.parametrize("rule", ["gauss", "uniform"])
-def test_the_drag_summed_in_single_precision_is_the_doubles_to_a_millionth(rule):
+def test_the_drag_summed_in_single_precision_is_the_doubles_to_a_millionth(rule, kernel_drag):
     # the integrator's right-hand side with the drag and without it (its drag part) at 20 random states with a 1/n
     # spectrum of the default study's model at 16 modes: float32 sums round at 6e-8 a term; measured at most 4.2e-7
     # of the drag force and 2.3e-7 of its power over a revolution of the bouncing point 292 at 64 and 128 modes
@@ -112,24 +112,13 @@ def test_the_drag_summed_in_single_precision_is_the_doubles_to_a_millionth(rule)
     systems = {precision: reference.Integrator(reference.build_model({**inputs, "reference_drag_precision": precision}),
                                                1e-6).sy for precision in ("double", "single")}
     assert systems["single"][4].dtype == np.float32 and systems["double"][4].dtype == np.float64
-    N, P = 16, systems["double"][6].shape[0]
+    N = 16
     rng = np.random.default_rng(3)
-
-    def drag(sy, z):
-        no_drag = sy[12].copy()
-        no_drag[0] = 0.0
-        parts = []
-        for system in (sy, sy[:12] + (no_drag,) + sy[13:]):
-            out = np.zeros(4 * N + 4)
-            whirl_kernel.rhs(0.0, z, np.zeros(P), out, np.zeros((P, 3)), np.zeros((P, 2)),
-                             whirl_kernel.drag_scratch(N, sy[5].size, sy[4].dtype), system, False)
-            parts.append(out)
-        return parts[0][2 * N:4 * N] - parts[1][2 * N:4 * N], parts[0][4 * N + 2]
 
     for _ in range(20):
         z = np.zeros(4 * N + 4)
         z[2 * N:4 * N] = rng.standard_normal(2 * N) * np.tile(1.0 / np.maximum(np.arange(N), 1.0), 2)
-        (force, power), (single, single_power) = drag(systems["double"], z), drag(systems["single"], z)
+        (force, power), (single, single_power) = kernel_drag(systems["double"], z), kernel_drag(systems["single"], z)
         assert np.linalg.norm(single - force) < 1e-6 * np.linalg.norm(force)
         assert single_power == pytest.approx(power, rel=1e-6)
 

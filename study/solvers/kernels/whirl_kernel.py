@@ -53,6 +53,7 @@ import numba
 import numpy as np
 
 from study.physics.contact import hertz_force_one
+from study.solvers.kernels.drag import drag_linearised
 from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
                                          P_PEAK, P_PULSE, P_SHIFT, P_SHIFT_MAX, P_SPEED, P_T0, P_WEIGHT,
                                          onset_speed, point_state, start_strike, pulse_force)
@@ -165,7 +166,9 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     fr (P,) the residual flexibility of the modes left out at each point, in series with its Hertz spring; then the
     strikes' pulse tables, floor (P,), log speeds (S,), log peaks and log durations (P, S), shape coefficients (P, S, 4,
     G − 1), the per-point pulse state (P, N_PULSE_STATE) and the shapes (P, N) at the points whose velocity is a pulse's
-    onset speed (none, (0, N): the whole approach rate), :func:`kernel_system`):
+    onset speed (none, (0, N): the whole approach rate), and ∫ ψ_n² dx / L (N,) of the modes above SH's first Nq ≤ N,
+    whose drag is linearised about theirs (zeros: none; :func:`study.solvers.kernels.drag.drag_linearised`),
+    :func:`kernel_system`):
     the drag points pair about midspan (x_g and x_{G−1−g} = L − x_g), where mode n's shape is
     parity_n = (−1)^{n+1} times its own, so the drag is summed over the left half's points only (SH, the shapes
     there, transposed): the velocity at a pair is E ± O (E over the symmetric modes, O over the antisymmetric), and a
@@ -175,6 +178,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
     omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy[:15]
     pcoef, pst = sy[19], sy[20]
     N = omega2.size
+    Nq = SH.shape[0]  # the modes whose drag is summed at the drag points (reference_drag_modes; the rest: sy[22])
     G = wts.size
     D, Om, mu, vreg, inv_m, law = fpar[0], fpar[1], fpar[2], fpar[3], fpar[4], fpar[5]
     co = np.cos(Om * t)
@@ -218,7 +222,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
             ez[g] = 0.0
             oy[g] = 0.0
             oz[g] = 0.0
-        for n in range(N):
+        for n in range(Nq):
             vy = wy[n]
             vz = wz[n]
             if parity[n] > 0.0:
@@ -238,6 +242,8 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
         if Hm > H:  # an odd rule's midspan point, its own mirror
             uy[H] = ey[H] + oy[H]
             uz[H] = ez[H] + oz[H]
+        if Nq < N and sy[22][Nq] > 0.0:
+            p_drag += drag_linearised(z, out, uy, uz, wts, D, sy[22], inv_m, Nq, N)
         for g in range(G):
             sp = np.sqrt(uy[g] * uy[g] + uz[g] * uz[g])
             c = D * sp * wts[g]
@@ -255,7 +261,7 @@ def rhs(t, z, chi, out, fc, pen, scratch, sy, linear=True):
             ez[H] = uz[H]
             oy[H] = uy[H]
             oz[H] = uz[H]
-        for n in range(N):
+        for n in range(Nq):
             ay = az = ey[0] - ey[0]  # 0 in the sums' precision
             if parity[n] > 0.0:
                 for g in range(Hm):
@@ -695,15 +701,16 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
             rec_f[row, p, j] = fc[p, j]
 
 
-def kernel_system(sy: tuple, drag_dtype=float) -> tuple:
+def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed (in ``drag_dtype``, the drag sums' precision: float64, or
     float32 with ``reference_drag_precision = "single"``), and each mode's parity appended (:func:`drag_halves`) before
     the residual flexibility per point; then the strikes' pulse tables (the model's, in logs; without them a floor no
     speed reaches) and a fresh per-point pulse state (P, :data:`N_PULSE_STATE`), which :func:`advance` updates (the
-    clearances are the kernel's own copy: a shifted wall moves them); last the shapes (P, N) whose velocity at a point
+    clearances are the kernel's own copy: a shifted wall moves them); then the shapes (P, N) whose velocity at a point
     is its pulse's onset speed, the model's after its pulse tables (``reference_pulse_speed = "kept"``), else none
-    (0, N): the whole approach rate."""
+    (0, N): the whole approach rate; then ``drag_rest`` (N,), ∫ ψ_n² dx / L of the modes whose drag is linearised
+    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros)."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -724,7 +731,8 @@ def kernel_system(sy: tuple, drag_dtype=float) -> tuple:
             np.ascontiguousarray(fr, dtype=float), np.asarray(pfloor, float), np.log(np.asarray(speeds, float)),
             np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
             np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)),
-            np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])))
+            np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])),
+            np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float))
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:

@@ -319,6 +319,13 @@ class ReferenceOptions(MethodOptions):
     #: twice the numbers a vector instruction takes, rounding 1e-7 of the drag, far below its quadrature's error;
     #: opt-in, docs/reference_model.md §4)
     reference_drag_precision: str = option("double", ("double", "single"))
+    #: the modes whose drag the quadrature sums (at the 2N_d + 8 points, or 3N_d/2 + 8, of their count N_d): "all"
+    #: the kept modes, "band" those up to the stresses' band edge (reference.model.stress_band_edge, ~300 Hz), "32"
+    #: the first 32; the modes above get ``reference_drag_rest`` (opt-in; docs/reference_model.md §4)
+    reference_drag_modes: str = option("all", ("all", "band", "32"))
+    #: with ``reference_drag_modes``, the drag of the modes above N_d: "linear" the quadratic drag linearised about
+    #: the first N_d modes' velocity field, span-averaged (kernels.drag.drag_linearised), or "none"
+    reference_drag_rest: str = option("linear", ("linear", "none"))
     reference_tolerance: float = 1e-4  #: periodicity tolerance, in units of c and Ωc
     damping_ratio: float = 0.05  #: modal damping ratio of ``reference_damping = "viscous"``
     slip_velocity: float = 0.01  #: regularisation velocity of the Coulomb friction [m/s]

@@ -83,7 +83,8 @@ class Integrator:
         self.model = model
         self.scheme = SCHEME_CODES[scheme]
         drag_dtype = np.float32 if model.drag_precision == "single" else np.float64  # the drag sums' precision
-        self.sy = whirl_kernel.kernel_system(model.system(), drag_dtype)
+        self.sy = whirl_kernel.kernel_system(model.system(), drag_dtype,
+                                             None if model.slow_drag is None else model.slow_drag[2])
         N, P = model.kernel_modes, model.points.size
         # the kernel's state: with the residual vectors P more modes (WhirlModel.extend)
         self.z = model.extend(np.zeros(4 * model.n_modes + 4) if state is None else state)

@@ -100,6 +100,11 @@ class WhirlModel:
     stress_band: float = float("inf")
     #: the precision of the integrator's drag sums (``reference_drag_precision``: "double", or "single", float32)
     drag_precision: str = "double"
+    #: the integrator's drag on the first N_d modes alone (``reference_drag_modes``, :func:`drag_on_slow_modes`): their
+    #: shapes (G_d, N_d) at the rule of N_d, its weights (G_d,) [m], and each mode's factor ∫ ψ_n² dx / L [-] (N,) of
+    #: the linear equivalent of the modes above (0 below N_d, and with none; kernels.drag.drag_linearised); None: every
+    #: mode's drag summed
+    slow_drag: tuple | None = None
     cache: dict = field(default_factory=dict, repr=False)  #: the static correction's fields, per stations
 
     @property
@@ -160,10 +165,11 @@ class WhirlModel:
         the residual vectors (:attr:`dynamic`) the kernel's modes are the N + P modes of the kept modes and one
         residual vector per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
         points and loads; the linear damping the modes' ratio at their frequencies (none with the drag)."""
+        S, wts = (self.drag_shapes, self.drag_weights) if self.slow_drag is None else self.slow_drag[:2]
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
                          float(self.law), self.hysteresis])
         if not self.dynamic:
-            return (self.omega**2, self.damping, self.eccentric, self.side, self.drag_shapes, self.drag_weights,
+            return (self.omega**2, self.damping, self.eccentric, self.side, S, wts,
                     self.phi, self.clearance, self.radius, self.stiffness, self.penalty_stiffness,
                     self.penalty_damping, fpar, self.flexibility) + self.pulse_arrays()
         r = self.ritz
@@ -488,7 +494,32 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         model.pulse = strike_pulses(model)
     if option.reference_stress_band == "timoshenko":
         model.stress_band = stress_band_edge(scene)
+    if option.reference_drag_modes != "all":
+        model.slow_drag = drag_on_slow_modes(model, option, scene)
     return model
+
+
+def drag_on_slow_modes(model: WhirlModel, option, scene: Scene) -> tuple | None:
+    """The integrator's drag summed on the first N_d modes alone (``reference_drag_modes``: "band" the modes up to
+    :func:`stress_band_edge`, "32" the first 32; docs/reference_model.md §4): their shapes (G_d, N_d) at the drag rule
+    of N_d (:func:`drag_quadrature`, 2N_d + 8 Gauss points), its weights [m], and the modes above's linear factors
+    ∫ ψ_n² dx / L [-] (N,) (by the full rule; ½ on the periodic basis, less on the joints' modes; 0 below N_d) with
+    ``reference_drag_rest = "linear"``, zeros with "none" (kernels.drag.drag_linearised); None where N_d is every
+    mode. Raises ValueError with the
+    residual vectors (their drag shapes mix the kept modes')."""
+    count = (int(np.count_nonzero(model.omega <= stress_band_edge(scene))) if option.reference_drag_modes == "band"
+             else int(option.reference_drag_modes))
+    if count >= model.n_modes:
+        return None
+    if model.dynamic:
+        raise ValueError(f"reference_drag_modes = {option.reference_drag_modes!r} with reference_residual = "
+                         f"{option.reference_residual!r}: allowed only with series or none")
+    x, w = drag_quadrature(model.span, count, option.reference_drag_quadrature)
+    rest = model.drag_weights @ model.drag_shapes**2 / model.span
+    rest[:count] = 0.0
+    if option.reference_drag_rest != "linear":
+        rest[:] = 0.0
+    return np.ascontiguousarray(model.shapes(x)[:, :count]), w, rest
 
 
 def drag_quadrature(span: float, modes: int, rule: str = "gauss") -> tuple[np.ndarray, np.ndarray]:
