@@ -39,6 +39,7 @@ KERNEL_MODULES = ("study.physics.beam", "study.physics.contact", "study.physics.
                   "study.physics.midspan", "study.physics.roots", "study.solvers.kernels.event_driven",
                   "study.solvers.kernels.extremes", "study.solvers.kernels.stress_kernel",
                   "study.solvers.kernels.whirl_kernel", "study.solvers.kernels.pulse", "study.solvers.kernels.impact",
+                  "study.solvers.kernels.drag",
                   "study.solvers.methods.periodic.span_search")
 #: The kernels the last compile-ahead left in the cache, kept beside them: the ones a run is checked for (a kernel
 #: no method reaches at the warm-up points — a physics function's array form kept for its users and tests, a path
