@@ -86,13 +86,14 @@ def test_the_uniform_rule_sums_the_drag_closer_to_its_integral_than_gauss_legend
     assert np.median(errors["uniform"]) < np.median(errors["gauss"])
 
 
-@pytest.mark.parametrize("options", [{"reference_drag_quadrature": "uniform"}, {"reference_drag_precision": "single"},
-                                     {"reference_drag_quadrature": "uniform", "reference_drag_precision": "single"}])
+@pytest.mark.parametrize("options", [{"reference_drag_quadrature": "uniform"}])
 def test_the_cheaper_drag_leaves_a_thrown_strings_figures_within_half_a_percent(options):
     # the deterministic window of study.benchmarks.reference.fixed_window (the string thrown rigidly at 0.3 m/s onto
     # its joints' wall, a quarter revolution: no chaos, the same start) at 16 modes: measured within 0.072 % (the max
     # normal stress, which moves as much with the drag in single precision alone, a change of 3e-7 of the drag: the
-    # window's largest stress is that sensitive), the peak force within 1.1e-5, the same 11 onsets
+    # window's largest stress is that sensitive), the peak force within 1.1e-5, the same 11 onsets. The single
+    # precision is held here at the right-hand side (the test below): run through the integrator it compiles a second
+    # integrator (3 minutes of the suite's CPU) for the same arithmetic; measured so with both options, 0.072 %
     point = load(ROOT / "configs" / "default.toml").point()
     inputs = {**point, "reference_modes": 16, "reference_max_modes": 16}
     default = fixed_window(inputs, 0.25)
