@@ -241,7 +241,9 @@ def _grid(n_panels: int, max_columns: int = 4) -> tuple[int, int]:
 
 
 def figure_title(fig: Figure, title: str, context: Sequence[str], width_inches: float):
-    width = max(40, int(width_inches * 13))
+    """The figure's title and its context lines, wrapped to the figure's width: about 10 characters of the 11-pt
+    title font per inch (DejaVu Sans averages 0.6 em a character), so that no line runs past the figure's edges."""
+    width = max(40, int(width_inches * 10))
     lines = textwrap.wrap(title, width) + (textwrap.wrap("; ".join(context), width) if context else [])
     fig.suptitle("\n".join(lines), fontsize=11)
 

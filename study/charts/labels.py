@@ -185,7 +185,7 @@ def figure_labels(figure) -> dict[str, list[str]]:
     """The texts a reader sees on a figure, for checks: axis and colour-bar labels, titles, legends.
 
     Returns a dict with ``xlabels``, ``ylabels`` (colour-bar labels included: a vertical colour bar
-    is an axes whose y label is the bar's label), ``titles`` (panel titles and the figure title)
+    is an axes whose y label is the bar's label), ``titles`` (panel titles and the figure title, the last as one line)
     and ``legend`` (legend entries and titles).
     """
     visible = [ax for ax in figure.axes if ax.get_visible()]
@@ -195,8 +195,8 @@ def figure_labels(figure) -> dict[str, list[str]]:
         "titles": [ax.get_title() for ax in visible if ax.get_title()],
         "legend": [],
     }
-    if figure.get_suptitle():
-        out["titles"].append(figure.get_suptitle())
+    if figure.get_suptitle():  # as one line: its wrapping to the figure's width undone
+        out["titles"].append(" ".join(figure.get_suptitle().split()))
     for legend in list(figure.legends) + [ax.get_legend() for ax in visible if ax.get_legend()]:
         if legend.get_title().get_text():
             out["legend"].append(legend.get_title().get_text())

@@ -104,15 +104,31 @@ def contact_force_map(ds: xr.Dataset) -> list[Chart]:
 
 
 def _fatigue_text(ds: xr.Dataset) -> str:
+    """The fatigue limits' inputs: S-N curve, mean-stress correction and the tool joint's stress concentration."""
     curve = _scalar(ds, "sn_curve", "B1")
     correction = _scalar(ds, "mean_stress_correction", "goodman")
     kt = _scalar(ds, "stress_concentration", 1.0)
-    cycles = _scalar(ds, "cycles_per_revolution", 1.0)
     curve_text = SN_CURVES[curve].description if curve in SN_CURVES else f"S-N curve {curve}"
     correction_text = MEAN_STRESS_CORRECTIONS.get(correction, str(correction))
     return (f"S-N curve: {curve_text}; mean stress: {correction_text}; tool-joint stress concentration "
-            f"{format_value(kt) if not isinstance(kt, str) else kt}; "
-            f"{format_value(cycles) if not isinstance(cycles, str) else cycles} cycle(s) per revolution")
+            f"{format_value(kt) if not isinstance(kt, str) else kt}")
+
+
+def _damage_text(ds: xr.Dataset) -> str:
+    """How the damage was counted (study.solvers.model.utilisation.add_limits): Miner's sum over the rainflow-counted
+    stress history where the reference model answered (docs/model.md §5.1), one cycle of the alternating stress per
+    revolution (``cycles_per_revolution``) elsewhere."""
+    cycles = _scalar(ds, "cycles_per_revolution", 1.0)
+    per_revolution = (f"{format_value(cycles) if not isinstance(cycles, str) else cycles} cycle(s) of the alternating "
+                      "stress per revolution")
+    counted = 0
+    if "method" in ds.data_vars and "fatigue_life" in ds.data_vars:
+        answered = np.isfinite(np.asarray(ds["fatigue_life"].values, float))
+        counted = int(np.sum((np.asarray(ds["method"].values).astype(str) == "reference") & answered))
+    if not counted:
+        return f"Miner's rule, {per_revolution}"
+    return (f"Miner's rule: at the reference model's {counted} points over its stress history counted by rainflow "
+            f"(ASTM E1049), elsewhere {per_revolution}")
 
 
 def fatigue_life_map(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_HOURS) -> list[Chart]:
@@ -136,7 +152,7 @@ def fatigue_life_map(ds: xr.Dataset, target_hours: float = DEFAULT_TARGET_LIFE_H
     panel.limits.append((short, f"black outline, hatched: life under the target {format_value(target_hours)} h as "
                          "computed", LIFE_STYLE))
     panel.title += f"\nbar line: target {format_value(target_hours)} h"
-    context = p.context("shortest life") + [_fatigue_text(ds), "Miner's rule at constant amplitude"]
+    context = p.context("shortest life") + [_fatigue_text(ds), _damage_text(ds)]
     caption = ("How many hours the pipe can rotate at each speed and load before fatigue cracks it (worst case over "
                "the other swept inputs, every answered point counted, log scale; a stress off by n % moves the life "
                "by up to (1 + n)⁵).")

@@ -81,6 +81,31 @@ def test_fatigue_life_in_hours_on_a_log_scale_with_the_curve_named(study):
         sorted(cell_boundary(shortest.values < 500.0, p.xedges, p.yedges))
 
 
+def test_the_fatigue_map_says_how_the_damage_was_counted(study):
+    # study.solvers.model.utilisation.add_limits: the reference model's own rainflow count where it answered, one
+    # cycle per revolution elsewhere; the synthetic study's points are all "fast", then two of them "reference"
+    title = figure_labels(fatigue_life_map(study)[0].figure)["titles"][-1]
+    assert "1 cycle(s) of the alternating stress per revolution" in title and "rainflow" not in title
+    mixed = study.copy()
+    method = mixed["method"].values.astype("<U16")
+    method.flat[:2] = "reference"
+    mixed["method"] = (mixed["method"].dims, method)
+    title = figure_labels(fatigue_life_map(mixed)[0].figure)["titles"][-1]
+    assert "at the reference model's 2 points over its stress history counted by rainflow (ASTM E1049)" in title
+    assert "elsewhere 1 cycle(s) of the alternating stress per revolution" in title
+
+
+@pytest.mark.parametrize("draw_map", [stress_limit_maps, fatigue_life_map, contact_force_map])
+def test_each_maps_title_lies_within_its_figure(study, draw_map):
+    # the title and its context wrapped to the figure's width (study.charts.design.figure_title): no line runs past
+    # the figure's edges, where the saved image would cut it
+    for chart in draw_map(study):
+        fig = chart.figure
+        fig.canvas.draw()
+        box = fig._suptitle.get_window_extent()
+        assert box.x0 >= 0 and box.x1 <= fig.bbox.width, (chart.name, box, fig.bbox.width)
+
+
 def test_without_the_plane_the_stresses_are_lines(study):
     line = study.isel(axial_tension=[0])
     charts = stress_limit_maps(line)
