@@ -515,10 +515,10 @@ def drag_on_slow_modes(model: WhirlModel, option, scene: Scene) -> tuple | None:
         raise ValueError(f"reference_drag_modes = {option.reference_drag_modes!r} with reference_residual = "
                          f"{option.reference_residual!r}: allowed only with series or none")
     x, w = drag_quadrature(model.span, count, option.reference_drag_quadrature)
-    rest = model.drag_weights @ model.drag_shapes**2 / model.span
-    rest[:count] = 0.0
-    if option.reference_drag_rest != "linear":
-        rest[:] = 0.0
+    rest = np.zeros(model.n_modes)
+    if option.reference_drag_rest == "linear":
+        rest = model.drag_weights @ model.drag_shapes**2 / model.span
+        rest[:count] = 0.0
     return np.ascontiguousarray(model.shapes(x)[:, :count]), w, rest
 
 
