@@ -376,7 +376,8 @@ def test_auto_reports_the_bouncing_motion_where_both_exist_and_flags_it():
                                                                                     regime=3.0), message="bouncing")
     assert auto._coexisting([lying, bouncing], Tolerances()) is bouncing
     assert bouncing.values["coexisting_motion"] == 1.0 and bouncing.extras["coexisting"]["peak_contact_force"] == 595.4
-    assert "stable sliding motion (sliding: 595.4 N" in bouncing.message
+    assert ("stable sliding motion (peak force 595.4 N, max normal stress 22.04 MPa, alternating stress 5 MPa)"
+            in bouncing.message)
     # where the reference model's run came to the sliding regime after all, its figures the sliding ones within their
     # errors, the sliding answer stands, flagged 0
     lying.message = "lying; a bouncing motion coexists: ..."

@@ -239,10 +239,9 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
     figures = {k: flagged.values.get(k) for k in sliding.FIGURES}
     higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures,
                                        worse=sorted(worse))
-    higher.message += (f"; beside it a stable {flagged.method} motion ({flagged.method}: "
-                       f"{figures['peak_contact_force']:.4g} N, max normal stress "
-                       f"{figures['max_normal_stress'] / 1e6:.4g} MPa), which a pipe run up gently may keep: the "
-                       f"figures are those of the motion reached from rest, which a kick throws it into")
+    stable = ", ".join(_figure(name, figures[name]) for name in sliding.FIGURES if figures[name] is not None)
+    higher.message += (f"; beside it a stable {flagged.method} motion ({stable}), which a pipe run up gently may keep: "
+                       "the figures are those of the motion reached from rest, which a kick throws it into")
     if same_regime:
         higher.message += (f" (its regime the same, its figures above the {flagged.method} motion's beyond their "
                            f"tolerance and errors: " + ", ".join(f"{_figure(name, h)} against "
