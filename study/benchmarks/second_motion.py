@@ -9,6 +9,11 @@ sliding motion (its message says so). Per point, one JSON line: the index, the s
 the check's (bounced, decided, revolutions, the revolutions off the wall, the least contact fraction and the peak
 force after the start-up [N]) and its CPU [s] (``time.process_time``, the check alone: the sliding state's
 model built first). A summary on stdout: the counts and the CPU's median, largest and sum.
+
+The run from rest, long, at a fixed mode count, against the sliding answer (docs/reference_model.md §10: a start-up
+that dies slowly, a chatter the default's modes do not carry)::
+
+    python -m study.benchmarks.second_motion from-rest 128,130,384 48 100 out.jsonl
 """
 
 from __future__ import annotations
@@ -72,6 +77,42 @@ def summary(rows: list[dict]) -> str:
         f"CPU per point: median {np.median(cpu):.3f} s, largest {np.max(cpu):.3f} s, sum {np.sum(cpu):.1f} s"))
 
 
+def from_rest(indices, modes: int, revolutions: int, out) -> list[dict]:
+    """Per point of configs/default.toml's grid at those flat indices: the sliding answer's peak contact force [N]
+    and the reference model's run from its rest on the wall (``reference.initial_state``) at ``modes`` modes, revolution
+    by revolution for ``revolutions`` (whole tens): the largest contact force of each, its means per ten revolutions
+    and over the last 20, and that mean over the sliding force; one JSON line each to ``out``."""
+    from study import config
+    from study.solvers import solve_point
+    from study.solvers.methods import reference
+    from study.solvers.model.options import ReferenceOptions
+    from study.workflow.grid import Grid
+
+    study = config.load(ROOT / "configs" / "default.toml")
+    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))  # the sweep's grid: the results' flat index
+    rows = []
+    for i in indices:
+        inputs = grid.point(int(i))
+        sliding_force = float(solve_point(inputs, "sliding").values.get("peak_contact_force", np.nan))
+        clock = time.process_time()
+        model = reference.build_model({**inputs, "reference_modes": modes})
+        integrator = reference.Integrator(model, ReferenceOptions().reference_rtol, reference.initial_state(model))
+        peaks = np.array([float(np.max(integrator.run(integrator.t + model.period).peak))
+                          for _ in range(revolutions)])
+        last = float(np.mean(peaks[-20:]))
+        row = dict(index=int(i), modes=modes, sliding=sliding_force, last20_mean=last, last20_max=float(np.max(peaks[-20:])),
+                   ratio=last / sliding_force, by10=[round(float(x), 1) for x in peaks[:revolutions // 10 * 10]
+                                                   .reshape(-1, 10).mean(axis=1)],
+                   cpu=time.process_time() - clock)
+        print(json.dumps(row), file=out, flush=True)
+        rows.append(row)
+    return rows
+
+
 if __name__ == "__main__":
-    with open(sys.argv[2], "a") as handle:
-        print(summary(run(sys.argv[1], handle)))
+    if sys.argv[1] == "from-rest":
+        with open(sys.argv[5], "a") as handle:
+            from_rest([int(i) for i in sys.argv[2].split(",")], int(sys.argv[3]), int(sys.argv[4]), handle)
+    else:
+        with open(sys.argv[2], "a") as handle:
+            print(summary(run(sys.argv[1], handle)))
