@@ -16,13 +16,14 @@ import numpy as np
 #: where a pulse ends with the kept modes' point inside the wall (their local compliance is not the strike's), the
 #: point's wall is put where the point is (its clearance in the kernel's tuple raised by it), and follows it back as it
 #: leaves, down to its place (docs/reference_model.md §2.4); the largest shift [m]; and with the work-matched pulses
-#: (``reference_pulse_work = "matched"``, :func:`matched_scale`) the sum of their scales λ and their count, and the
-#: sums of the work [J] the tabulated pulse (λ = 1) would do on the modes, predicted at the onsets, and of the local
-#: strikes' (−loss).
+#: (:func:`matched_scale`, with the local strikes' losses in the kernel's tuple) the sum of the scales λ that match
+#: the pulses' work to the local strikes' and their count, and the sums of the work [J] the tabulated pulse (λ = 1)
+#: would do on the modes, predicted at the onsets, and of the local strikes' (−loss); the pulses' count, and the sum
+#: of the work [J] the pulses applied did on the modes, −∫F δ̇ dt (each step's trapezoid; :func:`whirl_kernel.advance`).
 (P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT, P_SHIFT_MAX, P_SCALE_SUM,
- P_SCALE_COUNT, P_WORK_TABLE, P_WORK_LOCAL) = range(14)
+ P_SCALE_COUNT, P_WORK_TABLE, P_WORK_LOCAL, P_PULSES, P_WORK_DONE) = range(16)
 P_LAW, P_PULSE = 0.0, 1.0
-N_PULSE_STATE = 14
+N_PULSE_STATE = 16
 
 
 @numba.njit(cache=True, nogil=True, inline="always")

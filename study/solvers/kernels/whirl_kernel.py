@@ -56,7 +56,7 @@ from study.physics.contact import hertz_force_one
 from study.solvers.kernels.drag import drag_linearised
 from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
                                          P_PEAK, P_PULSE, P_SCALE_COUNT, P_SCALE_SUM, P_SHIFT, P_SHIFT_MAX, P_SPEED,
-                                         P_T0, P_WEIGHT, P_WORK_LOCAL, P_WORK_TABLE,
+                                         P_PULSES, P_T0, P_WEIGHT, P_WORK_DONE, P_WORK_LOCAL, P_WORK_TABLE,
                                          matched_scale, onset_speed, point_state, start_strike, pulse_force)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
@@ -702,7 +702,7 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
             rec_f[row, p, j] = fc[p, j]
 
 
-def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None) -> tuple:
+def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, matched: bool = False) -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed (in ``drag_dtype``, the drag sums' precision: float64, or
     float32 with ``reference_drag_precision = "single"``), and each mode's parity appended (:func:`drag_halves`) before
@@ -711,9 +711,10 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None) 
     clearances are the kernel's own copy: a shifted wall moves them); then the shapes (P, N) whose velocity at a point
     is its pulse's onset speed, the model's after its pulse tables (``reference_pulse_speed = "kept"``), else none
     (0, N): the whole approach rate; then ``drag_rest`` (N,), ∫ ψ_n² dx / L of the modes whose drag is linearised
-    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros); then with
-    ``reference_pulse_work = "matched"`` the local strikes' losses ``pulse_loss`` (P, S) [J] in logs (None: (0, 2),
-    the pulses as tabulated; :func:`study.solvers.kernels.pulse.matched_scale`) and room for a pulse's shape."""
+    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros); then the local
+    strikes' losses ``pulse_loss`` (P, S) [J] in logs (None: (0, 2), no pulse's work predicted;
+    :func:`study.solvers.kernels.pulse.matched_scale`), room for a pulse's shape, and whether the pulses are scaled to
+    the local strikes' work (``matched``, ``reference_pulse_work = "matched"``), (1,)."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -737,7 +738,7 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None) 
             np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])),
             np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float),
             np.zeros((0, 2)) if pulse_loss is None else np.log(np.asarray(pulse_loss, float)),
-            np.zeros(np.shape(coef)[3] + 1))
+            np.zeros(np.shape(coef)[3] + 1), np.array([1.0 if matched else 0.0]))
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
@@ -916,6 +917,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 tr += rec_dt[0]
         t = t + h if h < t_end - t else t_end
         for p in range(P):  # the stored energy's change at a pulse's or a shifted wall's point (rhs), exactly
+            if pst[p, P_MODE] == P_PULSE:  # the pulse's work on the modes, −∫F δ̇ dt (the step's trapezoid)
+                pst[p, P_WORK_DONE] -= 0.5 * h * (fc_end[p, 2] * pen_end[p, 1] + fc[p, 2] * pen[p, 1])
             if pst[p, P_MODE] == P_PULSE or pst[p, P_SHIFT] > 0.0:
                 base = pst[p, P_SHIFT]
                 znew[4 * N + 3] -= (_stored_energy(pen[p, 0] + base, K[p], fr[p])
@@ -974,11 +977,13 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 speed = onset_speed(z, phi, speed_shapes, p, N, rate)
                 if start_strike(p, t, speed, pst, pfloor, logv, lpeak, ldur, K):
                     stats[S_PULSES] += 1
-                    if lloss.shape[0] > 0:  # reference_pulse_work = "matched": the local strike's net work
+                    pst[p, P_PULSES] += 1.0
+                    if lloss.shape[0] > 0:  # the local strike's net work, and the scale λ that matches it
                         lam = matched_scale(z, phi, omega2, fpar[4], p, N, pst, sy[19], lloss, sy[24])
-                        pst[p, P_PEAK] *= lam
                         pst[p, P_SCALE_SUM] += lam
                         pst[p, P_SCALE_COUNT] += 1.0
+                        if sy[25][0] > 0.0:  # reference_pulse_work = "matched": applied
+                            pst[p, P_PEAK] *= lam
                     if pst[p, P_PEAK] > peak[p]:
                         peak[p] = pst[p, P_PEAK]
                 else:

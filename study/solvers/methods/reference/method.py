@@ -335,10 +335,10 @@ def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
     """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses
     applied, restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the
     steps in contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over
-    the Hertz approach at its pulse's peak; with ``reference_pulse_work = "matched"`` the pulses' mean scale λ
-    (``mean_scale``, nan where none was scaled), and per scaled pulse the work [J] the tabulated pulse would have
-    done on the modes, predicted at its onset (``mean_table_work``), and the local strike's net work
-    (``mean_local_work``)."""
+    the Hertz approach at its pulse's peak; per pulse, the scale λ that matches its work to the local strike's
+    (``mean_scale``: applied with ``reference_pulse_work = "matched"``), the work [J] the tabulated pulse would do
+    on the modes, predicted at its onset (``mean_table_work``), the local strike's net work (``mean_local_work``),
+    and the work the pulse applied did on the modes (``mean_work_done``); nan where no pulse."""
     state, work = integrator.pulse, integrator.work
     joints = model.kinds == 1
     scaled = float(np.sum(state[:, whirl_kernel.P_SCALE_COUNT]))
@@ -348,6 +348,9 @@ def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
                                  else float("nan")),
                 mean_local_work=(float(np.sum(state[:, whirl_kernel.P_WORK_LOCAL]) / scaled) if scaled > 0
                                  else float("nan")),
+                mean_work_done=(float(np.sum(state[:, whirl_kernel.P_WORK_DONE])
+                                      / np.sum(state[:, whirl_kernel.P_PULSES]))
+                                if np.sum(state[:, whirl_kernel.P_PULSES]) > 0 else float("nan")),
                 contact_steps=float(work[whirl_kernel.S_CONTACT_STEPS]), steps=float(work[whirl_kernel.S_ACCEPTED]),
                 largest_shift=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX], initial=0.0)),
                 largest_shift_clearance=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX]
