@@ -17,7 +17,7 @@ H = calibrated_hysteresis(0.7)
 
 def test_the_option_is_opt_in_and_validated_naming_the_field():
     assert options.ReferenceOptions.default("reference_pulse_work") == "local"
-    with pytest.raises(ValueError, match="reference_pulse_work = 'energy'; allowed: local, matched"):
+    with pytest.raises(ValueError, match="reference_pulse_work = 'energy'; allowed: local, matched, mobility"):
         options.ReferenceOptions.from_inputs({"reference_pulse_work": "energy"})
 
 
@@ -59,6 +59,10 @@ def test_a_free_masss_matched_pulse_leaves_it_with_the_local_strikes_energy():
     after = v0 - lam * pst[0, pulse.P_PEAK] * j1 / m
     assert after == pytest.approx(-np.sqrt(v0**2 - 2 * loss / m), rel=1e-3)
     assert lam > 1.0  # a mass heavier than the local joint-and-beam needs more impulse to rebound so
+    # "mobility" takes the free motion as the local model's steady approach at the onset speed: a free mass's own
+    steady = pulse.matched_scale(np.array([0.05, 0.0, v0, 0.0]), np.ones((1, 1)), np.zeros(1), 1.0 / m, 0, 1,
+                                 pst.copy(), coef, np.log(table["loss"])[None], np.zeros(coef.shape[3] + 1), True)
+    assert steady == pytest.approx(lam, rel=1e-12)
 
 
 @pytest.mark.parametrize("hz", [0.0, 200.0, 565.0])

@@ -151,12 +151,14 @@ def matched_amplitude(A, B, loss):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape):
+def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, steady=False):
     """λ [-], the scale of point p's pulse just started (``pst[p]``, :func:`start_strike`) at which its work on the
     modes, predicted from the state z at its onset by :func:`pulse_work_terms` (undamped linear modes, the normal
     fixed), equals the local strike's net work on its joint-and-beam, −loss (``lloss`` (P, S): log ∫F dδ [J] of
     study.physics.strike.strike_pulse_table, interpolated as the peak); ``reference_pulse_work = "matched"``,
     docs/reference_model.md §2.4. ``shape`` (G + 1,) is room for the pulse's shape on its grid. 1 where none fits.
+    With ``steady`` the point's free motion is taken as the local model's, a steady approach at the onset speed
+    (A = v0 ∫ shape dt; ``reference_pulse_work = "mobility"``): only the kept modes' energy B is the model's.
     Adds the tabulated pulse's predicted work and the local strike's to ``pst[p]`` (P_WORK_TABLE, P_WORK_LOCAL)."""
     i = int(pst[p, P_INDEX])
     w = pst[p, P_WEIGHT]
@@ -170,6 +172,11 @@ def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape):
          + pcoef[p, i + 1, 3, G - 1])
     shape[G] = max((1.0 - w) * a + w * b, 0.0)
     A, B = pulse_work_terms(z, phi, omega2, inv_m, p, N, shape, pst[p, P_DURATION])
+    if steady:
+        A = 0.0
+        for j in range(G + 1):
+            A += (0.5 if j == 0 or j == G else 1.0) * shape[j]
+        A *= pst[p, P_SPEED] * pst[p, P_DURATION] / G
     loss = np.exp((1.0 - w) * lloss[p, i] + w * lloss[p, i + 1])
     amplitude = matched_amplitude(A, B, loss)
     peak = pst[p, P_PEAK]

@@ -702,7 +702,7 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
             rec_f[row, p, j] = fc[p, j]
 
 
-def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, matched: bool = False) -> tuple:
+def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, matched: str = "local") -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed (in ``drag_dtype``, the drag sums' precision: float64, or
     float32 with ``reference_drag_precision = "single"``), and each mode's parity appended (:func:`drag_halves`) before
@@ -714,7 +714,7 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, 
     (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros); then the local
     strikes' losses ``pulse_loss`` (P, S) [J] in logs (None: (0, 2), no pulse's work predicted;
     :func:`study.solvers.kernels.pulse.matched_scale`), room for a pulse's shape, and whether the pulses are scaled to
-    the local strikes' work (``matched``, ``reference_pulse_work = "matched"``), (1,)."""
+    the local strikes' work (``matched``, ``reference_pulse_work``: 0 "local", 1 "matched", 2 "mobility"), (1,)."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -738,7 +738,7 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, 
             np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])),
             np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float),
             np.zeros((0, 2)) if pulse_loss is None else np.log(np.asarray(pulse_loss, float)),
-            np.zeros(np.shape(coef)[3] + 1), np.array([1.0 if matched else 0.0]))
+            np.zeros(np.shape(coef)[3] + 1), np.array([float(("local", "matched", "mobility").index(matched))]))
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
@@ -979,7 +979,8 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                     stats[S_PULSES] += 1
                     pst[p, P_PULSES] += 1.0
                     if lloss.shape[0] > 0:  # the local strike's net work, and the scale λ that matches it
-                        lam = matched_scale(z, phi, omega2, fpar[4], p, N, pst, sy[19], lloss, sy[24])
+                        lam = matched_scale(z, phi, omega2, fpar[4], p, N, pst, sy[19], lloss, sy[24],
+                                            sy[25][0] > 1.5)
                         pst[p, P_SCALE_SUM] += lam
                         pst[p, P_SCALE_COUNT] += 1.0
                         if sy[25][0] > 0.0:  # reference_pulse_work = "matched": applied

@@ -87,7 +87,7 @@ class Integrator:
         self.sy = whirl_kernel.kernel_system(model.system(), drag_dtype,
                                              None if model.slow_drag is None else model.slow_drag[2],
                                              None if model.pulse is None else model.pulse["loss"],
-                                             model.pulse is not None and model.pulse_work == "matched")
+                                             "local" if model.pulse is None else model.pulse_work)
         N, P = model.kernel_modes, model.points.size
         # the kernel's state: with the residual vectors P more modes (WhirlModel.extend)
         self.z = model.extend(np.zeros(4 * model.n_modes + 4) if state is None else state)

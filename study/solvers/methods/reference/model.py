@@ -94,8 +94,8 @@ class WhirlModel:
     #: with the residual vectors and the pulses, a pulse's onset speed: the point's whole approach rate ("approach") or
     #: the kept modes' part of it ("kept": without the vectors' motion; ``reference_pulse_speed``)
     pulse_speed: str = "approach"
-    #: with the pulses, their size: the local strike's history ("local") or scaled to its net work ("matched";
-    #: ``reference_pulse_work``, :func:`study.solvers.kernels.pulse.matched_scale`)
+    #: with the pulses, their size: the local strike's history ("local") or scaled to its net work ("matched",
+    #: "mobility"; ``reference_pulse_work``, :func:`study.solvers.kernels.pulse.matched_scale`)
     pulse_work: str = "local"
     #: the upper edge ω_b [rad/s] of the band of the section's bending the stresses state (``reference_stress_band``:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
