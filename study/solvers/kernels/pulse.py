@@ -185,3 +185,40 @@ def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, steady=
     if not amplitude > 0.0:
         return 1.0
     return amplitude / pst[p, P_PEAK]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def size_pulse(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, mode):
+    """Point p's pulse just started (:func:`start_strike`): counted, and with the local strikes' losses ``lloss``
+    (P, S; none: (0, 2)) its matching scale λ (:func:`matched_scale`; ``mode`` 2.0: the steady approach's) summed,
+    and applied where ``mode`` > 0 (``reference_pulse_work`` "matched" 1.0, "mobility" 2.0; :func:`work_arrays`)."""
+    pst[p, P_PULSES] += 1.0
+    if lloss.shape[0] == 0:
+        return
+    lam = matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, mode > 1.5)
+    pst[p, P_SCALE_SUM] += lam
+    pst[p, P_SCALE_COUNT] += 1.0
+    if mode > 0.0:
+        pst[p, P_PEAK] *= lam
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def pulse_step_work(pst, p, h, f0, r0, f1, r1):
+    """Adds a step's work [J] of point p's pulse on the modes, −∫F δ̇ dt by the step's trapezoid (h [s]; the normal
+    forces ``f0``/``f1`` (P, 3) column 2 [N] and approach rates ``r0``/``r1`` (P, 2) column 1 [m/s] at its start and
+    end), to ``pst[p, P_WORK_DONE]`` while p is under a pulse."""
+    if pst[p, P_MODE] == P_PULSE:
+        pst[p, P_WORK_DONE] -= 0.5 * h * (f0[p, 2] * r0[p, 1] + f1[p, 2] * r1[p, 1])
+
+
+#: ``reference_pulse_work``'s values, as coded in the kernel's tuple (:func:`work_arrays`).
+PULSE_WORK = ("local", "matched", "mobility")
+
+
+def work_arrays(pulse_loss, intervals: int, matched: str = "local") -> tuple:
+    """The kernel tuple's entries for the pulses' work (whirl_kernel.kernel_system): the local strikes' losses
+    ``pulse_loss`` (P, S) [J] in logs (None: (0, 2), no pulse's work predicted), room for a pulse's shape on its
+    ``intervals`` + 1 knots, and ``matched`` (``reference_pulse_work``) coded as its index in :data:`PULSE_WORK`,
+    (1,)."""
+    return (np.zeros((0, 2)) if pulse_loss is None else np.log(np.asarray(pulse_loss, float)),
+            np.zeros(intervals + 1), np.array([float(PULSE_WORK.index(matched))]))

@@ -54,10 +54,9 @@ import numpy as np
 
 from study.physics.contact import hertz_force_one
 from study.solvers.kernels.drag import drag_linearised
-from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
-                                         P_PEAK, P_PULSE, P_SCALE_COUNT, P_SCALE_SUM, P_SHIFT, P_SHIFT_MAX, P_SPEED,
-                                         P_PULSES, P_T0, P_WEIGHT, P_WORK_DONE, P_WORK_LOCAL, P_WORK_TABLE,
-                                         matched_scale, onset_speed, point_state, start_strike, pulse_force)
+from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_LAW, P_MODE, P_OVERLAP, P_PEAK,  # noqa: F401
+                                         P_PULSE, P_SHIFT, P_SHIFT_MAX, P_T0, onset_speed, point_state, pulse_force,
+                                         pulse_step_work, size_pulse, start_strike, work_arrays)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
@@ -711,10 +710,7 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, 
     clearances are the kernel's own copy: a shifted wall moves them); then the shapes (P, N) whose velocity at a point
     is its pulse's onset speed, the model's after its pulse tables (``reference_pulse_speed = "kept"``), else none
     (0, N): the whole approach rate; then ``drag_rest`` (N,), ∫ ψ_n² dx / L of the modes whose drag is linearised
-    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros); then the local
-    strikes' losses ``pulse_loss`` (P, S) [J] in logs (None: (0, 2), no pulse's work predicted;
-    :func:`study.solvers.kernels.pulse.matched_scale`), room for a pulse's shape, and whether the pulses are scaled to
-    the local strikes' work (``matched``, ``reference_pulse_work``: 0 "local", 1 "matched", 2 "mobility"), (1,)."""
+    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros), pulse.work_arrays'."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -736,9 +732,8 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, 
             np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
             np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)),
             np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])),
-            np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float),
-            np.zeros((0, 2)) if pulse_loss is None else np.log(np.asarray(pulse_loss, float)),
-            np.zeros(np.shape(coef)[3] + 1), np.array([float(("local", "matched", "mobility").index(matched))]))
+            np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float)
+            ) + work_arrays(pulse_loss, np.shape(coef)[3], matched)
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
@@ -781,7 +776,6 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
     """
     omega2, damp, ecc, side, SH, wts, phi, cl, rc, K, kp, cpen, fpar, parity, fr = sy[:15]
     pfloor, logv, lpeak, ldur, pst, speed_shapes = sy[15], sy[16], sy[17], sy[18], sy[20], sy[21]
-    lloss = sy[23]
     k, kv, ex, vend, shift, stage, znew, fc, fc_end, pen, pen_end, scratch, r_lawson, v_lawson, r_point, v_point = work
     hyst = fpar[6]
     law = int(fpar[5])
@@ -917,8 +911,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 tr += rec_dt[0]
         t = t + h if h < t_end - t else t_end
         for p in range(P):  # the stored energy's change at a pulse's or a shifted wall's point (rhs), exactly
-            if pst[p, P_MODE] == P_PULSE:  # the pulse's work on the modes, −∫F δ̇ dt (the step's trapezoid)
-                pst[p, P_WORK_DONE] -= 0.5 * h * (fc_end[p, 2] * pen_end[p, 1] + fc[p, 2] * pen[p, 1])
+            pulse_step_work(pst, p, h, fc_end, pen_end, fc, pen)
             if pst[p, P_MODE] == P_PULSE or pst[p, P_SHIFT] > 0.0:
                 base = pst[p, P_SHIFT]
                 znew[4 * N + 3] -= (_stored_energy(pen[p, 0] + base, K[p], fr[p])
@@ -977,14 +970,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 speed = onset_speed(z, phi, speed_shapes, p, N, rate)
                 if start_strike(p, t, speed, pst, pfloor, logv, lpeak, ldur, K):
                     stats[S_PULSES] += 1
-                    pst[p, P_PULSES] += 1.0
-                    if lloss.shape[0] > 0:  # the local strike's net work, and the scale λ that matches it
-                        lam = matched_scale(z, phi, omega2, fpar[4], p, N, pst, sy[19], lloss, sy[24],
-                                            sy[25][0] > 1.5)
-                        pst[p, P_SCALE_SUM] += lam
-                        pst[p, P_SCALE_COUNT] += 1.0
-                        if sy[25][0] > 0.0:  # reference_pulse_work = "matched": applied
-                            pst[p, P_PEAK] *= lam
+                    size_pulse(z, phi, omega2, fpar[4], p, N, pst, sy[19], sy[23], sy[24], sy[25][0])
                     if pst[p, P_PEAK] > peak[p]:
                         peak[p] = pst[p, P_PEAK]
                 else:
