@@ -474,28 +474,33 @@ def strike_pulse_table(joint_mass: float, stiffness: float, mass_per_length: flo
     """The local strike's force history at each of :data:`TABLE_SPEEDS` (docs/reference_model.md §2.4), for the
     reference run to apply it to its modes in place of the contact law: ``speeds`` (S,) [m/s], ``peak`` (S,) F_peak
     [N] and ``duration`` (S,) T_c [s] (the Richardson extrapolations of ``steps_per_rise`` and twice that, as
-    :func:`strike_peak_table`), ``impulse`` (S,) ∫F dt [N s] (the finer run's, trapezoidal), ``ended`` (S,) whether the
-    force ended within the run (where the wall's damping eats the rebound the joint does not let go: the run stops at
-    :data:`PAST_PEAK` times its rise, 13-18 % of the peak left at e = 0.3, and the history is taken to there), and the
-    force's shape F/F_peak on ``grid`` points
+    :func:`strike_peak_table`), ``impulse`` (S,) ∫F dt [N s] (the finer run's, trapezoidal), ``loss`` (S,) ∫F dδ [J],
+    the energy the wall takes from the joint and its beam over the history (trapezoidal in the runs' approach δ,
+    their Richardson extrapolation: the Hunt–Crossley loss, and where the force has not ended the Hertz energy still
+    stored; the local strike's net work on its joint-and-beam is −loss, docs/reference_model.md §2.4), ``ended`` (S,)
+    whether the force ended within the run (where the wall's damping eats the rebound the joint does not let go: the
+    run stops at :data:`PAST_PEAK` times its rise, 13-18 % of the peak left at e = 0.3, and the history is taken to
+    there), and the force's shape F/F_peak on ``grid`` points
     of s = t/T_c ∈ [0, 1], ``shape`` (S, grid) (the finer run's, linear between its steps), with ``coefficients`` (S,
     4, grid − 1) of its natural cubic spline in s (value at s_i + x: ((c0 x + c1) x + c2) x + c3), which is smooth to
     its second derivative for an explicit integrator. Arguments as :func:`strike`; cached per joint, wall and beam."""
     from scipy.interpolate import CubicSpline
 
     s = np.linspace(0.0, 1.0, grid)
-    peaks, durations, impulses, ended, shapes, coefficients = [], [], [], [], [], []
+    peaks, durations, impulses, losses, ended, shapes, coefficients = [], [], [], [], [], [], []
     for v in TABLE_SPEEDS:
         coarse, fine = (strike(joint_mass, stiffness, mass_per_length, bending_stiffness, v, hysteresis, n)
                         for n in (steps_per_rise, 2 * steps_per_rise))
         peaks.append(2.0 * fine.peak_force - coarse.peak_force)
         durations.append(2.0 * fine.duration - coarse.duration)
         impulses.append(float(np.trapezoid(fine.force, fine.times)))
+        losses.append(2.0 * float(np.trapezoid(fine.force, fine.approach))
+                      - float(np.trapezoid(coarse.force, coarse.approach)))
         ended.append(fine.ended and coarse.ended)
         shape = np.interp(s * fine.duration, fine.times, fine.force) / fine.peak_force
         shape[0] = 0.0
         shapes.append(shape)
         coefficients.append(CubicSpline(s, shape, bc_type="natural").c)
     return dict(speeds=TABLE_SPEEDS.copy(), peak=np.array(peaks), duration=np.array(durations),
-                impulse=np.array(impulses), ended=np.array(ended), shape=np.array(shapes), grid=s,
-                coefficients=np.array(coefficients))
+                impulse=np.array(impulses), loss=np.array(losses), ended=np.array(ended), shape=np.array(shapes),
+                grid=s, coefficients=np.array(coefficients))

@@ -15,10 +15,15 @@ import numpy as np
 #: the largest wall shift over the Hertz approach at its pulse's peak (F_peak/K)^(2/3) [-], and the wall's shift [m]:
 #: where a pulse ends with the kept modes' point inside the wall (their local compliance is not the strike's), the
 #: point's wall is put where the point is (its clearance in the kernel's tuple raised by it), and follows it back as it
-#: leaves, down to its place (docs/reference_model.md §2.4); and the largest shift [m].
-P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT, P_SHIFT_MAX = range(10)
+#: leaves, down to its place (docs/reference_model.md §2.4); the largest shift [m]; and with the work-matched pulses
+#: (:func:`matched_scale`, with the local strikes' losses in the kernel's tuple) the sum of the scales λ that match
+#: the pulses' work to the local strikes' and their count, and the sums of the work [J] the tabulated pulse (λ = 1)
+#: would do on the modes, predicted at the onsets, and of the local strikes' (−loss); the pulses' count, and the sum
+#: of the work [J] the pulses applied did on the modes, −∫F δ̇ dt (each step's trapezoid; :func:`whirl_kernel.advance`).
+(P_MODE, P_T0, P_PEAK, P_DURATION, P_INDEX, P_WEIGHT, P_SPEED, P_OVERLAP, P_SHIFT, P_SHIFT_MAX, P_SCALE_SUM,
+ P_SCALE_COUNT, P_WORK_TABLE, P_WORK_LOCAL, P_PULSES, P_WORK_DONE) = range(16)
 P_LAW, P_PULSE = 0.0, 1.0
-N_PULSE_STATE = 10
+N_PULSE_STATE = 16
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -99,3 +104,121 @@ def start_strike(p, t, speed, pst, floor, logv, lpeak, ldur, K):
     pst[p, P_WEIGHT] = w
     pst[p, P_SPEED] = speed
     return True
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def pulse_work_terms(z, phi, omega2, inv_m, p, N, shape, duration):
+    """The work [J] a force F(t) = F̂ shape(t/T) along the inward normal at point p does on the modes over 0 < t < T,
+    W(F̂) = −F̂ A + F̂² B, for undamped linear modes (q̈_n = −ω_n² q_n + φ_pn F_n/m) from the state z: returns (A, B).
+    A = ∫ shape(t/T) δ̇_free(t) dt [m], the pulse against the point's free normal velocity δ̇_free = Σ_n φ_pn (b_n cos
+    ω_n t − ω_n a_n sin ω_n t) (a_n, b_n: mode n's displacement and velocity along the normal at the onset), and
+    B = Σ_n φ_pn² (C_n² + S_n²) m⁻¹/2 [m/N], the energy the pulse leaves in the modes from rest, C_n, S_n = ∫ shape(t/T)
+    (cos, sin) ω_n t dt (a force's work on an oscillator from rest, |∫ f e^{iωt} dt|²/2m). ``shape`` (G + 1,) on the
+    even grid of s = t/T ∈ [0, 1] (the trapezoidal rule), ``duration`` T [s], ``inv_m`` 1/m [1/kg]."""
+    y, w, _, _ = point_state(z, phi, p, N)
+    r = np.sqrt(y * y + w * w)
+    ny = y / r if r > 0.0 else 1.0
+    nz = w / r if r > 0.0 else 0.0
+    G = shape.size - 1
+    ds = duration / G
+    A = 0.0
+    B = 0.0
+    for n in range(N):
+        om = np.sqrt(max(omega2[n], 0.0))
+        c = 0.0
+        s = 0.0
+        for j in range(G + 1):
+            wt = 0.5 * ds if j == 0 or j == G else ds
+            c += wt * shape[j] * np.cos(om * j * ds)
+            s += wt * shape[j] * np.sin(om * j * ds)
+        a = z[n] * ny + z[N + n] * nz
+        b = z[2 * N + n] * ny + z[3 * N + n] * nz
+        A += phi[p, n] * (b * c - om * a * s)
+        B += phi[p, n] * phi[p, n] * (c * c + s * s) * 0.5 * inv_m
+    return A, B
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def matched_amplitude(A, B, loss):
+    """The amplitude F̂ [N] at which W(F̂) = −F̂ A + F̂² B (:func:`pulse_work_terms`) is −``loss`` [J] (the local
+    strike's net work on its joint-and-beam), the larger root: the point rebounds, as the local joint does, and leaves
+    with the energy the local strike leaves (a restitution-consistent exit). Where no amplitude takes that much
+    (A² < 4 B loss) the one that takes the most, A/2B (the point stopped in the work's sense). 0 where B ≤ 0."""
+    if not B > 0.0:
+        return 0.0
+    disc = A * A - 4.0 * B * loss
+    return (A + np.sqrt(disc if disc > 0.0 else 0.0)) / (2.0 * B)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, steady=False):
+    """λ [-], the scale of point p's pulse just started (``pst[p]``, :func:`start_strike`) at which its work on the
+    modes, predicted from the state z at its onset by :func:`pulse_work_terms` (undamped linear modes, the normal
+    fixed), equals the local strike's net work on its joint-and-beam, −loss (``lloss`` (P, S): log ∫F dδ [J] of
+    study.physics.strike.strike_pulse_table, interpolated as the peak); ``reference_pulse_work = "matched"``,
+    docs/reference_model.md §2.4. ``shape`` (G + 1,) is room for the pulse's shape on its grid. 1 where none fits.
+    With ``steady`` the point's free motion is taken as the local model's, a steady approach at the onset speed
+    (A = v0 ∫ shape dt; ``reference_pulse_work = "mobility"``): only the kept modes' energy B is the model's.
+    Adds the tabulated pulse's predicted work and the local strike's to ``pst[p]`` (P_WORK_TABLE, P_WORK_LOCAL)."""
+    i = int(pst[p, P_INDEX])
+    w = pst[p, P_WEIGHT]
+    G = pcoef.shape[3]
+    for j in range(G):
+        shape[j] = max((1.0 - w) * pcoef[p, i, 3, j] + w * pcoef[p, i + 1, 3, j], 0.0)
+    # the last knot: each spline's last piece at x = 1/G
+    x = 1.0 / G
+    a = ((pcoef[p, i, 0, G - 1] * x + pcoef[p, i, 1, G - 1]) * x + pcoef[p, i, 2, G - 1]) * x + pcoef[p, i, 3, G - 1]
+    b = (((pcoef[p, i + 1, 0, G - 1] * x + pcoef[p, i + 1, 1, G - 1]) * x + pcoef[p, i + 1, 2, G - 1]) * x
+         + pcoef[p, i + 1, 3, G - 1])
+    shape[G] = max((1.0 - w) * a + w * b, 0.0)
+    A, B = pulse_work_terms(z, phi, omega2, inv_m, p, N, shape, pst[p, P_DURATION])
+    if steady:
+        A = 0.0
+        for j in range(G + 1):
+            A += (0.5 if j == 0 or j == G else 1.0) * shape[j]
+        A *= pst[p, P_SPEED] * pst[p, P_DURATION] / G
+    loss = np.exp((1.0 - w) * lloss[p, i] + w * lloss[p, i + 1])
+    amplitude = matched_amplitude(A, B, loss)
+    peak = pst[p, P_PEAK]
+    pst[p, P_WORK_TABLE] += -peak * A + peak * peak * B
+    pst[p, P_WORK_LOCAL] -= loss
+    if not amplitude > 0.0:
+        return 1.0
+    return amplitude / pst[p, P_PEAK]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def size_pulse(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, mode):
+    """Point p's pulse just started (:func:`start_strike`): counted, and with the local strikes' losses ``lloss``
+    (P, S; none: (0, 2)) its matching scale λ (:func:`matched_scale`; ``mode`` 2.0: the steady approach's) summed,
+    and applied where ``mode`` > 0 (``reference_pulse_work`` "matched" 1.0, "mobility" 2.0; :func:`work_arrays`)."""
+    pst[p, P_PULSES] += 1.0
+    if lloss.shape[0] == 0:
+        return
+    lam = matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, mode > 1.5)
+    pst[p, P_SCALE_SUM] += lam
+    pst[p, P_SCALE_COUNT] += 1.0
+    if mode > 0.0:
+        pst[p, P_PEAK] *= lam
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def pulse_step_work(pst, p, h, f0, r0, f1, r1):
+    """Adds a step's work [J] of point p's pulse on the modes, −∫F δ̇ dt by the step's trapezoid (h [s]; the normal
+    forces ``f0``/``f1`` (P, 3) column 2 [N] and approach rates ``r0``/``r1`` (P, 2) column 1 [m/s] at its start and
+    end), to ``pst[p, P_WORK_DONE]`` while p is under a pulse."""
+    if pst[p, P_MODE] == P_PULSE:
+        pst[p, P_WORK_DONE] -= 0.5 * h * (f0[p, 2] * r0[p, 1] + f1[p, 2] * r1[p, 1])
+
+
+#: ``reference_pulse_work``'s values, as coded in the kernel's tuple (:func:`work_arrays`).
+PULSE_WORK = ("local", "matched", "mobility")
+
+
+def work_arrays(pulse_loss, intervals: int, matched: str = "local") -> tuple:
+    """The kernel tuple's entries for the pulses' work (whirl_kernel.kernel_system): the local strikes' losses
+    ``pulse_loss`` (P, S) [J] in logs (None: (0, 2), no pulse's work predicted), room for a pulse's shape on its
+    ``intervals`` + 1 knots, and ``matched`` (``reference_pulse_work``) coded as its index in :data:`PULSE_WORK`,
+    (1,)."""
+    return (np.zeros((0, 2)) if pulse_loss is None else np.log(np.asarray(pulse_loss, float)),
+            np.zeros(intervals + 1), np.array([float(PULSE_WORK.index(matched))]))

@@ -54,9 +54,9 @@ import numpy as np
 
 from study.physics.contact import hertz_force_one
 from study.solvers.kernels.drag import drag_linearised
-from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_INDEX, P_LAW, P_MODE, P_OVERLAP,  # noqa: F401
-                                         P_PEAK, P_PULSE, P_SHIFT, P_SHIFT_MAX, P_SPEED, P_T0, P_WEIGHT,
-                                         onset_speed, point_state, start_strike, pulse_force)
+from study.solvers.kernels.pulse import (N_PULSE_STATE, P_DURATION, P_LAW, P_MODE, P_OVERLAP, P_PEAK,  # noqa: F401
+                                         P_PULSE, P_SHIFT, P_SHIFT_MAX, P_T0, onset_speed, point_state, pulse_force,
+                                         pulse_step_work, size_pulse, start_strike, work_arrays)
 
 #: Penetration (fraction of the point's clearance) within which an onset is taken as located.
 ONSET_TOLERANCE = 1e-6
@@ -701,7 +701,7 @@ def _record(rec_t, rec_z, rec_f, row, t, z, fc):
             rec_f[row, p, j] = fc[p, j]
 
 
-def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None) -> tuple:
+def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None, pulse_loss=None, matched: str = "local") -> tuple:
     """The tuple :func:`rhs` and :func:`advance` take from a model's (``reference.WhirlModel.system``: its drag shapes
     S (G, N)): S replaced by its left half transposed (in ``drag_dtype``, the drag sums' precision: float64, or
     float32 with ``reference_drag_precision = "single"``), and each mode's parity appended (:func:`drag_halves`) before
@@ -710,7 +710,7 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None) -> tuple:
     clearances are the kernel's own copy: a shifted wall moves them); then the shapes (P, N) whose velocity at a point
     is its pulse's onset speed, the model's after its pulse tables (``reference_pulse_speed = "kept"``), else none
     (0, N): the whole approach rate; then ``drag_rest`` (N,), ∫ ψ_n² dx / L of the modes whose drag is linearised
-    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros)."""
+    (:func:`study.solvers.kernels.drag.drag_linearised`, ``WhirlModel.slow_drag``; None: zeros), pulse.work_arrays'."""
     omega2, damp, ecc, side, S, wts, phi, cl, rc, K, kp, cpen, fpar, fr = sy[:14]
     cl = np.array(cl, dtype=float)  # the kernel's own: a wall shifted after a strike's pulse moves it (P_SHIFT)
     P = cl.size
@@ -732,7 +732,8 @@ def kernel_system(sy: tuple, drag_dtype=float, drag_rest=None) -> tuple:
             np.log(np.asarray(peaks, float)), np.log(np.asarray(durations, float)),
             np.ascontiguousarray(coef, dtype=float), np.zeros((P, N_PULSE_STATE)),
             np.ascontiguousarray(sy[19], dtype=float) if len(sy) > 19 else np.zeros((0, np.asarray(phi).shape[1])),
-            np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float))
+            np.zeros(omega2.size) if drag_rest is None else np.ascontiguousarray(drag_rest, dtype=float)
+            ) + work_arrays(pulse_loss, np.shape(coef)[3], matched)
 
 
 def drag_scratch(n_modes: int, n_drag: int, dtype=float) -> np.ndarray:
@@ -910,6 +911,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 tr += rec_dt[0]
         t = t + h if h < t_end - t else t_end
         for p in range(P):  # the stored energy's change at a pulse's or a shifted wall's point (rhs), exactly
+            pulse_step_work(pst, p, h, fc_end, pen_end, fc, pen)
             if pst[p, P_MODE] == P_PULSE or pst[p, P_SHIFT] > 0.0:
                 base = pst[p, P_SHIFT]
                 znew[4 * N + 3] -= (_stored_energy(pen[p, 0] + base, K[p], fr[p])
@@ -968,6 +970,7 @@ def advance(t, t_end, z, active, chi, h, sy, work, rtol, scale, h_max, max_steps
                 speed = onset_speed(z, phi, speed_shapes, p, N, rate)
                 if start_strike(p, t, speed, pst, pfloor, logv, lpeak, ldur, K):
                     stats[S_PULSES] += 1
+                    size_pulse(z, phi, omega2, fpar[4], p, N, pst, sy[19], sy[23], sy[24], sy[25][0])
                     if pst[p, P_PEAK] > peak[p]:
                         peak[p] = pst[p, P_PEAK]
                 else:

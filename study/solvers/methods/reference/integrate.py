@@ -83,8 +83,11 @@ class Integrator:
         self.model = model
         self.scheme = SCHEME_CODES[scheme]
         drag_dtype = np.float32 if model.drag_precision == "single" else np.float64  # the drag sums' precision
+        # with the pulses, the local strikes' losses: each pulse's work predicted and matched (reference_pulse_work)
         self.sy = whirl_kernel.kernel_system(model.system(), drag_dtype,
-                                             None if model.slow_drag is None else model.slow_drag[2])
+                                             None if model.slow_drag is None else model.slow_drag[2],
+                                             None if model.pulse is None else model.pulse["loss"],
+                                             "local" if model.pulse is None else model.pulse_work)
         N, P = model.kernel_modes, model.points.size
         # the kernel's state: with the residual vectors P more modes (WhirlModel.extend)
         self.z = model.extend(np.zeros(4 * model.n_modes + 4) if state is None else state)

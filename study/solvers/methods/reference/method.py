@@ -10,7 +10,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from study.physics import fatigue
-from study.solvers.kernels import whirl_kernel
+from study.solvers.kernels import pulse, whirl_kernel
 from study.solvers.methods.reference.fields import contact_spacing, energy_balance
 from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.methods.reference.model import WhirlModel, build_model
@@ -335,10 +335,22 @@ def pulse_summary(model: WhirlModel, integrator) -> dict[str, float]:
     """The strikes' pulses of a run (``reference_strike_force = "pulse"``, docs/reference_model.md §2.4): pulses
     applied, restrikes (pulses that ended with the joint still towards its wall, the contact law taking it on), the
     steps in contact and in all, and the largest wall shift at a pulse's end [m], over the joints' clearance and over
-    the Hertz approach at its pulse's peak."""
+    the Hertz approach at its pulse's peak; per pulse, the scale λ that matches its work to the local strike's
+    (``mean_scale``: applied with ``reference_pulse_work = "matched"``), the work [J] the tabulated pulse would do
+    on the modes, predicted at its onset (``mean_table_work``), the local strike's net work (``mean_local_work``),
+    and the work the pulse applied did on the modes (``mean_work_done``); nan where no pulse."""
     state, work = integrator.pulse, integrator.work
     joints = model.kinds == 1
+    scaled = float(np.sum(state[:, pulse.P_SCALE_COUNT]))
     return dict(pulses=float(work[whirl_kernel.S_PULSES]), restrikes=float(work[whirl_kernel.S_RESTRIKES]),
+                mean_scale=float(np.sum(state[:, pulse.P_SCALE_SUM]) / scaled) if scaled > 0 else float("nan"),
+                mean_table_work=(float(np.sum(state[:, pulse.P_WORK_TABLE]) / scaled) if scaled > 0
+                                 else float("nan")),
+                mean_local_work=(float(np.sum(state[:, pulse.P_WORK_LOCAL]) / scaled) if scaled > 0
+                                 else float("nan")),
+                mean_work_done=(float(np.sum(state[:, pulse.P_WORK_DONE])
+                                      / np.sum(state[:, pulse.P_PULSES]))
+                                if np.sum(state[:, pulse.P_PULSES]) > 0 else float("nan")),
                 contact_steps=float(work[whirl_kernel.S_CONTACT_STEPS]), steps=float(work[whirl_kernel.S_ACCEPTED]),
                 largest_shift=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX], initial=0.0)),
                 largest_shift_clearance=float(np.max(state[joints, whirl_kernel.P_SHIFT_MAX]

@@ -94,6 +94,9 @@ class WhirlModel:
     #: with the residual vectors and the pulses, a pulse's onset speed: the point's whole approach rate ("approach") or
     #: the kept modes' part of it ("kept": without the vectors' motion; ``reference_pulse_speed``)
     pulse_speed: str = "approach"
+    #: with the pulses, their size: the local strike's history ("local") or scaled to its net work ("matched",
+    #: "mobility"; ``reference_pulse_work``, :func:`study.solvers.kernels.pulse.matched_scale`)
+    pulse_work: str = "local"
     #: the upper edge ω_b [rad/s] of the band of the section's bending the stresses state (``reference_stress_band``:
     #: :func:`stress_band_edge`; inf: every kept mode): the kept modes above it enter the fields by their quasi-static
     #: response (:func:`study.solvers.methods.reference.fields.field_states`), the motion keeps them all
@@ -492,6 +495,7 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
     model.drag_precision = option.reference_drag_precision
     if option.reference_strike_force == "pulse" and law == 0:
         model.pulse = strike_pulses(model)
+        model.pulse_work = option.reference_pulse_work
     if option.reference_stress_band == "timoshenko":
         model.stress_band = stress_band_edge(scene)
     if option.reference_drag_modes != "all":
@@ -575,7 +579,8 @@ PULSE_SPEED_FLOOR = 1e-2
 def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
     """The strikes' pulses at the model's tool joints (docs/reference_model.md §2.4): each joint's local strike
     (:func:`study.physics.strike.strike_pulse_table`: its mass m_j on an infinite beam of the string's ρA and EI, the
-    wall's K and the calibrated Hunt–Crossley damping) at the table's speeds, and per point the floor speed [m/s] from
+    wall's K and the calibrated Hunt–Crossley damping) at the table's speeds (with the wall's loss ∫F dδ [J] per speed,
+    ``loss``, for ``reference_pulse_work = "matched"``), and per point the floor speed [m/s] from
     which every strike is a pulse — at least :data:`PULSE_SPEED_FLOOR`, and where from there on up the local strike's
     history (to its end, or where the wall's damping holds the joint on it, to :data:`study.physics.strike.PAST_PEAK`
     times its rise: the rest of its force is the contact law's) is over before the bending waves of the neighbouring
@@ -591,7 +596,7 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
     P = model.points.size
     S, G = strike.TABLE_SPEEDS.size, strike.PULSE_GRID
     floor = np.full(P, np.inf)
-    peak, duration = np.ones((P, S)), np.ones((P, S))
+    peak, duration, loss = np.ones((P, S)), np.ones((P, S)), np.ones((P, S))
     coefficients = np.zeros((P, S, 4, G - 1))
     for p in joints:
         table = strike.strike_pulse_table(float(model.joint_mass), float(model.stiffness[p]), float(rho), float(ei),
@@ -602,8 +607,9 @@ def strike_pulses(model: WhirlModel) -> dict[str, np.ndarray] | None:
         if first < S:
             floor[p] = max(PULSE_SPEED_FLOOR, float(table["speeds"][first]))
         peak[p], duration[p], coefficients[p] = table["peak"], table["duration"], table["coefficients"]
+        loss[p] = table["loss"]
     return dict(floor=floor, speeds=strike.TABLE_SPEEDS.copy(), peak=peak, duration=duration,
-                coefficients=coefficients)
+                coefficients=coefficients, loss=loss)
 
 
 #: The ``reference_residual`` values that integrate the modes left out as residual vectors (:func:`residual_ritz`).
