@@ -78,8 +78,9 @@ class WhirlModel:
     #: (P,) the residual oscillator's mass μ_p = g_p/f_p² at each contact point [kg] (``reference_residual =
     #: "dynamic"``: :func:`residual_second_moment`; empty: the residual flexibility, if any, static in series)
     residual_mass: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: the modes left out as residual vectors, one per contact point, in the kernel's modes (``reference_residual =
-    #: "dynamic"`` or ``"radiating"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
+    #: the modes left out as residual vectors, K per contact point (``reference_residual_vectors``), in the kernel's
+    #: modes (``reference_residual = "dynamic"`` or ``"radiating"``: :func:`residual_ritz`; None: the residual
+    #: flexibility, if any, static in series)
     ritz: dict | None = None
     joint_x: np.ndarray = field(default_factory=lambda: np.zeros(0))  #: the tool joints' positions x_j [m]
     #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
@@ -162,8 +163,8 @@ class WhirlModel:
 
     def system(self) -> tuple:
         """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple). With
-        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + P modes of the kept modes and one
-        residual vector per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
+        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + K·P modes of the kept modes and K
+        residual vectors per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
         points and loads; the linear damping the modes' ratio at their frequencies (none with the drag)."""
         S, wts = (self.drag_shapes, self.drag_weights) if self.slow_drag is None else self.slow_drag[:2]
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
@@ -213,7 +214,7 @@ class WhirlModel:
     def extend(self, z) -> np.ndarray:
         """The kernel's state from the modal one (4N + 4,): with the residual vectors their coordinates set to their
         static response to each contact's normal force at the kept modes' approach, s_p = −F_n n̂ (the series law's
-        split, :func:`series_contact`), zero rates, mapped onto the kernel's modes; else z itself (a copy)."""
+        split, :func:`series_contact`), the higher orders' (``reference_residual_vectors`` > 1) and the rates zero, mapped onto the kernel's modes; else z itself (a copy)."""
         z = np.array(z, float)
         if not self.dynamic or z.size == 4 * self.kernel_modes + 4:
             return z
