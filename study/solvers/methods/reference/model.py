@@ -214,7 +214,8 @@ class WhirlModel:
     def extend(self, z) -> np.ndarray:
         """The kernel's state from the modal one (4N + 4,): with the residual vectors their coordinates set to their
         static response to each contact's normal force at the kept modes' approach, s_p = −F_n n̂ (the series law's
-        split, :func:`series_contact`), the higher orders' (``reference_residual_vectors`` > 1) and the rates zero, mapped onto the kernel's modes; else z itself (a copy)."""
+        split, :func:`series_contact`), the higher orders' (``reference_residual_vectors`` > 1) and the rates zero,
+        mapped onto the kernel's modes; else z itself (a copy)."""
         z = np.array(z, float)
         if not self.dynamic or z.size == 4 * self.kernel_modes + 4:
             return z
@@ -636,10 +637,11 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     Struct. Dyn. 10, 813–821, 1982), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual
     vector (1, p) is the static field of the modes left out under a unit force at contact point x_p, v_1p(x)
     (:func:`static_correction`'s deflection: the periodic beam-column's less the kept modes'); vector (k + 1, p) their
-    flexibility applied to the pipe's mass times vector (k, p), v_kp(x) = S_k(x_p, x) = Σ_{n≥N} ψ_n(x_p) ψ_n(x)/(m ω_n^{2k})
-    (:func:`krylov_fields`, scaled by ω_r^{2(k−1)}, ω_r the first mode left out's frequency, so that all are of one
-    size). With the coordinates (q, s), u(x) = Σ q_n φ_n(x) + Σ s_kp v_kp(x) (s_1p [N] the force whose field v_1p is),
-    the stiffness is diag(m ω_n²) ⊕ F, F_(kp)(lq) = S_{k+l−1}(x_p, x_q), the mass m I ⊕ G, G_(kp)(lq) = S_{k+l}(x_p, x_q)
+    flexibility applied to the pipe's mass times vector (k, p),
+    v_kp(x) = S_k(x_p, x) = Σ_{n≥N} ψ_n(x_p) ψ_n(x)/(m ω_n^{2k}) (:func:`krylov_fields`, scaled by ω_r^{2(k−1)}, ω_r
+    the first mode left out's frequency, so that all are of one size). With the coordinates (q, s),
+    u(x) = Σ q_n φ_n(x) + Σ s_kp v_kp(x) (s_1p [N] the force whose field v_1p is), the stiffness is diag(m ω_n²) ⊕ F,
+    F_(kp)(lq) = S_{k+l−1}(x_p, x_q), the mass m I ⊕ G, G_(kp)(lq) = S_{k+l}(x_p, x_q)
     (:func:`residual_moments`; S_1 in closed form, S_2 :func:`residual_second_moments`), + the tool joints' m_j at x_j
     on u(x_j) (their coupling of the kept modes and the vectors, m_j φ(x_j) v_kp(x_j)): the vectors are orthogonal to
     the kept modes in the pipe's mass (the modes left out's span), and the Ritz solve orthogonalises them among
@@ -654,7 +656,7 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     combinations per order k, s_k = C σ_k; scaled to the modal mass m), combinations C (P, P), inverse (Q, Q)
     (vectorsᵀ M/m: (q, σ) to the modes), and the kernel's phi (P, Q), drag_shapes (G, Q) at ``drag_points`` [m],
     eccentric and side (Q,) per modal mass, damping (Q,) 2ζω (with ``radiating`` plus :func:`radiation_damping`),
-    weights (Q,) of the error scale (1/n² of the half-waves of each mode's frequency)."""
+    weights (Q,) of the error scale (1/n² of the half-waves of each mode's frequency), and count."""
     from scipy.linalg import eigh
 
     N, P, L, m = model.n_modes, model.points.size, model.span, model.mass
