@@ -685,11 +685,13 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
             antisymmetric.append(e)
     combinations = np.column_stack(symmetric + antisymmetric)
     whole = np.kron(np.eye(count), combinations)  # (count·P)²: each order's vectors in their parity combinations
-    moments = krylov_moments(model, 2 * count)  # (2K, P, P): Ŝ_j = S_j ω_r^{2(j−1)}
-    scale2 = model.first_left_out() ** 2
+    moments = krylov_moments(model, 2 * count)  # (2K, P, P): S_j
+    scale2 = model.first_left_out() ** 2  # order k's vectors scaled by ω_r^{2(k−1)}: (k, l)'s blocks by ω_r^{2(k+l)}
     KP = count * P
-    flexibility = np.block([[moments[k + l] for l in range(count)] for k in range(count)])  # Ŝ_{k+l−1}
-    mass_rr = np.block([[moments[k + l + 1] / scale2 for l in range(count)] for k in range(count)])  # Ŝ_{k+l}/ω_r²
+    flexibility = np.block([[moments[k + l] * scale2 ** (k + l) for l in range(count)]
+                            for k in range(count)])  # S_{k+l−1}
+    mass_rr = np.block([[moments[k + l + 1] * scale2 ** (k + l) for l in range(count)]
+                        for k in range(count)])  # S_{k+l}
     coupling = np.zeros((N, KP))
     if model.joint_mass > 0.0 and model.joint_x.size:
         at_joints = krylov_fields(model, model.joint_x, count).reshape(KP, -1)  # (count·P, J): v_kp(x_j)
@@ -727,13 +729,14 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
         vectors[np.ix_(rows, np.arange(column, column + rows.size))] = vecs
         column += rows.size
     kept, residual = vectors[:N], vectors[N:]
-    at_points = np.hstack([moments[k].T for k in range(count)]) @ whole  # (P, count·P): the vectors at the points
+    at_points = np.hstack([moments[k].T * scale2**k for k in range(count)]) @ whole  # (P, count·P): at the points
     phi = np.hstack((model.phi, at_points)) @ vectors
     at_drag = krylov_fields(model, np.asarray(drag_points, float), count).reshape(KP, -1)  # (count·P, G)
     drag_shapes = np.hstack((model.drag_shapes, at_drag.T @ whole)) @ vectors
     side = kept.T @ model.side
     if model.point_side is not None:  # the joints' weight at the joints: on the vectors, Σ_q W_q v_kp(x_q)
-        side = side + residual.T @ (at_points.T @ model.point_side) / m
+        weights_field = np.concatenate([moments[k] * scale2**k @ model.point_side for k in range(count)])
+        side = side + residual.T @ (whole.T @ weights_field) / m
     omega = np.sqrt(omega2)
     ei, tn, M = (model.props[k] for k in ("bending_stiffness", "effective_tension", "mass_per_length"))
     wavenumber = np.sqrt(np.maximum((-tn + np.sqrt(tn**2 + 4 * ei * M * omega2)) / (2 * ei), 0.0))
@@ -756,16 +759,15 @@ def krylov_fields(model: WhirlModel, x: np.ndarray, count: int) -> np.ndarray:
     return np.stack(out)
 
 
-def krylov_moments(model: WhirlModel, orders: int) -> np.ndarray:
-    """(orders, P, P) the left-out modes' moments between the contact points, Ŝ_j = S_j ω_r^{2(j−1)} for j = 1 …
-    ``orders`` [m/N] (:func:`residual_moments`; S_1 the closed form's :func:`static_correction`, symmetrised, S_2
-    :func:`residual_second_moments` with its tail), ω_r the first mode left out's frequency [rad/s]."""
+def krylov_moments(model: WhirlModel, orders: int) -> list:
+    """The left-out modes' moments between the contact points, S_j (P, P) for j = 1 … ``orders``
+    [m/N s^{2j−2}] (:func:`residual_moments`; S_1 the closed form's :func:`static_correction`, symmetrised, S_2
+    :func:`residual_second_moments` with its tail)."""
     x = model.points
-    scale2 = model.first_left_out() ** 2
     first = static_correction(model, x)[:, :x.size]
-    out = [0.5 * (first + first.T), residual_second_moments(model) * scale2]
-    out += [residual_moments(model, j, x) * scale2 ** (j - 1) for j in range(3, orders + 1)]
-    return np.stack(out[:orders])
+    out = [0.5 * (first + first.T), residual_second_moments(model)]
+    out += [residual_moments(model, j, x) for j in range(3, orders + 1)]
+    return out[:orders]
 
 
 def radiation_damping(omega, residual_shapes, modal_mass, mass_per_length, bending_stiffness) -> np.ndarray:
