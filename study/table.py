@@ -57,6 +57,8 @@ EXTRA_OUTPUTS = {
     "reference_residual": (None, "how the reference model gave back the modes left out: static in series with the "
                                  "contacts, as residual vectors in the modes (dynamic; radiating: damped by the "
                                  "bending waves' resistance), or not at all (none)"),
+    "reference_residual_vectors": ("1", "residual vectors a contact point in the modes (the left-out modes' Krylov "
+                                        "sequence; 0 without them)"),
     "modal_by_doubling": (None, "the modal part of the errors is each figure's change from the run at half the modes "
                                 "(the residual vectors, the strikes' pulses), not the in-run measure"),
     "steps": ("1", "integrator steps"),

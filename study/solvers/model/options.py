@@ -333,6 +333,10 @@ class ReferenceOptions(MethodOptions):
     #: oscillator per contact point matched to their flexibility and its second moment ("dynamic"), the same damped
     #: by the bending waves' resistance at the points ("radiating"), or nothing
     reference_residual: str = option("series", ("series", "none", "dynamic", "radiating"))
+    #: with the residual vectors ("dynamic", "radiating"), how many per contact point: the left-out modes' static field
+    #: under a unit force there and K − 1 more of their Krylov sequence (their flexibility applied to the mass times
+    #: the last), a whole number of 1 or more (reference.model.residual_ritz; opt-in, docs/reference_model.md §2.1)
+    reference_residual_vectors: int = 1
     #: with the residual vectors and the strikes' pulses, a pulse's onset speed: the joint's whole approach rate
     #: ("approach"), or the kept modes' part of it ("kept": the vectors' ringing left out)
     reference_pulse_speed: str = option("approach", ("approach", "kept"))

@@ -42,7 +42,8 @@ Scene (our choices, stated; the equations in :mod:`study.solvers.kernels.whirl_k
   at each contact point (:func:`residual_flexibility`) in series with its Hertz spring, and their static field
   under every contact force at every instant in the stresses (:func:`static_correction`); or dynamically
   (``"dynamic"``): one residual vector per contact point, that static field, in the integrated modes
-  (:func:`residual_ritz`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`) where no
+  (:func:`residual_ritz`; ``reference_residual_vectors`` K > 1: K a point, the left-out modes' Krylov sequence,
+  :func:`krylov_fields`), its modal part measured between N/2 and N modes (:func:`doubling_modal_error`) where no
   strike is replayed; ``"radiating"`` the same damped by the bending waves' resistance at the contact points
   (:func:`radiation_damping`).
 - **rotation**: Ω constant (the rotary table holds it; the friction torque does not slow it); no
@@ -67,8 +68,9 @@ from __future__ import annotations
 # The package's public names: ``reference.solve(...)`` and ``from study.solvers.methods.reference import X`` as before
 # the split. A test that patches a name patches it in the submodule whose functions look it up, not here.
 from study.solvers.methods.reference.model import (CONTACT_LAWS, SECOND_MOMENT_HARMONICS, SLIP_VELOCITY, WhirlModel,
-                                                   basis_static_gain, build_model, eccentric_parts,
-                                                   radiation_damping, residual_flexibility, residual_ritz,
+                                                   basis_static_gain, build_model, eccentric_parts, krylov_fields,
+                                                   krylov_moments, radiation_damping, residual_flexibility,
+                                                   residual_moments, residual_ritz,
                                                    residual_second_moment,
                                                    residual_second_moments, static_correction)
 from study.solvers.methods.reference.integrate import (SCHEMES, SCHEME_CODES, STABLE_STEP, Integrator, Window,
@@ -90,7 +92,8 @@ from study.solvers.model.result import REGIMES
 
 __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility", "SECOND_MOMENT_HARMONICS",
            "residual_second_moments", "residual_second_moment", "basis_static_gain", "eccentric_parts",
-           "build_model", "residual_ritz", "radiation_damping", "static_correction", "SCHEMES", "SCHEME_CODES",
+           "build_model", "residual_ritz", "residual_moments", "krylov_fields", "krylov_moments",
+           "radiation_damping", "static_correction", "SCHEMES", "SCHEME_CODES",
            "STABLE_STEP", "Window",
            "merge", "Integrator", "initial_state", "periodic_fields", "body_wall_excess", "row_wall_excess",
            "wall_excess_bound", "modal_accelerations", "joint_inertia_forces", "stresses", "contact_spacing",

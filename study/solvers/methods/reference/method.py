@@ -444,6 +444,7 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                          reference_modes=model.n_modes,
                          reference_residual=(point.reference.reference_residual if model.dynamic else "series"
                                              if np.any(model.flexibility > 0) else "none"),
+                         reference_residual_vectors=model.ritz["count"] if model.dynamic else 0,
                          modal_by_doubling=modal_by_doubling(model))
     if run["verdict"] == "failed":
         result.status = "failed"

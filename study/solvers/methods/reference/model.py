@@ -78,8 +78,9 @@ class WhirlModel:
     #: (P,) the residual oscillator's mass μ_p = g_p/f_p² at each contact point [kg] (``reference_residual =
     #: "dynamic"``: :func:`residual_second_moment`; empty: the residual flexibility, if any, static in series)
     residual_mass: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: the modes left out as residual vectors, one per contact point, in the kernel's modes (``reference_residual =
-    #: "dynamic"`` or ``"radiating"``: :func:`residual_ritz`; None: the residual flexibility, if any, static in series)
+    #: the modes left out as residual vectors, K per contact point (``reference_residual_vectors``), in the kernel's
+    #: modes (``reference_residual = "dynamic"`` or ``"radiating"``: :func:`residual_ritz`; None: the residual
+    #: flexibility, if any, static in series)
     ritz: dict | None = None
     joint_x: np.ndarray = field(default_factory=lambda: np.zeros(0))  #: the tool joints' positions x_j [m]
     #: (P,) which contact points are the joints whose mass is lumped (None: no joints' mass), for the quasi-static
@@ -165,8 +166,8 @@ class WhirlModel:
 
     def system(self) -> tuple:
         """The model's arrays for the compiled integrator (:func:`whirl_kernel.kernel_system` makes its tuple). With
-        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + P modes of the kept modes and one
-        residual vector per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
+        the residual vectors (:attr:`dynamic`) the kernel's modes are the N + K·P modes of the kept modes and K
+        residual vectors per contact point (:func:`residual_ritz`): their frequencies, shapes at the contact and drag
         points and loads; the linear damping the modes' ratio at their frequencies (none with the drag)."""
         S, wts = (self.drag_shapes, self.drag_weights) if self.slow_drag is None else self.slow_drag[:2]
         fpar = np.array([self.drag, self.rotary_speed, self.friction, self.slip_velocity, 1.0 / self.mass,
@@ -199,8 +200,8 @@ class WhirlModel:
 
     @property
     def kernel_modes(self) -> int:
-        """The kernel's modes per direction: N, and P more with the residual vectors."""
-        return self.n_modes + (self.points.size if self.dynamic else 0)
+        """The kernel's modes per direction: N, and K·P more with K residual vectors per contact point."""
+        return self.n_modes + (self.ritz["count"] * self.points.size if self.dynamic else 0)
 
     @property
     def kernel_phi(self) -> np.ndarray:
@@ -216,7 +217,8 @@ class WhirlModel:
     def extend(self, z) -> np.ndarray:
         """The kernel's state from the modal one (4N + 4,): with the residual vectors their coordinates set to their
         static response to each contact's normal force at the kept modes' approach, s_p = −F_n n̂ (the series law's
-        split, :func:`series_contact`), zero rates, mapped onto the kernel's modes; else z itself (a copy)."""
+        split, :func:`series_contact`), the higher orders' (``reference_residual_vectors`` > 1) and the rates zero,
+        mapped onto the kernel's modes; else z itself (a copy)."""
         z = np.array(z, float)
         if not self.dynamic or z.size == 4 * self.kernel_modes + 4:
             return z
@@ -228,9 +230,10 @@ class WhirlModel:
             scale = np.where(r > 0, -force / np.maximum(r, 1e-300), 0.0)
         forces = [scale * y, scale * w, np.zeros(P), np.zeros(P)]
         inverse, T = self.ritz["inverse"], self.ritz["combinations"]
+        higher = np.zeros(K - N - P)  # the higher-order vectors' coordinates (reference_residual_vectors > 1): none
         out = np.zeros(4 * K + 4)
         for j in range(4):
-            out[j * K:(j + 1) * K] = inverse @ np.concatenate((z[j * N:(j + 1) * N], T.T @ forces[j]))
+            out[j * K:(j + 1) * K] = inverse @ np.concatenate((z[j * N:(j + 1) * N], T.T @ forces[j], higher))
         out[-4:] = z[4 * N:]
         return out
 
@@ -247,10 +250,10 @@ class WhirlModel:
     def residual_coordinates(self, z) -> np.ndarray:
         """(..., 4, P) the residual vectors' coordinates s_y, s_z, ṡ_y, ṡ_z [N, N/s] from the kernel's state(s): the
         forces at the contact points whose static field of the modes left out (:func:`static_correction`) their
-        motion is."""
+        motion is (the first-order vectors'; their higher orders, reference_residual_vectors > 1, not counted)."""
         z = np.asarray(z, float)
-        N, K = self.n_modes, self.kernel_modes
-        to_forces = self.ritz["combinations"] @ self.ritz["vectors"][N:]  # (P, K)
+        N, K, P = self.n_modes, self.kernel_modes, self.points.size
+        to_forces = self.ritz["combinations"] @ self.ritz["vectors"][N:N + P]  # (P, K)
         return np.stack([z[..., j * K:(j + 1) * K] @ to_forces.T for j in range(4)], axis=-2)
 
     def kernel_energy(self, z) -> float:
@@ -312,18 +315,29 @@ def residual_second_moments(model: "WhirlModel") -> np.ndarray:
     """(P, P) the modes left out's second moments between the contact points [m/N s²],
     G_pq = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x_q) /(m ω_n⁴): the mass of the residual vectors (:func:`residual_ritz`); its diagonal
     is :func:`residual_second_moment` (the tail beyond the harmonics summed counted there only: off it the terms
-    alternate in sign and fall like j⁻⁸)."""
+    alternate in sign and fall like j⁻⁸). :func:`residual_moments` of order 2."""
+    out = residual_moments(model, 2, model.points)
+    J = (model.n_modes + 2 * SECOND_MOMENT_HARMONICS - 1) // 2
+    ei = model.props["bending_stiffness"]
+    out[np.diag_indices_from(out)] += (model.mass * (2.0 / (model.span * ei)) ** 2 * (model.span / (2 * np.pi)) ** 8
+                                       / (7.0 * (J + 0.5) ** 7))
+    return out
+
+
+def residual_moments(model: "WhirlModel", order: int, x: np.ndarray) -> np.ndarray:
+    """(P, X) the modes left out's moments of ``order`` j ≥ 2 between the contact points and the stations x [m],
+    S_j(x_p, x) = Σ_{n ≥ N} ψ_n(x_p) ψ_n(x) /(m ω_n^{2j}) [m/N s^{2j−2}], summed over the basis functions left out
+    (1/(m ω_n²) = 1/((L/2)(EI k_n⁴ + T k_n²)), as :func:`residual_flexibility`) up to :data:`SECOND_MOMENT_HARMONICS`
+    harmonics above the kept ones (terms like n^{−4j}; j = 1 is the static field, :func:`static_correction`, in closed
+    form). S_j(x_p, ·) is the left-out modes' (j−1)-th Krylov vector from a unit force at x_p: their flexibility applied
+    to the pipe's mass times the (j−1)-th's (:func:`krylov_fields`)."""
     ei, tn = model.props["bending_stiffness"], model.props["effective_tension"]
     L, N = model.span, model.n_modes
     n = np.arange(N, N + 2 * SECOND_MOMENT_HARMONICS)
     k = mode_wavenumbers(L, n)
     gain = 1.0 / (0.5 * L * (ei * k**4 + tn * k**2))
-    shapes = mode_shapes(model.points, L, n)
-    out = (shapes * (model.mass * gain**2)) @ shapes.T
-    J = (N + 2 * SECOND_MOMENT_HARMONICS - 1) // 2
-    out[np.diag_indices_from(out)] += (model.mass * (2.0 / (L * ei)) ** 2 * (L / (2 * np.pi)) ** 8
-                                       / (7.0 * (J + 0.5) ** 7))
-    return out
+    weight = model.mass ** (order - 1) * gain**order
+    return (mode_shapes(model.points, L, n) * weight) @ mode_shapes(np.asarray(x, float), L, n).T
 
 
 def residual_second_moment(model: "WhirlModel") -> np.ndarray:
@@ -481,9 +495,14 @@ def build_model(point: DesignPoint | Mapping[str, Any]) -> WhirlModel:
         model.joint_x = joint_x if joint_mass > 0.0 else np.zeros(0)
         model.residual = residual_flexibility(model)
         model.residual_mass = residual_second_moment(model) / model.residual**2
+        if option.reference_residual_vectors > 1 and option.reference_recovery == "vectors":
+            raise ValueError(f"reference_residual_vectors = {option.reference_residual_vectors!r} with "
+                             "reference_recovery = 'vectors': allowed only with 'force' (the vectors' own field is "
+                             "the first order's)")
         model.ritz = residual_ritz(model, drag_x,
                                    float(option.damping_ratio) if damping_model == "viscous" else 0.0,
-                                   radiating=option.reference_residual == "radiating")
+                                   radiating=option.reference_residual == "radiating",
+                                   count=option.reference_residual_vectors)
         model.recovery = option.reference_recovery
         model.pulse_speed = option.reference_pulse_speed
     elif option.reference_residual != "none" and np.all(np.isfinite(omega)):
@@ -617,25 +636,33 @@ DYNAMIC_RESIDUALS = ("dynamic", "radiating")
 
 
 def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: float = 0.0,
-                  radiating: bool = False) -> dict:
-    """The kept modes augmented by one residual vector per contact point (modal truncation augmentation: Dickens,
-    Nakagawa & Wittbrodt, Comput. Struct. 62, 985–998, 1997; the residual flexibility and mass of Rubin, AIAA J. 13,
-    995–1006, 1975), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual vector p is the static
-    field of the modes left out under a unit force at contact point x_p, v_p(x) (:func:`static_correction`'s
-    deflection: the periodic beam-column's less the kept modes'); with the coordinates (q, s), s_p [N] the force whose
-    field v_p is, u(x) = Σ q_n φ_n(x) + Σ s_p v_p(x), the stiffness is diag(m ω_n²) ⊕ F, F_pq = v_p(x_q) (Maxwell–Betti:
-    v_p is the left-out modes' flexibility), the mass m I ⊕ G + the tool joints' m_j at x_j on u(x_j) (their coupling
-    of the kept modes and the vectors, m_j φ(x_j) v_p(x_j)), G_pq = Σ_{n≥N} ψ_n(x_p) ψ_n(x_q)/(m ω_n⁴)
-    (:func:`residual_second_moments`). The kept modes and the vectors are each of one parity about the section's middle
-    where the contact points are (pairs x, L − x: their sum and difference), so the modes are solved per parity and
-    keep one, as the kernel's drag sums need. Raises ValueError where the contact points are not so
-    (:func:`symmetric_points`; :func:`build_model` keeps the series law there).
+                  radiating: bool = False, count: int = 1) -> dict:
+    """The kept modes augmented by ``count`` residual vectors per contact point (modal truncation augmentation:
+    Dickens, Nakagawa & Wittbrodt, Comput. Struct. 62, 985–998, 1997; the residual flexibility and mass of Rubin, AIAA
+    J. 13, 995–1006, 1975; several a point as the load-dependent Ritz vectors of Wilson, Yuan & Dickens, Earthq. Eng.
+    Struct. Dyn. 10, 813–821, 1982), the Rayleigh–Ritz modes of the two (docs/reference_model.md §2.1). Residual
+    vector (1, p) is the static field of the modes left out under a unit force at contact point x_p, v_1p(x)
+    (:func:`static_correction`'s deflection: the periodic beam-column's less the kept modes'); vector (k + 1, p) their
+    flexibility applied to the pipe's mass times vector (k, p),
+    v_kp(x) = S_k(x_p, x) = Σ_{n≥N} ψ_n(x_p) ψ_n(x)/(m ω_n^{2k}) (:func:`krylov_fields`, scaled by ω_r^{2(k−1)}, ω_r
+    the first mode left out's frequency, so that all are of one size). With the coordinates (q, s),
+    u(x) = Σ q_n φ_n(x) + Σ s_kp v_kp(x) (s_1p [N] the force whose field v_1p is), the stiffness is diag(m ω_n²) ⊕ F,
+    F_(kp)(lq) = S_{k+l−1}(x_p, x_q), the mass m I ⊕ G, G_(kp)(lq) = S_{k+l}(x_p, x_q)
+    (:func:`residual_moments`; S_1 in closed form, S_2 :func:`residual_second_moments`), + the tool joints' m_j at x_j
+    on u(x_j) (their coupling of the kept modes and the vectors, m_j φ(x_j) v_kp(x_j)): the vectors are orthogonal to
+    the kept modes in the pipe's mass (the modes left out's span), and the Ritz solve orthogonalises them among
+    themselves. K vectors a point match the left-out modes' receptance at the points, Σ ψ_n ψ_nᵀ/(m (ω_n² − ω²)), in
+    its first 2K moments S_1 … S_2K (its Taylor series in ω² to ω^{2(2K−1)}; one vector f + g ω²). The kept modes and
+    the vectors are each of one parity about the section's middle where the contact points are (pairs x, L − x: their
+    sum and difference), so the modes are solved per parity and keep one, as the kernel's drag sums need. Raises
+    ValueError where the contact points are not so (:func:`symmetric_points`; :func:`build_model` keeps the series law
+    there).
 
-    Returns omega2 (K,) with K = N + P, vectors (K, K) (column k: mode k on (q, σ), σ the vectors' parity
-    combinations, s = C σ; scaled to the modal mass m), combinations C (P, P), inverse (K, K) (vectorsᵀ M/m: (q, σ) to
-    the modes), and the kernel's phi (P, K), drag_shapes (G, K) at ``drag_points`` [m], eccentric and side (K,) per
-    modal mass, damping (K,) 2ζω (with ``radiating`` plus :func:`radiation_damping`), weights (K,) of the error
-    scale (1/n² of the half-waves of each mode's frequency)."""
+    Returns omega2 (Q,) with Q = N + count·P, vectors (Q, Q) (column k: mode k on (q, σ), σ the vectors' parity
+    combinations per order k, s_k = C σ_k; scaled to the modal mass m), combinations C (P, P), inverse (Q, Q)
+    (vectorsᵀ M/m: (q, σ) to the modes), and the kernel's phi (P, Q), drag_shapes (G, Q) at ``drag_points`` [m],
+    eccentric and side (Q,) per modal mass, damping (Q,) 2ζω (with ``radiating`` plus :func:`radiation_damping`),
+    weights (Q,) of the error scale (1/n² of the half-waves of each mode's frequency), and count."""
     from scipy.linalg import eigh
 
     N, P, L, m = model.n_modes, model.points.size, model.span, model.mass
@@ -647,6 +674,9 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
     if not symmetric_points(x, L):
         raise ValueError("reference_residual = 'dynamic': the contact points must lie symmetrically about the "
                          f"section's middle (x and L - x), at {np.round(x / L, 6).tolist()} of L")
+    if int(count) < 1:
+        raise ValueError(f"reference_residual_vectors = {count!r}: allowed a whole number of 1 or more")
+    count = int(count)
     symmetric, antisymmetric = [], []
     for p in range(P):
         q = int(partner[p])
@@ -660,27 +690,33 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
             e[q] = -np.sqrt(0.5)
             antisymmetric.append(e)
     combinations = np.column_stack(symmetric + antisymmetric)
-    flexibility = static_correction(model, x)[:, :P]
-    flexibility = 0.5 * (flexibility + flexibility.T)
-    mass_rr = residual_second_moments(model)
-    coupling = np.zeros((N, P))
+    whole = np.kron(np.eye(count), combinations)  # (count·P)²: each order's vectors in their parity combinations
+    moments = krylov_moments(model, 2 * count)  # (2K, P, P): S_j
+    scale2 = model.first_left_out() ** 2  # order k's vectors scaled by ω_r^{2(k−1)}: (k, l)'s blocks by ω_r^{2(k+l)}
+    KP = count * P
+    flexibility = np.block([[moments[k + l] * scale2 ** (k + l) for l in range(count)]
+                            for k in range(count)])  # S_{k+l−1}
+    mass_rr = np.block([[moments[k + l + 1] * scale2 ** (k + l) for l in range(count)]
+                        for k in range(count)])  # S_{k+l}
+    coupling = np.zeros((N, KP))
     if model.joint_mass > 0.0 and model.joint_x.size:
-        at_joints = static_correction(model, model.joint_x)[:, :model.joint_x.size]  # (P, J): v_p(x_j)
+        at_joints = krylov_fields(model, model.joint_x, count).reshape(KP, -1)  # (count·P, J): v_kp(x_j)
         coupling = model.joint_mass * model.shapes(model.joint_x).T @ at_joints.T
         mass_rr = mass_rr + model.joint_mass * at_joints @ at_joints.T
-    K = N + P
+    K = N + KP
     stiffness = np.zeros((K, K))
     stiffness[:N, :N] = np.diag(m * np.nan_to_num(model.omega) ** 2)
-    stiffness[N:, N:] = combinations.T @ flexibility @ combinations
+    stiffness[N:, N:] = whole.T @ flexibility @ whole
     mass = np.zeros((K, K))
     mass[:N, :N] = m * np.eye(N)
-    mass[:N, N:] = coupling @ combinations
+    mass[:N, N:] = coupling @ whole
     mass[N:, :N] = mass[:N, N:].T
-    mass[N:, N:] = combinations.T @ mass_rr @ combinations
+    mass[N:, N:] = whole.T @ mass_rr @ whole
     kept_symmetric = (model.modes == 0) | (model.modes % 2 == 1)
     n_sym = len(symmetric)
-    rows_of = [np.concatenate((np.flatnonzero(kept_symmetric), N + np.arange(n_sym))),
-               np.concatenate((np.flatnonzero(~kept_symmetric), N + np.arange(n_sym, P)))]
+    order = np.arange(KP) % P  # each vector's combination
+    rows_of = [np.concatenate((np.flatnonzero(kept_symmetric), N + np.flatnonzero(order < n_sym))),
+               np.concatenate((np.flatnonzero(~kept_symmetric), N + np.flatnonzero(order >= n_sym)))]
     omega2, vectors = np.zeros(K), np.zeros((K, K))
     column = 0
     for rows in rows_of:
@@ -699,21 +735,45 @@ def residual_ritz(model: WhirlModel, drag_points: np.ndarray, damping_ratio: flo
         vectors[np.ix_(rows, np.arange(column, column + rows.size))] = vecs
         column += rows.size
     kept, residual = vectors[:N], vectors[N:]
-    phi = np.hstack((model.phi, flexibility @ combinations)) @ vectors
-    at_drag = static_correction(model, np.asarray(drag_points, float))[:, :np.size(drag_points)]  # (P, G)
-    drag_shapes = np.hstack((model.drag_shapes, at_drag.T @ combinations)) @ vectors
+    at_points = np.hstack([moments[k].T * scale2**k for k in range(count)]) @ whole  # (P, count·P): at the points
+    phi = np.hstack((model.phi, at_points)) @ vectors
+    at_drag = krylov_fields(model, np.asarray(drag_points, float), count).reshape(KP, -1)  # (count·P, G)
+    drag_shapes = np.hstack((model.drag_shapes, at_drag.T @ whole)) @ vectors
     side = kept.T @ model.side
-    if model.point_side is not None:  # the joints' weight at the joints: on the vectors, Σ_q W_q v_p(x_q)
-        side = side + residual.T @ (combinations.T @ (flexibility @ model.point_side)) / m
+    if model.point_side is not None:  # the joints' weight at the joints: on the vectors, Σ_q W_q v_kp(x_q)
+        weights_field = np.concatenate([moments[k] * scale2**k @ model.point_side for k in range(count)])
+        side = side + residual.T @ (whole.T @ weights_field) / m
     omega = np.sqrt(omega2)
     ei, tn, M = (model.props[k] for k in ("bending_stiffness", "effective_tension", "mass_per_length"))
     wavenumber = np.sqrt(np.maximum((-tn + np.sqrt(tn**2 + 4 * ei * M * omega2)) / (2 * ei), 0.0))
     damping = 2.0 * float(damping_ratio) * omega
     if radiating:
-        damping = damping + radiation_damping(omega, (flexibility @ combinations) @ residual, m, M, ei)
+        damping = damping + radiation_damping(omega, at_points @ residual, m, M, ei)
     return dict(omega2=omega2, vectors=vectors, combinations=combinations, inverse=vectors.T @ mass / m, phi=phi,
                 drag_shapes=drag_shapes, eccentric=kept.T @ model.eccentric, side=side, damping=damping,
-                weights=1.0 / np.maximum(wavenumber * L / np.pi, 1.0) ** 2)
+                weights=1.0 / np.maximum(wavenumber * L / np.pi, 1.0) ** 2, count=count)
+
+
+def krylov_fields(model: WhirlModel, x: np.ndarray, count: int) -> np.ndarray:
+    """(count, P, X) the residual vectors of :func:`residual_ritz` on the stations x [m] [m/N]: order 1 the left-out
+    modes' static field under a unit force at each contact point (:func:`static_correction`), order k + 1 ≥ 2 their
+    moment S_{k+1}(x_p, x) (:func:`residual_moments`) times ω_r^{2k}, ω_r the first mode left out's frequency."""
+    x = np.asarray(x, float)
+    scale2 = model.first_left_out() ** 2
+    out = [static_correction(model, x)[:, :x.size]]
+    out += [residual_moments(model, k, x) * scale2 ** (k - 1) for k in range(2, count + 1)]
+    return np.stack(out)
+
+
+def krylov_moments(model: WhirlModel, orders: int) -> list:
+    """The left-out modes' moments between the contact points, S_j (P, P) for j = 1 … ``orders``
+    [m/N s^{2j−2}] (:func:`residual_moments`; S_1 the closed form's :func:`static_correction`, symmetrised, S_2
+    :func:`residual_second_moments` with its tail)."""
+    x = model.points
+    first = static_correction(model, x)[:, :x.size]
+    out = [0.5 * (first + first.T), residual_second_moments(model)]
+    out += [residual_moments(model, j, x) for j in range(3, orders + 1)]
+    return out[:orders]
 
 
 def radiation_damping(omega, residual_shapes, modal_mass, mass_per_length, bending_stiffness) -> np.ndarray:
