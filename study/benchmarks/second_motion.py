@@ -100,10 +100,10 @@ def from_rest(indices, modes: int, revolutions: int, out) -> list[dict]:
         peaks = np.array([float(np.max(integrator.run(integrator.t + model.period).peak))
                           for _ in range(revolutions)])
         last = float(np.mean(peaks[-20:]))
-        row = dict(index=int(i), modes=modes, sliding=sliding_force, last20_mean=last, last20_max=float(np.max(peaks[-20:])),
-                   ratio=last / sliding_force, by10=[round(float(x), 1) for x in peaks[:revolutions // 10 * 10]
-                                                   .reshape(-1, 10).mean(axis=1)],
-                   cpu=time.process_time() - clock)
+        tens = peaks[:revolutions // 10 * 10].reshape(-1, 10).mean(axis=1)
+        row = dict(index=int(i), modes=modes, sliding=sliding_force, last20_mean=last,
+                   last20_max=float(np.max(peaks[-20:])), ratio=last / sliding_force,
+                   by10=[round(float(x), 1) for x in tens], cpu=time.process_time() - clock)
         print(json.dumps(row), file=out, flush=True)
         rows.append(row)
     return rows
