@@ -2,7 +2,7 @@
 
 numba compiles a kernel on its first call in a process and, with ``cache=True``, keeps the machine code
 beside the source (``__pycache__``, keyed on the source file's time stamp and size), so that a later
-process loads it instead of compiling again. Compiling every method's kernels takes about 220 s on
+process loads it instead of compiling again. Compiling every method's kernels takes about 260 s on
 this project's 2-core machine (measured by :func:`compile_ahead`; ``docs/performance_compile.md``,
 ``make bench-compile``). So:
 
@@ -51,10 +51,10 @@ WARM_UP_CONFIGS = (("paper.toml", {}),
                    ("paper.toml", {"impact.pattern": "one_wall", "impact.closure": "self_consistent"}),
                    ("default.toml", {}))
 CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs"
-#: Seconds to compile every kernel from nothing: ``study compile`` took 219 s into an empty cache on the project's
-#: 2-core machine, quiet, in `make setup` of a fresh clone (2026-11-26, at 172dbb5; docs/performance_compile.md has the
+#: Seconds to compile every kernel from nothing: ``study compile`` took 255 s into an empty cache on the project's
+#: 2-core machine, quiet, in `make setup` of a fresh clone (2026-11-27, at 3d2696d; docs/performance_compile.md has the
 #: bench's measurement, on a loaded machine); quoted to the user before a compile starts.
-COMPILE_SECONDS = 220
+COMPILE_SECONDS = 260
 
 
 def kernels(modules: Iterable[str] = KERNEL_MODULES) -> dict[str, Any]:
