@@ -123,8 +123,8 @@ def _damage_text(ds: xr.Dataset) -> str:
                       "stress per revolution")
     counted = 0
     if "method" in ds.data_vars and "fatigue_life" in ds.data_vars:
-        answered = np.isfinite(np.asarray(ds["fatigue_life"].values, float))
-        counted = int(np.sum((np.asarray(ds["method"].values).astype(str) == "reference") & answered))
+        answered = answered_values(ds, "fatigue_life").notnull()
+        counted = int((answered & (ds["method"].astype(str) == "reference")).sum())
     if not counted:
         return f"Miner's rule, {per_revolution}"
     return (f"Miner's rule: at the reference model's {counted} points over its stress history counted by rainflow "
