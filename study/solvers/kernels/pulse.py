@@ -27,12 +27,21 @@ N_PULSE_STATE = 16
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def spline_shape(pcoef, p, i, w, j, x):
+    """The pulse's shape [-] at x into its piece j (of G, x in [0, 1/G]) at point p: the natural cubic splines of the
+    table speeds i and i + 1 (``pcoef`` (P, S, 4, G − 1), Horner in x) weighed w and 1 − w (linearly in log v0),
+    nil where that dips below 0. x = 0 gives a piece's first knot exactly (its constant term)."""
+    a = ((pcoef[p, i, 0, j] * x + pcoef[p, i, 1, j]) * x + pcoef[p, i, 2, j]) * x + pcoef[p, i, 3, j]
+    b = ((pcoef[p, i + 1, 0, j] * x + pcoef[p, i + 1, 1, j]) * x + pcoef[p, i + 1, 2, j]) * x + pcoef[p, i + 1, 3, j]
+    return max((1.0 - w) * a + w * b, 0.0)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def pulse_force(t, pst, pcoef, p):
     """The normal force [N] at time t [s] of the strike whose pulse point p is under (its state ``pst[p]``, the
     :data:`P_MODE` … columns): the local model's history at its onset speed (study.physics.strike.strike_pulse_table),
-    F_peak times its shape at s = (t − t0)/T_c, each speed's natural cubic spline in s (``pcoef`` (P, S, 4, G − 1))
-    weighed linearly in log v0 between the two table speeds about v0; 0
-    outside 0 < s < 1 and where the spline dips below 0."""
+    F_peak times its shape at s = (t − t0)/T_c (:func:`spline_shape`, each speed's natural cubic spline in s weighed
+    linearly in log v0 between the two table speeds about v0); 0 outside 0 < s < 1 and where the spline dips below 0."""
     s = (t - pst[p, P_T0]) / pst[p, P_DURATION]
     if s <= 0.0 or s >= 1.0:
         return 0.0
@@ -40,12 +49,7 @@ def pulse_force(t, pst, pcoef, p):
     j = int(s * g)
     if j > g - 1:
         j = g - 1
-    x = s - j / g
-    i = int(pst[p, P_INDEX])
-    w = pst[p, P_WEIGHT]
-    a = ((pcoef[p, i, 0, j] * x + pcoef[p, i, 1, j]) * x + pcoef[p, i, 2, j]) * x + pcoef[p, i, 3, j]
-    b = ((pcoef[p, i + 1, 0, j] * x + pcoef[p, i + 1, 1, j]) * x + pcoef[p, i + 1, 2, j]) * x + pcoef[p, i + 1, 3, j]
-    return pst[p, P_PEAK] * max((1.0 - w) * a + w * b, 0.0)
+    return pst[p, P_PEAK] * spline_shape(pcoef, p, int(pst[p, P_INDEX]), pst[p, P_WEIGHT], j, s - j / g)
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -164,13 +168,8 @@ def matched_scale(z, phi, omega2, inv_m, p, N, pst, pcoef, lloss, shape, steady=
     w = pst[p, P_WEIGHT]
     G = pcoef.shape[3]
     for j in range(G):
-        shape[j] = max((1.0 - w) * pcoef[p, i, 3, j] + w * pcoef[p, i + 1, 3, j], 0.0)
-    # the last knot: each spline's last piece at x = 1/G
-    x = 1.0 / G
-    a = ((pcoef[p, i, 0, G - 1] * x + pcoef[p, i, 1, G - 1]) * x + pcoef[p, i, 2, G - 1]) * x + pcoef[p, i, 3, G - 1]
-    b = (((pcoef[p, i + 1, 0, G - 1] * x + pcoef[p, i + 1, 1, G - 1]) * x + pcoef[p, i + 1, 2, G - 1]) * x
-         + pcoef[p, i + 1, 3, G - 1])
-    shape[G] = max((1.0 - w) * a + w * b, 0.0)
+        shape[j] = spline_shape(pcoef, p, i, w, j, 0.0)
+    shape[G] = spline_shape(pcoef, p, i, w, G - 1, 1.0 / G)  # the last knot: the last piece's end
     A, B = pulse_work_terms(z, phi, omega2, inv_m, p, N, shape, pst[p, P_DURATION])
     if steady:
         A = 0.0
