@@ -45,6 +45,7 @@ solution where the undamped one's dropped drag is not small (``terms_not_small``
 from __future__ import annotations
 
 import copy
+import re
 import sys
 import threading
 from collections import OrderedDict
@@ -54,7 +55,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.solvers.methods.periodic import damped, fast, series
-from study.solvers.methods import freewhirl, reference, sliding
+from study.solvers.methods import freewhirl, reference, sliding, sliding_parts
 from study.solvers.model import gate
 from study.solvers.model.options import Tolerances
 from study.solvers.model.point import DesignPoint
@@ -98,21 +99,36 @@ def _drag_not_small(result: PointResult, point: DesignPoint) -> bool:
     return result.status == "terms_not_small"
 
 
-def as_is(point: DesignPoint) -> DesignPoint:
+def as_is(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
     """The point as the ladder was given it."""
     return point
 
 
-def _series_point(point: DesignPoint) -> DesignPoint:
+def _series_point(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
     """The series doubles its harmonics until the study's tolerance."""
     tolerance = point.series.series_tolerance or point.tolerances.tolerance
     return point.with_series(replace(point.series, series_tolerance=tolerance))
 
 
-#: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's)}.
-LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint], DesignPoint]]]] = {
+def _chatter_modes(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
+    """The point as given, or, where the rung below (the sliding state) found a chatter on the wall beside its motion
+    (its check's run from rest, ``sliding_parts.from_rest``: a joint striking revolution after revolution while the
+    others hold the string on the wall), with the reference model's first mode count raised to the check's, at least:
+    the default's 16 modes do not carry the chatter the check's 48 show (at default grid point 384 the run from rest on
+    16 modes settles, on 32-64 it chatters; docs/reference_model.md §10)."""
+    found = below.extras.get("second_motion") if below is not None else None
+    if not found or not found.get("chattered"):
+        return point
+    modes = max(int(point.reference.reference_modes), int(found["modes"]))
+    return point.with_reference(reference_modes=modes,
+                                reference_max_modes=max(modes, int(point.reference.reference_max_modes)))
+
+
+#: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's
+#: and the result of the rung below, None on the first)}.
+LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint, PointResult | None], DesignPoint]]]] = {
     "auto": {"free-whirl": (freewhirl.run, as_is), "sliding": (sliding.run, as_is),
-             "reference": (reference.run, as_is)},
+             "reference": (reference.run, _chatter_modes)},
     "periodic": {"fast": (fast.run, as_is), "series": (series.run, _series_point), "damped": (damped.run, as_is)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.
@@ -231,7 +247,7 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
     if same_regime and not worse:  # the higher model's run found the same motion
         flagged.values["coexisting_motion"] = 0.0
         figures = ", ".join(_figure(name, higher.values[name]) for name in sliding.FIGURES)
-        flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
+        flagged.message = (re.split("; (?:" + "|".join(sliding_parts.COEXISTS.values()) + ")", flagged.message)[0]
                            + f"; the {higher.method} model's run from the rest came to this motion too ({figures}: "
                              f"none above this motion's beyond their tolerance and errors)")
         return flagged
@@ -256,7 +272,7 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], point):
             continue
-        answer = solve_rung(method, prepare(point))
+        answer = solve_rung(method, prepare(point, tried[-1] if tried else None))
         tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
         if tried[-1].status == "ok" and tried[-1].values.get("coexisting_motion") != 1.0:
             break  # (an ok answer beside which a bouncing motion coexists goes up: the worse motion is reported)
