@@ -29,10 +29,11 @@ The free whirl depends on no restitution (``INDEPENDENT_OF`` in its module): its
 (:func:`solve_rung`), so a sweep over the restitution solves it once. (The sliding state's figures do not depend on it
 either, but its checks of stability and of a second motion run the reference model, whose held contacts it damps.)
 
-Where the sliding state is stable but a bouncing motion coexists with it (the reference model's run from rest bounces:
-output ``coexisting_motion`` 1), the point goes up too and its answer is the reference model's, the worse for the
-limits, flagged and naming the sliding one's figures — unless that run came to the sliding motion, told by its regime
-and its design figures within their stated errors (:func:`worse_figures`, :func:`_coexisting`).
+Where the sliding state is stable but a second motion coexists with it (the reference model's run from rest bounces,
+or chatters on the wall: output ``coexisting_motion`` 1), the point goes up too and its answer is the reference
+model's, the worse for the limits, flagged and naming the sliding one's figures — unless that run came to the sliding
+motion, told by its regime and its design figures within their stated errors (:func:`worse_figures`,
+:func:`_coexisting`). Where it chatters the reference model starts at the check's mode count (:func:`_chatter_modes`).
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -88,7 +89,7 @@ def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
     if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
-        return True  # a bouncing motion coexists with it: the reference model's run decides (:func:`climb`)
+        return True  # a second motion coexists with it: the reference model's run decides (:func:`climb`)
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
     return _not_final(result, point)
@@ -226,7 +227,7 @@ def _figure(name: str, value: float) -> str:
 
 
 def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult | None:
-    """The point's answer where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the
+    """The point's answer where a rung found a stable motion beside a second one (output ``coexisting_motion`` 1: the
     sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after.
 
     The higher run came to the stable motion where its regime is the stable motion's and none of its design figures
@@ -275,7 +276,7 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
         answer = solve_rung(method, prepare(point, tried[-1] if tried else None))
         tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
         if tried[-1].status == "ok" and tried[-1].values.get("coexisting_motion") != 1.0:
-            break  # (an ok answer beside which a bouncing motion coexists goes up: the worse motion is reported)
+            break  # (an ok answer beside which a second motion coexists goes up: the worse motion is reported)
     result = tried[-1]
     answers = [r for r in tried if r.status == "not_converged" and r.error_estimate is not None
                and np.isfinite(r.error_estimate)]

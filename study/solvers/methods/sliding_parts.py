@@ -1,8 +1,8 @@
 """Parts of the ``sliding`` method (:mod:`study.solvers.methods.sliding`, docs/reference_model.md §10) kept in a
 module of their own: its checks by the reference model's own run — whether a periodic motion on the wall is stable
-(:func:`stability`), and whether a bouncing motion coexists with it, reached from the string's rest on the wall
-(:func:`from_rest`, :func:`second_motion`) — and the lift-off search's start (:func:`least_force_slope`,
-:func:`polynomial_root`)."""
+(:func:`stability`), and whether a second motion coexists with it, bouncing or chattering on the wall, reached from
+the string's rest on it (:func:`from_rest`, :func:`second_motion`) — and the lift-off search's start
+(:func:`least_force_slope`, :func:`polynomial_root`)."""
 
 from __future__ import annotations
 
