@@ -80,9 +80,10 @@ BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_LIFT_RATIO = 40, 5, 5, 2.0
 #: :data:`BASIN_LAST` such revolutions in a row after the first :data:`CHATTER_TRANSIENT` are a chatter beside the
 #: sliding motion. Over the 96 points the default sweep checks (48 modes, 40 revolutions from rest): at 384-389 (75
 #: rpm, 5 000 lbf, 3°/100 ft) a joint strikes above 4 times the sliding force in 6-15 revolutions in a row after the
-#: 15th, at every other point whose string stays on the wall in 3 at most (650, 275 rpm), in none at 128-191 (150-175
-#: rpm, straight hole: the start-up's strikes die there, up to 2.8 times after the 15th); before the 16th the
-#: start-up's strikes after a flight pass 4 times in 5-10 revolutions in a row at 650, 696, 697 and 701.
+#: 15th, at the other points whose string stays on the wall in 3 at most (650, 275 rpm; but 680, which its flights
+#: send up), in none at 128-191 (150-175 rpm, straight hole: the start-up's strikes die there, up to 2.8 times after
+#: the 15th); the start-up's strikes after a flight pass 4 times in 5-10 revolutions in a row before the 16th (counted
+#: from the 11th, 650, 696, 697 and 701 would chatter; with 3 times from the 16th, 650).
 CHATTER_RATIO, CHATTER_TRANSIENT = 4.0, 15
 #: The verdicts of :func:`basin_verdict`.
 BOUNCES, CHATTERS, SETTLES = "bounces", "chatters", "settles"
