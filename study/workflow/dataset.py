@@ -35,7 +35,7 @@ EXTRA_OUTPUTS = {
 
 #: CF flag attributes of the outputs that are flags (besides ``regime``'s codes).
 FLAGS = {"coexisting_motion": {"flag_values": np.array([0.0, 1.0]),
-                               "flag_meanings": "one_motion_found bouncing_motion_coexists"}}
+                               "flag_meanings": "one_motion_found second_motion_coexists"}}
 
 
 def _input_attrs(name: str) -> dict[str, str]:

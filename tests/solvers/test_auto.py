@@ -208,3 +208,61 @@ def test_auto_solves_the_cheap_rungs_once_across_the_inputs_they_do_not_depend_o
     assert first.values["peak_contact_force"] != second.values["peak_contact_force"]  # the reference's own answers
     assert freewhirl.INDEPENDENT_OF == ("restitution",) and sliding.INDEPENDENT_OF == ()
     assert not hasattr(reference, "INDEPENDENT_OF")
+
+
+def test_where_the_sliding_check_found_a_chatter_the_reference_model_starts_at_the_checks_modes():
+    # docs/reference_model.md §10: at default grid point 384 the sliding state's check (its run from rest on 48
+    # modes) chatters on the wall, while the reference model's run from the same rest on its default 16 modes settles
+    # (108-109 N against the sliding 87 N) and on 32-64 chatters: the reference rung starts at the check's count
+    from study.solvers.methods import auto
+    from study.solvers.model.point import DesignPoint
+    from study.solvers.model.result import PointResult
+
+    point = DesignPoint.from_inputs(_default_points(1)[0][384])
+    assert point.reference.reference_modes == 16 and point.reference.reference_max_modes == 64
+    prepare = auto.LADDERS["auto"]["reference"][1]
+    chatter = PointResult(method="sliding", values=dict(coexisting_motion=1.0),
+                          extras=dict(second_motion=dict(bounced=False, chattered=True, modes=48)))
+    raised = prepare(point, chatter)
+    assert raised.reference.reference_modes == 48 and raised.reference.reference_max_modes == 64
+    assert raised.inputs["reference_modes"] == 48 and raised.scene == point.scene
+    # a bouncing motion (the string off the wall), a settled check, no check, the first rung: the point as given
+    for below in (PointResult(method="sliding", extras=dict(second_motion=dict(bounced=True, chattered=False,
+                                                                               modes=48))),
+                  PointResult(method="sliding", extras=dict(second_motion=dict(bounced=False, chattered=False,
+                                                                               modes=48))),
+                  PointResult(method="sliding"), None):
+        assert prepare(point, below) is point
+    # more modes asked for than the check's are kept, and the most raised to the first where it is below
+    many = point.with_reference(reference_modes=64, reference_max_modes=32)
+    assert prepare(many, chatter).reference.reference_modes == 64
+    assert prepare(many, chatter).reference.reference_max_modes == 64
+
+
+def test_a_full_run_come_to_the_sliding_motion_takes_the_chatter_flag_off():
+    # where the reference model's run came to the sliding motion after all (its figures within their tolerance and
+    # errors, auto.worse_figures), the sliding answer stands, flagged 0, its message no longer naming the chatter; where
+    # it chatters at 12 times the sliding force (384 at 64 fixed modes: 1.07 kN, 30.47 and 22.02 MPa against 87 N,
+    # 29.73 and 21.56 MPa, docs/reference_model.md §10) its answer is the point's, flagged 1
+    from study.solvers.methods import auto
+    from study.solvers.model.options import Tolerances
+    from study.solvers.model.result import PointResult
+
+    names = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress")
+
+    def lying():
+        return PointResult(method="sliding", error_estimate=0.005, values=dict(coexisting_motion=1.0, regime=6.0,
+                                                                               **dict(zip(names, (87.3, 29.73e6,
+                                                                                                  21.56e6)))),
+                           message="lying; a chattering motion coexists: in the reference model's run ...")
+
+    came_back = PointResult(method="reference", error_estimate=0.01, values=dict(regime=6.0, **dict(zip(
+        names, (88.0, 29.75e6, 21.57e6)))), message="sliding")
+    stands = auto._coexisting([lying(), came_back], Tolerances())
+    assert stands.method == "sliding" and stands.values["coexisting_motion"] == 0.0
+    assert stands.message.startswith("lying; the reference model's run from the rest came to this motion too")
+    chatter = PointResult(method="reference", error_estimate=0.01, values=dict(regime=6.0, **dict(zip(
+        names, (1070.0, 30.47e6, 22.02e6)))), message="sliding")
+    assert auto._coexisting([lying(), chatter], Tolerances()) is chatter
+    assert chatter.values["coexisting_motion"] == 1.0 and chatter.extras["coexisting"]["worse"] == [
+        "peak_contact_force"]

@@ -362,6 +362,22 @@ def test_where_a_bouncing_motion_coexists_with_the_sliding_one_the_answer_says_s
     assert "coexists" not in calm.message and calm.extras["second_motion"]["opened"] == 1
 
 
+def test_where_the_run_from_rest_chatters_on_the_wall_a_second_motion_is_flagged():
+    # default grid point 384 (75 rpm, 5 000 lbf, 9 ppg, no flow, 3°/100 ft; lift-off 1.80 times the point's
+    # eccentricity): the sliding answer 87 N; the check's run from rest on its 48 modes never leaves the wall, but a
+    # joint lifts and strikes it above sliding_parts.CHATTER_RATIO times that in every revolution of a stretch after
+    # the 15th (measured: 6-15 in a row over 40 revolutions; at 64 fixed modes the full run is ok at 1.07 kN,
+    # docs/reference_model.md §10): a chattering motion beside the sliding one, flagged
+    from study.solvers.methods import sliding_parts
+
+    result = sliding.solve(_study_point(384))
+    assert result.status == "ok" and result.values["peak_contact_force"] == pytest.approx(87.3, rel=0.01)
+    found = result.extras["second_motion"]
+    assert result.values["coexisting_motion"] == 1.0 and found["chattered"] and not found["bounced"], found
+    assert "a chattering motion coexists" in result.message and "48 modes" in result.message, result.message
+    assert found["peak"] > sliding_parts.CHATTER_RATIO * result.values["peak_contact_force"]
+
+
 def test_auto_reports_the_bouncing_motion_where_both_exist_and_flags_it():
     # the engineer's safe side: where the stable sliding answer has a bouncing motion beside it, the reference model
     # answers (the motion reached from rest, the worse for the limits), flagged, the sliding figures in its message

@@ -40,6 +40,6 @@ def test_a_coexisting_motion_is_a_flag_variable(tmp_path):
     cols = columns(3, [np.nan] * 3)
     cols["coexisting_motion"] = np.array([1.0, 0.0, np.nan])
     with xr.open_dataset(write_dataset(study, grid, cols, tmp_path / "c.nc")) as ds:
-        assert ds.coexisting_motion.attrs["flag_meanings"].split() == ["one_motion_found", "bouncing_motion_coexists"]
+        assert ds.coexisting_motion.attrs["flag_meanings"].split() == ["one_motion_found", "second_motion_coexists"]
         np.testing.assert_array_equal(ds.coexisting_motion.attrs["flag_values"], [0.0, 1.0])
         np.testing.assert_array_equal(ds.coexisting_motion.values, [1.0, 0.0, np.nan])

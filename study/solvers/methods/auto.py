@@ -29,10 +29,11 @@ The free whirl depends on no restitution (``INDEPENDENT_OF`` in its module): its
 (:func:`solve_rung`), so a sweep over the restitution solves it once. (The sliding state's figures do not depend on it
 either, but its checks of stability and of a second motion run the reference model, whose held contacts it damps.)
 
-Where the sliding state is stable but a bouncing motion coexists with it (the reference model's run from rest bounces:
-output ``coexisting_motion`` 1), the point goes up too and its answer is the reference model's, the worse for the
-limits, flagged and naming the sliding one's figures — unless that run came to the sliding motion, told by its regime
-and its design figures within their stated errors (:func:`worse_figures`, :func:`_coexisting`).
+Where the sliding state is stable but a second motion coexists with it (the reference model's run from rest bounces,
+or chatters on the wall: output ``coexisting_motion`` 1), the point goes up too and its answer is the reference
+model's, the worse for the limits, flagged and naming the sliding one's figures — unless that run came to the sliding
+motion, told by its regime and its design figures within their stated errors (:func:`worse_figures`,
+:func:`_coexisting`). Where it chatters the reference model starts at the check's mode count (:func:`_chatter_modes`).
 
 The paper's periodic solution is not on this ladder: the reference check (method ``reference-check``,
 docs/reference_model.md) found it outside the study's tolerance at every point surveyed — it strikes the wall
@@ -45,6 +46,7 @@ solution where the undamped one's dropped drag is not small (``terms_not_small``
 from __future__ import annotations
 
 import copy
+import re
 import sys
 import threading
 from collections import OrderedDict
@@ -54,7 +56,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from study.solvers.methods.periodic import damped, fast, series
-from study.solvers.methods import freewhirl, reference, sliding
+from study.solvers.methods import freewhirl, reference, sliding, sliding_parts
 from study.solvers.model import gate
 from study.solvers.model.options import Tolerances
 from study.solvers.model.point import DesignPoint
@@ -87,7 +89,7 @@ def _not_final_nor_sliding(result: PointResult, point: DesignPoint) -> bool:
     """Anything the sliding state does not answer well enough: not this state (``out_of_scope``), or its answer
     not converged with an error estimate above :data:`SLIDING_STANDS_BELOW`."""
     if result.method == "sliding" and result.values.get("coexisting_motion") == 1.0:
-        return True  # a bouncing motion coexists with it: the reference model's run decides (:func:`climb`)
+        return True  # a second motion coexists with it: the reference model's run decides (:func:`climb`)
     if result.method == "sliding" and result.status == "not_converged":
         return result.error_estimate is None or not result.error_estimate <= SLIDING_STANDS_BELOW
     return _not_final(result, point)
@@ -98,21 +100,36 @@ def _drag_not_small(result: PointResult, point: DesignPoint) -> bool:
     return result.status == "terms_not_small"
 
 
-def as_is(point: DesignPoint) -> DesignPoint:
+def as_is(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
     """The point as the ladder was given it."""
     return point
 
 
-def _series_point(point: DesignPoint) -> DesignPoint:
+def _series_point(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
     """The series doubles its harmonics until the study's tolerance."""
     tolerance = point.series.series_tolerance or point.tolerances.tolerance
     return point.with_series(replace(point.series, series_tolerance=tolerance))
 
 
-#: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's)}.
-LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint], DesignPoint]]]] = {
+def _chatter_modes(point: DesignPoint, below: PointResult | None = None) -> DesignPoint:
+    """The point as given, or, where the rung below (the sliding state) found a chatter on the wall beside its motion
+    (its check's run from rest, ``sliding_parts.from_rest``: a joint striking revolution after revolution while the
+    others hold the string on the wall), with the reference model's first mode count raised to the check's, at least:
+    the default's 16 modes do not carry the chatter the check's 48 show (at default grid point 384 the run from rest on
+    16 modes settles, on 32-64 it chatters; docs/reference_model.md §10)."""
+    found = below.extras.get("second_motion") if below is not None else None
+    if not found or not found.get("chattered"):
+        return point
+    modes = max(int(point.reference.reference_modes), int(found["modes"]))
+    return point.with_reference(reference_modes=modes,
+                                reference_max_modes=max(modes, int(point.reference.reference_max_modes)))
+
+
+#: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's
+#: and the result of the rung below, None on the first)}.
+LADDERS: dict[str, dict[str, tuple[Solve, Callable[[DesignPoint, PointResult | None], DesignPoint]]]] = {
     "auto": {"free-whirl": (freewhirl.run, as_is), "sliding": (sliding.run, as_is),
-             "reference": (reference.run, as_is)},
+             "reference": (reference.run, _chatter_modes)},
     "periodic": {"fast": (fast.run, as_is), "series": (series.run, _series_point), "damped": (damped.run, as_is)},
 }
 #: For each rung above the first: which results of the rung below it the rung can mend.
@@ -210,7 +227,7 @@ def _figure(name: str, value: float) -> str:
 
 
 def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult | None:
-    """The point's answer where a rung found a stable motion beside a bouncing one (output ``coexisting_motion`` 1: the
+    """The point's answer where a rung found a stable motion beside a second one (output ``coexisting_motion`` 1: the
     sliding state, :func:`study.solvers.methods.sliding_parts.second_motion`) and a higher rung answered it after.
 
     The higher run came to the stable motion where its regime is the stable motion's and none of its design figures
@@ -231,7 +248,7 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
     if same_regime and not worse:  # the higher model's run found the same motion
         flagged.values["coexisting_motion"] = 0.0
         figures = ", ".join(_figure(name, higher.values[name]) for name in sliding.FIGURES)
-        flagged.message = (flagged.message.split("; a bouncing motion coexists")[0]
+        flagged.message = (re.split("; (?:" + "|".join(sliding_parts.COEXISTS.values()) + ")", flagged.message)[0]
                            + f"; the {higher.method} model's run from the rest came to this motion too ({figures}: "
                              f"none above this motion's beyond their tolerance and errors)")
         return flagged
@@ -256,10 +273,10 @@ def climb(ladder: str, point: DesignPoint) -> PointResult:
     for name, (method, prepare) in LADDERS[ladder].items():
         if tried and not MENDS[name](tried[-1], point):
             continue
-        answer = solve_rung(method, prepare(point))
+        answer = solve_rung(method, prepare(point, tried[-1] if tried else None))
         tried.append(gate.admit(answer, point.scene, point.tolerances) if answer.status == "ok" else answer)
         if tried[-1].status == "ok" and tried[-1].values.get("coexisting_motion") != 1.0:
-            break  # (an ok answer beside which a bouncing motion coexists goes up: the worse motion is reported)
+            break  # (an ok answer beside which a second motion coexists goes up: the worse motion is reported)
     result = tried[-1]
     answers = [r for r in tried if r.status == "not_converged" and r.error_estimate is not None
                and np.isfinite(r.error_estimate)]

@@ -1,8 +1,8 @@
 """Parts of the ``sliding`` method (:mod:`study.solvers.methods.sliding`, docs/reference_model.md §10) kept in a
 module of their own: its checks by the reference model's own run — whether a periodic motion on the wall is stable
-(:func:`stability`), and whether a bouncing motion coexists with it, reached from the string's rest on the wall
-(:func:`from_rest`, :func:`second_motion`) — and the lift-off search's start (:func:`least_force_slope`,
-:func:`polynomial_root`)."""
+(:func:`stability`), and whether a second motion coexists with it, bouncing or chattering on the wall, reached from
+the string's rest on it (:func:`from_rest`, :func:`second_motion`) — and the lift-off search's start
+(:func:`least_force_slope`, :func:`polynomial_root`)."""
 
 from __future__ import annotations
 
@@ -66,43 +66,74 @@ def stability(model: reference.WhirlModel, window: reference.Window, revolutions
 #: The check for a second motion (:func:`from_rest`, :func:`basin_verdict`). A revolution in which the string is off
 #: the wall — every contact open — for more than 1 - ``reference.SLIDING_CONTACT`` of it is a bouncing one: the
 #: reference model's own test of its regime (``statistics.whirl_measure``: in contact less of the time, not sliding),
-#: by which, with its design figures, ``auto`` tells its full run's motion (``auto._coexisting``: a string that
-#: chatters on the wall, its joints striking in turn, is "sliding" by the regime alone and told by its peak force; a
-#: chatter this check does not see, docs/reference_model.md §10). The first :data:`BASIN_TRANSIENT` revolutions decide
-#: nothing: the whole eccentric load applied at once throws the joints off the wall (at default grid points 654, 688,
-#: 696 and 700 the string flew in revolutions 2-9, 4-6, 6-7 and 5-7 and came back to the wall, as the full reference
-#: runs there did). After them :data:`BASIN_LAST` revolutions in a row decide, each a bouncing one (bounces) or none
-#: (settles); a run still undecided after :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run
-#: decides). :data:`BASIN_LIFT_RATIO`: the lift-off eccentricity over the point's below which the check runs (a
-#: joint's least force over the revolution near nil). The figures behind them: docs/reference_model.md §10.
+#: by which, with its design figures, ``auto`` tells its full run's motion (``auto._coexisting``). The first
+#: :data:`BASIN_TRANSIENT` revolutions decide nothing: the whole eccentric load applied at once throws the joints off
+#: the wall (at default grid points 654, 688, 696 and 700 the string flew in revolutions 2-9, 4-6, 6-7 and 5-7 and came
+#: back to the wall, as the full reference runs there did). After them :data:`BASIN_LAST` revolutions in a row decide,
+#: each a bouncing one (bounces) or none of them bouncing nor chattering (settles); a run still undecided after
+#: :data:`BASIN_REVOLUTIONS` revolutions goes up (the reference model's own run decides). :data:`BASIN_LIFT_RATIO`: the
+#: lift-off eccentricity over the point's below which the check runs (a joint's least force over the revolution near
+#: nil). The figures behind them: docs/reference_model.md §10.
 BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_LIFT_RATIO = 40, 5, 5, 2.0
+#: A chatter on the wall (:func:`chatters`): a revolution in which a contact opens and strikes again (an onset) at a
+#: peak force above :data:`CHATTER_RATIO` times the sliding answer's, the string held on the wall by the other joints.
+#: :data:`BASIN_LAST` such revolutions in a row after the first :data:`CHATTER_TRANSIENT` are a chatter beside the
+#: sliding motion. Over the 96 points the default sweep checks (48 modes, 40 revolutions from rest): at 384-389 (75
+#: rpm, 5 000 lbf, 3°/100 ft) a joint strikes above 4 times the sliding force in 6-15 revolutions in a row after the
+#: 15th, at the other points whose string stays on the wall in 3 at most (650, 275 rpm; but 680, which its flights
+#: send up), in none at 128-191 (150-175 rpm, straight hole: the start-up's strikes die there, up to 2.8 times after
+#: the 15th); the start-up's strikes after a flight pass 4 times in 5-10 revolutions in a row before the 16th (counted
+#: from the 11th, 650, 696, 697 and 701 would chatter; with 3 times from the 16th, 650).
+CHATTER_RATIO, CHATTER_TRANSIENT = 4.0, 15
+#: The verdicts of :func:`basin_verdict`.
+BOUNCES, CHATTERS, SETTLES = "bounces", "chatters", "settles"
 
 
-def basin_verdict(flying: Sequence[bool], transient: int = BASIN_TRANSIENT, last: int = BASIN_LAST) -> bool | None:
-    """Whether a run from rest bounces, from ``flying`` (per revolution run so far: the string was off the wall for
-    more than 1 - ``reference.SLIDING_CONTACT`` of it): True where each of the last ``last`` revolutions was, False
-    where none of them was, both only once they all come after the first ``transient`` (the load's start-up); None
+def chatters(onsets: np.ndarray, peak: np.ndarray, sliding_force: float, ratio: float = CHATTER_RATIO) -> bool:
+    """Whether a revolution chatters on the wall: a contact point with an onset (``onsets``, per point: it opened and
+    struck the wall again) whose largest force over the revolution (``peak`` [N], per point) is above ``ratio`` times
+    ``sliding_force`` [N] (the sliding answer's peak contact force)."""
+    return bool(np.any((np.asarray(onsets) > 0) & (np.asarray(peak) > ratio * sliding_force)))
+
+
+def basin_verdict(flying: Sequence[bool], chattering: Sequence[bool] = (), transient: int = BASIN_TRANSIENT,
+                  last: int = BASIN_LAST, chatter_transient: int = CHATTER_TRANSIENT) -> str | None:
+    """Whether a run from rest bounces, chatters or settles, from ``flying`` (per revolution run so far: the string was
+    off the wall for more than 1 - ``reference.SLIDING_CONTACT`` of it) and ``chattering`` (per revolution: it
+    chattered, :func:`chatters`; none where not given): :data:`BOUNCES` where each of the last ``last`` revolutions
+    flew, all after the first ``transient`` (the load's start-up); else :data:`CHATTERS` where each of the last
+    ``last`` chattered, all after the first ``chatter_transient`` (the start-up's strikes after its flights); else
+    :data:`SETTLES` where none of the last ``last``, all after the first ``transient``, flew or chattered; None
     (undecided) else."""
     tail = list(flying[transient:])[-last:]
-    if len(tail) < last:
-        return None
-    return True if all(tail) else False if not any(tail) else None
+    struck = list(chattering[transient:len(flying)])[-last:]
+    late = list(chattering[chatter_transient:len(flying)])[-last:]
+    if len(tail) == last and all(tail):
+        return BOUNCES
+    if len(late) == last and all(late):
+        return CHATTERS
+    return SETTLES if len(tail) == last and not any(tail) and not any(struck) else None
 
 
-def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
+def from_rest(model: reference.WhirlModel, sliding_force: float | None = None,
+              revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
     """Whether the reference model's run from the string's rest on the wall (its own start,
     :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) keeps
     leaving the wall — revolution after revolution past the start-up, the string off it (every contact open) for more
-    than 1 - ``reference.SLIDING_CONTACT`` of each (:func:`basin_verdict`) — or settles on it: where it bounces a
-    bouncing motion is reached from there, beside the sliding one (docs/reference_model.md §10). The run stops as soon
-    as it is decided, at most ``revolutions``; one undecided then, or whose integration fails, counts as bouncing (the
-    reference model's own run decides). Returns bounced (bool), decided (bool), the revolution of the first onset
-    (opened, or None), the revolutions off the wall (flying), the revolutions run, the least fraction of a revolution
-    in contact after the start-up (contact) and the largest contact force after it [N] (peak; over the whole run
-    where it ended within it)."""
+    than 1 - ``reference.SLIDING_CONTACT`` of each — or chatters on it — a joint striking at more than
+    :data:`CHATTER_RATIO` times ``sliding_force`` [N] (the sliding answer's peak contact force; no chatter test where
+    None) revolution after revolution while the others hold the string on the wall (:func:`basin_verdict`) — or
+    settles on it: where it bounces or chatters a second motion is reached from there, beside the sliding one
+    (docs/reference_model.md §10). The run stops as soon as it is decided, at most ``revolutions``; one undecided
+    then, or whose integration fails, counts as bouncing (the reference model's own run decides). Returns bounced
+    (bool), chattered (bool), decided (bool), the revolution of the first onset (opened, or None), the revolutions off
+    the wall (flying) and chattering (chattering), the revolutions run, the mode count (modes), the least fraction of
+    a revolution in contact after the start-up (contact) and the largest contact force after it [N] (peak; over the
+    whole run where it ended within it)."""
     start = reference.initial_state(model)  # the rest on the wall, kept in the model's cache
     run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
     flying: list[bool] = []
+    chattering: list[bool] = []
     peaks, contact, opened, verdict, failed = [], [], None, None, False
     for k in range(1, revolutions + 1):
         cycle = run.run(k * model.period)
@@ -111,31 +142,47 @@ def from_rest(model: reference.WhirlModel, revolutions: int = BASIN_REVOLUTIONS)
         failed = run.outcome != whirl_kernel.OK
         opened = k if opened is None and (failed or np.any(cycle.onsets > 0)) else opened
         flying.append(failed or contact[-1] < reference.SLIDING_CONTACT)
-        verdict = True if failed else basin_verdict(flying)
+        chattering.append(sliding_force is not None and chatters(cycle.onsets, cycle.peak, sliding_force))
+        verdict = BOUNCES if failed else basin_verdict(flying, chattering)
         if verdict is not None:
             break
     late = slice(BASIN_TRANSIENT if k > BASIN_TRANSIENT else 0, None)
-    return dict(bounced=verdict is not False, decided=verdict is not None and not failed, opened=opened,
-                flying=[i + 1 for i, f in enumerate(flying) if f], revolutions=k, contact=min(contact[late]),
-                peak=max(peaks[late]))
+    return dict(bounced=verdict not in (SETTLES, CHATTERS), chattered=verdict == CHATTERS,
+                decided=verdict is not None and not failed, opened=opened,
+                flying=[i + 1 for i, f in enumerate(flying) if f],
+                chattering=[i + 1 for i, c in enumerate(chattering) if c], revolutions=k, modes=model.n_modes,
+                contact=min(contact[late]), peak=max(peaks[late]))
+
+
+#: The phrase by which :func:`second_motion`'s message names the motion it found beside the sliding one (which
+#: ``auto._coexisting`` takes off where the full run came to the sliding motion after all).
+COEXISTS = {BOUNCES: "a bouncing motion coexists", CHATTERS: "a chattering motion coexists"}
 
 
 def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
-    """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a bouncing
-    motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall
-    keeps leaving it, or is undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the
-    run stays on the wall or settles back on it; not set (NaN) where the lift-off eccentricity is
-    :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
+    """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a second
+    motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall keeps
+    leaving it, or chatters on it at more than :data:`CHATTER_RATIO` times the answer's peak contact force, or is
+    undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the run stays on the wall
+    or settles back on it; not set (NaN) where the lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the
+    point's or more (not checked)."""
     lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
     if not (eps > 0 and np.isfinite(lift) and lift < BASIN_LIFT_RATIO * eps):
         return result
-    found = result.extras["second_motion"] = from_rest(model)
-    result.values["coexisting_motion"] = float(found["bounced"])
-    if found["bounced"]:
-        k = found["revolutions"]
-        result.message += (f"; a bouncing motion coexists: the reference model's run from the rest on the wall (the "
-                           f"eccentric load applied at once; lift-off eccentricity {lift / eps:.3g} times the point's) "
-                           f"lifted a joint off the wall in revolution {found['opened']} and "
+    found = result.extras["second_motion"] = from_rest(model, result.values.get("peak_contact_force"))
+    result.values["coexisting_motion"] = float(found["bounced"] or found["chattered"])
+    k = found["revolutions"]
+    how = (f"the reference model's run from the rest on the wall (the eccentric load applied at once; lift-off "
+           f"eccentricity {lift / eps:.3g} times the point's")
+    if found["chattered"]:
+        result.message += (f"; {COEXISTS[CHATTERS]}: in {how}, {found['modes']} modes) a joint lifted and struck the "
+                           f"wall at more than {CHATTER_RATIO:.3g} times this answer's peak force in each of "
+                           f"revolutions {k - BASIN_LAST + 1}-{k}, the others holding the string on it (in contact "
+                           f"{found['contact']:.0%} of a revolution at least, striking it at up to "
+                           f"{found['peak']:.3g} N)")
+    elif found["bounced"]:
+        result.message += (f"; {COEXISTS[BOUNCES]}: {how}) lifted a joint off the wall in revolution "
+                           f"{found['opened']} and "
                            + (f"the string was off it in each of revolutions {k - BASIN_LAST + 1}-{k}"
                               if found["decided"] else
                               f"the string was still off it in {len(found['flying'])} of {k} revolutions")

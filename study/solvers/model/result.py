@@ -198,8 +198,9 @@ OUTPUTS = {
                               "it the pipe lies there, above it bounces (the sliding state's balance; NaN where no "
                               "side load lays the string down, inf where no eccentricity lifts it; methods sliding, "
                               "reference, auto)"),
-    "coexisting_motion": ("1", "1 where a bouncing motion coexists with the stable sliding one (the reference "
-                          "model's run from the rest on the wall bounces; auto then reports the reference model's "
+    "coexisting_motion": ("1", "1 where a second motion coexists with the stable sliding one (the reference "
+                          "model's run from the rest on the wall bounces, or chatters on it, a joint striking at "
+                          "several times the sliding force; auto then reports the reference model's "
                           "answer, unless its run came to the sliding motion by its regime and design figures), 0 "
                           "where that run settles on the wall or the reference model's came to the sliding motion, "
                           "NaN where not checked (the lift-off eccentricity twice the point's or more; methods "
