@@ -617,14 +617,27 @@ def confidence(n: int, level: float = CONFIDENCE_LEVEL) -> float:
 def revolutions_for(length: int, window: int, part: float, room: float) -> float:
     """Revolutions more [-] a record of ``length`` revolutions, whose window of ``window`` of them states ``part``
     (:func:`confidence` standard errors of its mean), is foreseen to need for that part to fall to ``room``: the
-    standard error falls as the root of the window's length and the bound's t quantile with its batches, so the
-    window w' solves confidence(w') s √(window / w') = room (s the standard error now; a few fixed-point steps from
-    the quantile of now, which overestimates it), the record growing in proportion."""
+    standard error s falls as the root of the window's length and the bound's t quantile with its batches, so the
+    window grows to the least w' with t s √(window / w') ≤ room (t on ⌊√w'⌋ − 1 degrees of freedom, the fewest
+    batches w' values give, so that the bound falls with w'), the record in proportion. 0 where ``part`` is within
+    ``room``; inf where no window of fewer than 10⁹ revolutions reaches it."""
+    if part <= room:
+        return 0.0
     error = part / confidence(window)
-    grown = float(window)
-    for _ in range(4):
-        grown = max(window * (confidence(int(min(grown, 1e9))) * error / room) ** 2, window)
-    return max(length * (grown / window - 1.0), 0.0)
+
+    def bound(w: int) -> float:
+        return float(student_t.ppf(0.5 + CONFIDENCE_LEVEL / 2.0, max(int(np.sqrt(w)), 2) - 1)) * error * np.sqrt(
+            window / w)
+
+    low, high = window, 2 * window
+    while bound(high) > room:
+        low, high = high, 2 * high
+        if high > 1e9:
+            return float("inf")
+    while high - low > 1:  # bound(low) > room >= bound(high)
+        middle = (low + high) // 2
+        low, high = (low, middle) if bound(middle) <= room else (middle, high)
+    return length * (high / window - 1.0)
 
 
 def settle_ratio(states, scale) -> float:
