@@ -78,14 +78,14 @@ from study.solvers.methods.reference.integrate import (SCHEMES, SCHEME_CODES, ST
 from study.solvers.methods.reference.fields import (body_wall_excess, contact_spacing, energy_balance,
                                                     joint_inertia_forces, modal_accelerations, periodic_fields,
                                                     row_wall_excess, stresses, wall_excess_bound)
-from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, DAMAGE_FIBRES, DRIFT_SIGNIFICANCE, FIGURES,
-                                                        FORECAST_SLACK, MAX_SETTLE_RATIO, MODAL_FIGURES,
+from study.solvers.methods.reference.statistics import (CONFIDENCE_LEVEL, DAMAGE, DAMAGE_FIBRES, DRIFT_SIGNIFICANCE,
+                                                        FIGURES, FORECAST_SLACK, MAX_SETTLE_RATIO, MODAL_FIGURES,
                                                         NEGLIGIBLE_BENDING, SLIDING_CONTACT, SLIDING_RATE,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                         fibre_damage, fibre_stress, figure_tolerance, modal_check,
                                                         quasi_static_applies, quasi_static_ratio, settle_ratio,
                                                         settling, standard_error, stationary, stress_equivalent,
-                                                        whirl_measure, window_summary)
+                                                        whirl_measure, window_summary, confidence, revolutions_for)
 from study.solvers.methods.reference.method import (METHOD, doubling_modal_error, modal_part, run, simulate, solve,
                                                     solve_with_modes, solve_with_stations)
 from study.solvers.model.result import REGIMES
@@ -98,7 +98,8 @@ __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility"
            "merge", "Integrator", "initial_state", "periodic_fields", "body_wall_excess", "row_wall_excess",
            "wall_excess_bound", "modal_accelerations", "joint_inertia_forces", "stresses", "contact_spacing",
            "energy_balance", "WHIRL_REGIMES", "WHIRL_CLASSES", "SLIDING_RATE", "SLIDING_CONTACT", "FIGURES", "DAMAGE",
-           "DAMAGE_FIBRES", "CONFIDENCE", "DRIFT_SIGNIFICANCE", "FORECAST_SLACK", "MAX_SETTLE_RATIO", "stationary",
+           "DAMAGE_FIBRES", "CONFIDENCE_LEVEL", "confidence", "revolutions_for", "DRIFT_SIGNIFICANCE",
+           "FORECAST_SLACK", "MAX_SETTLE_RATIO", "stationary",
            "cycle_values", "fibre_stress", "fibre_damage", "window_summary", "standard_error", "settle_ratio",
            "settling", "MODAL_FIGURES", "quasi_static_ratio", "quasi_static_applies", "modal_check",
            "NEGLIGIBLE_BENDING", "convergence", "stress_equivalent", "figure_tolerance", "whirl_measure", "METHOD",

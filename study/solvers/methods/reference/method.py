@@ -15,9 +15,10 @@ from study.solvers.methods.reference.fields import contact_spacing, energy_balan
 from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.methods.reference.model import WhirlModel, build_model
 from study.solvers.methods.reference.replay import impact_modal_error, replay_summary
-from study.solvers.methods.reference.statistics import (CONFIDENCE, DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
+from study.solvers.methods.reference.statistics import (DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
-                                                        figure_tolerance, modal_check, settle_ratio, settling,
+                                                        figure_tolerance, modal_check, revolutions_for, settle_ratio,
+                                                        settling,
                                                         stationary, strike_modal_part, strike_stress_modal_part,
                                                         whirl_measure,
                                                         window_summary)
@@ -169,18 +170,18 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                     continue
                 if room <= 0:
                     wants[name] = np.inf  # the integrator or the modes take it over: more revolutions do not help
-                elif np.isfinite(ratio) and e["window"] > CONFIDENCE * stats[name]["error"]:
+                elif np.isfinite(ratio) and e["window"] > stats[name]["confidence"] * stats[name]["error"]:
                     # settling: drifts shrink by ρ
                     wants[name] = np.log(room / e["window"]) / np.log(ratio) if ratio > 0 else 0.0
                 else:  # the standard error falls as the root of the window's length (half the record's if settling)
                     length = len(window_cycles) * (1 if stationary_record else 2)
-                    if bouncing and e["window"] > CONFIDENCE * stats[name]["error"]:
+                    if bouncing and e["window"] > stats[name]["confidence"] * stats[name]["error"]:
                         # a stationary bouncing's halves' drift, not a standard error (its intermittency): no root law
                         # foresees it (it vanishes once the halves agree and the window is the whole record), so one
                         # record's length more and look again (a slide that settles slowly keeps the forecast)
                         wants[name] = float(length)
-                    else:
-                        wants[name] = length * ((e["window"] / room) ** 2 - 1.0)
+                    else:  # its bound's t quantile falls too as the window's batches grow
+                        wants[name] = revolutions_for(length, len(window_cycles), e["window"], room)
             # the window grows for every figure that can get there within the budget (a forecast within FORECAST_SLACK
             # of it), whatever the others: a figure its modes take over, or whose scatter asks far more than the budget,
             # does not stop the others' growth (issue 36)

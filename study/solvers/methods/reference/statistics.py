@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 import numpy as np
+from scipy.stats import t as student_t
 
 from study.physics import fatigue, limits, section, strike
 from study.physics.contact import hertz_force
@@ -55,10 +56,12 @@ DAMAGE = "damage_rate"
 DAMAGE_FIBRES = 8
 
 
-#: Standard errors in a figure's window part: a mean's stated error is a bound at about 95 % (two standard errors of a
-#: normal mean), not its 1-sigma scatter, which a figure passes at one point in three; the held-back check of the
-#: stated errors (``study coverage``, docs/validation.md) asks them to cover the true difference at 90 % of points.
-CONFIDENCE = 2.0
+#: The two-sided level of a figure's window part: a mean's stated error is a bound at 95 %, not its 1-sigma scatter,
+#: which a figure passes at one point in three; the held-back check of the stated errors (``study coverage``,
+#: docs/validation.md) asks them to cover the true difference at 90 % of points. The bound is Student's t on the
+#: batch means' degrees of freedom (:func:`confidence`), not the normal's 2: a window of 12 revolutions has four
+#: batches, three degrees of freedom.
+CONFIDENCE_LEVEL = 0.95
 
 
 #: The record is still settling where a figure's window mean differs from the preceding stretch's by more than
@@ -581,21 +584,60 @@ def window_summary(cycles: list[Mapping[str, Any]], stats: Mapping[str, Mapping[
     return out
 
 
+def batch_count(n: int) -> int:
+    """The number of batch means :func:`standard_error` takes over n values (batches of ⌊√n⌋ values each)."""
+    return int(n) // max(1, int(np.sqrt(n)))
+
+
 def standard_error(x) -> float:
-    """Standard error of the mean of the series x: the larger of the batch-means estimate (batches of ⌊√n⌋
-    consecutive values, the first values dropped to make them whole; Schmeiser 1982, doi:10.1287/opre.30.3.556),
-    which holds where consecutive values are correlated, and the plain s/√n, which is steadier where the batches
-    are few. 0 for a constant series, NaN for fewer than two values."""
+    """Standard error of the mean of the series x: the larger of the batch-means estimate (:func:`batch_count`
+    batches of ⌊√n⌋ consecutive values, the first values dropped to make them whole; Schmeiser 1982,
+    doi:10.1287/opre.30.3.556), which holds where consecutive values are correlated, and the plain s/√n, which is
+    steadier where the batches are few. 0 for a constant series, NaN for fewer than two values."""
     x = np.asarray(x, float)
     if x.size < 2:
         return float("nan")
     plain = float(np.std(x, ddof=1) / np.sqrt(x.size))
     size = max(1, int(np.sqrt(x.size)))
-    count = x.size // size
+    count = batch_count(x.size)
     if count < 2:
         return plain
     means = x[x.size - count * size:].reshape(count, size).mean(axis=1)
     return max(plain, float(np.std(means, ddof=1) / np.sqrt(count)))
+
+
+def confidence(n: int, level: float = CONFIDENCE_LEVEL) -> float:
+    """Standard errors [-] in the two-sided ``level`` bound of the mean of n values by :func:`standard_error`:
+    Student's t quantile on the batch means' b − 1 degrees of freedom (b = :func:`batch_count`, at least 2; the
+    batch-means interval, Schmeiser 1982, doi:10.1287/opre.30.3.556): 4.30 for 6 values (three batches of two),
+    3.18 for 12 and 18, 2.57 for 24-48, 2.26 for 100, towards 1.96."""
+    return float(student_t.ppf(0.5 + level / 2.0, max(batch_count(n), 2) - 1))
+
+
+def revolutions_for(length: int, window: int, part: float, room: float) -> float:
+    """Revolutions more [-] a record of ``length`` revolutions, whose window of ``window`` of them states ``part``
+    (:func:`confidence` standard errors of its mean), is foreseen to need for that part to fall to ``room``: the
+    standard error s falls as the root of the window's length and the bound's t quantile with its batches, so the
+    window grows to the least w' with t s √(window / w') ≤ room (t on ⌊√w'⌋ − 1 degrees of freedom, the fewest
+    batches w' values give, so that the bound falls with w'), the record in proportion. 0 where ``part`` is within
+    ``room``; inf where no window of fewer than 10⁹ revolutions reaches it."""
+    if part <= room:
+        return 0.0
+    error = part / confidence(window)
+
+    def bound(w: int) -> float:
+        return float(student_t.ppf(0.5 + CONFIDENCE_LEVEL / 2.0, max(int(np.sqrt(w)), 2) - 1)) * error * np.sqrt(
+            window / w)
+
+    low, high = window, 2 * window
+    while bound(high) > room:
+        low, high = high, 2 * high
+        if high > 1e9:
+            return float("inf")
+    while high - low > 1:  # bound(low) > room >= bound(high)
+        middle = (low + high) // 2
+        low, high = (low, middle) if bound(middle) <= room else (middle, high)
+    return length * (high / window - 1.0)
 
 
 def settle_ratio(states, scale) -> float:
@@ -621,9 +663,10 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     largest mean over the window taken, ``fibre``), from its per-cycle values over the window and the preceding
     stretch of equal length (empty when the motion is periodic, or taken as stationary): ``value`` (the mean over
     the window's cycles), ``largest`` (over them), ``error`` (relative standard error of the mean by batch means),
+    ``confidence`` (the standard errors in its 95 % bound, :func:`confidence`),
     ``drift`` (relative difference of the window's and the preceding stretch's means), ``significant`` (that
     difference is more than :data:`DRIFT_SIGNIFICANCE` combined standard errors: still settling) and ``window``, the
-    window's part of the figure's error: the larger of :data:`CONFIDENCE` standard errors and the drift, and where the
+    window's part of the figure's error: the larger of ``confidence`` standard errors and the drift, and where the
     motion settles (the state's changes shrink by ``ratio`` ρ a revolution, :func:`settle_ratio`) with the drifts still
     to come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
     out = {}
@@ -648,9 +691,10 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
             spread = np.hypot(np.nan_to_num(error, nan=np.inf), standard_error(before) if np.ptp(before) > 0 else 0.0)
             drift, significant = change / size, bool(change > DRIFT_SIGNIFICANCE * spread)
         error = error / size if np.isfinite(error) else np.inf
-        part = max(CONFIDENCE * error, drift / (1.0 - ratio**h) if settles else drift)
-        out[name] = dict(value=value, largest=largest, error=error, drift=drift, significant=significant,
-                         window=float(part))
+        bound = confidence(h)
+        part = max(bound * error, drift / (1.0 - ratio**h) if settles else drift)
+        out[name] = dict(value=value, largest=largest, error=error, confidence=bound, drift=drift,
+                         significant=significant, window=float(part))
         if fibre is not None:
             out[name]["fibre"] = fibre
     return out
