@@ -1,6 +1,7 @@
 """study bench (study.bench): the benchmark's pieces run and report every method (no timing asserted)."""
 
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -270,3 +271,18 @@ def test_the_performance_record_is_make_benchs_output_with_every_default_section
     for name, section in SECTIONS.items():
         assert (f"`{name}` " in header) if section.default else (f"`{name}`, " in header), name
     assert _assert_every_row_carries_a_ratio(report) > len(SECTIONS)
+
+
+def test_the_record_keeps_its_sections_measured_by_hand(tmp_path):
+    # docs/performance.md carries sections measured by hand (their commands in their text) beside what `study bench`
+    # makes; a rewrite of the record keeps them as they are, and only them
+    from study.bench import HAND_MARK, hand_sections, write_report
+
+    path = tmp_path / "performance.md"
+    assert hand_sections(path) == ""  # no record yet
+    hand = f"### Drag options {HAND_MARK}\n\nmeasured: 1.17x\n\n    command --with-options\n"
+    write_report(path, "# Performance\n\n### Time per point\n\n| a | 1x |\n\n" + hand + "### Made again\n\nx\n")
+    assert hand_sections(path) == hand
+    committed = hand_sections(Path(__file__).resolve().parents[1] / "docs" / "performance.md")
+    assert committed.count("### ") == committed.count(HAND_MARK) >= 1
+    assert "Time per design point" not in committed
