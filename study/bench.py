@@ -24,9 +24,7 @@ from typing import Any
 import numpy as np
 
 from study import __version__
-from study.atomic import atomic_path
-from study.benchmarks import reference as reference_bench
-from study.benchmarks import series as series_bench
+from study.benchmarks import record, reference as reference_bench, series as series_bench
 from study.benchmarks import time_domain as time_domain_bench
 from study.config import load
 from study.physics import hertz
@@ -914,36 +912,8 @@ def run_bench(out: str | None = None, sections=None, quick: bool = False) -> str
     ]
     report = "\n".join(lines + body).rstrip() + "\n"
     if out:
-        kept = hand_sections(out)
-        report += "\n" + kept if kept else ""
-        write_report(out, report)
+        record.write_record(out, report)
     return report
-
-
-#: The mark of a section of the performance record measured by hand (its command in its text), which `study bench`
-#: does not make and keeps where it rewrites the record.
-HAND_MARK = "(recorded by hand, not by `make bench`)"
-
-
-def hand_sections(path: str | Path) -> str:
-    """The sections of the record at ``path`` whose heading carries :data:`HAND_MARK`, each to the next heading,
-    as they are; "" where the file or such a section does not exist."""
-    path = Path(path)
-    if not path.exists():
-        return ""
-    kept, keeping = [], False
-    for line in path.read_text().splitlines():
-        if line.startswith("#"):
-            keeping = HAND_MARK in line
-        if keeping:
-            kept.append(line)
-    return "\n".join(kept).rstrip() + "\n" if kept else ""
-
-
-def write_report(out: str | Path, report: str) -> None:
-    """Write ``report`` to ``out`` atomically (a reader never sees half a record)."""
-    with atomic_path(out) as tmp:
-        Path(tmp).write_text(report)
 
 
 #: The measured large sweep (issue 23): the default study on every axis refined, 103 424 points.
@@ -1025,5 +995,5 @@ def bench_large_sweep(config: str | Path = LARGE_CONFIG, workers: int = 2, out: 
                        f"{np.median(wall[mine]) * 1e3:.3g} | {wall[mine].max():.2g} |")
     report = "\n".join(lines) + "\n"
     if out:
-        write_report(out, report)
+        record.write_record(out, report)
     return report

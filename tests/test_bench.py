@@ -276,13 +276,15 @@ def test_the_performance_record_is_make_benchs_output_with_every_default_section
 def test_the_record_keeps_its_sections_measured_by_hand(tmp_path):
     # docs/performance.md carries sections measured by hand (their commands in their text) beside what `study bench`
     # makes; a rewrite of the record keeps them as they are, and only them
-    from study.bench import HAND_MARK, hand_sections, write_report
+    from study.benchmarks.record import HAND_MARK, hand_sections, write_record
 
     path = tmp_path / "performance.md"
     assert hand_sections(path) == ""  # no record yet
     hand = f"### Drag options {HAND_MARK}\n\nmeasured: 1.17x\n\n    command --with-options\n"
-    write_report(path, "# Performance\n\n### Time per point\n\n| a | 1x |\n\n" + hand + "### Made again\n\nx\n")
+    write_record(path, "# Performance\n\n### Time per point\n\n| a | 1x |\n\n" + hand + "### Made again\n\nx\n")
     assert hand_sections(path) == hand
+    write_record(path, "# Performance\n\n### Time per point\n\n| a | 2x |\n")  # made again: the hand's kept
+    assert path.read_text() == "# Performance\n\n### Time per point\n\n| a | 2x |\n\n" + hand
     committed = hand_sections(Path(__file__).resolve().parents[1] / "docs" / "performance.md")
     assert committed.count("### ") == committed.count(HAND_MARK) >= 1
     assert "Time per design point" not in committed
