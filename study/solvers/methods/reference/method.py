@@ -18,10 +18,8 @@ from study.solvers.methods.reference.replay import impact_modal_error, replay_su
 from study.solvers.methods.reference.statistics import (DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                         figure_tolerance, modal_check, revolutions_for, settle_ratio,
-                                                        settling,
-                                                        stationary, strike_modal_part, strike_stress_modal_part,
-                                                        whirl_measure,
-                                                        window_summary)
+                                                        settling, stationary, strike_modal_part,
+                                                        strike_stress_modal_part, whirl_measure, window_summary)
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import REGIMES, PointResult
 from study.solvers.kernels.periodicity import settled_period

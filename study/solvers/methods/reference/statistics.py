@@ -606,12 +606,18 @@ def standard_error(x) -> float:
     return max(plain, float(np.std(means, ddof=1) / np.sqrt(count)))
 
 
+def batch_quantile(batches: int, level: float = CONFIDENCE_LEVEL) -> float:
+    """Standard errors [-] in the two-sided ``level`` bound of a mean by batch means: Student's t quantile on b − 1
+    degrees of freedom for b ``batches`` (at least 2; the batch-means interval, Schmeiser 1982,
+    doi:10.1287/opre.30.3.556)."""
+    return float(student_t.ppf(0.5 + level / 2.0, max(int(batches), 2) - 1))
+
+
 def confidence(n: int, level: float = CONFIDENCE_LEVEL) -> float:
     """Standard errors [-] in the two-sided ``level`` bound of the mean of n values by :func:`standard_error`:
-    Student's t quantile on the batch means' b − 1 degrees of freedom (b = :func:`batch_count`, at least 2; the
-    batch-means interval, Schmeiser 1982, doi:10.1287/opre.30.3.556): 4.30 for 6 values (three batches of two),
-    3.18 for 12 and 18, 2.57 for 24-48, 2.26 for 100, towards 1.96."""
-    return float(student_t.ppf(0.5 + level / 2.0, max(batch_count(n), 2) - 1))
+    :func:`batch_quantile` on its :func:`batch_count` batches: 4.30 for 6 values (three batches of two), 3.18 for 12
+    and 18, 2.57 for 24-48, 2.26 for 100, towards 1.96."""
+    return batch_quantile(batch_count(n), level)
 
 
 def revolutions_for(length: int, window: int, part: float, room: float) -> float:
@@ -626,8 +632,7 @@ def revolutions_for(length: int, window: int, part: float, room: float) -> float
     error = part / confidence(window)
 
     def bound(w: int) -> float:
-        return float(student_t.ppf(0.5 + CONFIDENCE_LEVEL / 2.0, max(int(np.sqrt(w)), 2) - 1)) * error * np.sqrt(
-            window / w)
+        return batch_quantile(int(np.sqrt(w))) * error * np.sqrt(window / w)
 
     low, high = window, 2 * window
     while bound(high) > room:
@@ -671,6 +676,7 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
     to come if they shrink alike, drift/(1 − ρ^h) for a window of h revolutions."""
     out = {}
     h = len(window)
+    bound = confidence(h)  # the same window for every figure
     settles = bool(np.isfinite(ratio))  # the state's changes shrink: it settles
     for name in (*FIGURES, DAMAGE):
         if name not in window[0]:
@@ -691,7 +697,6 @@ def settling(window: list[Mapping[str, Any]], preceding: list[Mapping[str, Any]]
             spread = np.hypot(np.nan_to_num(error, nan=np.inf), standard_error(before) if np.ptp(before) > 0 else 0.0)
             drift, significant = change / size, bool(change > DRIFT_SIGNIFICANCE * spread)
         error = error / size if np.isfinite(error) else np.inf
-        bound = confidence(h)
         part = max(bound * error, drift / (1.0 - ratio**h) if settles else drift)
         out[name] = dict(value=value, largest=largest, error=error, confidence=bound, drift=drift,
                          significant=significant, window=float(part))
