@@ -291,8 +291,8 @@ def bench_reference_schemes(config: str | Path = DEFAULT_CONFIG.with_name("defau
         finally:
             timer["run"] += time.perf_counter() - start
 
-    def counted_simulate(inputs, model=None):
-        out = plain_simulate(inputs, model)
+    def counted_simulate(inputs, model=None, start=None):
+        out = plain_simulate(inputs, model, start)
         timer["work"] = out["integrator"].work.copy()
         return out
 

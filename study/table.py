@@ -61,6 +61,8 @@ EXTRA_OUTPUTS = {
                                         "sequence; 0 without them)"),
     "modal_by_doubling": (None, "the modal part of the errors is each figure's change from the run at half the modes "
                                 "(the residual vectors, the strikes' pulses), not the in-run measure"),
+    "continued_from_modes": ("1", "modes of the run whose end this run started from (the count tried before it; "
+                                  "none: started from the wall's rest)"),
     "steps": ("1", "integrator steps"),
     "quasi_static_correction": (None, "the quasi-static correction for the modes left out was applied"),
     "modal_error": (None, "modal part of each figure's error: from the strikes replayed at more modes, or the size "

@@ -93,6 +93,9 @@ class PointResult:
     #: the reference model a run started from on the wall (its sliding rest in its ``cache``), handed to the lift-off
     #: eccentricity (:func:`study.solvers.methods.sliding.add_lift_off`, which empties it); not an output
     rest_model: Any = field(default=None, repr=False, compare=False)
+    #: where a reference run ended (its model, state and contacts: reference.method.end_state), handed to the run at
+    #: more modes (reference.method.continued_state); emptied when the reference method returns; not an output
+    final_state: Any = field(default=None, repr=False, compare=False)
 
     def __setattr__(self, name: str, value: Any) -> None:
         # a status given by its name (``result.status = "ok"``) becomes its member; an unknown one is refused here

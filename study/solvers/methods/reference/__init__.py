@@ -86,8 +86,9 @@ from study.solvers.methods.reference.statistics import (CONFIDENCE_LEVEL, DAMAGE
                                                         quasi_static_applies, quasi_static_ratio, settle_ratio,
                                                         settling, standard_error, stationary, stress_equivalent,
                                                         whirl_measure, window_summary, confidence, revolutions_for)
-from study.solvers.methods.reference.method import (METHOD, doubling_modal_error, modal_part, run, simulate, solve,
-                                                    solve_with_modes, solve_with_stations)
+from study.solvers.methods.reference.method import (METHOD, continued_state, doubling_modal_error, end_state,
+                                                    modal_part, run, simulate, solve, solve_with_modes,
+                                                    solve_with_stations, start_integrator)
 from study.solvers.model.result import REGIMES
 
 __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility", "SECOND_MOMENT_HARMONICS",
@@ -104,4 +105,4 @@ __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility"
            "settling", "MODAL_FIGURES", "quasi_static_ratio", "quasi_static_applies", "modal_check",
            "NEGLIGIBLE_BENDING", "convergence", "stress_equivalent", "figure_tolerance", "whirl_measure", "METHOD",
            "simulate", "run", "solve", "modal_part", "doubling_modal_error", "solve_with_modes", "solve_with_stations",
-           "REGIMES"]
+           "start_integrator", "end_state", "continued_state", "REGIMES"]

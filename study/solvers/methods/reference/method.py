@@ -14,7 +14,7 @@ from study.solvers.kernels import pulse, whirl_kernel
 from study.solvers.methods.reference.fields import contact_spacing, energy_balance
 from study.solvers.methods.reference.integrate import Integrator, Window, initial_state, merge
 from study.solvers.methods.reference.model import WhirlModel, build_model
-from study.solvers.methods.reference.replay import impact_modal_error, replay_summary
+from study.solvers.methods.reference.replay import impact_modal_error, lift_state, replay_summary
 from study.solvers.methods.reference.statistics import (DAMAGE, FIGURES, FORECAST_SLACK, MODAL_FIGURES,
                                                         WHIRL_CLASSES, WHIRL_REGIMES, convergence, cycle_values,
                                                         figure_tolerance, modal_check, revolutions_for, settle_ratio,
@@ -28,10 +28,13 @@ from study.solvers.kernels.periodicity import settled_period
 METHOD = "reference"
 
 
-def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = None) -> dict[str, Any]:
+def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = None,
+             start: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
     recorded window, extended while its
-    figures have not converged (docs/reference_model.md §3.1).
+    figures have not converged (docs/reference_model.md §3.1). ``start``: where to start at a revolution boundary, the
+    run at fewer modes' end (:func:`continued_state`: the modal state and the contacts' state); else
+    ``reference_initial``'s.
 
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
     periods. Not periodic: the last ``reference_window`` revolutions of the transient are recorded too, and the
@@ -58,8 +61,7 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
     point = DesignPoint.of(point)
     option = point.reference
     model = model or build_model(point)
-    start = initial_state(model, option.reference_initial)
-    run = Integrator(model, float(option.reference_rtol), start, option.reference_integrator)
+    run = start_integrator(model, option, start)
     tau = model.period
     revolutions = int(option.reference_revolutions)
     n_window = int(option.reference_window)
@@ -324,6 +326,7 @@ def run(point: DesignPoint) -> PointResult:
         count *= factor
         previous = result
     result.extras["modes_tried"] = tried
+    result.final_state = None  # (a model: not handed on)
     if len(tried) > 1:
         result.message += (f"; modes doubled from {tried[0]['modes']} to {count} (the modal part "
                            + ", ".join(f"{t['modes']}: {t['modal']:.2%}" for t in tried) + ")")
@@ -382,6 +385,50 @@ def doubling_modal_error(previous: PointResult, values: Mapping[str, Any]) -> di
     return out
 
 
+def start_integrator(model: WhirlModel, option, start: Mapping[str, Any] | None = None) -> Integrator:
+    """The integrator a run starts with: at ``reference_initial``'s state (which also finds the wall's rest the
+    lift-off is measured from), or at ``start`` (:func:`continued_state`) with its contacts open as they were and the
+    step size it had, where the contact points are the same."""
+    rest = initial_state(model, option.reference_initial)
+    run = Integrator(model, float(option.reference_rtol), rest if start is None else start["state"],
+                     option.reference_integrator)
+    if start is not None and start["active"] is not None:
+        run.active[:], run.chi[:], run.h = start["active"], start["chi"], start["step"]
+    return run
+
+
+def end_state(run: Integrator, window: Window | None) -> dict[str, Any]:
+    """Where a run ended (:func:`continued_state` starts the run at more modes from it): its model, the modal state
+    (4N,), each contact point's open contact and Hunt–Crossley factor, the step size, and the contact forces (P, 3)
+    where the window's last row is the run's end (else None)."""
+    at_end = (window is not None and window.times.size
+              and abs(window.times[-1] - run.t) <= 1e-9 * max(run.model.period, abs(run.t)))
+    return dict(model=run.model, state=run.modal_state(), active=run.active.copy(), chi=run.chi.copy(), step=run.h,
+                forces=window.forces[-1].copy() if at_end else None)
+
+
+def continued_state(previous: PointResult | None, model: WhirlModel) -> dict[str, Any] | None:
+    """Where a run at more modes starts (:func:`simulate`'s ``start``): where the run at fewer (``previous``) ended, at
+    a revolution boundary, where the rotating loads' phase is the start's. Its modes as they were and the ones added at
+    their static response to the contact forces and the joints' weight then (:func:`replay.lift_state`; without the
+    forces at the end, to the weight alone); its power integrals from nil; its contacts open as they were (each one's
+    Hunt–Crossley factor of its onset speed) and its step size, where the contact points are the same (active and
+    chi None where not). None where there is no such run (then ``reference_initial``'s start).
+
+    Why: the start-up of a bouncing pipe from its rest on the wall rings down over some 20-40 revolutions
+    (docs/reference_model.md §3.1), longer than the stationarity test can tell from two 6-revolution stretches of a
+    chaotic motion; the run at more modes goes on from where the one before left the motion instead of starting it
+    again."""
+    end = getattr(previous, "final_state", None)
+    if end is None or end["model"].n_modes > model.n_modes:
+        return None
+    small = end["model"]
+    same = small.points.size == model.points.size and np.allclose(small.points, model.points)
+    state = lift_state(small, model, np.concatenate((end["state"], np.zeros(4))), end["forces"] if same else None)
+    return dict(state=state, active=end["active"] if same else None, chi=end["chi"] if same else None,
+                step=end["step"], modes=small.n_modes)
+
+
 def solve_with_modes(point: DesignPoint | Mapping[str, Any], previous: PointResult | None = None) -> PointResult:
     """The ``reference`` method with the inputs' ``reference_modes`` (:func:`solve` chooses the count): one run
     (:func:`solve_with_stations`), run again with the body's contact stations raised k -> 2k + 1 (the stations kept, one
@@ -436,7 +483,10 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
         result.message = (f"effective tension {model.props['effective_tension']:.4g} N buckles the "
                           f"{model.span:.4g} m section")
         return result
-    run = simulate(point, model)
+    start = continued_state(previous, model)
+    run = simulate(point, model, start)
+    if run["verdict"] != "failed":  # where the next count's run starts (solve; not an output)
+        result.final_state = end_state(run["integrator"], run["window"])
     # the lift-off eccentricity is computed about the rest the run started from (sliding.add_lift_off)
     result.rest_model = model if "sliding_rest" in model.cache else None
     result.extras.update(contact_points=[float(v) for v in model.points], contact_kinds=[int(v) for v in model.kinds],
@@ -444,7 +494,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                          reference_residual=(point.reference.reference_residual if model.dynamic else "series"
                                              if np.any(model.flexibility > 0) else "none"),
                          reference_residual_vectors=model.ritz["count"] if model.dynamic else 0,
-                         modal_by_doubling=modal_by_doubling(model))
+                         modal_by_doubling=modal_by_doubling(model),
+                         continued_from_modes=None if start is None else start["modes"])
     if run["verdict"] == "failed":
         result.status = "failed"
         result.message = f"integration failed: {run['failure']}"
@@ -524,7 +575,8 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                 (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
                  f"bouncing with stationary statistics after {run['revolutions']} revolutions (transient ended)"
                  if run.get("stationary") and run["revolutions"] < option.reference_revolutions else
-                 f"not periodic within {run['revolutions']} revolutions"),
+                 f"not periodic within {run['revolutions']} revolutions")
+                + (f" (started where the {start['modes']}-mode run ended)" if start is not None else ""),
                 f"figures: means over the window's {len(cycles)} cycle(s) of {cycle} of each cycle's largest value"
                 f" (largest seen: window_largest_*){stopped}",
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "

@@ -1,0 +1,119 @@
+"""The start-up of a bouncing pipe and where the reference model's run at more modes starts (docs/reference_model.md
+§3.1, "The run at more modes goes on from the run at fewer").
+
+Each revolution's figures of a run from the wall's rest (``reference_initial = "forced"``) at a fixed mode count, and
+their means over stretches of 12 revolutions::
+
+    python -m study.benchmarks.startup record 298,332,338 64 200 out.jsonl
+
+The reference method's answer as the sweep takes it (16 modes, then 64 started where the 16-mode run ended) against
+the same point's 64-mode run started from the wall's rest, and, where a coverage record is given (``study coverage``,
+docs/coverage.json), against its reference answer at the point::
+
+    python -m study.benchmarks.startup compare 298,332,338 out.jsonl docs/coverage.json
+
+Points are flat indices of configs/default.toml's grid. One JSON line per point; a summary on stdout. CPU seconds are
+``time.process_time``.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from study.benchmarks.strikes import ROOT
+
+#: The figures compared: the design figures of the reference model (reference.FIGURES) and the damage rate.
+NAMES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_deflection", "damage_rate")
+#: Revolutions a stretch of ``record``'s summary
+STRETCH = 12
+
+
+def grid_point(index: int) -> dict:
+    """The SI inputs of configs/default.toml's point at flat ``index``."""
+    from study import config
+    from study.workflow.grid import Grid
+
+    study = config.load(ROOT / "configs" / "default.toml")
+    return Grid(base=dict(study.inputs), axes=dict(study.axes)).point(int(index))
+
+
+def record(indices, modes: int, revolutions: int, out) -> None:
+    """Each revolution's figures (force [N], max normal and alternating stress [Pa], the worst fibre's damage of the
+    revolution alone) and contact onsets, from the wall's rest at ``modes`` modes."""
+    from study.solvers.methods import reference
+
+    for index in indices:
+        point = {**grid_point(index), "reference_modes": modes, "reference_max_modes": modes}
+        model = reference.build_model(point)
+        run = reference.Integrator(model, 1e-6, reference.initial_state(model, "forced"))
+        rows, started = [], time.process_time()
+        for k in range(1, revolutions + 1):
+            cycle = run.run(k * model.period, record=True)
+            if run.outcome != 0:
+                break
+            value = reference.cycle_values(point, model, [cycle])[0]
+            rows.append(dict(peak_contact_force=float(value["peak_contact_force"]),
+                             max_normal_stress=float(value["max_normal_stress"]),
+                             alternating_bending_stress=float(value["alternating_bending_stress"]),
+                             damage=float(np.max(value[reference.DAMAGE])), onsets=float(np.sum(cycle.onsets))))
+        line = dict(index=index, modes=modes, revolutions=len(rows), cpu=time.process_time() - started, rows=rows)
+        Path(out).open("a").write(json.dumps(line) + "\n")
+        force = np.array([r["peak_contact_force"] for r in rows]) / 1e3
+        stress = np.array([r["alternating_bending_stress"] for r in rows]) / 1e6
+        stretches = [(b, min(b + STRETCH, len(rows))) for b in range(0, len(rows), STRETCH)]
+        print(f"{index}: {len(rows)} revolutions at {modes} modes, {line['cpu']:.0f} s; per {STRETCH} revolutions, "
+              "peak force [kN] / alternating stress [MPa]: "
+              + ", ".join(f"{a + 1}-{b}: {force[a:b].mean():.1f} / {stress[a:b].mean():.1f}" for a, b in stretches),
+              flush=True)
+
+
+def compare(indices, out, coverage=None) -> None:
+    """The default chain's answer against a 64-mode (the chain's last count) run from the wall's rest, each figure's
+    value, stated error and, with a coverage record, its ratio to the record's reference answer."""
+    from study.solvers.methods import reference
+    from study.solvers.model.point import DesignPoint
+
+    references = {}
+    if coverage:
+        references = {p["index"]: p["reference"]["values"] for p in json.loads(Path(coverage).read_text())["points"]}
+    for index in indices:
+        point = DesignPoint.of(grid_point(index))
+        line = dict(index=index)
+        for kind in ("continued", "rest"):
+            started = time.process_time()
+            if kind == "continued":
+                result = reference.run(point)
+                modes = result.extras["reference_modes"]
+            else:
+                result = reference.run(point.with_reference(reference_modes=modes, reference_max_modes=modes))
+            parts = result.extras.get("convergence") or {}
+            line[kind] = dict(cpu=time.process_time() - started, modes=result.extras["reference_modes"],
+                              continued_from=result.extras.get("continued_from_modes"),
+                              revolutions=float(result.values.get("revolutions_simulated", np.nan)),
+                              values={n: float(result.values.get(n, np.nan)) for n in NAMES},
+                              stated={n: float(parts[n]["total"]) for n in NAMES if n in parts})
+        Path(out).open("a").write(json.dumps(line) + "\n")
+        ref = references.get(index)
+        shown = ", ".join(
+            f"{n}: " + " / ".join(f"{line[k]['values'][n] / ref[n]:.2f}" if ref else f"{line[k]['values'][n]:.4g}"
+                                  for k in ("continued", "rest")) for n in NAMES)
+        print(f"{index} ({'ratio to the coverage reference' if ref else 'values'}, continued / from rest): {shown}; "
+              f"CPU {line['continued']['cpu']:.1f} / {line['rest']['cpu']:.1f} s", flush=True)
+
+
+def main(argv: list[str]) -> None:
+    if argv and argv[0] == "record":
+        record([int(i) for i in argv[1].split(",")], int(argv[2]), int(argv[3]), argv[4])
+    elif argv and argv[0] == "compare":
+        compare([int(i) for i in argv[1].split(",")], argv[2], argv[3] if len(argv) > 3 else None)
+    else:
+        raise SystemExit(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
