@@ -473,7 +473,7 @@ def coverage_section(path: str | Path | None = None) -> list[str]:
     met = [FIGURES[name] for name in FIGURES if summary[name]["meets"]]
     missed = [FIGURES[name] for name in FIGURES if not summary[name]["meets"]]
     lines += ["", f"The stated error covers the true difference at {_pct(target)} of the points or more for "
-              f"{', '.join(met) or 'no figure'}; not for {', '.join(missed) or 'none'}."]
+              f"{', '.join(met) or 'no figure'}" + (f"; not for {', '.join(missed)}." if missed else ": every figure.")]
     lines += ["", "Per point: each figure's true difference / stated error (parts of the stated error: window + "
               "integrator + modes; `*` not covered), and the cost of each run (wall time on the machine the command "
               "ran on, its cores shared).", "",
