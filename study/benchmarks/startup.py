@@ -27,19 +27,16 @@ import numpy as np
 
 from study.benchmarks.strikes import ROOT
 
-#: The figures compared: the design figures of the reference model (reference.FIGURES) and the damage rate.
-NAMES = ("peak_contact_force", "max_normal_stress", "alternating_bending_stress", "max_deflection", "damage_rate")
 #: Revolutions of the start-up and of a stretch after it in ``record``'s summary
 START, STRETCH = 6, 12
 
 
-def grid_point(index: int) -> dict:
-    """The SI inputs of configs/default.toml's point at flat ``index``."""
+def default_grid():
+    """configs/default.toml's grid, its points by flat index as the sweep numbers them."""
     from study import config
-    from study.workflow.grid import Grid
+    from study.workflow.sweep import study_grid
 
-    study = config.load(ROOT / "configs" / "default.toml")
-    return Grid(base=dict(study.inputs), axes=dict(study.axes)).point(int(index))
+    return study_grid(config.load(ROOT / "configs" / "default.toml"))
 
 
 def record(indices, modes: int, revolutions: int, out) -> None:
@@ -47,8 +44,9 @@ def record(indices, modes: int, revolutions: int, out) -> None:
     revolution alone) and contact onsets, from the wall's rest at ``modes`` modes."""
     from study.solvers.methods import reference
 
+    grid = default_grid()
     for index in indices:
-        point = {**grid_point(index), "reference_modes": modes, "reference_max_modes": modes}
+        point = {**grid.point(int(index)), "reference_modes": modes, "reference_max_modes": modes}
         model = reference.build_model(point)
         run = reference.Integrator(model, 1e-6, reference.initial_state(model, "forced"))
         rows, started = [], time.process_time()
@@ -62,7 +60,8 @@ def record(indices, modes: int, revolutions: int, out) -> None:
                              alternating_bending_stress=float(value["alternating_bending_stress"]),
                              damage=float(np.max(value[reference.DAMAGE])), onsets=float(np.sum(cycle.onsets))))
         line = dict(index=index, modes=modes, revolutions=len(rows), cpu=time.process_time() - started, rows=rows)
-        Path(out).open("a").write(json.dumps(line) + "\n")
+        with open(out, "a") as handle:
+            handle.write(json.dumps(line) + "\n")
         force = np.array([r["peak_contact_force"] for r in rows]) / 1e3
         stress = np.array([r["alternating_bending_stress"] for r in rows]) / 1e6
         # the start-up (the 6 revolutions the stationarity test never reads), the 12-revolution stretches after it to
@@ -76,37 +75,41 @@ def record(indices, modes: int, revolutions: int, out) -> None:
 
 
 def compare(indices, out, coverage=None) -> None:
-    """The default chain's answer against a 64-mode (the chain's last count) run from the wall's rest, each figure's
-    value, stated error and, with a coverage record, its ratio to the record's reference answer."""
+    """The default chain's answer against a run from the wall's rest at the chain's last mode count, each figure's
+    value (the coverage's figures, :data:`study.coverage.FIGURES`) and stated error and, with a coverage record, its
+    ratio to the record's reference answer."""
+    from study.coverage import FIGURES
     from study.solvers.methods import reference
     from study.solvers.model.point import DesignPoint
+
+    def timed(point) -> dict:
+        started = time.process_time()
+        result = reference.run(point)
+        parts = result.extras.get("convergence") or {}
+        return dict(cpu=time.process_time() - started, modes=result.extras["reference_modes"],
+                    continued_from=result.extras.get("continued_from_modes"),
+                    revolutions=float(result.values.get("revolutions_simulated", np.nan)),
+                    values={n: float(result.values.get(n, np.nan)) for n in FIGURES},
+                    stated={n: float(parts[n]["total"]) for n in FIGURES if n in parts})
 
     references = {}
     if coverage:
         references = {p["index"]: p["reference"]["values"] for p in json.loads(Path(coverage).read_text())["points"]}
+    grid = default_grid()
     for index in indices:
-        point = DesignPoint.of(grid_point(index))
-        line = dict(index=index)
-        for kind in ("continued", "rest"):
-            started = time.process_time()
-            if kind == "continued":
-                result = reference.run(point)
-                modes = result.extras["reference_modes"]
-            else:
-                result = reference.run(point.with_reference(reference_modes=modes, reference_max_modes=modes))
-            parts = result.extras.get("convergence") or {}
-            line[kind] = dict(cpu=time.process_time() - started, modes=result.extras["reference_modes"],
-                              continued_from=result.extras.get("continued_from_modes"),
-                              revolutions=float(result.values.get("revolutions_simulated", np.nan)),
-                              values={n: float(result.values.get(n, np.nan)) for n in NAMES},
-                              stated={n: float(parts[n]["total"]) for n in NAMES if n in parts})
-        Path(out).open("a").write(json.dumps(line) + "\n")
+        point = DesignPoint.of(grid.point(int(index)))
+        continued = timed(point)
+        modes = continued["modes"]
+        line = dict(index=index, continued=continued,
+                    rest=timed(point.with_reference(reference_modes=modes, reference_max_modes=modes)))
+        with open(out, "a") as handle:
+            handle.write(json.dumps(line) + "\n")
         ref = references.get(index)
         shown = ", ".join(
             f"{n}: " + " / ".join(f"{line[k]['values'][n] / ref[n]:.2f}" if ref else f"{line[k]['values'][n]:.4g}"
-                                  for k in ("continued", "rest")) for n in NAMES)
+                                  for k in ("continued", "rest")) for n in FIGURES)
         print(f"{index} ({'ratio to the coverage reference' if ref else 'values'}, continued / from rest): {shown}; "
-              f"CPU {line['continued']['cpu']:.1f} / {line['rest']['cpu']:.1f} s", flush=True)
+              f"CPU {continued['cpu']:.1f} / {line['rest']['cpu']:.1f} s", flush=True)
 
 
 def main(argv: list[str]) -> None:
