@@ -234,10 +234,11 @@ def run_coverage(config: str | Path = DEFAULT_CONFIG, sample: int = SAMPLE, mode
     """Pick the sample and run its default and reference answers (resuming from ``cache``); the results as a dict
     (:func:`write_results` stores it). ``workers`` processes (0: in this process)."""
     from study.config import load
-    from study.workflow.grid import Grid, point_key
+    from study.workflow.grid import point_key
+    from study.workflow.sweep import study_grid
 
     study = load(config)
-    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))
+    grid = study_grid(study)
     cache = Path(cache) if cache is not None else CACHE / study.name
     order = candidate_order(grid.size)
     say(f"coverage: the first {sample} impacting points of {study.name}'s {grid.size}-point grid (stride "

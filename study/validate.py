@@ -21,6 +21,7 @@ from study.solvers.kernels.orbit import STABILITY_TOL
 from study.units import convert, pint_unit
 from study.workflow.execute import run_grid
 from study.workflow.grid import Grid
+from study.workflow.sweep import study_grid
 
 DEFAULT_CONFIG = Path(__file__).resolve().parents[1] / "configs" / "paper.toml"
 CROSSCHECK_CONFIG = DEFAULT_CONFIG.with_name("crosscheck.toml")
@@ -589,7 +590,7 @@ def hierarchy_sample(count: int = HIERARCHY_SAMPLE) -> list[dict]:
     """Every k-th point of the default study's grid solved by ``auto``; where a cheaper model than the reference
     answered, the reference model too (held back): method, wall times and values."""
     study = load(STUDY_CONFIG)
-    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))
+    grid = study_grid(study)
     step = max(grid.size // count, 1)
     rows = []
     for inputs in grid.points(range(step // 2, grid.size, step)):

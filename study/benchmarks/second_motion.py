@@ -90,10 +90,10 @@ def from_rest(indices, modes: int, revolutions: int, out) -> list[dict]:
     from study.solvers import solve_point
     from study.solvers.methods import reference
     from study.solvers.model.options import ReferenceOptions
-    from study.workflow.grid import Grid
+    from study.workflow.sweep import study_grid
 
     study = config.load(ROOT / "configs" / "default.toml")
-    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))  # the sweep's grid: the results' flat index
+    grid = study_grid(study)  # the sweep's grid: the results' flat index
     rows = []
     for i in indices:
         inputs = grid.point(int(i))

@@ -199,10 +199,10 @@ def recover(indices, count, revolutions, out):
     from study.solvers.methods.reference.method import simulate
     from study.solvers.methods.reference.model import build_model
     from study.solvers.methods.reference.statistics import cycle_values
-    from study.workflow.grid import Grid
+    from study.workflow.sweep import study_grid
 
     study = config.load(ROOT / "configs" / "default.toml")
-    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))  # the sweep's grid: the results' flat index
+    grid = study_grid(study)  # the sweep's grid: the results' flat index
 
     def projected(small, big, w):  # the states on the first n basis functions, in the n-mode model's modes
         N, n = big.n_modes, small.n_modes
@@ -291,10 +291,10 @@ def where(indices, counts, out, extra=None):
     the body's stations), the kept modes' highest frequency [Hz] and the CPU seconds."""
     from study import config
     from study.solvers.methods.reference.method import pulse_summary, simulate
-    from study.workflow.grid import Grid
+    from study.workflow.sweep import study_grid
 
     study = config.load(ROOT / "configs" / "default.toml")
-    grid = Grid(base=dict(study.inputs), axes=dict(study.axes))
+    grid = study_grid(study)
     for i in indices:
         for n in counts:
             inputs = {**grid.point(int(i)), "reference_strike_force": "pulse", "reference_strike_stress": "local",
