@@ -163,20 +163,30 @@ LOCAL_WORKER_CONFIG = {
 }
 
 
+#: glibc's allocator in the local workers (:func:`configure_local_workers`): blocks up to 64 MiB from the heap, not
+#: each its own mmap, and the heap given back to the system only beyond 256 MiB free at its top. A reference window
+#: at 64 modes records some 25 000 rows of 260 states (51 MB) and its figures take numpy temporaries of 3-13 MB; as
+#: fresh mmaps (glibc's dynamic threshold stops at 32 MiB, dask's 64 KiB trim threshold turns it off) each is paid
+#: again in page faults, some 10 % of a bouncing point's CPU (docs/workers.md).
+LOCAL_WORKER_MALLOC = {"MALLOC_MMAP_THRESHOLD_": str(64 * 2**20), "MALLOC_TRIM_THRESHOLD_": str(256 * 2**20)}
+
+
 def configure_local_workers() -> None:
-    """Set up this process's local dask workers: :data:`LOCAL_WORKER_CONFIG`, and their environment without
-    ``MALLOC_TRIM_THRESHOLD_``, the rest of what dask's nanny sets there (``distributed.nanny.pre-spawn-environ``:
-    one BLAS/OpenMP thread) kept. Dask sets glibc's trim threshold to 64 KiB so that freed memory goes back to the
-    system; setting it also turns glibc's dynamic mmap threshold off, so every numpy temporary above 128 KiB is a
-    fresh mmap paid in page faults: a worker solved the default study's points 1.22x slower than this process (its
-    numpy parts 1.6x), and 0.94x without it (docs/workers.md). A sweep's worker holds a few hundred MiB at most;
-    nothing to give back. Set for the process, not in a context: each nanny reads both when it is made (and passes
-    the config to its worker) and keeps them for its restarts."""
+    """Set up this process's local dask workers: :data:`LOCAL_WORKER_CONFIG`, and their environment with glibc's
+    allocator as :data:`LOCAL_WORKER_MALLOC` sets it in place of dask's ``MALLOC_TRIM_THRESHOLD_`` of 64 KiB, the
+    rest of what dask's nanny sets there (``distributed.nanny.pre-spawn-environ``: one BLAS/OpenMP thread) kept.
+    Dask's trim threshold gives freed memory back to the system at once and turns glibc's dynamic mmap threshold
+    off, so every numpy temporary above 128 KiB is a fresh mmap paid in page faults: a worker solved the default
+    study's points 1.22x slower than this process (its numpy parts 1.6x), and 0.94x without it; with the
+    thresholds of :data:`LOCAL_WORKER_MALLOC` the process itself solves them faster still (docs/workers.md). What a
+    worker holds between points stays below what its largest point took (its peak). Set for the process, not in a
+    context: each nanny reads both when it is made (and passes the config to its worker) and keeps them for its
+    restarts."""
     import dask
     import distributed  # noqa: F401 - its defaults are in dask's config once imported
 
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", default={}) or {})
-    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    environ.update(LOCAL_WORKER_MALLOC)
     dask.config.set({"distributed.nanny.pre-spawn-environ": environ, **LOCAL_WORKER_CONFIG})
 
 

@@ -113,10 +113,13 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
     qy, qz, vy, vz = z[:, :N], z[:, N:2 * N], z[:, 2 * N:3 * N], z[:, 3 * N:4 * N]
     turn = model.rotary_speed * window.times[:, None]
     w2 = model.omega**2
-    out = shapes if shapes is not None else np.eye(N)
     ea, eb = eccentric_parts(model)
-    ay = (-w2 * qy - model.damping * vy + model.side) @ out + np.cos(turn) * (ea @ out) - np.sin(turn) * (eb @ out)
-    az = (-w2 * qz - model.damping * vz) @ out + np.sin(turn) * (ea @ out) + np.cos(turn) * (eb @ out)
+    # the modal loads, projected on the shapes where given (the modes themselves need no product with the identity)
+    out = shapes if shapes is not None else np.eye(N)
+    own = (lambda a: a @ shapes) if shapes is not None else (lambda a: a)
+    cos, sin = np.cos(turn), np.sin(turn)
+    ay = own(-w2 * qy - model.damping * vy + model.side) + cos * own(ea) - sin * own(eb)
+    az = own(-w2 * qz - model.damping * vz) + sin * own(ea) + cos * own(eb)
     if model.drag > 0.0:
         S, wts = model.drag_shapes, model.drag_weights
         uy, uz = vy @ S.T, vz @ S.T
@@ -195,7 +198,13 @@ def _joint_inertia_forces(model: WhirlModel, window: Window) -> np.ndarray:
     at = model.joint_points
     J = int(np.count_nonzero(at))
     # the in-band modes' accelerations at the joints: those above the band are quasi-static (field_states)
-    acc = modal_accelerations(model, window, model.phi[at].T * ~above_band(model)[:, None])  # at the joints
+    shapes = model.phi[at].T * ~above_band(model)[:, None]
+    if np.any(above_band(model)):  # the modes' own accelerations are computed for field_states anyway: projected
+        N = model.n_modes
+        modal = window_memo(window, model, ("accelerations",), lambda: modal_accelerations(model, window))
+        acc = np.hstack([modal[:, :N] @ shapes, modal[:, N:] @ shapes])
+    else:
+        acc = modal_accelerations(model, window, shapes)  # at the joints
     out = np.zeros(window.forces.shape[:2] + (2,))
     for j in range(2):
         out[:, at, j] = -model.joint_mass * acc[:, j * J:(j + 1) * J]
