@@ -103,15 +103,32 @@ def wall_excess_bound(model: WhirlModel, x: np.ndarray, largest_moment: float) -
     return h * h / 8.0 * (float(largest_moment) + ei * float(np.hypot(*model.hole_curvature))) / ei
 
 
+#: The most rows :func:`modal_accelerations` takes at once: its temporaries (the drag's speeds at its 2N + 8 points,
+#: three arrays of rows × points) for a window grown to a few hundred revolutions were GiBs.
+ACCELERATION_ROWS = 2**15
+
+
 def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | None = None) -> np.ndarray:
     """(T, 2N) q̈ of the recorded rows (y then z modes) from the modal equations (module docstring of
     :mod:`study.solvers.kernels.whirl_kernel`) with the recorded contact forces: the modes' stiffness and linear
     damping, the turning eccentric load, the side load, the quadratic drag and the contacts. With ``shapes`` (N, K) the
-    accelerations Σ_n q̈_n shapes_nk at K points instead, (T, 2K) (y then z)."""
+    accelerations Σ_n q̈_n shapes_nk at K points instead, (T, 2K) (y then z). Each row's its own: taken
+    :data:`ACCELERATION_ROWS` rows at a time."""
     N = model.n_modes
-    z = window.states
+    rows = window.times.size
+    out = np.empty((rows, 2 * (N if shapes is None else shapes.shape[1])))
+    for first in range(0, rows, ACCELERATION_ROWS):
+        part = slice(first, min(first + ACCELERATION_ROWS, rows))
+        out[part] = _modal_accelerations(model, window.states[part], window.times[part], window.forces[part], shapes)
+    return out
+
+
+def _modal_accelerations(model: WhirlModel, z: np.ndarray, times: np.ndarray, forces: np.ndarray,
+                         shapes: np.ndarray | None) -> np.ndarray:
+    """:func:`modal_accelerations` of the rows of states ``z``, ``times`` and contact ``forces``."""
+    N = model.n_modes
     qy, qz, vy, vz = z[:, :N], z[:, N:2 * N], z[:, 2 * N:3 * N], z[:, 3 * N:4 * N]
-    turn = model.rotary_speed * window.times[:, None]
+    turn = model.rotary_speed * times[:, None]
     w2 = model.omega**2
     ea, eb = eccentric_parts(model)
     # the modal loads, projected on the shapes where given (the modes themselves need no product with the identity)
@@ -130,8 +147,8 @@ def modal_accelerations(model: WhirlModel, window: Window, shapes: np.ndarray | 
         ay -= (c * uy) @ projected
         az -= (c * uz) @ projected
     at = model.phi @ out / model.mass
-    ay += window.forces[:, :, 0] @ at
-    az += window.forces[:, :, 1] @ at
+    ay += forces[:, :, 0] @ at
+    az += forces[:, :, 1] @ at
     return np.hstack([ay, az])
 
 

@@ -128,6 +128,7 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
         step = 0 if bouncing else n_window  # revolutions to add before the next look
         while True:
             added = []
+            window = None  # the last look's joined copy of the window's recordings: merged again below
             for _ in range(step):
                 added.append(run.run(run.t + tau, record=True))
                 if run.outcome != whirl_kernel.OK:

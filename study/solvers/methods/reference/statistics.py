@@ -118,12 +118,20 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
     segments = list(zip(np.concatenate(([0], ends[:-1])), ends))
     if point.reference.reference_strike_stress != "modes" and model.law == 0 and correction:
         values, (masked, pulses_at) = strike_stress_values(point, model, joined, segments)
+        # the modal check's stresses without the correction, per cycle as the corrected ones (modal_check reads them:
+        # no whole-window recomputation at each look of the window's growth; the fields are shared, fields.window_memo)
+        plain = stresses(point, model, joined, correction=False, segments=segments)
     else:
-        values, masked, pulses_at = stresses(point, model, joined, correction=correction, segments=segments), None, None
-    # the modal check's stresses without the correction, per cycle as the corrected ones (modal_check reads them: no
-    # whole-window recomputation at each look of the window's growth; the fields are shared, fields.window_memo)
-    plain = [{name: v[name] for name in UNCORRECTED}
-             for v in stresses(point, model, joined, correction=False, segments=segments)]
+        values, plain, masked, pulses_at = [], [], None, None
+        # the cycles' stresses a batch of cycles at a time (each cycle's are its own rows'): a window grown to a few
+        # hundred revolutions held its fields over every row at once, GiBs (docs/reference_model.md §6)
+        for batch in stress_batches(cycles):
+            part = joined if len(batch) == len(cycles) else merge([cycles[i] for i in batch])
+            first = segments[batch[0]][0]
+            own = [(a - first, b - first) for a, b in segments[batch[0]:batch[-1] + 1]]
+            values += stresses(point, model, part, correction=correction, segments=own)
+            plain += stresses(point, model, part, correction=False, segments=own)
+    plain = [{name: v[name] for name in UNCORRECTED} for v in plain]
     station = values[int(np.argmax([v["alternating_bending_stress"] for v in values]))]["alternating_bending_stress_x"]
     damage = fibre_damage(point, model, joined, station, [first for first, _ in segments], correction, masked=masked,
                           pulses=pulses_at(station) if pulses_at is not None else None)
@@ -135,6 +143,29 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
     return [dict(v, peak_contact_force=f, correction=correction, start=c.start, **{DAMAGE: d}, uncorrected=u,
                  **({"strikes": s} if s is not None else {}))
             for v, c, d, f, s, u in zip(values, cycles, damage, peaks, local, plain)]
+
+
+#: The most rows of a window whose stresses :func:`cycle_values` takes at once (:func:`stress_batches`): some 16
+#: revolutions of a 64-mode run's recording; a batch's fields (the deflection and moment at ~100 stations in two
+#: directions, with and without the correction) some 0.5 GiB.
+STRESS_ROWS = 2**16
+
+
+def stress_batches(cycles: list[Window], rows: int | None = None) -> list[list[int]]:
+    """The cycles' indices in consecutive batches of at most ``rows`` (:data:`STRESS_ROWS`) recorded rows each (a cycle
+    longer than that a batch of its own): what :func:`cycle_values` takes the stresses of at once."""
+    rows = STRESS_ROWS if rows is None else rows
+    batches: list[list[int]] = []
+    size = 0
+    for i, cycle in enumerate(cycles):
+        n = cycle.times.size
+        if batches and size + n <= rows:
+            batches[-1].append(i)
+            size += n
+        else:
+            batches.append([i])
+            size = n
+    return batches
 
 
 #: The stress figures :func:`modal_check` compares with and without the quasi-static correction, kept per cycle
