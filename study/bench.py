@@ -400,7 +400,8 @@ def bench_reference_modes(point=None, modes=(16, 32, 64), residuals=("series", "
         reference_bench.fixed_window({**point, "reference_modes": 4, "reference_residual": residual}, 0.01, speed, rtol)
 
     def run(n, residual, times):
-        inputs = {**point, "reference_modes": n, "reference_max_modes": max(n, 1), "reference_residual": residual}
+        inputs = {**point, "reference_modes": n, "reference_max_modes": max(n, 1), "reference_residual": residual,
+                  "reference_strike_force": "modes"}  # each law's own force, not the local model's (§2.3)
         runs = [reference_bench.fixed_window(inputs, revolutions, speed, rtol) for _ in range(times)]
         return dict(runs[-1], wall_time=statistics.median(r["wall_time"] for r in runs) / revolutions)
 

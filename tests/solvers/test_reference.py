@@ -402,7 +402,9 @@ def test_a_bouncing_window_grows_until_its_statistics_meet_the_statistical_toler
     # (and the strikes' replayed part, docs/reference_model.md §2.2)
     monkeypatch.setattr(reference.method, "impact_modal_error",
                         lambda *args, **kwargs: dict.fromkeys(reference.MODAL_FIGURES, 0.0))
-    point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15}
+    # (the modes' own force, reference_strike_force "modes": the local model's own 9 % part is not a modes' part)
+    point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15,
+             "reference_strike_force": "modes"}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
     assert first.extras["whirl"] == "bouncing" and first.values["statistical_figures"] == 1.0
     assert first.status == "not_converged" and first.error_estimate > 0.15
@@ -431,8 +433,10 @@ def test_a_figure_within_reach_grows_the_window_while_another_cannot(default_stu
         return {**dict.fromkeys(reference.MODAL_FIGURES, 0.0), "peak_contact_force": 0.5}
 
     monkeypatch.setattr(reference.method, "modal_check", modal)
+    # (the modes' own force, reference_strike_force "modes", whose modes' part is the one set here)
     point = {**_default_point(default_study, 250, 20, 0.3, 9, 0.0), "statistical_tolerance": 0.15,
-             "force_tolerance": 0.3, "reference_max_modes": 16, "reference_window_growth": "figure"}
+             "force_tolerance": 0.3, "reference_max_modes": 16, "reference_window_growth": "figure",
+             "reference_strike_force": "modes"}
     first = solve_point({**point, "reference_max_revolutions": 1}, "reference")  # the first look, no room to grow
     # the default growth ("point") stops at the first look: the force cannot get there, so the point stays over
     held = solve_point({**point, "reference_window_growth": "point"}, "reference")
