@@ -168,17 +168,12 @@ def reference_options(inputs: Mapping[str, Any], modes: int, modes_factor: int =
                       window_factor: int = WINDOW_FACTOR) -> dict[str, Any]:
     """The reference answer's inputs: method ``reference`` with ``modes_factor`` times the default answer's
     ``modes`` (the count fixed: ``reference_max_modes`` raised to it) and ``window_factor`` times the default
-    options' window, transient and revolution budget (study.solvers.model.options.ReferenceOptions), its window grown
-    for each figure that can reach its tolerance within that budget (``reference_window_growth = "figure"``): a long
-    window for every figure, where the default's ("point") stops every figure's at the first look that finds one
-    that cannot get there — the peak force, whose local model's own part and modes part leave its 15 % out of reach
-    at most points (docs/reference_model.md §2.3)."""
+    options' window, transient and revolution budget (study.solvers.model.options.ReferenceOptions)."""
     from study.solvers.model.options import ReferenceOptions
 
     option = ReferenceOptions.from_inputs(inputs)
     count = int(modes_factor * modes)
     return {**inputs, "solver_method": "reference", "reference_modes": count, "reference_max_modes": count,
-            "reference_window_growth": "figure",
             "reference_window": int(window_factor * option.reference_window),
             "reference_revolutions": int(window_factor * option.reference_revolutions),
             "reference_max_revolutions": int(window_factor * option.reference_max_revolutions)}

@@ -14,9 +14,7 @@ from study.solvers.model import options
 
 
 def test_the_option_is_validated_naming_the_field():
-    # the default: the local model (docs/reference_model.md §2.3: on the held-back sample of docs/validation.md its
-    # answers at 64 modes lay a median 9 % from the 128-mode runs', the modes' own 34 %)
-    assert options.ReferenceOptions().reference_strike_force == "local"
+    assert options.ReferenceOptions().reference_strike_force == "modes"
     with pytest.raises(ValueError, match="reference_strike_force = 'hertz'; allowed: modes, local"):
         options.ReferenceOptions.from_inputs({"reference_strike_force": "hertz"})
     with pytest.raises(config.ConfigError, match="solver.reference_strike_force = 'hertz': must be one of 'modes', 'local'"):
