@@ -132,7 +132,6 @@ def _modal_accelerations(model: WhirlModel, z: np.ndarray, times: np.ndarray, fo
     w2 = model.omega**2
     ea, eb = eccentric_parts(model)
     # the modal loads, projected on the shapes where given (the modes themselves need no product with the identity)
-    out = shapes if shapes is not None else np.eye(N)
     own = (lambda a: a @ shapes) if shapes is not None else (lambda a: a)
     cos, sin = np.cos(turn), np.sin(turn)
     ay = own(-w2 * qy - model.damping * vy + model.side) + cos * own(ea) - sin * own(eb)
@@ -143,10 +142,10 @@ def _modal_accelerations(model: WhirlModel, z: np.ndarray, times: np.ndarray, fo
         # the speed as the integrator's kernel takes it (whirl_kernel's drag, √(u_y² + u_z²)); np.hypot, correctly
         # rounded, took 40 % of this function at 64 modes
         c = model.drag * np.sqrt(uy * uy + uz * uz) * wts
-        projected = S @ out / model.mass
+        projected = own(S) / model.mass
         ay -= (c * uy) @ projected
         az -= (c * uz) @ projected
-    at = model.phi @ out / model.mass
+    at = own(model.phi) / model.mass
     ay += forces[:, :, 0] @ at
     az += forces[:, :, 1] @ at
     return np.hstack([ay, az])
