@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from study.benchmarks.strikes import ROOT, result_points
+from study.benchmarks.strikes import ROOT, default_grid, result_points
 
 #: The sliding answer's message where the full reference run went up and came to the sliding motion too
 #: (``auto._coexisting``).
@@ -86,14 +86,11 @@ def from_rest(indices, modes: int, revolutions: int, out) -> list[dict]:
     and the reference model's run from its rest on the wall (``reference.initial_state``) at ``modes`` modes, revolution
     by revolution for ``revolutions`` (whole tens): the largest contact force of each, its means per ten revolutions
     and over the last 20, and that mean over the sliding force; one JSON line each to ``out``."""
-    from study import config
     from study.solvers import solve_point
     from study.solvers.methods import reference
     from study.solvers.model.options import ReferenceOptions
-    from study.workflow.sweep import study_grid
 
-    study = config.load(ROOT / "configs" / "default.toml")
-    grid = study_grid(study)  # the sweep's grid: the results' flat index
+    grid = default_grid()
     rows = []
     for i in indices:
         inputs = grid.point(int(i))

@@ -25,18 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from study.benchmarks.strikes import ROOT
+from study.benchmarks.strikes import default_grid
 
 #: Revolutions of the start-up and of a stretch after it in ``record``'s summary
 START, STRETCH = 6, 12
-
-
-def default_grid():
-    """configs/default.toml's grid, its points by flat index as the sweep numbers them."""
-    from study import config
-    from study.workflow.sweep import study_grid
-
-    return study_grid(config.load(ROOT / "configs" / "default.toml"))
 
 
 def record(indices, modes: int, revolutions: int, out) -> None:

@@ -47,6 +47,14 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
+def default_grid():
+    """configs/default.toml's grid, its points by flat index as the sweep numbers them (the results' flat index)."""
+    from study import config
+    from study.workflow.sweep import study_grid
+
+    return study_grid(config.load(ROOT / "configs" / "default.toml"))
 #: Bouncing points of configs/default.toml (rpm, klbf, restitution, ppg, ft/s, °/100 ft), as docs/reference_model.md
 #: §2.2 names them.
 POINTS = {"A": (250, 5, 0.7, 9, 0.0, 0.0), "B": (300, 10, 0.7, 12, 7.4, 0.0), "C": (275, 5, 0.3, 9, 0.0, 3.0)}
@@ -194,15 +202,12 @@ def revolution_windows(model, w):
 
 
 def recover(indices, count, revolutions, out):
-    from study import config
     from study.solvers.methods.reference.integrate import Window
     from study.solvers.methods.reference.method import simulate
     from study.solvers.methods.reference.model import build_model
     from study.solvers.methods.reference.statistics import cycle_values
-    from study.workflow.sweep import study_grid
 
-    study = config.load(ROOT / "configs" / "default.toml")
-    grid = study_grid(study)  # the sweep's grid: the results' flat index
+    grid = default_grid()
 
     def projected(small, big, w):  # the states on the first n basis functions, in the n-mode model's modes
         N, n = big.n_modes, small.n_modes
@@ -289,12 +294,9 @@ def where(indices, counts, out, extra=None):
     ``reference_strike_stress`` "local", or as ``extra`` sets) and :func:`strike_sites` of its window, with the window's
     revolutions, its largest body wall excess over the clearance (above the study's tolerance the solve would raise
     the body's stations), the kept modes' highest frequency [Hz] and the CPU seconds."""
-    from study import config
     from study.solvers.methods.reference.method import pulse_summary, simulate
-    from study.workflow.sweep import study_grid
 
-    study = config.load(ROOT / "configs" / "default.toml")
-    grid = study_grid(study)
+    grid = default_grid()
     for i in indices:
         for n in counts:
             inputs = {**grid.point(int(i)), "reference_strike_force": "pulse", "reference_strike_stress": "local",
