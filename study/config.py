@@ -295,7 +295,8 @@ FIELDS: tuple[Field, ...] = (
     _reference_choice("reference_strike_force", "the peak contact force of the reference model's strikes at the "
                       "tool joints: the modes' own, or each strike's local model from its onset speed (the joint's "
                       "mass on an infinite beam against the Hertz wall; docs/reference_model.md §2.3), after the run "
-                      "('local') or its force history applied to the modes in the run ('pulse', §2.4)"),
+                      "('local') or its force history applied to the modes in the run ('pulse', §2.4), or whichever of "
+                      "the modes' own and the local model's states the smaller error ('smaller')"),
     _reference_choice("reference_strike_stress", "the bending of the reference model's strikes at the tool joints: "
                       "the modes' own with their quasi-static correction, or the modes plus the strike's local bending "
                       "that the modes left out miss (docs/reference_model.md §2.3)"),

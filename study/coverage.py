@@ -168,7 +168,9 @@ def reference_options(inputs: Mapping[str, Any], modes: int, modes_factor: int =
                       window_factor: int = WINDOW_FACTOR) -> dict[str, Any]:
     """The reference answer's inputs: method ``reference`` with ``modes_factor`` times the default answer's
     ``modes`` (the count fixed: ``reference_max_modes`` raised to it) and ``window_factor`` times the default
-    options' window, transient and revolution budget (study.solvers.model.options.ReferenceOptions)."""
+    options' window, transient and revolution budget (study.solvers.model.options.ReferenceOptions), the window grown
+    for each figure that can reach its tolerance whatever the others (``reference_window_growth = "figure"``: a figure
+    whose modes part is over, the strikes' local force's own 9 % among them, does not stop the others' long window)."""
     from study.solvers.model.options import ReferenceOptions
 
     option = ReferenceOptions.from_inputs(inputs)
@@ -176,7 +178,8 @@ def reference_options(inputs: Mapping[str, Any], modes: int, modes_factor: int =
     return {**inputs, "solver_method": "reference", "reference_modes": count, "reference_max_modes": count,
             "reference_window": int(window_factor * option.reference_window),
             "reference_revolutions": int(window_factor * option.reference_revolutions),
-            "reference_max_revolutions": int(window_factor * option.reference_max_revolutions)}
+            "reference_max_revolutions": int(window_factor * option.reference_max_revolutions),
+            "reference_window_growth": "figure"}
 
 
 def solve_default(inputs: Mapping[str, Any]) -> dict[str, Any]:

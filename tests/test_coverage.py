@@ -144,6 +144,7 @@ def test_a_run_samples_impacting_points_and_runs_their_references_with_4x_modes_
     ref = calls["reference"][0]
     assert (ref["reference_modes"], ref["reference_max_modes"]) == (64, 64)
     assert (ref["reference_window"], ref["reference_revolutions"], ref["reference_max_revolutions"]) == (24, 160, 800)
+    assert ref["reference_window_growth"] == "figure"  # each figure's window grown whatever the others' modes parts
     assert coverage.shares(results["points"])["peak_contact_force"]["covered"] == 3  # 100 e vs 105 e: 4.8 % < 10 %
 
 

@@ -115,10 +115,16 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
             blocks.append(run.run(run.t + period * tau, record=True))
             if run.outcome != whirl_kernel.OK:
                 return failed("in the output window")
-        window_cycles, preceding, window = list(zip(blocks, cycle_values(point, model, blocks))), [], merge(blocks)
-        modal = strike_stress_modal_part([v for _, v in window_cycles], strike_modal_part(
-            [v for _, v in window_cycles], impact_modal_error(point, model, window, [v for _, v in window_cycles],
-                                                              replays, modal_check)))
+        window, recorded = merge(blocks), cycle_values(point, model, blocks)
+        looks = []
+        for form in strike_force_forms(point, recorded):
+            cycles = [form(v) for v in recorded]
+            modal = figures_modal_part(point, model, window, cycles, replays)
+            stats = settling(cycles, [])
+            looks.append((cycles, modal, convergence(point, model, window, window_summary(cycles, stats), stats,
+                                                     periodic=True, modal=modal)))
+        cycles, modal, _ = min(looks, key=lambda look: look[2]["peak_contact_force"]["total"])
+        window_cycles, preceding = list(zip(blocks, cycles)), []
     else:
         # (cycle, its values) per recorded revolution: a stationary bouncing has its window and the stretch before
         # it recorded already (the two stretches :func:`stationary` compared); else the transient's last n_window
@@ -140,23 +146,33 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                 if len({values["correction"] for _, values in live}) > 1:
                     record[first:] = zip([c for c, _ in live], cycle_values(point, model, [c for c, _ in live]))
             half = (len(record) - first) // 2
-            preceding = [v for _, v in record[len(record) - 2 * half:len(record) - half]]
-            window_cycles = record[len(record) - half:]
             ratio = settle_ratio(states, scale)
-            stats = settling([v for _, v in window_cycles], preceding, ratio)
-            stationary_record = not np.isfinite(ratio) and not any(s["significant"] for s in stats.values())
-            if stationary_record:
-                # the halves agree and nothing settles: the figures are means over the whole record, their window
-                # part its standard error; the halves' drifts are kept as what they were (window_spread)
-                whole = settling([v for _, v in record[len(record) - 2 * half:]], [], ratio)
-                stats = {name: dict(whole[name], drift=stats[name]["drift"]) for name in whole}
-                window_cycles, preceding = record[len(record) - 2 * half:], []
-            window = merge([c for c, _ in window_cycles])
-            cycles = [v for _, v in window_cycles]
-            modal = strike_stress_modal_part(cycles, strike_modal_part(
-                cycles, impact_modal_error(point, model, window, cycles, replays, modal_check)))
-            errors = convergence(point, model, window, window_summary(cycles, stats), stats, periodic=False,
-                                 modal=modal)
+            # the look, for each peak force the run may state (strike_force_forms): the one stating the smaller error
+            # is kept; the window's joined recordings are shared between the looks over the same cycles
+            looks, joined = [], {}
+            for form in strike_force_forms(point, [v for _, v in record[len(record) - 2 * half:]]):
+                preceding = [form(v) for _, v in record[len(record) - 2 * half:len(record) - half]]
+                window_cycles = [(c, form(v)) for c, v in record[len(record) - half:]]
+                stats = settling([v for _, v in window_cycles], preceding, ratio)
+                stationary_record = not np.isfinite(ratio) and not any(s["significant"] for s in stats.values())
+                if stationary_record:
+                    # the halves agree and nothing settles: the figures are means over the whole record, their window
+                    # part its standard error; the halves' drifts are kept as what they were (window_spread)
+                    window_cycles = [(c, form(v)) for c, v in record[len(record) - 2 * half:]]
+                    whole = settling([v for _, v in window_cycles], [], ratio)
+                    stats = {name: dict(whole[name], drift=stats[name]["drift"]) for name in whole}
+                    preceding = []
+                if len(window_cycles) not in joined:
+                    joined[len(window_cycles)] = merge([c for c, _ in window_cycles])
+                window = joined[len(window_cycles)]
+                cycles = [v for _, v in window_cycles]
+                modal = figures_modal_part(point, model, window, cycles, replays)
+                errors = convergence(point, model, window, window_summary(cycles, stats), stats, periodic=False,
+                                     modal=modal)
+                looks.append((preceding, window_cycles, stats, stationary_record, window, cycles, modal, errors))
+            preceding, window_cycles, stats, stationary_record, window, cycles, modal, errors = min(
+                looks, key=lambda look: look[-1]["peak_contact_force"]["total"])
+            del looks, joined
             used = len(states) - 1
             # per figure over its tolerance, the revolutions more its window part is foreseen to need (inf: its modes
             # or integrator part alone is over the tolerance, and more revolutions do not help)
@@ -214,6 +230,43 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
                 stopped_by=stopped_by, ratio=ratio,
                 failure=None, stationary=bouncing, modal=modal, stats=None if period else stats,
                 replay=replays.get("replay"))
+
+
+def figures_modal_part(point: DesignPoint, model: WhirlModel, window: Window, cycles: list[Mapping[str, Any]],
+                       replays: dict) -> dict[str, float] | None:
+    """The modal part of each figure's error over a window (relative): the in-run measure or the replays'
+    (:func:`impact_modal_error`), the peak force's from its strikes' onset speeds where the cycles' force is the
+    local model's (:func:`strike_modal_part`), the stresses' with the strikes' local bending
+    (:func:`strike_stress_modal_part`)."""
+    return strike_stress_modal_part(cycles, strike_modal_part(
+        cycles, impact_modal_error(point, model, window, cycles, replays, modal_check)))
+
+
+def modes_force(values: Mapping[str, Any]) -> dict[str, Any]:
+    """A cycle's values (:func:`cycle_values`) with the modes' own peak force (the local model's left out)."""
+    return {name: v for name, v in values.items() if name != "local_strikes"}
+
+
+def local_force(values: Mapping[str, Any]) -> dict[str, Any]:
+    """A cycle's values (:func:`cycle_values`, ``reference_strike_force = "smaller"``) with its strikes' peak force
+    from their local model (as ``"local"`` states it: ``strikes`` the local model's account of the cycle)."""
+    out = modes_force(values)
+    found = values.get("local_strikes")
+    if found is not None:
+        out.update(peak_contact_force=found["peak_contact_force"], strikes=found)
+    return out
+
+
+def strike_force_forms(point: DesignPoint, values: list[Mapping[str, Any]]) -> tuple:
+    """The forms of the cycles' ``values`` a run's look weighs (:func:`simulate`): with ``reference_strike_force =
+    "smaller"``, where a strike's force came from its local model in one of them, the modes' own peak force and the
+    strikes' local model's (:func:`modes_force`, :func:`local_force`), of which the look keeps the one whose error
+    (:func:`convergence`, window and modes parts) is the smaller (docs/reference_model.md §2.3); else the values as
+    they are."""
+    if point.reference.reference_strike_force == "smaller" and any(
+            v.get("local_strikes", {}).get("count", 0) > 0 for v in values):
+        return modes_force, local_force
+    return (modes_force,)
 
 
 def modal_by_doubling(model: WhirlModel) -> bool:
@@ -544,7 +597,11 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                 fatigue_life_error=errors[DAMAGE]["total"], statistical_figures=float(not periodic),
                 **{f"{name}_error": errors[name]["total"] for name in FIGURES})
     result.error_estimate = float(max(e["equivalent"] for e in errors.values()))
+    # whose peak force the figures carry: the strikes' local model's (reference_strike_force "local", or "smaller"
+    # where it stated the smaller error) or the modes' own
+    struck = int(sum(c.get("strikes", {}).get("count", 0) for c in cycles))
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
+                         strike_force="local" if struck else "modes", local_strikes=struck,
                          energy_budget=budget, steps=run["integrator"].steps,
                          **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None
                             else {}),
@@ -587,7 +644,9 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                 f" (modal error of the largest deflection {(modal or {}).get('max_deflection', 0.0):.2%})"
                 + (f"; modal parts from {len(replayed['impacts'])} strike(s) replayed at "
                    + ", ".join(str(n) for n in replayed["counts"]) + " modes" if replayed else ""),
-                f"error of each figure (its largest part): {figures}",
+                f"error of each figure (its largest part): {figures}"
+                + (f"; the peak force from {struck} strike(s)' local model (docs/reference_model.md §2.3)"
+                   if struck else ""),
                 (f"held to solver.statistical_tolerance {point.tolerances.statistical:.3g} (means over the revolutions"
                  f" of a motion that does not repeat; the damage rate to (1 + it)^m - 1)" if not periodic else
                  f"held to solver.tolerance {point.tolerances.tolerance:.3g}")

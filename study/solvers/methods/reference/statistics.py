@@ -137,11 +137,16 @@ def cycle_values(point: DesignPoint | Mapping[str, Any], model: WhirlModel,
                           pulses=pulses_at(station) if pulses_at is not None else None)
     peaks = [float(np.max(c.peak)) for c in cycles]
     local = [None] * len(cycles)
-    if point.reference.reference_strike_force == "local" and model.law == 0:
+    choice = point.reference.reference_strike_force
+    if choice in ("local", "smaller") and model.law == 0:
         local = local_strike_forces(model, joined, segments)
-        peaks = [v["peak_contact_force"] for v in local]
+        if choice == "local":
+            peaks = [v["peak_contact_force"] for v in local]
+    # with "smaller" each cycle carries both forces: the modes' own as its figure, the local model's beside it
+    # (``local_strikes``), and the run keeps the one stating the smaller error (method.strike_force_forms)
+    key = "strikes" if choice == "local" else "local_strikes"
     return [dict(v, peak_contact_force=f, correction=correction, start=c.start, **{DAMAGE: d}, uncorrected=u,
-                 **({"strikes": s} if s is not None else {}))
+                 **({key: s} if s is not None else {}))
             for v, c, d, f, s, u in zip(values, cycles, damage, peaks, local, plain)]
 
 
