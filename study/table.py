@@ -49,8 +49,6 @@ EXTRA_OUTPUTS = {
     "impact_pattern": (None, "impact pattern (impact.pattern)"),
     "whirl": (None, "whirl verdict of the reference model"),
     "whirl_point": ("m", "position along the section of the most-touching point, where the whirl is measured"),
-    "strike_force": (None, "whose peak contact force the reference model states: the strikes' local model (local) or "
-                           "the modes' own (modes), the one stating the smaller error (solver.reference_strike_force)"),
     "local_strikes": ("1", "strikes at the tool joints over the window whose peak force the local model gave"),
     "touching_points": ("m", "positions along the section of the points touching the wall"),
     "contact_points": ("m", "positions along the section of the points that may touch the wall"),

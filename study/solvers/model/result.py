@@ -233,6 +233,10 @@ OUTPUTS = {
     "statistical_figures": ("1", "1 where the figures are means over the revolutions of a motion that does not "
                             "repeat, held to solver.statistical_tolerance; 0 where held to solver.tolerance (method "
                             "reference)"),
+    "local_strike_force": ("1", "1 where peak_contact_force is the strikes' local model's (the joint's mass on an "
+                           "infinite beam against the Hertz wall, from each strike's onset speed), 0 where it is the "
+                           "modes' own contact's: whichever states the smaller error (solver.reference_strike_force; "
+                           "method reference)"),
     "peak_contact_force_error": ("1", "relative error of peak_contact_force, by its parts (method reference)"),
     "max_normal_stress_error": ("1", "relative error of max_normal_stress, by its parts (method reference)"),
     "alternating_bending_stress_error": ("1", "relative error of alternating_bending_stress, relative to the larger of "

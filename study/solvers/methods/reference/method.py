@@ -600,8 +600,9 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
     # whose peak force the figures carry: the strikes' local model's (reference_strike_force "local", or "smaller"
     # where it stated the smaller error) or the modes' own
     struck = int(sum(c.get("strikes", {}).get("count", 0) for c in cycles))
+    vals["local_strike_force"] = float(struck > 0)
     result.extras.update(whirl=measure["whirl"], whirl_point=measure["whirl_point"], touching_points=touching,
-                         strike_force="local" if struck else "modes", local_strikes=struck,
+                         local_strikes=struck,
                          energy_budget=budget, steps=run["integrator"].steps,
                          **({"strike_pulses": pulse_summary(model, run["integrator"])} if model.pulse is not None
                             else {}),
