@@ -254,7 +254,8 @@ def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.nda
     lower = np.abs(rate(((rank >= N // 4) & (rank < N // 2)).astype(float))) / size  # the one before
     # the octaves to come, geometric at the ratio r of the last two, no more than the last: upper × min(1, r/(1 − r))
     ratio = upper / np.maximum(lower, 1e-300)
-    tail = upper * np.minimum(1.0, ratio / np.maximum(1.0 - ratio, 1e-300))
+    taken = np.minimum(ratio, 0.5)  # the tail is taken only below 1/2 (no overflow where the octaves do not fall)
+    tail = upper * np.minimum(1.0, taken / (1.0 - taken))
     return rows, points, speed, np.where(ratio < 0.5, tail, upper)
 
 
