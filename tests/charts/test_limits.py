@@ -67,6 +67,21 @@ def test_contact_force_in_lbf(study):
     assert "peak contact force [lbf]" in figure_labels(chart.figure)["ylabels"]
 
 
+def test_the_force_caption_counts_the_points_whose_force_is_the_strikes_local_model(study):
+    # output local_strike_force (docs/reference_model.md §2.3): 1 where the reference model stated the local model's
+    # force, 0 its modes' own, NaN where another method answered; the caption counts them, silent where none is local
+    assert "local model" not in contact_force_map(study)[0].caption
+    ds = study.copy(deep=True)
+    flag = xr.full_like(ds["peak_contact_force"], np.nan)
+    flag[dict(axial_tension=0, rotary_speed=slice(0, 3))] = 1.0  # 3 x 2 x 2 = 12 local
+    flag[dict(axial_tension=1, rotary_speed=0)] = 0.0  # 4 the modes' own
+    ds["local_strike_force"] = flag
+    assert "At 12 of the 16 points the reference model answered, the force is that of the strikes' local model" in (
+        contact_force_map(ds)[0].caption)
+    ds["local_strike_force"] = xr.where(flag == 1.0, 0.0, flag)
+    assert "local model" not in contact_force_map(ds)[0].caption
+
+
 def test_fatigue_life_in_hours_on_a_log_scale_with_the_curve_named(study):
     (chart,) = fatigue_life_map(study, target_hours=500.0)
     ax = panels(chart.figure)[0]
