@@ -24,7 +24,7 @@ PRECISION_MODULES = {
     "test_timedomain.py", "test_fast.py", "test_periodic.py", "test_freewhirl.py", "test_event_driven.py",
     "test_orbit.py", "test_crosscheck.py", "test_damped.py", "test_refcheck.py", "test_trajectory.py",
     "test_stress_kernel.py", "test_beam.py", "test_roots.py", "test_sdof.py", "test_series.py", "test_well.py",
-    "test_modes.py", "test_sliding_parts.py", "test_drag_quadrature.py", "test_drag_modes.py",
+    "test_modes.py", "test_sliding_parts.py", "test_drag_quadrature.py", "test_drag_modes.py", "test_strike_force.py",
 }
 
 

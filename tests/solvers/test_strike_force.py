@@ -59,6 +59,9 @@ def test_smaller_keeps_the_force_stating_the_smaller_error(default_point, rpm, k
     point = {**default_point(rpm, klbf, restitution, ppg, 0.0), "reference_modes": 16, "reference_max_modes": 16}
     runs = {force: reference.solve({**point, "reference_strike_force": force}) for force in ("modes", "local", "smaller")}
     errors = {force: r.values["peak_contact_force_error"] for force, r in runs.items()}
+    # the three runs integrate the same motion in one process (the force is chosen after each revolution is run, the
+    # window here stops at its first look in each): the figures compared at 1e-9 are the same numbers computed the
+    # same way, on whatever CPU the kernels were compiled for; the choice itself rests on errors about 360 and 17 times apart
     assert runs["smaller"].values["local_strike_force"] == float(chosen == "local")
     assert errors["smaller"] == pytest.approx(min(errors["modes"], errors["local"]), rel=1e-9)
     assert errors[chosen] < errors["local" if chosen == "modes" else "modes"]

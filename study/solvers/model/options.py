@@ -362,13 +362,12 @@ class ReferenceOptions(MethodOptions):
     #: (on the held-back sample of docs/validation.md its answers at 64 modes lay a median 7 % from the 128-mode long
     #: runs', the modes' own 34 %, all below), the modes' own at a joint chattering on its wall (the default study's 13
     #: chattering points, where the local model states 34-139 % and the modes' own 9-15 %). "local" alone took those
-    #: 13 to not_converged. "pulse": each
-    #: such strike applies its local model's force history to the modes in the run itself, in place of the contact
-    #: law (the motion between strikes then follows the strikes' own impulse; docs/reference_model.md §2.4). Opt-in:
-    #: with the strikes' local bending ("pulse" and reference_strike_stress "local") on 22 not_converged bouncing
-    #: points of the default study it took the force's stated error from a median 242 % to 16 % at 5 times the CPU
-    #: and decided none (the stresses' modal parts; their change from 32 to 64 modes covered the 128-mode answers at
-    #: 5-6 of 12 points)
+    #: 13 to not_converged. "pulse": each such strike applies its local model's force history to the modes in the run
+    #: itself, in place of the contact law (the motion between strikes then follows the strikes' own impulse;
+    #: docs/reference_model.md §2.4). Opt-in: with the strikes' local bending ("pulse" and reference_strike_stress
+    #: "local") on 22 not_converged bouncing points of the default study it took the force's stated error from a
+    #: median 242 % to 16 % at 5 times the CPU and decided none (the stresses' modal parts; their change from 32 to 64
+    #: modes covered the 128-mode answers at 5-6 of 12 points)
     reference_strike_force: str = option("smaller", ("modes", "local", "pulse", "smaller"))
     #: with the strikes' pulses, each pulse's size: the local strike's history as it is ("local", its impulse), or
     #: scaled at its onset so that its work on the kept modes (predicted from their state, undamped and linear over the
