@@ -17,6 +17,7 @@ ureg = pint.UnitRegistry()
 ureg.define("pounds_per_gallon = pound / gallon = ppg")
 ureg.define("@alias revolution = rev")
 ureg.define("@alias pound = lbm")  # pound-mass, as oilfield tables write it ("16.6 lbm/ft")
+ureg.define("deg_per_100ft = 0.01 * degree / foot")  # a dogleg severity as drillers state it (API RP 7G)
 
 #: The longest value string read as a quantity, and the most tokens and parentheses in it: a value is a number and
 #: its units ("30e6 psi", "3 deg/100ft"), never a long text.
@@ -249,6 +250,7 @@ OUTPUT_UNITS_BY_NAME = {
     "wall_time": ("s", "s"),
     "fatigue_life": ("hour", "h"),
     "damage_rate": ("1/hour", "1/h"),
+    "dogleg_curvature": ("deg_per_100ft", "°/100 ft"),  # the hole's curvature as a dogleg severity
 }
 
 UDUNITS_TOKEN = re.compile(r"([A-Za-z_]+)(-?\d+)?")

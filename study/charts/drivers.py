@@ -23,7 +23,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from study.charts.design import DPI, Chart, figure_title, full_array
-from study.charts.labels import format_value, quantity
+from study.charts.labels import format_value, quantity, short_name
 from study.charts.plane import answered_points
 
 #: The design figures: name, whether taken as log10 (the fatigue life spans decades).
@@ -121,7 +121,7 @@ def drivers_table_html(rows: list[dict], escape) -> str:
     if not rows:
         return ""
     inputs = list(rows[0]["shares"])
-    head = ["design figure", *[f"{d.replace('_', ' ')}" for d in inputs], INTERACTIONS, "largest two-way interaction",
+    head = ["design figure", *[short_name(d) for d in inputs], INTERACTIONS, "largest two-way interaction",
             "points used"]
     out = ['<table id="drivers"><thead><tr>' + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
     for r in rows:
@@ -130,7 +130,7 @@ def drivers_table_html(rows: list[dict], escape) -> str:
             moved = r["ranges"][d]
             cells.append(f"{r['shares'][d]:.0%} ({format_value(moved)} {r['unit']})")
         a, b = r["top pair"]
-        cells += [f"{r[INTERACTIONS]:.0%}", f"{a.replace('_', ' ')} × {b.replace('_', ' ')}: {r['top pair share']:.0%}",
+        cells += [f"{r[INTERACTIONS]:.0%}", f"{short_name(a)} × {short_name(b)}: {r['top pair share']:.0%}",
                   f"{r['points']} of {r['of']}"]
         out.append("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in cells) + "</tr>")
     out.append("</tbody></table>")

@@ -26,6 +26,7 @@ SHORT_NAMES = {
     "restitution": "restitution",
     "mud_density": "mud density",
     "mud_flow_velocity": "mud flow velocity",
+    "dogleg_curvature": "dogleg severity",
     "added_mass_model": "added-mass model",
     "impact_pattern": "impact pattern",
     "hole_diameter": "hole diameter",
@@ -153,6 +154,11 @@ def _converter(from_unit: str, to_unit: str) -> Callable[[np.ndarray], np.ndarra
     return lambda values: np.asarray(values, dtype=float) * factor
 
 
+def short_name(name: str) -> str:
+    """What a reader calls an input or output: :data:`SHORT_NAMES`' name, else its own with spaces ("mud density")."""
+    return SHORT_NAMES.get(name, name.replace("_", " "))
+
+
 def quantity(data: xr.DataArray, unit: str | None = None) -> Quantity:
     """The display of a coordinate or output, from its ``units``/``display_units`` attributes.
 
@@ -160,7 +166,7 @@ def quantity(data: xr.DataArray, unit: str | None = None) -> Quantity:
         arithmetic needs it.
     """
     name = str(data.name)
-    short = SHORT_NAMES.get(name, name.replace("_", " "))
+    short = short_name(name)
     if data.dtype.kind in "USO":
         return Quantity(name, short, "", lambda values: values, is_text=True)
     si = data.attrs.get("units", "")

@@ -46,6 +46,9 @@ COORDS = {  # name -> (attrs, SI per display unit)
     "mud_flow_velocity": ({"long_name": "mud flow velocity inside the pipe", "units": "m s-1",
                            "display_units": "ft/s"}, FT),
     "added_mass_model": ({"long_name": "added-mass model of the annular mud"}, None),
+    # as the sweep writes it: the hole's curvature [1/m]; a dogleg severity of 1 deg/100 ft is (pi/180)/(100 ft)
+    "dogleg_curvature": ({"long_name": "dogleg severity of the hole as its curvature", "units": "m-1"},
+                         math.radians(1.0) / (100 * FT)),
 }
 OUTPUT_UNITS = {
     "max_normal_stress": "Pa", "alternating_bending_stress": "Pa", "span_length": "m",
@@ -451,6 +454,21 @@ def test_string_dimensions_become_panels_and_file_names(tmp_path):
     path = tmp_path / "results.nc"
     ds2.to_netcdf(path)
     assert all(p.stat().st_size > 0 for p in draw_all(path))
+
+
+def test_a_dogleg_is_labelled_as_drillers_state_it():
+    # API RP 7G states a dogleg severity in degrees per 100 ft: the hole's curvature [1/m] is shown so, in titles,
+    # legends and file names, not as 0.000524 1/ft
+    ds = make_dataset({"rotary_speed": [60, 120, 180], "axial_tension": [5000, 10000], "restitution": [0.2, 0.8],
+                       "dogleg_curvature": [0.0, 3.0]})
+    attrs = ds["peak_contact_force"].attrs
+    ds["peak_contact_force"] = ds["peak_contact_force"] * (1 + 100 * ds["dogleg_curvature"])  # varies with it
+    ds["peak_contact_force"].attrs = dict(attrs)
+    charts = contact_force_and_duration_vs_rpm(ds)
+    assert "contact_force_duration__dogleg_severity_3_100_ft" in names_of(charts)
+    titles = [" ".join(figure_labels(chart.figure)["titles"]) for chart in charts]
+    assert any("dogleg severity = 3 °/100 ft" in title for title in titles), titles
+    assert not any("1/ft" in title for title in titles), titles
 
 
 def test_a_string_dimension_alone_is_drawn_with_named_ticks():

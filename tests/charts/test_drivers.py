@@ -1,10 +1,12 @@
 """Which input drives the design (study.charts.drivers): main effects from a full-factorial grid."""
 
+import html
+
 import numpy as np
 import pytest
 
 from study.charts import figure_labels
-from study.charts.drivers import INTERACTIONS, drivers_chart, main_effects
+from study.charts.drivers import INTERACTIONS, drivers_chart, drivers_table_html, main_effects
 
 PSI = 6894.757293168361
 
@@ -47,3 +49,13 @@ def test_a_product_term_shows_as_an_interaction_and_the_chart_holds_the_shares(s
     assert "44%" in texts  # the interactions' cell of the stress row
     assert "maximum normal stress [psi]" in [t.get_text() for t in chart.figure.axes[0].get_yticklabels()]
     assert "main effects" in figure_labels(chart.figure)["titles"][-1]
+
+
+def test_the_report_s_table_names_the_inputs_as_the_charts_do():
+    # the hole's curvature is a dogleg severity to a driller (API RP 7G), in the table's head and its interactions
+    row = {"label": "fatigue life (log₁₀ h)", "shares": {"dogleg_curvature": 0.38, "rotary_speed": 0.37},
+           "ranges": {"dogleg_curvature": 3.06, "rotary_speed": 3.72}, "unit": "decades", INTERACTIONS: 0.25,
+           "top pair": ("dogleg_curvature", "rotary_speed"), "top pair share": 0.17, "points": 704, "of": 704}
+    table = drivers_table_html([row], html.escape)
+    assert "<th>dogleg severity</th><th>rotary speed</th>" in table
+    assert "dogleg severity × rotary speed: 17%" in table and "curvature" not in table
