@@ -234,7 +234,10 @@ def test_in_a_curved_hole_the_joints_rest_on_the_inside_of_the_curve_at_lubinski
     assert values["alternating_bending_stress"] == pytest.approx(lubinski, rel=1e-3)  # every fibre through it
     assert values["alternating_bending_stress"] >= well.curvature_bending_stress(inputs["pipe_youngs_modulus"], r_o,
                                                                                  DOGLEG)
-    assert np.min(np.abs(values["max_normal_stress_x"] - model.points[joints])) < 1e-9  # at a joint
+    # at a joint: every joint bends alike, so which one the largest stress is found at is a tie that the last bits break
+    # (on an AMD znver4 host the station at x = L, the periodic section's image of the joint at 0)
+    off = values["max_normal_stress_x"] - model.points[joints]
+    assert np.min(np.abs((off + model.span / 2) % model.span - model.span / 2)) < 1e-9
 
 
 def test_without_tension_a_turning_pipe_in_the_curve_is_bent_by_e_r_kappa_and_back():
