@@ -374,8 +374,7 @@ HARMONICS, COARSE_HARMONICS = 8, 4
 SAMPLES_PER_HARMONIC = 4
 #: Chord iterations of the harmonic balance at most, and the relative size of the last correction that ends them.
 BALANCE_ITERATIONS, BALANCE_SETTLED = 30, 1e-8
-#: The least size of the motion about the rest that the correction is measured against, relative to the rest: below
-#: it the motion is the rest's rounding (no turning load), whose noise would otherwise never settle by its own size.
+#: The least motion about the rest the correction is measured against, over the rest's size (less is its rounding).
 STILL_MOTION = 1e-6
 #: The balance gives up where its line search cut the step below this in so many iterations running (1/256-1/512).
 BALANCE_STALLED, BALANCE_STALLS = 1 / 64, 3
@@ -419,8 +418,8 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
     on its wall turns its stiff normal with it, which a Jacobian held at the rest does not follow). The drag's
     difference from its viscous equivalent is a load on the modes, updated from each iterate's motion. It starts
     from the linear answer (the rest, the synchronous whirl and the arc's second order of :func:`whirl`) and stops
-    where the correction is below :data:`BALANCE_SETTLED` of the motion about the rest (at least :data:`STILL_MOTION`
-    of the rest): what is left of the exact periodic solution is the harmonics above H. ``start``: harmonics Q to start from instead (cut or padded).
+    where the correction is below :data:`BALANCE_SETTLED` of the motion about the rest (:data:`STILL_MOTION` of the
+    rest at least): the harmonics above H are what is left. ``start``: harmonics Q to start from (cut or padded).
 
     ``coordinates`` (:data:`BALANCE_COORDINATES`): the touching points' unknowns, their Cartesian displacement
     harmonics, or the harmonics of each one's angle φ along its wall and radial approach ρ, u = (c + ρ)(cos φ, sin φ)
@@ -571,7 +570,7 @@ def balance(model: reference.WhirlModel, rested: dict[str, Any], whirled: dict[s
         radius = r0[None] + np.einsum("mpi,pi->mp", ut, n0)
         arc = np.concatenate((radius * np.cos(angle), radius * np.sin(angle)), axis=1)  # (M, K)
         U = W[:, None] * (E.T @ arc)
-    # the motion about the rest, at least STILL_MOTION of the rest (without a turning load it is the rest's rounding)
+    # the motion about the rest, at least STILL_MOTION of the rest (with no turning load it is the rest's rounding)
     dynamic = lambda X: max(float(np.max(np.abs(X[1:]))), STILL_MOTION * float(np.max(np.abs(X[0]))), 1e-300)
     X = U
     if coordinates == "polar":  # the start in the wall's coordinates
