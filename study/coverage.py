@@ -63,7 +63,7 @@ ERROR_OUTPUT = {"damage_rate": "fatigue_life_error"}
 KEPT = ("regime", "window_revolutions", "revolutions_simulated", "max_bending_stress", "impacts_per_revolution",
         "statistical_figures")
 #: The swept inputs shown per point: input name -> (unit, label, format).
-SHOWN = {"dogleg_curvature": ("deg/100ft", "dogleg [°/100 ft]", "{:.3g}"), "rotary_speed": ("rpm", "rpm", "{:.0f}"),
+SHOWN = {"dogleg_curvature": ("deg_per_100ft", "dogleg [°/100 ft]", "{:.3g}"), "rotary_speed": ("rpm", "rpm", "{:.0f}"),
          "axial_tension": ("lbf", "tension [lbf]", "{:.0f}"), "restitution": ("", "e", "{:g}"),
          "mud_density": ("ppg", "mud [ppg]", "{:.3g}"), "mud_flow_velocity": ("ft/s", "flow [ft/s]", "{:.3g}")}
 
@@ -424,13 +424,12 @@ def _shown(name: str, value) -> str:
     unit, _, fmt = SHOWN[name]
     if value is None:
         return "-"
-    if name == "dogleg_curvature":
-        return fmt.format(float(value) * 100 * 0.3048 * 180 / math.pi)  # [1/m] -> [deg/100 ft]
     return fmt.format(convert(float(value), SHOWN_SI[name], unit) if unit else float(value))
 
 
 #: SI units of the shown inputs.
-SHOWN_SI = {"rotary_speed": "rad/s", "axial_tension": "N", "mud_density": "kg/m^3", "mud_flow_velocity": "m/s"}
+SHOWN_SI = {"dogleg_curvature": "1/m", "rotary_speed": "rad/s",
+            "axial_tension": "N", "mud_density": "kg/m^3", "mud_flow_velocity": "m/s"}
 
 
 def coverage_section(path: str | Path | None = None) -> list[str]:

@@ -621,7 +621,7 @@ def hierarchy_section(count: int = HIERARCHY_SAMPLE) -> list[str]:
     alternating, tolerances = [], []
     for r in rows:
         i, a, ref = r["inputs"], r["auto"], r["ref"]
-        dogleg = float(i.get("dogleg_curvature") or 0.0) * 100 * 0.3048 * 180 / np.pi  # [1/m] -> [deg/100 ft]
+        dogleg = convert(float(i.get("dogleg_curvature") or 0.0), "1/m", "deg_per_100ft")
         cells = [f"{dogleg:.3g}", f"{convert(i['rotary_speed'], 'rad/s', 'rpm'):.0f}",
                  f"{convert(i['axial_tension'], 'N', 'lbf'):.0f}",
                  f"{i['restitution']:g}", f"{convert(i['mud_density'], 'kg/m^3', 'ppg'):.3g}",
