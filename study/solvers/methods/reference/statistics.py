@@ -252,11 +252,10 @@ def strike_speeds(model: WhirlModel, window: Window) -> tuple[np.ndarray, np.nda
     size = np.maximum(np.abs(speed), 1e-300)
     upper = np.abs(rate((rank >= N // 2).astype(float))) / size  # the last octave of the kept modes
     lower = np.abs(rate(((rank >= N // 4) & (rank < N // 2)).astype(float))) / size  # the one before
-    # the octaves to come, geometric at the ratio r of the last two, no more than the last: upper × min(1, r/(1 − r))
-    ratio = upper / np.maximum(lower, 1e-300)
-    taken = np.minimum(ratio, 0.5)  # the tail is taken only below 1/2 (no overflow where the octaves do not fall)
-    tail = upper * np.minimum(1.0, taken / (1.0 - taken))
-    return rows, points, speed, np.where(ratio < 0.5, tail, upper)
+    # the octaves to come, geometric at the ratio r of the last two, no more than the last: upper × r/(1 − r) with r
+    # taken at most 1/2 (the last octave itself where the octaves do not fall; no overflow)
+    ratio = np.minimum(upper / np.maximum(lower, 1e-300), 0.5)
+    return rows, points, speed, upper * (ratio / (1.0 - ratio))
 
 
 def local_strike_forces(model: WhirlModel, window: Window, segments) -> list[dict[str, Any]]:
