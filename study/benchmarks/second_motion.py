@@ -51,6 +51,7 @@ def run(results: str | Path, out) -> list[dict]:
     one JSON line each to ``out``."""
     from study import config
     from study.solvers.methods import sliding, sliding_parts
+    from study.solvers.model.options import force_tolerance
 
     study = config.load(ROOT / "configs" / "default.toml")
     rows = []
@@ -59,7 +60,7 @@ def run(results: str | Path, out) -> list[dict]:
         force = sliding.solve(point).values.get("peak_contact_force")  # the chatter test's measure
         model = sliding.steady_state(point)["model"]
         clock = time.process_time()
-        found = sliding_parts.from_rest(model, force)
+        found = sliding_parts.from_rest(model, force, tolerance=force_tolerance(point))
         row = dict(index=index, sweep=flag, went_up=went_up, **found, cpu=time.process_time() - clock)
         print(json.dumps(row), file=out, flush=True)
         rows.append(row)

@@ -378,6 +378,24 @@ def test_where_the_run_from_rest_chatters_on_the_wall_a_second_motion_is_flagged
     assert found["peak"] > sliding_parts.CHATTER_RATIO * result.values["peak_contact_force"]
 
 
+def test_where_the_run_from_rest_chatters_after_tens_of_quiet_revolutions_a_second_motion_is_flagged():
+    # default grid point 650 (275 rpm, 10 000 lbf, 12 ppg, no flow, 3°/100 ft; lift-off 1.39 times the point's
+    # eccentricity): the sliding answer 796 N; the check's run from rest on its 48 modes settles on the wall (quiet at
+    # 1.1-1.2 times that through revolutions 31-50), then a joint lifts and strikes it again from the 51st: over
+    # revolutions 81-100 1.91 times the sliding force on average (2.0 on the generic CPU path; the full run, 64 modes:
+    # 2.31 kN, docs/reference_model.md §10), beyond solver.force_tolerance's 15 %: a chattering motion, flagged
+    from study.solvers.methods import sliding_parts
+
+    result = sliding.solve(_study_point(650))
+    assert result.status == "ok" and result.values["peak_contact_force"] == pytest.approx(796.3, rel=0.01)
+    found = result.extras["second_motion"]
+    assert result.values["coexisting_motion"] == 1.0 and found["chattered"] and not found["bounced"], found
+    assert found["settled"] <= sliding_parts.BASIN_REVOLUTIONS
+    assert found["revolutions"] == sliding_parts.LATE_REVOLUTIONS
+    assert found["late"] > 1.15 and "then a joint lifted and struck it again" in result.message, result.message
+    assert "beyond the force's tolerance of 15%" in result.message
+
+
 def test_auto_reports_the_bouncing_motion_where_both_exist_and_flags_it():
     # the engineer's safe side: where the stable sliding answer has a bouncing motion beside it, the reference model
     # answers (the motion reached from rest, the worse for the limits), flagged, the sliding figures in its message
@@ -438,6 +456,13 @@ def test_a_run_come_to_the_sliding_regime_that_strikes_harder_is_another_motion(
     assert run.extras["coexisting"]["worse"] == ["peak_contact_force"]
     assert "its regime the same, its figures above the sliding motion's beyond their tolerance and errors: peak " \
            "force 2314 N against 796.3)" in run.message, run.message
+    assert "a stable sliding motion" in run.message
+    # where the check's run from rest had settled on the sliding motion and left it by itself (a late chatter), the
+    # message does not call that motion stable
+    lying, run = _sliding_and_reference(dict(peak_contact_force=2313.8, statistical_figures=1.0))
+    lying.extras["second_motion"] = dict(chattered=True, late=1.91)
+    assert auto._coexisting([lying, run], Tolerances()) is run and "stable" not in run.message, run.message
+    assert "came near and then left by itself" in run.message
 
 
 def test_a_figure_is_judged_within_its_tolerance_and_its_stated_error_credited_up_to_it():

@@ -5,6 +5,7 @@ on constructed records of its revolutions, and on the default grid's points agai
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from study import config
@@ -111,3 +112,29 @@ def test_the_run_from_rest_on_the_default_grid_decides_as_the_full_reference_run
         assert CHATTER_TRANSIENT + BASIN_LAST <= k <= sliding_parts.BASIN_REVOLUTIONS
         assert found["chattering"][-BASIN_LAST:] == list(range(k - BASIN_LAST + 1, k + 1))
         assert found["peak"] > CHATTER_RATIO * sliding_force and found["modes"] == sliding.MODES
+
+
+def test_a_late_chatter_is_told_by_the_force_of_the_last_revolutions_against_the_tolerance():
+    # per-revolution peak forces over the sliding answer's (48 modes, the run from rest, revolutions 81-100, measured
+    # on the default grid, docs/reference_model.md §10): at 130 the start-up still dying on the wall, 1.05-1.03; at
+    # 650 a chatter come after 30 quiet revolutions, 2.3-1.5 (1.91 on average); solver.force_tolerance 15 %
+    force, window = 796.3, sliding_parts.LATE_WINDOW
+    dying = [force * r for r in np.linspace(1.05, 1.03, window)]
+    assert sliding_parts.late_chatter([10 * force] * 80 + dying, force, 0.15) is None  # the start-up's strikes left out
+    chatter = [force * r for r in (2.3, 1.5) * (window // 2)]
+    assert sliding_parts.late_chatter([force] * 80 + chatter, force, 0.15) == pytest.approx(1.9)
+    assert sliding_parts.late_chatter(chatter, force, 1.0) is None  # within a tolerance of 100 %
+    assert sliding_parts.late_chatter(chatter[:-1], force, 0.15) is None  # fewer revolutions than the window
+
+
+def test_a_run_that_settles_on_the_wall_runs_on_for_a_late_chatter_and_keeps_the_sliding_motion():
+    # default grid point 130 (150 rpm, 5 000 lbf, 12 ppg, straight hole; the sliding answer 480.6 N, measured): the run
+    # from rest settles on the wall by its 10th revolution; given the force's tolerance it runs on to
+    # LATE_REVOLUTIONS, its force over revolutions 81-100 1.03-1.04 times the sliding answer's (measured on the host
+    # and on the generic CPU path): within the 15 %, no second motion. Without the tolerance it stops where it settled
+    model = sliding.steady_state(_study_point(130))["model"]
+    found = sliding_parts.from_rest(model, 480.6, tolerance=0.15)
+    assert found["revolutions"] == sliding_parts.LATE_REVOLUTIONS and found["settled"] <= 15, found
+    assert not found["chattered"] and not found["bounced"] and found["decided"] and found["late"] is None
+    short = sliding_parts.from_rest(model, 480.6)
+    assert short["revolutions"] == short["settled"] == found["settled"] and short["late"] is None

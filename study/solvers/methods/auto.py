@@ -257,8 +257,13 @@ def _coexisting(tried: list[PointResult], tolerances: Tolerances) -> PointResult
     higher.extras["coexisting"] = dict(method=flagged.method, status=str(flagged.status), **figures,
                                        worse=sorted(worse))
     stable = ", ".join(_figure(name, figures[name]) for name in sliding.FIGURES if figures[name] is not None)
-    higher.message += (f"; beside it a stable {flagged.method} motion ({stable}), which a pipe run up gently may keep: "
-                       "the figures are those of the motion reached from rest, which a kick throws it into")
+    if (flagged.extras.get("second_motion") or {}).get("late") is not None:  # the check's run left it by itself
+        higher.message += (f"; beside it a {flagged.method} motion ({stable}), which the check's run from rest came "
+                           "near and then left by itself, chattering: the figures are those of the motion reached "
+                           "from rest")
+    else:
+        higher.message += (f"; beside it a stable {flagged.method} motion ({stable}), which a pipe run up gently may "
+                           "keep: the figures are those of the motion reached from rest, which a kick throws it into")
     if same_regime:
         higher.message += (f" (its regime the same, its figures above the {flagged.method} motion's beyond their "
                            f"tolerance and errors: " + ", ".join(f"{_figure(name, h)} against "

@@ -51,7 +51,7 @@ from study.physics import whirl as whirl_physics
 from study.solvers.methods import reference
 from study.solvers.methods.sliding_parts import (STABILITY_KICK, STABILITY_SWING, least_force_slope,
                                                 polynomial_root, second_motion, stability)
-from study.solvers.model.options import study_tolerance
+from study.solvers.model.options import force_tolerance, study_tolerance
 from study.solvers.model.point import DesignPoint
 from study.solvers.model.result import PointResult
 
@@ -917,7 +917,7 @@ def solve(inputs: Mapping[str, Any]) -> PointResult:
     def finish(status: str, message: str) -> PointResult:
         result.status, result.message = status, message
         if status == "ok":
-            second_motion(result, model)
+            second_motion(result, model, force_tolerance(inputs))
         return result
 
     if state["why"] == "buckled":

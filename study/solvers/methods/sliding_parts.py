@@ -85,6 +85,15 @@ BASIN_REVOLUTIONS, BASIN_TRANSIENT, BASIN_LAST, BASIN_LIFT_RATIO = 40, 5, 5, 2.0
 #: the 15th); the start-up's strikes after a flight pass 4 times in 5-10 revolutions in a row before the 16th (counted
 #: from the 11th, 650, 696, 697 and 701 would chatter; with 3 times from the 16th, 650).
 CHATTER_RATIO, CHATTER_TRANSIENT = 4.0, 15
+#: A chatter that comes late (:func:`late_chatter`): a run settled on the wall by :func:`basin_verdict` runs on to
+#: :data:`LATE_REVOLUTIONS`, and the mean of its largest contact force a revolution over the last :data:`LATE_WINDOW`
+#: above the sliding answer's peak force beyond the force's tolerance is a chatter beside the sliding motion. Over the
+#: 96 points the default sweep checks (48 modes, 120 revolutions from rest): at 650, 651, 654 and 655 (275 rpm,
+#: 10 000 lbf, 12 ppg, 3°/100 ft) the run, quiet on the wall at 1.1-1.2 times the sliding force through revolutions
+#: 31-50, chatters from the 51st-70th: 1.5-2.1 times it over revolutions 81-100 (1.8-3.0 over 61-80); at the other
+#: 76 whose run settles 0.91-1.08 times (the slowest, 136-159 in the straight hole, still dying there: 1.09-1.10 over
+#: 61-80).
+LATE_REVOLUTIONS, LATE_WINDOW = 100, 20
 #: The verdicts of :func:`basin_verdict`.
 BOUNCES, CHATTERS, SETTLES = "bounces", "chatters", "settles"
 
@@ -115,8 +124,22 @@ def basin_verdict(flying: Sequence[bool], chattering: Sequence[bool] = (), trans
     return SETTLES if len(tail) == last and not any(tail) and not any(struck) else None
 
 
+def late_chatter(peaks: Sequence[float], sliding_force: float, tolerance: float,
+                 window: int = LATE_WINDOW) -> float | None:
+    """The mean of the largest contact force a revolution [N] over the last ``window`` of ``peaks`` (per revolution
+    of a run settled on the wall) over ``sliding_force`` [N] (the sliding answer's peak contact force), where it is
+    above 1 + ``tolerance`` (the force's, ``solver.force_tolerance``): a joint keeps lifting and striking the wall
+    beyond what the sliding motion's force allows, a chatter; None where it is within (the run kept the sliding motion,
+    or a start-up still dying on it) or fewer revolutions were run."""
+    if len(peaks) < window or not sliding_force > 0:
+        return None
+    ratio = float(np.mean(peaks[-window:])) / sliding_force
+    return ratio if ratio > 1.0 + tolerance else None
+
+
 def from_rest(model: reference.WhirlModel, sliding_force: float | None = None,
-              revolutions: int = BASIN_REVOLUTIONS) -> dict[str, Any]:
+              revolutions: int = BASIN_REVOLUTIONS, tolerance: float | None = None,
+              late_revolutions: int = LATE_REVOLUTIONS) -> dict[str, Any]:
     """Whether the reference model's run from the string's rest on the wall (its own start,
     :func:`~study.solvers.methods.reference.integrate.initial_state`: the eccentric load applied whole at t = 0) keeps
     leaving the wall — revolution after revolution past the start-up, the string off it (every contact open) for more
@@ -124,18 +147,24 @@ def from_rest(model: reference.WhirlModel, sliding_force: float | None = None,
     :data:`CHATTER_RATIO` times ``sliding_force`` [N] (the sliding answer's peak contact force; no chatter test where
     None) revolution after revolution while the others hold the string on the wall (:func:`basin_verdict`) — or
     settles on it: where it bounces or chatters a second motion is reached from there, beside the sliding one
-    (docs/reference_model.md §10). The run stops as soon as it is decided, at most ``revolutions``; one undecided
-    then, or whose integration fails, counts as bouncing (the reference model's own run decides). Returns bounced
-    (bool), chattered (bool), decided (bool), the revolution of the first onset (opened, or None), the revolutions off
-    the wall (flying) and chattering (chattering), the revolutions run, the mode count (modes), the least fraction of
-    a revolution in contact after the start-up (contact) and the largest contact force after it [N] (peak; over the
-    whole run where it ended within it)."""
+    (docs/reference_model.md §10). The run stops as soon as it bounces or chatters, and is undecided where it has
+    done neither nor settled after ``revolutions``; one undecided, or whose integration fails, counts as bouncing
+    (the reference model's own run decides). Where it settles and ``tolerance`` (the force's) is given, it runs on to
+    ``late_revolutions`` (a chatter may come after tens of quiet revolutions), bouncing or chattering by
+    :func:`basin_verdict` there too, and chatters where the force of its last revolutions is above the sliding
+    answer's beyond that tolerance (:func:`late_chatter`). Returns bounced (bool), chattered (bool), decided (bool),
+    the revolution of the first onset (opened, or None), the revolutions off the wall (flying) and chattering
+    (chattering), the revolutions run, the revolution it settled in (settled, or None), the late chatter's force over
+    the sliding answer's (late, or None), the mode count (modes), the least fraction of a revolution in contact after
+    the start-up (contact) and the largest contact force after it [N] (peak; over the whole run where it ended within
+    it)."""
     start = reference.initial_state(model)  # the rest on the wall, kept in the model's cache
     run = reference.Integrator(model, ReferenceOptions.default("reference_rtol"), start)
     flying: list[bool] = []
     chattering: list[bool] = []
-    peaks, contact, opened, verdict, failed = [], [], None, None, False
-    for k in range(1, revolutions + 1):
+    peaks, contact, opened, verdict, failed, settled = [], [], None, None, False, None
+    runs_on = sliding_force is not None and tolerance is not None  # a settled run runs on for a late chatter
+    for k in range(1, max(revolutions, late_revolutions if runs_on else 0) + 1):
         cycle = run.run(k * model.period)
         peaks.append(float(np.max(cycle.peak)))
         contact.append(cycle.any_contact_time / model.period)
@@ -144,14 +173,19 @@ def from_rest(model: reference.WhirlModel, sliding_force: float | None = None,
         flying.append(failed or contact[-1] < reference.SLIDING_CONTACT)
         chattering.append(sliding_force is not None and chatters(cycle.onsets, cycle.peak, sliding_force))
         verdict = BOUNCES if failed else basin_verdict(flying, chattering)
-        if verdict is not None:
+        settled = k if settled is None and verdict == SETTLES else settled
+        if verdict in (BOUNCES, CHATTERS) or (settled is None and k >= revolutions) or (settled and not runs_on):
             break
-    late = slice(BASIN_TRANSIENT if k > BASIN_TRANSIENT else 0, None)
+    late = None
+    if settled and verdict not in (BOUNCES, CHATTERS):  # settled, and neither bounced nor chattered after
+        late = late_chatter(peaks, sliding_force, tolerance) if runs_on else None
+        verdict = SETTLES if late is None else CHATTERS
+    after = slice(BASIN_TRANSIENT if k > BASIN_TRANSIENT else 0, None)
     return dict(bounced=verdict not in (SETTLES, CHATTERS), chattered=verdict == CHATTERS,
                 decided=verdict is not None and not failed, opened=opened,
                 flying=[i + 1 for i, f in enumerate(flying) if f],
-                chattering=[i + 1 for i, c in enumerate(chattering) if c], revolutions=k, modes=model.n_modes,
-                contact=min(contact[late]), peak=max(peaks[late]))
+                chattering=[i + 1 for i, c in enumerate(chattering) if c], revolutions=k, settled=settled, late=late,
+                modes=model.n_modes, contact=min(contact[after]), peak=max(peaks[after]))
 
 
 #: The phrase by which :func:`second_motion`'s message names the motion it found beside the sliding one (which
@@ -159,22 +193,30 @@ def from_rest(model: reference.WhirlModel, sliding_force: float | None = None,
 COEXISTS = {BOUNCES: "a bouncing motion coexists", CHATTERS: "a chattering motion coexists"}
 
 
-def second_motion(result: PointResult, model: reference.WhirlModel) -> PointResult:
+def second_motion(result: PointResult, model: reference.WhirlModel, tolerance: float) -> PointResult:
     """``result`` (the sliding state answered on ``model``) with the output ``coexisting_motion``: 1 where a second
     motion coexists with the sliding one (:func:`from_rest`: the reference model's run from the rest on the wall keeps
-    leaving it, or chatters on it at more than :data:`CHATTER_RATIO` times the answer's peak contact force, or is
-    undecided), its message saying so and its extras ``second_motion`` the run's; 0 where the run stays on the wall
-    or settles back on it; not set (NaN) where the lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the
-    point's or more (not checked)."""
+    leaving it, or chatters on it at more than :data:`CHATTER_RATIO` times the answer's peak contact force, or, late,
+    above that force beyond ``tolerance``, the force's; or is undecided), its message saying so and its extras
+    ``second_motion`` the run's; 0 where the run stays on the wall or settles back on it; not set (NaN) where the
+    lift-off eccentricity is :data:`BASIN_LIFT_RATIO` times the point's or more (not checked)."""
     lift, eps = result.values.get("lift_off_eccentricity", np.nan), model.eccentricity
     if not (eps > 0 and np.isfinite(lift) and lift < BASIN_LIFT_RATIO * eps):
         return result
-    found = result.extras["second_motion"] = from_rest(model, result.values.get("peak_contact_force"))
+    found = result.extras["second_motion"] = from_rest(model, result.values.get("peak_contact_force"),
+                                                       tolerance=tolerance)
     result.values["coexisting_motion"] = float(found["bounced"] or found["chattered"])
     k = found["revolutions"]
     how = (f"the reference model's run from the rest on the wall (the eccentric load applied at once; lift-off "
            f"eccentricity {lift / eps:.3g} times the point's")
-    if found["chattered"]:
+    if found["late"] is not None:
+        result.message += (f"; {COEXISTS[CHATTERS]}: in {how}, {found['modes']} modes) the string settled on the wall "
+                           f"by revolution {found['settled']}, then a joint lifted and struck it again: over "
+                           f"revolutions {k - LATE_WINDOW + 1}-{k} its largest contact force a revolution was "
+                           f"{found['late'] * result.values['peak_contact_force']:.4g} N on average, "
+                           f"{found['late']:.3g} times this answer's peak force, beyond the force's tolerance of "
+                           f"{tolerance:.0%})")
+    elif found["chattered"]:
         result.message += (f"; {COEXISTS[CHATTERS]}: in {how}, {found['modes']} modes) a joint lifted and struck the "
                            f"wall at more than {CHATTER_RATIO:.3g} times this answer's peak force in each of "
                            f"revolutions {k - BASIN_LAST + 1}-{k}, the others holding the string on it (in contact "
