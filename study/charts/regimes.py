@@ -5,7 +5,9 @@ state) / unstable, as the codes of :data:`study.solvers.model.result.REGIMES`. A
 writes the output ``regime``; where a point has none, the regime is read from its status (no_impact: no
 contact; ok or disagrees: periodic impacts; unstable or period_doubling: unstable; not_periodic or
 chattering: bouncing) and the title says so. Any other status leaves the regime undetermined (hatched).
-Other swept inputs are reduced to the most severe regime (:data:`SEVERITY`).
+Other swept inputs are reduced to the most severe regime (:data:`SEVERITY`). Cells where a point has two motions
+(output ``coexisting_motion`` 1: the pipe lying on the wall, sliding, and a bouncing or chattering motion that a kick
+throws it into, whose answer the point carries; docs/reference_model.md §10) are outlined.
 """
 
 from __future__ import annotations
@@ -32,6 +34,9 @@ COLOURS = {"no_contact": "#c7e9c0", "sliding": "#ffffb2", "forward_whirl": "#9ec
 LABELS = {"no_contact": "no contact", "sliding": "lying on the wall, sliding", "forward_whirl": "forward whirl",
           "backward_whirl": "backward whirl", "bouncing": "bouncing impacts",
           "periodic_impacts": "periodic impacts (the paper's state)", "unstable": "unstable"}
+#: The outline of the cells where two motions coexist (output ``coexisting_motion`` 1).
+COEXISTING_STYLE = {"facecolor": "none", "edgecolor": "k", "linewidth": 1.6, "linestyle": "--"}
+COEXISTING_LABEL = "two motions: lying on the wall, or bouncing\nor chattering once a kick throws it off"
 
 
 def regimes(ds: xr.Dataset) -> tuple[xr.DataArray, bool]:
@@ -78,6 +83,11 @@ def regime_map(ds: xr.Dataset) -> list[Chart]:
         draw_cells(fig.axes[0], partial, p, facecolor="none", edgecolor="0.35", hatch="\\\\", linewidth=0)
         handles.append(Patch(facecolor="white", edgecolor="0.35", hatch="\\\\",
                              label=f"some points undetermined ({int(partial.sum())} cells)"))
+    if "coexisting_motion" in ds.data_vars:  # a kick throws the pipe lying on the wall into another motion
+        twice = p.reduce(full_array(ds, "coexisting_motion") == 1.0, "any")
+        if twice.any():
+            draw_cells(fig.axes[0], twice, p, **COEXISTING_STYLE)
+            handles.append(Patch(**COEXISTING_STYLE, label=f"{COEXISTING_LABEL} ({int(twice.sum())} cells)"))
     bands = avoid_bands(p)
     if bands is not None and draw_bands(fig.axes[0], bands, p) is not None:
         handles.append(Patch(**BAND_STYLE, label=BAND_LABEL))
@@ -91,7 +101,8 @@ def regime_map(ds: xr.Dataset) -> list[Chart]:
     figure_title(fig, "Regime of the motion", context, 8.5)
     caption = ("How the pipe moves at each rotary speed and load - free of the wall, whirling, bouncing or striking "
                "periodically - taking the most severe regime over the other swept inputs; shaded bands are speeds to "
-               "avoid.")
+               "avoid; a dashed outline marks where the pipe run up gently may lie on the wall but a kick throws it "
+               "into bouncing or chattering (the figures there are that motion's).")
     return [Chart("regime_map", fig, caption)]
 
 

@@ -48,6 +48,32 @@ def test_a_regime_output_is_used_where_present(study):
     assert "backward whirl (52 cells)" in labels["legend"] and "regime read" not in labels["titles"][-1]
 
 
+def test_cells_where_two_motions_coexist_are_outlined(study):
+    # output coexisting_motion (study.solvers.methods.sliding_parts.second_motion, auto._coexisting): 1 where the pipe
+    # lying on the wall has a bouncing or chattering motion beside it; set at one point of the 120 rpm, lowest-load
+    # cell and at every point of the 300 rpm column (4 cells): 5 cells outlined, named in the legend with the count
+    from matplotlib.collections import PolyCollection
+
+    from study.charts.regimes import COEXISTING_LABEL, COEXISTING_STYLE
+
+    ds = study.copy()
+    flag = np.zeros(study.status.shape)
+    speeds = list(np.round(ds.rotary_speed.values * 30 / np.pi))
+    dims = list(study.status.dims)
+    at = tuple(speeds.index(120) if d == "rotary_speed" else 0 for d in dims)
+    flag[at] = 1.0
+    flag[tuple(speeds.index(300) if d == "rotary_speed" else slice(None) for d in dims)] = 1.0
+    ds["coexisting_motion"] = (dims, flag, {"units": "1"})
+    (chart,) = regime_map(ds)
+    assert f"{COEXISTING_LABEL} (5 cells)" in figure_labels(chart.figure)["legend"]
+    outlined = [c for c in chart.figure.axes[0].collections if isinstance(c, PolyCollection)
+                and c.get_linestyle()[0][1] is not None and c.get_linewidth()[0] == COEXISTING_STYLE["linewidth"]]
+    assert len(outlined) == 1 and len(outlined[0].get_paths()) == 5
+    assert "kick throws it" in chart.caption
+    ds["coexisting_motion"] = (dims, np.zeros(study.status.shape), {"units": "1"})  # none: no outline
+    assert not any(COEXISTING_LABEL in t for t in figure_labels(regime_map(ds)[0].figure)["legend"])
+
+
 def test_every_regime_has_a_severity_and_the_codes_do_not_clash_with_the_status():
     assert set(SEVERITY) == set(REGIMES) and len(set(REGIMES.values())) == len(REGIMES)
     assert not set(REGIMES) & set(STATUS) - {"unstable"}
