@@ -284,6 +284,9 @@ FIELDS: tuple[Field, ...] = (
           default=ReferenceOptions.default("reference_max_modes"), integer=True, lower=1.0),
     Field("solver.reference_revolutions", "reference_revolutions", "most revolutions of the reference model's "
           "transient", "", default=ReferenceOptions.default("reference_revolutions"), integer=True, lower=1.0),
+    Field("solver.reference_min_revolutions", "reference_min_revolutions", "least revolutions of the reference "
+          "model's transient from its initial state: none before it enters the window", "",
+          default=ReferenceOptions.default("reference_min_revolutions"), integer=True, lower=0.0),
     Field("solver.reference_window", "reference_window", "revolutions of the reference model's output window", "",
           default=ReferenceOptions.default("reference_window"), integer=True, lower=1.0),
     Field("solver.reference_max_revolutions", "reference_max_revolutions", "revolution budget of the reference "

@@ -237,6 +237,16 @@ def test_where_the_sliding_check_found_a_chatter_the_reference_model_starts_at_t
     many = point.with_reference(reference_modes=64, reference_max_modes=32)
     assert prepare(many, chatter).reference.reference_modes == 64
     assert prepare(many, chatter).reference.reference_max_modes == 64
+    # a chatter that came late (the check's run settled, then chattered over its last LATE_WINDOW revolutions): the
+    # reference run's transient keeps the start-up out of its window, up to where the check's window began
+    from study.solvers.methods import sliding_parts
+
+    assert raised.reference.reference_min_revolutions == 0
+    late = PointResult(method="sliding", values=dict(coexisting_motion=1.0), extras=dict(second_motion=dict(
+        bounced=False, chattered=True, modes=48, revolutions=sliding_parts.LATE_REVOLUTIONS, late=1.91)))
+    floored = prepare(point, late).reference
+    assert floored.reference_modes == 48
+    assert floored.reference_min_revolutions == sliding_parts.LATE_REVOLUTIONS - sliding_parts.LATE_WINDOW
 
 
 def test_a_full_run_come_to_the_sliding_motion_takes_the_chatter_flag_off():

@@ -103,7 +103,7 @@ def test_every_config_field_reaches_the_scene_or_an_options_class():
         elif value is None:
             moved = 10.0 if spec.name != "yield_strength" else 5e8
         elif value == 0:
-            moved = 0.1
+            moved = 1 if spec.integer else 0.1
         else:
             moved = type(value)(value * 2) if spec.integer else value * 0.9
         if _typed({**point, spec.name: moved}) == base:

@@ -592,6 +592,27 @@ def test_a_stationary_bouncing_ends_its_transient_early_within_its_stated_error(
         assert off < 2.0 * (early.extras["convergence"][name]["total"] + full.extras["convergence"][name]["total"]), name
 
 
+def test_a_least_transient_keeps_its_first_revolutions_out_of_the_window(default_study):
+    # solver.reference_min_revolutions (set by auto where the sliding check's run chattered only after tens of quiet
+    # revolutions, docs/reference_model.md §10): the same point as above on 16 modes, 3-revolution stretches; its
+    # statistics end the transient on the start-up's bouncing (after 6 revolutions, measured); with 24 asked, neither
+    # the window nor the stretch before it holds any of the first 24
+    point = {**_default_point(default_study, 250, 5, 0.7, 9, 0.0), "reference_modes": 16, "reference_max_modes": 16,
+             "reference_window": 3, "reference_max_revolutions": 40}
+    free = reference.solve(point)
+    assert free.values["revolutions_simulated"] - free.values["window_revolutions"] < 24
+    floored = reference.solve({**point, "reference_min_revolutions": 24})
+    assert floored.values["revolutions_simulated"] - floored.values["window_revolutions"] >= 24, floored.message
+    assert "none of the first 24 revolutions in the window" in floored.message
+    run = reference.simulate({**point, "reference_min_revolutions": 24})
+    assert run["revolutions"] >= 24 and run["window"].start >= 24 * run["model"].period * (1 - 1e-9)
+    options = ReferenceOptions(reference_min_revolutions=24, reference_window=3)
+    assert reference.transient_bounds(options) == (24, 40)
+    assert reference.transient_bounds(options, start={"modes": 16}) == (0, 40)  # a continued run is past it
+    assert reference.transient_bounds(ReferenceOptions(reference_min_revolutions=36, reference_window=3)) == (36, 42)
+    assert reference.transient_bounds(ReferenceOptions(reference_window=21)) == (0, 40)  # none asked: as given
+
+
 def test_an_unknown_integrator_scheme_is_refused_naming_the_option(base):
     model = reference.build_model({**base, "reference_modes": 2})
     with pytest.raises(ValueError, match="reference_integrator = 'rk4'; allowed: lawson, lawson-flight, dopri5"):

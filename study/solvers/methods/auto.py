@@ -116,13 +116,21 @@ def _chatter_modes(point: DesignPoint, below: PointResult | None = None) -> Desi
     (its check's run from rest, ``sliding_parts.from_rest``: a joint striking revolution after revolution while the
     others hold the string on the wall), with the reference model's first mode count raised to the check's, at least:
     the default's 16 modes do not carry the chatter the check's 48 show (at default grid point 384 the run from rest on
-    16 modes settles, on 32-64 it chatters; docs/reference_model.md §10)."""
+    16 modes settles, on 32-64 it chatters; docs/reference_model.md §10). Where the chatter came late (the check's run
+    settled on the wall, then chattered: ``late``), its transient lasts at least until the check's last window began
+    (``reference_min_revolutions``): the same run from the same rest on those modes, whose start-up's strikes a shorter
+    transient would take for the motion (at default grid point 650 its statistics found them stationary after 12
+    revolutions)."""
     found = below.extras.get("second_motion") if below is not None else None
     if not found or not found.get("chattered"):
         return point
     modes = max(int(point.reference.reference_modes), int(found["modes"]))
+    late = {}
+    if found.get("late") is not None:
+        late["reference_min_revolutions"] = max(int(point.reference.reference_min_revolutions),
+                                                int(found["revolutions"]) - sliding_parts.LATE_WINDOW)
     return point.with_reference(reference_modes=modes,
-                                reference_max_modes=max(modes, int(point.reference.reference_max_modes)))
+                                reference_max_modes=max(modes, int(point.reference.reference_max_modes)), **late)
 
 
 #: The hierarchies, cheapest first: ladder -> {method name: (its typed solve, the point it is given from the ladder's

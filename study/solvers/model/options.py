@@ -294,6 +294,10 @@ class ReferenceOptions(MethodOptions):
     #: half the study's tolerance (reference.solve)
     reference_max_modes: int = 64
     reference_revolutions: int = 40  #: most revolutions of the transient
+    #: least revolutions of the transient from the initial state: none before it enters the window (neither a period
+    #: nor stationary bouncing ends the transient sooner; auto sets it where the sliding check's run from rest chattered
+    #: only after tens of quiet revolutions, docs/reference_model.md §10); 0: none
+    reference_min_revolutions: int = 0
     reference_window: int = 6  #: revolutions of the output window (and of each extension of the record)
     #: revolution budget of a run that has not converged (transient included): where the motion does not repeat the
     #: window grows within it for every figure that can reach its tolerance; at 10 bouncing points of the default grid

@@ -88,7 +88,7 @@ from study.solvers.methods.reference.statistics import (CONFIDENCE_LEVEL, DAMAGE
                                                         whirl_measure, window_summary, confidence, revolutions_for)
 from study.solvers.methods.reference.method import (METHOD, continued_state, doubling_modal_error, end_state,
                                                     modal_part, run, simulate, solve, solve_with_modes,
-                                                    solve_with_stations, start_integrator)
+                                                    solve_with_stations, start_integrator, transient_bounds)
 from study.solvers.model.result import REGIMES
 
 __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility", "SECOND_MOMENT_HARMONICS",
@@ -105,4 +105,4 @@ __all__ = ["CONTACT_LAWS", "SLIP_VELOCITY", "WhirlModel", "residual_flexibility"
            "settling", "MODAL_FIGURES", "quasi_static_ratio", "quasi_static_applies", "modal_check",
            "NEGLIGIBLE_BENDING", "convergence", "stress_equivalent", "figure_tolerance", "whirl_measure", "METHOD",
            "simulate", "run", "solve", "modal_part", "doubling_modal_error", "solve_with_modes", "solve_with_stations",
-           "start_integrator", "end_state", "continued_state", "REGIMES"]
+           "start_integrator", "end_state", "continued_state", "transient_bounds", "REGIMES"]

@@ -28,10 +28,22 @@ from study.solvers.kernels.periodicity import settled_period
 METHOD = "reference"
 
 
+def transient_bounds(option, start: Mapping[str, Any] | None = None) -> tuple[int, int]:
+    """The least and the most revolutions of :func:`simulate`'s transient (``option``: the point's
+    :class:`ReferenceOptions`): ``reference_min_revolutions`` from the initial state (0 for a run continued from
+    ``start``, past it), and ``reference_revolutions`` or as many as keep the first ``reference_min_revolutions`` out
+    of the window and the stretch before it, whichever is more (where there is a least)."""
+    least = int(option.reference_min_revolutions) if start is None else 0
+    most = int(option.reference_revolutions)
+    return least, max(most, least + 2 * int(option.reference_window)) if least else most
+
+
 def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = None,
              start: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
-    recorded window, extended while its
+    recorded window, extended while its figures have not converged; from the initial state no revolution before
+    ``reference_min_revolutions`` enters the window (neither a period nor stationary bouncing ends the transient
+    sooner). The window, extended while its
     figures have not converged (docs/reference_model.md §3.1). ``start``: where to start at a revolution boundary, the
     run at fewer modes' end (:func:`continued_state`: the modal state and the contacts' state); else
     ``reference_initial``'s.
@@ -63,7 +75,7 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
     model = model or build_model(point)
     run = start_integrator(model, option, start)
     tau = model.period
-    revolutions = int(option.reference_revolutions)
+    least, revolutions = transient_bounds(option, start)
     n_window = int(option.reference_window)
     budget = int(option.reference_max_revolutions)
     tolerance = point.tolerances.statistical  # the window grows only where the motion does not repeat: means
@@ -102,9 +114,9 @@ def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = 
             period = 1 if k >= 2 else None
         else:
             period = settled_period(states, scale, tol)
-        if period is not None:
+        if period is not None and k >= least:
             break
-        if k % n_window == 0 and stationary(peaks, impacts, states, scale, n_window):
+        if k - 2 * n_window >= least and k % n_window == 0 and stationary(peaks, impacts, states, scale, n_window):
             bouncing = True
             break
     done = len(states) - 1
@@ -630,12 +642,15 @@ def solve_with_stations(point: DesignPoint, previous: PointResult | None = None)
                         f"integrator {e['integrator']:.1e}, "
                         f"modes {e['modes']:.2%})"
                         for name, e in errors.items())
+    least, longest = transient_bounds(option, start)
     messages = [f"whirl {measure['whirl']} ({measure['whirl_frequency_ratio']:+.3f} Omega)",
                 (f"periodic every {run['period']} revolution(s) after {run['revolutions']}" if periodic else
                  f"bouncing with stationary statistics after {run['revolutions']} revolutions (transient ended)"
-                 if run.get("stationary") and run["revolutions"] < option.reference_revolutions else
+                 if run.get("stationary") and run["revolutions"] < longest else
                  f"not periodic within {run['revolutions']} revolutions")
-                + (f" (started where the {start['modes']}-mode run ended)" if start is not None else ""),
+                + (f" (started where the {start['modes']}-mode run ended)" if start is not None else
+                   f" (none of the first {least} revolutions in the window: solver.reference_min_revolutions)"
+                   if least else ""),
                 f"figures: means over the window's {len(cycles)} cycle(s) of {cycle} of each cycle's largest value"
                 f" (largest seen: window_largest_*){stopped}",
                 f"window {revs:g} revolutions; {model.n_modes} modes per direction, rtol "
