@@ -41,11 +41,10 @@ def transient_bounds(option, start: Mapping[str, Any] | None = None) -> tuple[in
 def simulate(point: DesignPoint | Mapping[str, Any], model: WhirlModel | None = None,
              start: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Transient until periodic, stationary bouncing (:func:`stationary`) or ``reference_revolutions``, then the
-    recorded window, extended while its figures have not converged; from the initial state no revolution before
-    ``reference_min_revolutions`` enters the window (neither a period nor stationary bouncing ends the transient
-    sooner). The window, extended while its
-    figures have not converged (docs/reference_model.md §3.1). ``start``: where to start at a revolution boundary, the
-    run at fewer modes' end (:func:`continued_state`: the modal state and the contacts' state); else
+    recorded window, extended while its figures have not converged (docs/reference_model.md §3.1); from the initial
+    state no revolution before ``reference_min_revolutions`` enters the window (neither a period nor stationary
+    bouncing ends the transient sooner: :func:`transient_bounds`). ``start``: where to start at a revolution boundary,
+    the run at fewer modes' end (:func:`continued_state`: the modal state and the contacts' state); else
     ``reference_initial``'s.
 
     Periodic: the window is ``reference_window`` revolutions rounded up to whole periods, its cycles the
